@@ -1,0 +1,529 @@
+"""Static equilibrium of a journal in a gas foil bearing: CasADi model, IPOPT solve.
+
+The discrete Reynolds equation (:mod:`gfbopt.discretisation`), the foil law
+(:mod:`gfbopt.foil`) and the force balance are assembled once per grid and formulation as
+CasADi SX expressions; the operating values (Λ, S, C, L/D, the eccentricity or load, the seam
+angle and the model switches) are CasADi *parameters*, so one build serves a whole sweep.
+
+Frame and conventions
+---------------------
+X lies along the static load (the direction the load pushes the journal), θ is measured from
++X in the direction of rotation.  The journal centre sits at (X, Y) = ε (cos φ, sin φ), φ the
+attitude angle, so the film is H = 1 − ε cos(θ − φ) + W, thickest at θ = π + φ.  The film
+force on the journal is F = −∬ (P − 1)(cos θ, sin θ) dθ dZ (per p_a R²); equilibrium is
+F_X + W̄ = 0, F_Y = 0.  The grid starts at the seam (the welded end of the top foil) at
+θ = θ_s: either an input angle from the load line, or θ_s = π + φ (the thesis's convention,
+seam on the maximum-film line).
+
+Unknowns (``x``): P at interior nodes; lifted per-θ-row H (or its rigid part for the local
+law), Q_i = ∫(P − 1) dZ and the force integrand Q^F_i; the beam's free Hermite dofs; ε and φ.
+Lifting the axial integrals and the film geometry keeps the Jacobian sparse, which is what
+makes the symbolic build take well under a second (PHYSICS.md).  Equations (``g``): Reynolds at
+the unknown nodes, the lifting definitions, the beam equations, and two closing equations:
+``mode·(F_X + W̄) + (1 − mode)(ε − ε_given) = 0`` and ``F_Y = 0``.  IPOPT solves this square
+system (zero objective) keeping P > 0 and H > 0 by bounds.
+"""
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass, field
+from typing import Optional
+
+import casadi as ca
+import numpy as np
+
+from . import discretisation as disc
+from .errors import ConvergenceError, ParameterError
+from .foil import beam_matrices, beam_residual, simple_deflection
+from .parameters import DEFAULT_GRID, BearingModel, Grid, check_positive, _finite
+
+PARAMETERS = ("bearing_number", "compliance", "top_foil_coefficient", "length_ratio",
+              "load_mode", "target", "seam_angle", "seam_follows", "compression_only", "gumbel")
+
+#: residual tolerance on the Reynolds and force equations accepted as converged [-]
+RESIDUAL_TOLERANCE = 1e-7
+
+
+def _default_ipopt_options() -> dict:
+    return {
+        "ipopt.print_level": 0, "print_time": False, "ipopt.sb": "yes",
+        "ipopt.tol": 1e-10, "ipopt.constr_viol_tol": 1e-10, "ipopt.acceptable_iter": 0,
+        "ipopt.hessian_approximation": "limited-memory",
+        "ipopt.max_iter": 200, "ipopt.bound_push": 1e-10, "ipopt.bound_frac": 1e-10,
+        "ipopt.mu_init": 1e-6, "ipopt.nlp_scaling_method": "none",
+        "ipopt.linear_solver": "mumps",
+    }
+
+
+@dataclass(frozen=True)
+class Layout:
+    """Where each block of unknowns sits in the solver's vector ``x`` (slices)."""
+
+    pressure: slice
+    film: slice
+    axial: slice
+    force: slice
+    beam: slice
+    partial_sums: slice
+    eccentricity: int
+    attitude: int
+    size: int
+
+
+class StaticSolver:
+    """The CasADi/IPOPT equilibrium problem for one grid, film type and foil structure.
+
+    Build it once and reuse it for every operating point of a sweep: Λ, S, C, L/D, the seam
+    angle, the eccentricity or load and the compression-only and Gümbel switches are
+    parameters.  Not thread-safe (IPOPT/MUMPS): use one per process.
+
+    Parameters
+    ----------
+    grid : the finite-difference grid
+    film : 'periodic' or 'seam'
+    beam : True for the 1D FE top foil, False for the rigid/simple foundation
+    deflection_law : 'mean' or 'local' (simple model only)
+    ipopt_options : overrides of the IPOPT options (CasADi ``nlpsol`` keys)
+    """
+
+    def __init__(self, grid: Grid = DEFAULT_GRID, film: str = "periodic", beam: bool = False,
+                 deflection_law: str = "mean", ipopt_options: Optional[dict] = None):
+        t0 = time.perf_counter()
+        self.grid = grid
+        self.film = film
+        self.beam = bool(beam)
+        self.deflection_law = deflection_law
+        st = disc.make_stencil(grid, periodic=(film == "periodic"))
+        self.stencil = st
+        m, nzn, n_el = st.n_theta_nodes, st.n_z_nodes, grid.n_theta
+        self.beam_mats = beam_matrices(n_el, st.dpsi) if self.beam else None
+        n_beam = self.beam_mats.n_dofs if self.beam else 0
+
+        par = ca.SX.sym("p", len(PARAMETERS))
+        lam, s, c, ld, mode, target, seam_angle, follows, comp, gumbel = ca.vertsplit(par)
+        pu = ca.SX.sym("P", st.n_unknown)
+        hr = ca.SX.sym("H", m)
+        q = ca.SX.sym("Q", m)
+        qf = ca.SX.sym("QF", m)
+        u = ca.SX.sym("U", n_beam)
+        # Force integrals in the grid's own frame, lifted into block partial sums so that no
+        # Jacobian row is dense (dense rows defeat CasADi's colouring: PHYSICS.md).
+        blocks = np.array_split(np.arange(m), max(1, int(round(math.sqrt(m)))))
+        sums = ca.SX.sym("FS", 2 * len(blocks))
+        ecc = ca.SX.sym("eps")
+        phi = ca.SX.sym("phi")
+        x = ca.vertcat(pu, hr, q, qf, u, sums, ecc, phi)
+        o = 0
+        sl = []
+        for size in (st.n_unknown, m, m, m, n_beam, 2 * len(blocks)):
+            sl.append(slice(o, o + size))
+            o += size
+        self.layout = Layout(*sl, eccentricity=o, attitude=o + 1, size=o + 2)
+
+        dz = st.axial_spacing(ld)
+        p_full = ca.SX.ones(st.n_nodes)
+        p_full[st.unknown.tolist()] = pu
+        theta_seam = follows * (math.pi + phi) + (1 - follows) * seam_angle
+        theta = theta_seam + ca.DM(st.psi)
+        h_rigid = 1 - ecc * ca.cos(theta - phi)
+        row_of_node = np.repeat(np.arange(m), nzn).tolist()
+        mean_gauge = q / (2 * ld)
+        equations = []
+        if deflection_law == "local":
+            h_nodes = hr[row_of_node] + simple_deflection(p_full - 1, s, comp)
+            film_eq = hr - h_rigid
+        else:
+            if self.beam:
+                w_beam = ca.vertcat(0, u[0::2])           # nodes 0..n, welded end first
+                w_rows = w_beam[:m]
+                q_beam = ca.vertcat(mean_gauge, mean_gauge[0]) if st.periodic else mean_gauge
+            else:
+                w_rows = simple_deflection(mean_gauge, s, comp)
+            h_nodes = hr[row_of_node]
+            film_eq = hr - (h_rigid + w_rows)
+        reynolds = disc.reynolds_residual(p_full, h_nodes, st, lam, dz)
+        force_p = 1 + (1 - gumbel) * (p_full - 1) + gumbel * ca.fmax(p_full - 1, 0)
+        equations += [reynolds, film_eq, q - disc.axial_integral(p_full, st, dz),
+                      qf - disc.axial_integral(force_p, st, dz)]
+        if self.beam:
+            equations.append(beam_residual(u, q_beam, self.beam_mats, s, c, comp))
+        # F = −Σ w (cos θ, sin θ) Q^F with θ = θ_s + ψ: partial sums of the ψ-frame force
+        # components A = −Σ w cos ψ Q^F and B = −Σ w sin ψ Q^F, then a rotation by θ_s.
+        w = st.theta_weight
+        nb = len(blocks)
+        part = [disc.film_forces(qf[b.tolist()], st.psi[b], w[b]) for b in blocks]
+        part = [sums[k] - f[0] for k, f in enumerate(part)] + [
+            sums[nb + k] - f[1] for k, f in enumerate(part)]
+        equations.append(ca.vertcat(*part))
+        fa, fb = ca.sum1(sums[:nb]), ca.sum1(sums[nb:])
+        fx = ca.cos(theta_seam) * fa - ca.sin(theta_seam) * fb
+        fy = ca.sin(theta_seam) * fa + ca.cos(theta_seam) * fb
+        equations += [mode * (fx + target) + (1 - mode) * (ecc - target), fy]
+        g = ca.vertcat(*equations)
+        opts = _default_ipopt_options()
+        opts.update(ipopt_options or {})
+        self._nlp = ca.nlpsol("gfbopt_static", "ipopt", {"x": x, "p": par, "f": 0, "g": g}, opts)
+        self.n_equations = g.shape[0]
+        lbx = -np.inf * np.ones(self.layout.size)
+        ubx = np.inf * np.ones(self.layout.size)
+        lbx[self.layout.pressure] = 1e-6
+        if deflection_law != "local":
+            lbx[self.layout.film] = 1e-6
+        lbx[self.layout.eccentricity] = 0.0
+        lbx[self.layout.attitude] = -0.5 * math.pi
+        ubx[self.layout.attitude] = math.pi
+        self._lbx, self._ubx = lbx, ubx
+        self.build_time_s = time.perf_counter() - t0
+
+    def parameters(self, model: BearingModel, load_mode: bool, target: float) -> np.ndarray:
+        """The parameter vector of ``model`` for a given eccentricity or load."""
+        follows = model.seam_angle is None
+        return np.array([model.bearing_number, model.compliance, model.top_foil_coefficient,
+                         model.length_ratio, float(load_mode), target,
+                         0.0 if follows else model.seam_angle, float(follows),
+                         float(model.compression_only), float(model.subambient == "gumbel")])
+
+    def matches(self, model: BearingModel, grid: Grid) -> bool:
+        """True if this build can solve ``model`` on ``grid``."""
+        law = model.deflection_law if model.foil == "simple" else "mean"
+        return (grid == self.grid and model.film == self.film
+                and (model.foil == "beam") == self.beam and law == self.deflection_law)
+
+    def run(self, x0: np.ndarray, p: np.ndarray) -> tuple[np.ndarray, dict]:
+        """One IPOPT solve from ``x0``; returns (x, stats)."""
+        sol = self._nlp(x0=x0, p=p, lbx=self._lbx, ubx=self._ubx, lbg=0, ubg=0)
+        return np.asarray(sol["x"]).ravel(), self._nlp.stats()
+
+
+def solver_for(model: BearingModel, grid: Grid = DEFAULT_GRID, **kwargs) -> StaticSolver:
+    """Build the :class:`StaticSolver` that fits ``model`` on ``grid``."""
+    law = model.deflection_law if model.foil == "simple" else "mean"
+    return StaticSolver(grid, film=model.film, beam=(model.foil == "beam"),
+                        deflection_law=law, **kwargs)
+
+
+# ------------------------------------------------------------------------ results
+@dataclass(frozen=True, eq=False)
+class StaticSolution:
+    """A static equilibrium and its diagnostics.
+
+    Scalars are non-dimensional (load W̄ = W/(p_a R²), film H = h/c), angles in radians.
+    Arrays: ``theta`` [rad, from the load line, direction of rotation] at the θ nodes,
+    ``z`` [-] at the axial nodes, ``pressure`` P of shape (n_theta_nodes, n_z + 1),
+    ``film`` H and ``deflection`` W of the same shape, ``mean_pressure`` P̄ per θ node.
+    """
+
+    model: BearingModel
+    grid: Grid
+    eccentricity: float
+    attitude_angle: float
+    load: float
+    force: tuple
+    min_film: float
+    min_film_angle: float
+    seam_angle: float
+    theta: np.ndarray
+    z: np.ndarray
+    pressure: np.ndarray
+    film: np.ndarray
+    deflection: np.ndarray
+    success: bool
+    status: str
+    iterations: int
+    residual: float
+    force_residual: float
+    solve_time_s: float
+    state: np.ndarray = field(repr=False)
+    message: str = ""
+
+    @property
+    def mean_pressure(self) -> np.ndarray:
+        """Axially averaged pressure P̄ at each θ node [-]."""
+        w = np.ones(self.z.size)
+        w[[0, -1]] = 0.5
+        return self.pressure @ w / w.sum()
+
+    @property
+    def theta_from_seam(self) -> np.ndarray:
+        """θ-node angles measured from the welded end of the top foil [rad]."""
+        return np.mod(self.theta - self.seam_angle, 2 * math.pi)
+
+    @property
+    def min_film_angle_from_seam(self) -> float:
+        """Angle of the minimum film from the welded end, in [0, 2π) [rad]."""
+        return float(np.mod(self.min_film_angle - self.seam_angle, 2 * math.pi))
+
+    def to_dict(self) -> dict:
+        """Scalar results as a flat dict (angles in degrees) for JSON and DataFrames."""
+        return {
+            "eccentricity": self.eccentricity,
+            "attitude_angle_deg": math.degrees(self.attitude_angle),
+            "load": self.load,
+            "force_x": self.force[0], "force_y": self.force[1],
+            "min_film": self.min_film,
+            "min_film_angle_deg": math.degrees(self.min_film_angle) % 360.0,
+            "min_film_angle_from_seam_deg": math.degrees(self.min_film_angle_from_seam),
+            "max_mean_pressure": float(self.mean_pressure.max()),
+            "max_deflection": float(self.deflection.max()),
+            "success": self.success, "status": self.status, "iterations": self.iterations,
+            "residual": self.residual, "force_residual": self.force_residual,
+            "solve_time_s": self.solve_time_s,
+        }
+
+
+# ------------------------------------------------------------------- initial guess
+def small_eccentricity_coefficient(bearing_number: float, length_ratio: float,
+                                   compliance: float = 0.0, law: str = "mean") -> complex:
+    """Axial mean f̄ of Ausman's first-order pressure P = 1 + ε Re{f(Z) e^{iψ}} [-].
+
+    ψ from the maximum-film line.  Rigid: f'' − k² f = iΛ, k² = 1 + iΛ, f(±L/D) = 0, so
+    f̄ = −iΛ/(1 + iΛ)·[1 − tanh(k L/D)/(k L/D)].  Local law W = S(P − 1): k² = 1 + iΛ(1 + S)
+    and the factor −iΛ/(1 + iΛ(1 + S)); axial-mean law: f̄_S = g/(1 − S g), g the rigid f̄.
+    (PHYSICS.md; Ausman, J. Basic Eng. 1961.)  As ε → 0, W/(p_a L D)/ε = (π/2)|f̄| and
+    tan φ = Im f̄/Re f̄.
+    """
+    lam, ld, s = bearing_number, length_ratio, compliance
+    if law == "local":
+        k = np.sqrt(1 + 1j * lam * (1 + s))
+        return complex(-1j * lam / (1 + 1j * lam * (1 + s)) * (1 - np.tanh(k * ld) / (k * ld)))
+    k = np.sqrt(1 + 1j * lam)
+    g = -1j * lam / (1 + 1j * lam) * (1 - np.tanh(k * ld) / (k * ld))
+    return complex(g / (1 - s * g))
+
+
+def small_eccentricity_limit(model: BearingModel) -> tuple[float, float]:
+    """(load per unit ε, attitude angle [rad]) of the rigid/simple bearing as ε → 0.
+
+    Load is W/(p_a R²) per unit ε = 4 (L/D)·(π/2)|f̄|; exact for the periodic film.
+    """
+    s = 0.0 if model.is_rigid else model.compliance
+    fbar = small_eccentricity_coefficient(model.bearing_number, model.length_ratio, s,
+                                          model.deflection_law)
+    return 4 * model.length_ratio * 0.5 * math.pi * abs(fbar), math.atan2(fbar.imag, fbar.real)
+
+
+def first_order_pressure(model: BearingModel, z: np.ndarray, psi: np.ndarray,
+                         eccentricity: float) -> np.ndarray:
+    """Ausman's first-order pressure 1 + ε Re{f(Z) e^{iψ}} of the rigid bearing [-].
+
+    f(Z) = (iΛ/k²)(cosh kZ / cosh k(L/D) − 1), k² = 1 + iΛ; ψ from the maximum-film line
+    [rad], Z ∈ [−L/D, L/D].  Returns an array of shape (psi.size, z.size).  Used as the cold
+    start of the nonlinear solve (and as an exact small-ε check in the tests).
+    """
+    lam, ld = model.bearing_number, model.length_ratio
+    k = np.sqrt(1 + 1j * lam)
+    f = 1j * lam / k**2 * (np.cosh(k * z) / np.cosh(k * ld) - 1)
+    return 1 + eccentricity * np.real(np.outer(np.exp(1j * psi), f))
+
+
+def _cold_guess(solver: StaticSolver, model: BearingModel, eccentricity: float) -> np.ndarray:
+    st, lay = solver.stencil, solver.layout
+    _, phi0 = small_eccentricity_limit(model)
+    phi0 = min(max(phi0, 0.05), 1.5)
+    seam = math.pi + phi0 if model.seam_angle is None else model.seam_angle
+    theta = seam + st.psi
+    x0 = np.zeros(lay.size)
+    shrink = 1.0 / (1.0 + model.compliance)       # a compliant film carries less pressure
+    p = first_order_pressure(model, st.z_nodes(model.length_ratio), theta - phi0 - math.pi,
+                             min(eccentricity, 0.8) * shrink)
+    x0[lay.pressure] = np.maximum(p.ravel()[st.unknown], 0.05)
+    x0[lay.film] = 1.0 - eccentricity * np.cos(theta - phi0)
+    x0[lay.eccentricity] = eccentricity
+    x0[lay.attitude] = phi0
+    return x0
+
+
+# ------------------------------------------------------------------------ solving
+def _check_target(model: BearingModel, eccentricity, load):
+    if (eccentricity is None) == (load is None):
+        raise ParameterError("eccentricity/load", (eccentricity, load),
+                             "give exactly one of eccentricity or load")
+    if eccentricity is not None:
+        e = _finite("eccentricity", eccentricity)
+        if e < 0:
+            raise ParameterError("eccentricity", eccentricity, "must be >= 0")
+        if model.is_rigid and e >= 1.0:
+            raise ParameterError("eccentricity", eccentricity,
+                                 "must be < 1 for a rigid bearing (the journal would touch)")
+        if e > 5.0:
+            raise ParameterError("eccentricity", eccentricity, "must be <= 5")
+        return False, e
+    return True, check_positive("load", load)
+
+
+def _postprocess(solver: StaticSolver, model: BearingModel, x: np.ndarray, stats: dict,
+                 load_mode: bool, target: float, elapsed: float) -> StaticSolution:
+    """Recompute everything from the raw solution with numpy: residual, forces, profiles."""
+    st, lay = solver.stencil, solver.layout
+    ecc = float(x[lay.eccentricity])
+    phi = float(x[lay.attitude])
+    seam = (math.pi + phi) if model.seam_angle is None else float(model.seam_angle)
+    theta = seam + st.psi
+    p = np.ones(st.n_nodes)
+    p[st.unknown] = x[lay.pressure]
+    dz = st.axial_spacing(model.length_ratio)
+    q = disc.axial_integral(p, st, dz)
+    mean_gauge = q / (2 * model.length_ratio)
+    s = model.compliance
+    comp = float(model.compression_only)
+    h_rigid = 1 - ecc * np.cos(theta - phi)
+    nzn = st.n_z_nodes
+    if solver.deflection_law == "local":
+        w_nodes = simple_deflection(p - 1, s, comp)
+        beam_res = 0.0
+    elif solver.beam:
+        u = x[lay.beam]
+        w_beam = np.concatenate([[0.0], u[0::2]])
+        q_beam = np.append(mean_gauge, mean_gauge[0]) if st.periodic else mean_gauge
+        beam_res = float(np.abs(beam_residual(u, q_beam, solver.beam_mats, s,
+                                              model.top_foil_coefficient, comp)).max())
+        w_nodes = np.repeat(w_beam[:st.n_theta_nodes], nzn)
+    else:
+        w_nodes = np.repeat(simple_deflection(mean_gauge, s, comp), nzn)
+        beam_res = 0.0
+    h = np.repeat(h_rigid, nzn) + w_nodes
+    reynolds = disc.reynolds_residual(p, h, st, model.bearing_number, dz)
+    force_p = p if model.subambient == "full" else 1 + np.maximum(p - 1, 0)
+    fx, fy = disc.film_forces(disc.axial_integral(force_p, st, dz), theta,
+                              st.theta_weight)
+    if load_mode:
+        force_res = math.hypot(fx + target, fy)
+    else:
+        force_res = abs(fy)
+    residual = max(float(np.abs(reynolds).max()) if reynolds.size else 0.0, beam_res)
+    status = str(stats.get("return_status", "unknown"))
+    hmat = h.reshape(st.n_theta_nodes, nzn)
+    ok = (bool(stats.get("success", False)) and residual < RESIDUAL_TOLERANCE
+          and force_res < RESIDUAL_TOLERANCE * max(1.0, abs(target)) and hmat.min() > 0
+          and p.min() > 0)
+    hmin, angle = _minimum_film(hmat, theta, st.periodic)
+    message = "" if ok else (f"IPOPT status {status}; Reynolds residual {residual:.2e}; "
+                             f"force residual {force_res:.2e}; min H {hmat.min():.3g}")
+    return StaticSolution(
+        model=model, grid=solver.grid, eccentricity=ecc, attitude_angle=phi,
+        load=-fx, force=(fx, fy), min_film=hmin, min_film_angle=angle, seam_angle=seam,
+        theta=theta, z=st.z_nodes(model.length_ratio),
+        pressure=p.reshape(st.n_theta_nodes, nzn), film=hmat,
+        deflection=w_nodes.reshape(st.n_theta_nodes, nzn), success=ok, status=status,
+        iterations=int(stats.get("iter_count", -1)), residual=residual,
+        force_residual=force_res, solve_time_s=elapsed, state=x, message=message)
+
+
+def _minimum_film(hmat: np.ndarray, theta: np.ndarray, periodic: bool) -> tuple[float, float]:
+    """Minimum film and its angle, refined by a parabola through the three nearest nodes."""
+    hrow = hmat.min(axis=1)
+    k = int(np.argmin(hrow))
+    n = hrow.size
+    if periodic or 0 < k < n - 1:
+        a, b, c = hrow[(k - 1) % n], hrow[k], hrow[(k + 1) % n]
+        denom = a - 2 * b + c
+        if denom > 0:
+            shift = 0.5 * (a - c) / denom
+            dth = theta[1] - theta[0]
+            return float(b - 0.25 * (a - c) * shift), float(theta[k] + shift * dth)
+    return float(hrow[k]), float(theta[k])
+
+
+def solve_static(model: BearingModel, *, eccentricity: Optional[float] = None,
+                 load: Optional[float] = None, grid: Grid = DEFAULT_GRID,
+                 solver: Optional[StaticSolver] = None,
+                 initial: Optional[StaticSolution] = None,
+                 continuation: bool = True, raise_on_failure: bool = False) -> StaticSolution:
+    """Static equilibrium at a given eccentricity ratio or a given load.
+
+    Parameters
+    ----------
+    model : the non-dimensional bearing
+    eccentricity : ε = e/c [-] (then the load and attitude angle are found), or
+    load : W̄ = W/(p_a R²) [-] (then ε and the attitude angle are found)
+    grid : finite-difference grid (ignored when ``solver`` is given)
+    solver : a prebuilt :class:`StaticSolver` (reuse it across a sweep)
+    initial : a previous solution to warm-start from (same solver)
+    continuation : on failure from a cold start, step the eccentricity/load up from a small
+        value, warm-starting each step
+    raise_on_failure : raise :class:`ConvergenceError` instead of returning success=False
+
+    Returns
+    -------
+    StaticSolution, with ``success``, IPOPT's ``status`` and the ``residual`` recomputed.
+    """
+    load_mode, target = _check_target(model, eccentricity, load)
+    if solver is None:
+        solver = solver_for(model, grid)
+    elif not solver.matches(model, solver.grid):
+        raise ParameterError("solver", f"{solver.film}/{'beam' if solver.beam else 'foundation'}",
+                             f"was built for another formulation than film={model.film}, "
+                             f"foil={model.foil}, deflection_law={model.deflection_law}")
+    t0 = time.perf_counter()
+    if not load_mode and target == 0.0:
+        sol = _concentric(solver, model, t0)
+    else:
+        sol = _solve_with_continuation(solver, model, load_mode, target, initial,
+                                       continuation, t0)
+    if raise_on_failure and not sol.success:
+        raise ConvergenceError("static equilibrium did not converge", sol.status,
+                               max(sol.residual, sol.force_residual))
+    return sol
+
+
+def _concentric(solver: StaticSolver, model: BearingModel, t0: float) -> StaticSolution:
+    """ε = 0: P ≡ 1, W ≡ 0 solves the discrete equations exactly (checked, not assumed)."""
+    x = _cold_guess(solver, model, 0.0)
+    x[solver.layout.attitude] = float("nan")
+    x[solver.layout.attitude] = 0.0
+    sol = _postprocess(solver, model, x, {"success": True, "return_status": "Concentric",
+                                          "iter_count": 0}, False, 0.0,
+                       time.perf_counter() - t0)
+    return _replace(sol, attitude_angle=float("nan"))
+
+
+def _replace(sol: StaticSolution, **changes) -> StaticSolution:
+    from dataclasses import replace
+    return replace(sol, **changes)
+
+
+def _solve_with_continuation(solver, model, load_mode, target, initial, continuation, t0):
+    p = solver.parameters(model, load_mode, target)
+    if initial is not None and initial.state.size == solver.layout.size:
+        x0 = initial.state
+    else:
+        x0 = _cold_guess(solver, model, target if not load_mode else
+                         min(0.5, target / max(small_eccentricity_limit(model)[0], 1e-9)))
+    x, stats = solver.run(x0, p)
+    sol = _postprocess(solver, model, x, stats, load_mode, target, time.perf_counter() - t0)
+    if sol.success or not continuation:
+        return sol
+    # Continuation: march the target up from a small value, warm-starting each step.
+    iterations = sol.iterations
+    start = 0.1 * target
+    x_prev = _cold_guess(solver, model, 0.1 if not load_mode else 0.05)
+    value, step = start, (target - start) / 4
+    last = None
+    while True:
+        x, stats = solver.run(x_prev, solver.parameters(model, load_mode, value))
+        iterations += int(stats.get("iter_count", 0))
+        trial = _postprocess(solver, model, x, stats, load_mode, value, 0.0)
+        if trial.success:
+            x_prev, last = x, value
+            if value >= target:
+                break
+            value = min(target, value + step)
+        else:
+            if last is None:
+                value *= 0.5
+                if value < 1e-3 * target:
+                    break
+                continue
+            step *= 0.5
+            if step < 1e-3 * target:
+                break
+            value = min(target, last + step)
+    final = _postprocess(solver, model, x if last == target else x_prev, stats, load_mode,
+                         target, time.perf_counter() - t0)
+    final = _replace(final, iterations=iterations)
+    if last != target:
+        final = _replace(final, success=False,
+                         message=f"continuation stopped at {last!r} of {target!r}; "
+                                 + final.message)
+    return final
