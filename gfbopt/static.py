@@ -35,7 +35,9 @@ import numpy as np
 
 from . import discretisation as disc
 from .errors import ConvergenceError, ParameterError
-from .foil import beam_matrices, beam_residual, simple_deflection
+import scipy.sparse.linalg as spla
+
+from .foil import beam_deflection, beam_matrices, beam_residual, simple_deflection
 from .parameters import DEFAULT_GRID, BearingModel, Grid, check_positive, _finite
 
 PARAMETERS = ("bearing_number", "compliance", "top_foil_coefficient", "length_ratio",
@@ -49,8 +51,8 @@ def _default_ipopt_options() -> dict:
     return {
         "ipopt.print_level": 0, "print_time": False, "ipopt.sb": "yes",
         "ipopt.tol": 1e-10, "ipopt.constr_viol_tol": 1e-10, "ipopt.acceptable_iter": 0,
-        "ipopt.hessian_approximation": "limited-memory",
-        "ipopt.max_iter": 200, "ipopt.bound_push": 1e-10, "ipopt.bound_frac": 1e-10,
+        "ipopt.hessian_approximation": "exact",
+        "ipopt.max_iter": 60, "ipopt.bound_push": 1e-10, "ipopt.bound_frac": 1e-10,
         "ipopt.mu_init": 1e-6, "ipopt.nlp_scaling_method": "none",
         "ipopt.linear_solver": "mumps",
     }
@@ -110,6 +112,7 @@ class StaticSolver:
         # Force integrals in the grid's own frame, lifted into block partial sums so that no
         # Jacobian row is dense (dense rows defeat CasADi's colouring: PHYSICS.md).
         blocks = np.array_split(np.arange(m), max(1, int(round(math.sqrt(m)))))
+        self._blocks = blocks
         sums = ca.SX.sym("FS", 2 * len(blocks))
         ecc = ca.SX.sym("eps")
         phi = ca.SX.sym("phi")
@@ -163,6 +166,15 @@ class StaticSolver:
         g = ca.vertcat(*equations)
         opts = _default_ipopt_options()
         opts.update(ipopt_options or {})
+        if opts.get("ipopt.hessian_approximation") == "exact" and "hess_lag" not in opts:
+            # A square system needs no curvature: with J nonsingular the Newton step is fixed
+            # by the constraints alone, so IPOPT gets an empty Hessian of the Lagrangian (this
+            # avoids both the symbolic Hessian build and the L-BFGS extra solves).
+            lam_f, lam_g = ca.SX.sym("lam_f"), ca.SX.sym("lam_g", g.shape[0])
+            opts["hess_lag"] = ca.Function(
+                "zero_hessian", [x, par, lam_f, lam_g],
+                [ca.SX(ca.Sparsity(x.shape[0], x.shape[0]))],
+                ["x", "p", "lam_f", "lam_g"], ["triu_hess_gamma_x_x"])
         self._nlp = ca.nlpsol("gfbopt_static", "ipopt", {"x": x, "p": par, "f": 0, "g": g}, opts)
         self.n_equations = g.shape[0]
         lbx = -np.inf * np.ones(self.layout.size)
@@ -300,7 +312,9 @@ def small_eccentricity_limit(model: BearingModel) -> tuple[float, float]:
     s = 0.0 if model.is_rigid else model.compliance
     fbar = small_eccentricity_coefficient(model.bearing_number, model.length_ratio, s,
                                           model.deflection_law)
-    return 4 * model.length_ratio * 0.5 * math.pi * abs(fbar), math.atan2(fbar.imag, fbar.real)
+    # tan φ = Im f̄/Re f̄ with φ in (0, π): both parts of f̄ are negative for a rigid bearing
+    return (4 * model.length_ratio * 0.5 * math.pi * abs(fbar),
+            math.atan2(fbar.imag, fbar.real) % math.pi)
 
 
 def first_order_pressure(model: BearingModel, z: np.ndarray, psi: np.ndarray,
@@ -318,20 +332,63 @@ def first_order_pressure(model: BearingModel, z: np.ndarray, psi: np.ndarray,
 
 
 def _cold_guess(solver: StaticSolver, model: BearingModel, eccentricity: float) -> np.ndarray:
-    st, lay = solver.stencil, solver.layout
+    """A starting point: Ausman's first-order pressure and every lifted variable consistent."""
+    st = solver.stencil
     _, phi0 = small_eccentricity_limit(model)
-    phi0 = min(max(phi0, 0.05), 1.5)
+    # The attitude angle falls roughly like (1 − ε²) as the film closes (cf. the short-bearing
+    # law tan φ = π √(1 − ε²)/(4ε)); compliance delays the closing.
+    closing = min(eccentricity / (1.0 + model.compliance), 0.95)
+    phi0 = min(max(phi0 * (1.0 - closing**2), 0.05), 1.5)
     seam = math.pi + phi0 if model.seam_angle is None else model.seam_angle
     theta = seam + st.psi
-    x0 = np.zeros(lay.size)
     shrink = 1.0 / (1.0 + model.compliance)       # a compliant film carries less pressure
     p = first_order_pressure(model, st.z_nodes(model.length_ratio), theta - phi0 - math.pi,
-                             min(eccentricity, 0.8) * shrink)
-    x0[lay.pressure] = np.maximum(p.ravel()[st.unknown], 0.05)
-    x0[lay.film] = 1.0 - eccentricity * np.cos(theta - phi0)
-    x0[lay.eccentricity] = eccentricity
-    x0[lay.attitude] = phi0
-    return x0
+                             min(eccentricity, 0.8) * shrink).ravel()
+    p_full = np.ones(st.n_nodes)
+    p_full[st.unknown] = np.maximum(p[st.unknown], 0.05)
+    return consistent_state(solver, model, p_full, eccentricity, phi0)
+
+
+def consistent_state(solver: StaticSolver, model: BearingModel, p_full: np.ndarray,
+                     eccentricity: float, attitude: float) -> np.ndarray:
+    """The solver vector x for a pressure field, ε and φ [rad], with every lifted variable
+    (film, axial integrals, beam dofs, force partial sums) computed to match."""
+    st, lay = solver.stencil, solver.layout
+    seam = math.pi + attitude if model.seam_angle is None else model.seam_angle
+    theta = seam + st.psi
+    dz = st.axial_spacing(model.length_ratio)
+    q = disc.axial_integral(p_full, st, dz)
+    force_p = p_full if model.subambient == "full" else 1 + np.maximum(p_full - 1, 0)
+    qf = disc.axial_integral(force_p, st, dz)
+    mean_gauge = q / (2 * model.length_ratio)
+    comp = float(model.compression_only)
+    x = np.zeros(lay.size)
+    x[lay.pressure] = p_full[st.unknown]
+    h_rigid = 1 - eccentricity * np.cos(theta - attitude)
+    if solver.deflection_law == "local":
+        x[lay.film] = h_rigid
+    elif solver.beam:
+        q_beam = np.append(mean_gauge, mean_gauge[0]) if st.periodic else mean_gauge
+        w = beam_deflection(q_beam, solver.beam_mats, model.compliance,
+                            model.top_foil_coefficient)
+        a = (model.compliance * model.top_foil_coefficient * solver.beam_mats.bending
+             + solver.beam_mats.foundation).tocsc()
+        x[lay.beam] = spla.spsolve(a, model.compliance * (solver.beam_mats.load @ q_beam))
+        x[lay.film] = np.maximum(h_rigid + w[:st.n_theta_nodes], 1e-3)
+    else:
+        x[lay.film] = np.maximum(h_rigid + simple_deflection(mean_gauge, model.compliance,
+                                                             comp), 1e-3)
+    x[lay.axial] = q
+    x[lay.force] = qf
+    parts = [disc.film_forces(qf[b], st.psi[b], st.theta_weight[b]) for b in solver._blocks]
+    nb = len(parts)
+    sums = x[lay.partial_sums]
+    sums[:nb] = [f[0] for f in parts]
+    sums[nb:] = [f[1] for f in parts]
+    x[lay.partial_sums] = sums
+    x[lay.eccentricity] = eccentricity
+    x[lay.attitude] = attitude
+    return x
 
 
 # ------------------------------------------------------------------------ solving
@@ -394,7 +451,7 @@ def _postprocess(solver: StaticSolver, model: BearingModel, x: np.ndarray, stats
     residual = max(float(np.abs(reynolds).max()) if reynolds.size else 0.0, beam_res)
     status = str(stats.get("return_status", "unknown"))
     hmat = h.reshape(st.n_theta_nodes, nzn)
-    ok = (bool(stats.get("success", False)) and residual < RESIDUAL_TOLERANCE
+    ok = bool(bool(stats.get("success", False)) and residual < RESIDUAL_TOLERANCE
           and force_res < RESIDUAL_TOLERANCE * max(1.0, abs(target)) and hmat.min() > 0
           and p.min() > 0)
     hmin, angle = _minimum_film(hmat, theta, st.periodic)
@@ -402,12 +459,12 @@ def _postprocess(solver: StaticSolver, model: BearingModel, x: np.ndarray, stats
                              f"force residual {force_res:.2e}; min H {hmat.min():.3g}")
     return StaticSolution(
         model=model, grid=solver.grid, eccentricity=ecc, attitude_angle=phi,
-        load=-fx, force=(fx, fy), min_film=hmin, min_film_angle=angle, seam_angle=seam,
+        load=-float(fx), force=(float(fx), float(fy)), min_film=hmin, min_film_angle=angle, seam_angle=seam,
         theta=theta, z=st.z_nodes(model.length_ratio),
         pressure=p.reshape(st.n_theta_nodes, nzn), film=hmat,
         deflection=w_nodes.reshape(st.n_theta_nodes, nzn), success=ok, status=status,
         iterations=int(stats.get("iter_count", -1)), residual=residual,
-        force_residual=force_res, solve_time_s=elapsed, state=x, message=message)
+        force_residual=float(force_res), solve_time_s=elapsed, state=x, message=message)
 
 
 def _minimum_film(hmat: np.ndarray, theta: np.ndarray, periodic: bool) -> tuple[float, float]:
@@ -470,8 +527,6 @@ def solve_static(model: BearingModel, *, eccentricity: Optional[float] = None,
 def _concentric(solver: StaticSolver, model: BearingModel, t0: float) -> StaticSolution:
     """ε = 0: P ≡ 1, W ≡ 0 solves the discrete equations exactly (checked, not assumed)."""
     x = _cold_guess(solver, model, 0.0)
-    x[solver.layout.attitude] = float("nan")
-    x[solver.layout.attitude] = 0.0
     sol = _postprocess(solver, model, x, {"success": True, "return_status": "Concentric",
                                           "iter_count": 0}, False, 0.0,
                        time.perf_counter() - t0)
@@ -497,7 +552,8 @@ def _solve_with_continuation(solver, model, load_mode, target, initial, continua
     # Continuation: march the target up from a small value, warm-starting each step.
     iterations = sol.iterations
     start = 0.1 * target
-    x_prev = _cold_guess(solver, model, 0.1 if not load_mode else 0.05)
+    x_prev = _cold_guess(solver, model, start if not load_mode else
+                         min(0.5, start / max(small_eccentricity_limit(model)[0], 1e-9)))
     value, step = start, (target - start) / 4
     last = None
     while True:

@@ -1,0 +1,64 @@
+"""Read a dimensional bearing description from a TOML file.
+
+The file has a ``[bearing]`` table whose keys are the fields of
+:class:`gfbopt.parameters.BearingGeometry`, all in SI units (m, Pa, Pa s)::
+
+    [bearing]
+    name = "Ruscitto et al. (1978) test bearing"
+    radius = 19.05e-3            # m
+    ...
+
+Anything outside ``[bearing]`` (``source``, notes) is kept as metadata and not interpreted.
+"""
+from __future__ import annotations
+
+import dataclasses
+from pathlib import Path
+
+try:  # Python >= 3.11
+    import tomllib
+except ModuleNotFoundError:  # pragma: no cover - Python 3.10
+    import tomli as tomllib
+
+from .errors import ParameterError
+from .parameters import BearingGeometry
+
+_FIELDS = {f.name: f for f in dataclasses.fields(BearingGeometry)}
+_OPTIONAL = {name for name, f in _FIELDS.items()
+             if f.default is not dataclasses.MISSING}
+
+
+def read_toml(path: str | Path) -> dict:
+    """Parse a TOML file; a missing or malformed file raises ParameterError."""
+    path = Path(path)
+    if not path.is_file():
+        raise ParameterError("file", str(path), "must be an existing TOML file")
+    try:
+        return tomllib.loads(path.read_text())
+    except (tomllib.TOMLDecodeError, UnicodeDecodeError) as exc:
+        raise ParameterError("file", str(path), f"must be valid TOML ({exc})") from None
+
+
+def bearing_from_dict(table: dict, where: str = "bearing") -> BearingGeometry:
+    """A validated :class:`BearingGeometry` from a dict of SI values."""
+    if not isinstance(table, dict):
+        raise ParameterError(where, table, "must be a table of bearing quantities")
+    unknown = sorted(set(table) - set(_FIELDS))
+    if unknown:
+        raise ParameterError(f"{where}.{unknown[0]}", table[unknown[0]],
+                             f"is not a bearing quantity (known: {', '.join(_FIELDS)})")
+    missing = [k for k in _FIELDS if k not in table and k not in _OPTIONAL]
+    if missing:
+        raise ParameterError(f"{where}.{missing[0]}", None, "is required but missing")
+    for key, value in table.items():
+        if key != "name" and (isinstance(value, bool) or not isinstance(value, (int, float))):
+            raise ParameterError(f"{where}.{key}", value, "must be a number in SI units")
+    return BearingGeometry(**table)
+
+
+def load_bearing(path: str | Path) -> BearingGeometry:
+    """The bearing described in the TOML file ``path`` (``[bearing]`` table, SI units)."""
+    data = read_toml(path)
+    if "bearing" not in data:
+        raise ParameterError(f"{path}: [bearing]", None, "table is required but missing")
+    return bearing_from_dict(data["bearing"], where=f"{Path(path).name}: bearing")

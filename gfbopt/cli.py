@@ -1,0 +1,195 @@
+"""The ``gfbopt`` command line.
+
+``gfbopt static`` solves one static equilibrium (non-dimensional, or dimensional from a
+bearing file with the speed in rpm and the load in newtons); ``gfbopt run`` runs named studies
+from ``problems/``.  Bad input prints one line naming the parameter, its value and the rule,
+and exits with status 2.  A solve that does not converge exits with status 1 and says why.
+"""
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import sys
+from typing import Optional, Sequence
+
+from .errors import GfboptError, ParameterError
+from .parameters import BearingModel, Grid
+
+
+class _Parser(argparse.ArgumentParser):
+    def error(self, message: str) -> None:  # one line, exit 2, no traceback
+        self.exit(2, f"gfbopt: error: {message}\n")
+
+
+def _float(name: str):
+    def parse(text: str) -> float:
+        try:
+            value = float(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"{name} = {text!r}: must be a number") from None
+        if not math.isfinite(value):
+            raise argparse.ArgumentTypeError(f"{name} = {text!r}: must be finite (not NaN)")
+        return value
+    return parse
+
+
+def build_parser() -> argparse.ArgumentParser:
+    parser = _Parser(prog="gfbopt", description="Gas foil bearing analysis.")
+    sub = parser.add_subparsers(dest="command", required=True, parser_class=_Parser)
+
+    st = sub.add_parser("static", help="static equilibrium at one operating point")
+    target = st.add_mutually_exclusive_group()
+    target.add_argument("--eccentricity", type=_float("eccentricity"), help="ε = e/c [-]")
+    target.add_argument("--load", type=_float("load"), help="W/(p_a R²) [-]")
+    target.add_argument("--load-newton", type=_float("load-newton"), help="static load [N] "
+                        "(with --bearing and --speed-rpm)")
+    st.add_argument("--bearing-number", type=_float("bearing-number"), help="Λ [-]")
+    st.add_argument("--compliance", type=_float("compliance"), default=None, help="S [-]")
+    st.add_argument("--length-ratio", type=_float("length-ratio"), default=None, help="L/D [-]")
+    st.add_argument("--top-foil-coefficient", type=_float("top-foil-coefficient"),
+                    default=None, help="C [-] (beam model)")
+    st.add_argument("--bearing", help="bearing TOML file (dimensional input, SI)")
+    st.add_argument("--speed-rpm", type=_float("speed-rpm"), help="shaft speed [rpm]")
+    st.add_argument("--foil", default=None, help="rigid | simple | beam (default: simple, "
+                    "or rigid when S = 0)")
+    st.add_argument("--film", default="periodic", help="periodic | seam")
+    st.add_argument("--seam-angle", type=_float("seam-angle"), default=None,
+                    help="welded end of the top foil, degrees from the load line in the "
+                    "direction of rotation (default: at the maximum-film line)")
+    st.add_argument("--deflection-law", default="mean", help="mean | local")
+    st.add_argument("--subambient", default="full", help="full | gumbel")
+    st.add_argument("--compression-only", action="store_true",
+                    help="bumps cannot pull the foil inward (W >= 0)")
+    st.add_argument("--grid", default="72x20", help="NTHETAxNZ (default 72x20)")
+    st.add_argument("--json", action="store_true", help="print one JSON object")
+
+    run = sub.add_parser("run", help="run named studies: gfbopt run problems/NAME.toml ...")
+    run.add_argument("problems", nargs="+", help="study files (problems/NAME.toml)")
+    run.add_argument("--results", default="results", help="output folder (default results/)")
+    return parser
+
+
+def _model_from_args(args) -> tuple[BearingModel, dict]:
+    """The model and the target (eccentricity or load) from the parsed arguments."""
+    extra: dict = {}
+    common = dict(film=args.film, deflection_law=args.deflection_law,
+                  subambient=args.subambient, compression_only=args.compression_only,
+                  seam_angle=None if args.seam_angle is None else math.radians(args.seam_angle))
+    if args.bearing is not None:
+        from .bearing_file import load_bearing
+
+        if args.speed_rpm is None:
+            raise ParameterError("--speed-rpm", None, "is required with --bearing")
+        geometry = load_bearing(args.bearing)
+        model = geometry.model(args.speed_rpm, foil=args.foil or "simple", **common)
+        if args.compliance is not None or args.bearing_number is not None:
+            raise ParameterError("--bearing", args.bearing, "takes the compliance and bearing "
+                                 "number from the file; do not also give them")
+        if args.top_foil_coefficient is not None:
+            model = model.replace(top_foil_coefficient=args.top_foil_coefficient)
+        if args.load_newton is not None:
+            extra["load"] = geometry.nondimensional_load(args.load_newton)
+            extra["load_newton"] = args.load_newton
+        extra["geometry"] = geometry
+    else:
+        if args.load_newton is not None:
+            raise ParameterError("--load-newton", args.load_newton,
+                                 "needs --bearing FILE.toml and --speed-rpm")
+        if args.bearing_number is None:
+            raise ParameterError("--bearing-number", None, "is required (or give --bearing)")
+        compliance = 0.0 if args.compliance is None else args.compliance
+        foil = args.foil or ("rigid" if compliance == 0.0 else "simple")
+        if foil not in ("rigid", "simple", "beam"):
+            raise ParameterError("--foil", foil, "must be one of rigid, simple, beam")
+        model = BearingModel(bearing_number=args.bearing_number, compliance=compliance,
+                             length_ratio=1.0 if args.length_ratio is None else args.length_ratio,
+                             foil=foil, top_foil_coefficient=args.top_foil_coefficient or 0.0,
+                             **common)
+    if args.eccentricity is not None:
+        extra["eccentricity"] = args.eccentricity
+    elif args.load is not None:
+        extra["load"] = args.load
+    if "eccentricity" not in extra and "load" not in extra:
+        raise ParameterError("--eccentricity/--load", None, "give one of them")
+    return model, extra
+
+
+def _static(args) -> int:
+    from .static import solve_static
+
+    model, extra = _model_from_args(args)
+    grid = Grid.parse(args.grid)
+    sol = solve_static(model, eccentricity=extra.get("eccentricity"), load=extra.get("load"),
+                       grid=grid)
+    out = sol.to_dict()
+    out.update({"bearing_number": model.bearing_number, "compliance": model.compliance,
+                "length_ratio": model.length_ratio, "foil": model.foil, "film": model.film,
+                "top_foil_coefficient": model.top_foil_coefficient,
+                "deflection_law": model.deflection_law, "subambient": model.subambient,
+                "compression_only": model.compression_only, "grid": str(grid),
+                "message": sol.message})
+    geometry = extra.get("geometry")
+    if geometry is not None:
+        out["speed_rpm"] = args.speed_rpm
+        out["min_film_thickness_um"] = sol.min_film * geometry.radial_clearance * 1e6
+        out["load_newton"] = geometry.load_newton(sol.load)
+    if args.json:
+        print(json.dumps({k: _jsonable(v) for k, v in out.items()}))
+    else:
+        print(_report(out))
+    if not sol.success:
+        print(f"gfbopt: solve did not converge: {sol.message}", file=sys.stderr)
+        return 1
+    return 0
+
+
+def _jsonable(value):
+    if isinstance(value, float) and not math.isfinite(value):
+        return None
+    return value
+
+
+def _report(out: dict) -> str:
+    lines = [f"gfbopt static — {out['foil']} foil, {out['film']} film, grid {out['grid']}",
+             f"  Λ = {out['bearing_number']:.4g}, S = {out['compliance']:.4g}, "
+             f"L/D = {out['length_ratio']:.4g}, C = {out['top_foil_coefficient']:.4g}",
+             f"  eccentricity ε          {out['eccentricity']:.5f}",
+             f"  load W/(p_a R²)         {out['load']:.5f}",
+             f"  attitude angle          {out['attitude_angle_deg']:.3f} deg",
+             f"  minimum film h/c        {out['min_film']:.5f} at "
+             f"{out['min_film_angle_deg']:.1f} deg from the load line"]
+    if "min_film_thickness_um" in out:
+        lines.append(f"  minimum film            {out['min_film_thickness_um']:.2f} µm "
+                     f"(load {out['load_newton']:.2f} N at {out['speed_rpm']:.0f} rpm)")
+    lines.append(f"  solver: {out['status']}, {out['iterations']} iterations, residual "
+                 f"{out['residual']:.1e}, {out['solve_time_s']:.3f} s"
+                 + ("" if out["success"] else "  ** NOT CONVERGED **"))
+    return "\n".join(lines)
+
+
+def _run(args) -> int:
+    from .studies import run_study
+
+    failed = 0
+    for path in args.problems:
+        summary = run_study(path, results_root=args.results)
+        print(summary.report())
+        failed += not summary.passed
+    return 1 if failed else 0
+
+
+def main(argv: Optional[Sequence[str]] = None) -> int:
+    parser = build_parser()
+    args = parser.parse_args(argv)
+    try:
+        if args.command == "static":
+            return _static(args)
+        return _run(args)
+    except GfboptError as exc:
+        print(f"gfbopt: error: {exc}", file=sys.stderr)
+        return 2
+
+
+if __name__ == "__main__":  # pragma: no cover
+    sys.exit(main())

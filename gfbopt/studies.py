@@ -1,0 +1,362 @@
+"""Named, runnable studies: ``gfbopt run problems/NAME.toml``.
+
+A study file gives its source (citation, table or figure), its inputs, the published values
+where there are any, and a tolerance per compared column with its justification.  Running it
+writes ``results/NAME/`` (CSV tables, ``summary.json`` with metadata and pass/fail, figures)
+and refreshes ``results/index.md``.
+
+Study kinds (``kind = ...`` in the file):
+
+* ``static_table`` — rows of operating points × model variants, compared with published
+  columns (thesis Tables 3.1 and 3.2);
+* ``load_sweep`` — a dimensional bearing from a file, ε and attitude against load in newtons
+  at several speeds and foil models (Ruscitto bearing, thesis Figs 3.2–3.5, 4.2–4.5);
+* ``profile`` — pressure, foil deflection and film profiles at one point (Figs 3.6–3.8);
+* ``grid_convergence`` — load and attitude on refined grids, observed order, error of the
+  default grid.
+"""
+from __future__ import annotations
+
+import datetime as _dt
+import json
+import math
+import platform
+import subprocess
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Callable
+
+import numpy as np
+import pandas as pd
+
+from . import __version__
+from .bearing_file import bearing_from_dict, load_bearing, read_toml
+from .errors import ParameterError
+from .parameters import DEFAULT_GRID, BearingModel, Grid
+from .static import StaticSolver, solve_static, solver_for
+
+
+@dataclass
+class StudySummary:
+    """What a study run produced: name, checks (each a dict with ``passed``), files."""
+
+    name: str
+    title: str
+    checks: list = field(default_factory=list)
+    files: list = field(default_factory=list)
+    wall_time_s: float = 0.0
+    notes: list = field(default_factory=list)
+
+    @property
+    def passed(self) -> bool:
+        return all(c["passed"] for c in self.checks)
+
+    def report(self) -> str:
+        lines = [f"{self.name}: {self.title}",
+                 f"  {len(self.checks)} checks, {sum(c['passed'] for c in self.checks)} passed; "
+                 f"{self.wall_time_s:.1f} s; results in {Path(self.files[0]).parent if self.files else '-'}"]
+        for c in self.checks:
+            if not c["passed"]:
+                lines.append(f"  FAILED: {c['what']}: {c['value']:.4g} vs limit {c['limit']:.4g}")
+        for n in self.notes:
+            lines.append(f"  note: {n}")
+        return "\n".join(lines)
+
+
+# ------------------------------------------------------------------------ helpers
+def model_from_table(table: dict, **overrides) -> BearingModel:
+    """A BearingModel from a study's table of options (names as in BearingModel)."""
+    values = dict(table)
+    values.update(overrides)
+    if "seam_angle_deg" in values:
+        angle = values.pop("seam_angle_deg")
+        values["seam_angle"] = None if angle in (None, "max_film") else math.radians(angle)
+    values.pop("grid", None)
+    values.pop("label", None)
+    try:
+        return BearingModel(**values)
+    except TypeError as exc:
+        raise ParameterError("model", values, f"is not a valid model description ({exc})") from None
+
+
+class SolverCache:
+    """One :class:`StaticSolver` per formulation (built once, reused for every point)."""
+
+    def __init__(self, grid: Grid):
+        self.grid = grid
+        self._solvers: dict = {}
+
+    def __call__(self, model: BearingModel) -> StaticSolver:
+        law = model.deflection_law if model.foil == "simple" else "mean"
+        key = (model.film, model.foil == "beam", law)
+        if key not in self._solvers:
+            self._solvers[key] = solver_for(model, self.grid)
+        return self._solvers[key]
+
+
+def _metadata(study: dict, grid: Grid) -> dict:
+    try:
+        commit = subprocess.run(["git", "rev-parse", "--short", "HEAD"], capture_output=True,
+                                text=True, timeout=5, check=False).stdout.strip()
+    except (OSError, subprocess.SubprocessError):
+        commit = ""
+    import casadi
+
+    return {"gfbopt_version": __version__, "git_commit": commit or "unknown",
+            "date": _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds"),
+            "grid": str(grid), "python": platform.python_version(),
+            "casadi": casadi.__version__, "numpy": np.__version__,
+            "source": study.get("source", ""), "title": study.get("title", "")}
+
+
+def _check(what: str, value: float, limit: float) -> dict:
+    return {"what": what, "value": float(value), "limit": float(limit),
+            "passed": bool(np.isfinite(value) and abs(value) <= limit)}
+
+
+def _grid_of(study: dict) -> Grid:
+    return Grid.parse(study["grid"]) if "grid" in study else DEFAULT_GRID
+
+
+# --------------------------------------------------------------------- study kinds
+def static_table(study: dict, out: Path, summary: StudySummary) -> None:
+    """Rows of (Λ, ε, S, L/D) × variants, beside the published columns."""
+    grid = _grid_of(study)
+    cache = SolverCache(grid)
+    variants = study.get("variants", [{"label": "default"}])
+    base = study.get("model", {})
+    records = []
+    for row in study["rows"]:
+        for variant in variants:
+            opts = dict(base)
+            opts.update(variant)
+            s = float(row.get("S", 0.0))
+            if s == 0.0:
+                opts["foil"] = "rigid"
+            model = model_from_table(opts, bearing_number=row["Lambda"], compliance=s,
+                                     length_ratio=row.get("L_over_D", 1.0))
+            sol = solve_static(model, eccentricity=row["eps"], solver=cache(model))
+            rec = {"variant": variant.get("label", "default"), **row,
+                   "load": sol.load, "attitude_deg": math.degrees(sol.attitude_angle),
+                   "min_film": sol.min_film, "success": sol.success, "status": sol.status,
+                   "iterations": sol.iterations, "residual": sol.residual}
+            for ref in study.get("references", []):
+                if f"load_{ref}" in row:
+                    rec[f"load_err_{ref}"] = sol.load / row[f"load_{ref}"] - 1.0
+                    rec[f"attitude_err_{ref}"] = rec["attitude_deg"] - row[f"attitude_deg_{ref}"]
+            records.append(rec)
+    frame = pd.DataFrame.from_records(records)
+    path = out / "table.csv"
+    frame.to_csv(path, index=False, float_format="%.6g")
+    summary.files.append(str(path))
+    for c in study.get("checks", []):
+        sub = frame[frame["variant"] == c["variant"]]
+        ref = c["reference"]
+        summary.checks.append(_check(f"{c['variant']} vs {ref}: max |load error| (relative)",
+                                     sub[f"load_err_{ref}"].abs().max(), c["load_rel"]))
+        summary.checks.append(_check(f"{c['variant']} vs {ref}: max |attitude error| (deg)",
+                                     sub[f"attitude_err_{ref}"].abs().max(), c["attitude_deg"]))
+    summary.checks.append(_check("all solves converged (count of failures)",
+                                 float((~frame["success"]).sum()), 0))
+
+
+def load_sweep(study: dict, out: Path, summary: StudySummary) -> None:
+    """Minimum film [µm] and attitude angle [deg] against static load [N]."""
+    from .plotting import plot_load_sweep
+
+    grid = _grid_of(study)
+    cache = SolverCache(grid)
+    geometry = (bearing_from_dict(study["bearing"]) if isinstance(study.get("bearing"), dict)
+                else load_bearing(Path(study["_dir"]) / study["bearing"]))
+    loads = np.asarray(study["loads_newton"], dtype=float)
+    records = []
+    for variant in study["variants"]:
+        for speed in study["speeds_rpm"]:
+            opts = dict(study.get("model", {}))
+            opts.update(variant)
+            foil = opts.pop("foil")
+            opts.pop("label", None)
+            if "seam_angle_deg" in opts:
+                a = opts.pop("seam_angle_deg")
+                opts["seam_angle"] = None if a == "max_film" else math.radians(a)
+            model = geometry.model(speed, foil=foil, **opts)
+            previous = None
+            for load_n in loads:
+                sol = solve_static(model, load=geometry.nondimensional_load(load_n),
+                                   solver=cache(model), initial=previous)
+                if not sol.success:  # retry cold before giving up on the point
+                    sol = solve_static(model, load=geometry.nondimensional_load(load_n),
+                                       solver=cache(model))
+                previous = sol if sol.success else previous
+                records.append({
+                    "variant": variant.get("label", foil), "foil": foil, "speed_rpm": speed,
+                    "load_newton": load_n, "bearing_number": model.bearing_number,
+                    "compliance": model.compliance,
+                    "top_foil_coefficient": model.top_foil_coefficient,
+                    "eccentricity": sol.eccentricity,
+                    "attitude_deg": math.degrees(sol.attitude_angle),
+                    "min_film_um": sol.min_film * geometry.radial_clearance * 1e6,
+                    "success": sol.success, "status": sol.status,
+                    "iterations": sol.iterations, "residual": sol.residual})
+    frame = pd.DataFrame.from_records(records)
+    path = out / "table.csv"
+    frame.to_csv(path, index=False, float_format="%.6g")
+    summary.files.append(str(path))
+    summary.files += plot_load_sweep(frame, out, title=study.get("title", ""))
+    summary.checks.append(_check("all solves converged (count of failures)",
+                                 float((~frame["success"]).sum()), 0))
+    for c in study.get("checks", []):  # monotone trends the physics requires
+        for (variant, speed), sub in frame.groupby(["variant", "speed_rpm"]):
+            sub = sub.sort_values("load_newton")
+            if c == "min_film_decreases_with_load":
+                worst = float(np.max(np.diff(sub["min_film_um"].to_numpy())))
+                summary.checks.append(_check(f"{variant} {speed:.0f} rpm: max increase of "
+                                             "h_min between load steps (µm)", max(worst, 0), 0))
+            if c == "eccentricity_increases_with_load":
+                worst = float(np.min(np.diff(sub["eccentricity"].to_numpy())))
+                summary.checks.append(_check(f"{variant} {speed:.0f} rpm: max decrease of ε "
+                                             "between load steps", max(-worst, 0), 0))
+
+
+def profile(study: dict, out: Path, summary: StudySummary) -> None:
+    """Profiles of P̄, W and H against the angle from the welded end, per variant."""
+    from .plotting import plot_profiles
+
+    grid = _grid_of(study)
+    cache = SolverCache(grid)
+    point = study["point"]
+    published = study.get("published", {})
+    records, solutions = [], {}
+    for variant in study["variants"]:
+        opts = dict(study.get("model", {}))
+        opts.update(variant)
+        model = model_from_table(opts, bearing_number=point["Lambda"], compliance=point["S"],
+                                 length_ratio=point["L_over_D"])
+        sol = solve_static(model, eccentricity=point["eps"], solver=cache(model))
+        label = variant.get("label", "default")
+        solutions[label] = sol
+        pbar = sol.mean_pressure
+        k = int(np.argmax(pbar))
+        angles = np.degrees(sol.theta_from_seam)
+        records.append({"variant": label, "max_mean_pressure": pbar[k],
+                        "max_mean_pressure_at_deg": angles[k],
+                        "max_deflection": float(sol.deflection[:, 0].max()),
+                        "max_deflection_at_deg": angles[int(np.argmax(sol.deflection[:, 0]))],
+                        "min_film": sol.min_film,
+                        "min_film_at_deg": math.degrees(sol.min_film_angle_from_seam),
+                        "load": sol.load, "attitude_deg": math.degrees(sol.attitude_angle),
+                        "success": sol.success})
+        prof = pd.DataFrame({"angle_from_welded_end_deg": angles,
+                             "theta_from_load_deg": np.degrees(sol.theta) % 360,
+                             "mean_pressure": pbar, "deflection": sol.deflection[:, 0],
+                             "film": sol.film.min(axis=1),
+                             "midplane_pressure": sol.pressure[:, sol.z.size // 2]})
+        p = out / f"profile_{label}.csv"
+        prof.sort_values("angle_from_welded_end_deg").to_csv(p, index=False, float_format="%.6g")
+        summary.files.append(str(p))
+    frame = pd.DataFrame.from_records(records)
+    for key, value in published.items():
+        frame[f"{key}_published"] = value
+    path = out / "table.csv"
+    frame.to_csv(path, index=False, float_format="%.6g")
+    summary.files.insert(0, str(path))
+    summary.files += plot_profiles(solutions, out, published)
+    for c in study.get("checks", []):
+        row = frame[frame["variant"] == c["variant"]].iloc[0]
+        value = row[c["quantity"]] - published[c["quantity"]]
+        if c.get("relative", False):
+            value = value / published[c["quantity"]]
+        summary.checks.append(_check(f"{c['variant']}: {c['quantity']} vs thesis", value,
+                                     c["tolerance"]))
+    summary.checks.append(_check("all solves converged (count of failures)",
+                                 float((~frame["success"]).sum()), 0))
+
+
+def grid_convergence(study: dict, out: Path, summary: StudySummary) -> None:
+    """Refine the grid by factors of two; observed order and error of the default grid."""
+    from .plotting import plot_grid_convergence
+
+    base_grids = [Grid.parse(g) for g in study["grids"]]
+    default = Grid.parse(study.get("default_grid", str(DEFAULT_GRID)))
+    records = []
+    for case in study["cases"]:
+        opts = dict(case)
+        label = opts.pop("label")
+        eps = opts.pop("eps")
+        model = model_from_table(opts)
+        for grid in sorted(set(base_grids + [default]), key=lambda g: g.n_theta * g.n_z):
+            sol = solve_static(model, eccentricity=eps, grid=grid)
+            records.append({"case": label, "grid": str(grid), "n_theta": grid.n_theta,
+                            "n_z": grid.n_z, "h": 1.0 / grid.n_theta, "load": sol.load,
+                            "attitude_deg": math.degrees(sol.attitude_angle),
+                            "success": sol.success, "solve_time_s": sol.solve_time_s})
+    frame = pd.DataFrame.from_records(records)
+    rows = []
+    for label, sub in frame.groupby("case", sort=False):
+        seq = sub[sub["grid"].isin([str(g) for g in base_grids])].sort_values("h", ascending=False)
+        loads = seq["load"].to_numpy()
+        att = seq["attitude_deg"].to_numpy()
+        order_load = math.log2(abs(loads[-3] - loads[-2]) / abs(loads[-2] - loads[-1]))
+        order_att = math.log2(abs(att[-3] - att[-2]) / abs(att[-2] - att[-1]))
+        p = 2.0  # formal order of the scheme, for the Richardson extrapolation
+        load_inf = loads[-1] + (loads[-1] - loads[-2]) / (2**p - 1)
+        att_inf = att[-1] + (att[-1] - att[-2]) / (2**p - 1)
+        d = sub[sub["grid"] == str(default)].iloc[0]
+        rows.append({"case": label, "observed_order_load": order_load,
+                     "observed_order_attitude": order_att, "load_extrapolated": load_inf,
+                     "attitude_extrapolated_deg": att_inf, "default_grid": str(default),
+                     "default_load_error_rel": d["load"] / load_inf - 1.0,
+                     "default_attitude_error_deg": d["attitude_deg"] - att_inf})
+        tol = study["tolerance"]
+        summary.checks.append(_check(f"{label}: observed order (load) − 2", order_load - 2.0,
+                                     tol["order"]))
+        summary.checks.append(_check(f"{label}: default-grid load error (relative)",
+                                     d["load"] / load_inf - 1.0, tol["default_load_rel"]))
+    conv = pd.DataFrame.from_records(rows)
+    for name, fr in (("table.csv", frame), ("orders.csv", conv)):
+        fr.to_csv(out / name, index=False, float_format="%.8g")
+        summary.files.append(str(out / name))
+    summary.files += plot_grid_convergence(frame, out)
+
+
+KINDS: dict[str, Callable] = {"static_table": static_table, "load_sweep": load_sweep,
+                              "profile": profile, "grid_convergence": grid_convergence}
+
+
+def run_study(path: str | Path, results_root: str | Path = "results") -> StudySummary:
+    """Run the study in ``path`` and write ``results_root/NAME/``; returns its summary."""
+    path = Path(path)
+    study = read_toml(path)
+    study["_dir"] = str(path.parent)
+    kind = study.get("kind")
+    if kind not in KINDS:
+        raise ParameterError(f"{path.name}: kind", kind, f"must be one of {', '.join(KINDS)}")
+    name = study.get("name", path.stem)
+    out = Path(results_root) / name
+    out.mkdir(parents=True, exist_ok=True)
+    summary = StudySummary(name=name, title=study.get("title", ""))
+    t0 = time.perf_counter()
+    KINDS[kind](study, out, summary)
+    summary.wall_time_s = time.perf_counter() - t0
+    summary.notes += study.get("notes", [])
+    meta = _metadata(study, _grid_of(study))
+    meta.update({"name": name, "kind": kind, "passed": summary.passed,
+                 "checks": summary.checks, "files": [Path(f).name for f in summary.files],
+                 "wall_time_s": summary.wall_time_s, "problem_file": str(path)})
+    (out / "summary.json").write_text(json.dumps(meta, indent=2))
+    write_index(Path(results_root))
+    return summary
+
+
+def write_index(results_root: Path) -> None:
+    """Regenerate ``results/index.md`` from the studies' summary files (bookkeeping only)."""
+    lines = ["# Results index (generated by `gfbopt run`; do not edit)", "",
+             "| study | title | checks | passed | date | commit |", "|---|---|---|---|---|---|"]
+    for f in sorted(results_root.glob("*/summary.json")):
+        s = json.loads(f.read_text())
+        n = len(s.get("checks", []))
+        ok = sum(c["passed"] for c in s.get("checks", []))
+        lines.append(f"| [{s['name']}]({f.parent.name}/) | {s.get('title', '')} | {n} | "
+                     f"{ok}/{n} | {s.get('date', '')[:10]} | {s.get('git_commit', '')} |")
+    (results_root / "index.md").write_text("\n".join(lines) + "\n")
