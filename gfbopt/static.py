@@ -177,6 +177,9 @@ class StaticSolver:
                 ["x", "p", "lam_f", "lam_g"], ["triu_hess_gamma_x_x"])
         self._nlp = ca.nlpsol("gfbopt_static", "ipopt", {"x": x, "p": par, "f": 0, "g": g}, opts)
         self.n_equations = g.shape[0]
+        self._symbols = (x, par, g)
+        #: g(x, p): the discrete equations as a CasADi Function (for checks and linearisation)
+        self.residual_function = ca.Function("static_residual", [x, par], [g], ["x", "p"], ["g"])
         lbx = -np.inf * np.ones(self.layout.size)
         ubx = np.inf * np.ones(self.layout.size)
         lbx[self.layout.pressure] = 1e-6
@@ -187,6 +190,11 @@ class StaticSolver:
         ubx[self.layout.attitude] = math.pi
         self._lbx, self._ubx = lbx, ubx
         self.build_time_s = time.perf_counter() - t0
+
+    def jacobian_function(self) -> ca.Function:
+        """dg/dx(x, p) as a CasADi Function (sparse, built on demand)."""
+        x, par, g = self._symbols
+        return ca.Function("static_jacobian", [x, par], [ca.jacobian(g, x)], ["x", "p"], ["J"])
 
     def parameters(self, model: BearingModel, load_mode: bool, target: float) -> np.ndarray:
         """The parameter vector of ``model`` for a given eccentricity or load."""
@@ -258,8 +266,11 @@ class StaticSolution:
 
     @property
     def theta_from_seam(self) -> np.ndarray:
-        """θ-node angles measured from the welded end of the top foil [rad]."""
-        return np.mod(self.theta - self.seam_angle, 2 * math.pi)
+        """θ-node angles measured from the welded end of the top foil, in [0, 2π] [rad].
+
+        With a seam film the first node is the welded end (0) and the last the free end (2π).
+        """
+        return self.theta - self.seam_angle
 
     @property
     def min_film_angle_from_seam(self) -> float:

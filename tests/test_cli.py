@@ -1,0 +1,112 @@
+"""The command-line contract: JSON keys, exit codes, one-line errors, studies."""
+import json
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+REPO = Path(__file__).resolve().parents[1]
+
+
+def gfbopt(*args: str) -> subprocess.CompletedProcess:
+    return subprocess.run([sys.executable, "-m", "gfbopt", *args], capture_output=True,
+                          text=True, cwd=REPO, timeout=300)
+
+
+def test_static_json_contract():
+    out = gfbopt("static", "--eccentricity", "0.6", "--bearing-number", "3",
+                 "--compliance", "0", "--length-ratio", "1", "--grid", "72x20", "--json")
+    assert out.returncode == 0, out.stderr
+    data = json.loads(out.stdout)
+    for key in ("load", "attitude_angle_deg", "eccentricity", "min_film", "min_film_angle_deg",
+                "success", "iterations", "solve_time_s"):
+        assert key in data
+    assert data["success"] is True
+    assert data["load"] == pytest.approx(2.8631, rel=0.015)            # Yang et al.
+    assert data["attitude_angle_deg"] == pytest.approx(30.04, abs=0.5)
+    assert data["min_film"] == pytest.approx(0.4, abs=1e-3)
+
+
+def test_static_load_and_beam_options():
+    out = gfbopt("static", "--load", "0.9", "--bearing-number", "5", "--compliance", "1",
+                 "--length-ratio", "1", "--foil", "beam", "--top-foil-coefficient", "1",
+                 "--film", "seam", "--grid", "36x10", "--json")
+    assert out.returncode == 0, out.stderr
+    data = json.loads(out.stdout)
+    assert data["load"] == pytest.approx(0.9, rel=1e-9)
+    assert data["foil"] == "beam" and data["film"] == "seam"
+
+
+def test_dimensional_static():
+    out = gfbopt("static", "--bearing", "problems/bearings/ruscitto.toml", "--speed-rpm",
+                 "45000", "--load-newton", "50", "--json")
+    assert out.returncode == 0, out.stderr
+    data = json.loads(out.stdout)
+    assert "min_film_thickness_um" in data and "eccentricity" in data
+    assert data["min_film_thickness_um"] == pytest.approx(data["min_film"] * 20.0, rel=1e-12)
+    assert data["load_newton"] == pytest.approx(50.0, rel=1e-9)
+
+
+def test_readable_report():
+    out = gfbopt("static", "--eccentricity", "0.5", "--bearing-number", "1", "--grid", "36x10")
+    assert out.returncode == 0
+    assert "attitude angle" in out.stdout and "Solve_Succeeded" in out.stdout
+
+
+@pytest.mark.parametrize("args, message", [
+    (["--eccentricity", "-0.2", "--bearing-number", "1"], "eccentricity = -0.2: must be >= 0"),
+    (["--eccentricity", "nan", "--bearing-number", "1"], "must be finite"),
+    (["--eccentricity", "0.95", "--bearing-number", "1", "--foil", "rigid", "--compliance",
+      "0"], None),
+    (["--eccentricity", "1.2", "--bearing-number", "1"], "must be < 1 for a rigid bearing"),
+    (["--eccentricity", "0.5", "--bearing-number", "1", "--compliance", "-1"],
+     "compliance = -1.0: must be >= 0"),
+    (["--eccentricity", "0.5", "--bearing-number", "0"], "bearing_number = 0.0: must be > 0"),
+    (["--eccentricity", "0.5", "--bearing-number", "1", "--grid", "8x2"],
+     "grid n_theta = 8: must be >= 12"),
+    (["--eccentricity", "0.5", "--bearing-number", "1", "--grid", "big"],
+     "must be written NTHETAxNZ"),
+    (["--eccentricity", "0.5", "--bearing-number", "1", "--foil", "plastic"],
+     "--foil = 'plastic': must be one of rigid, simple, beam"),
+    (["--eccentricity", "0.5", "--bearing-number", "1", "--film", "open"],
+     "film = 'open': must be one of periodic, seam"),
+    (["--bearing", "nope.toml", "--speed-rpm", "1000", "--load-newton", "10"],
+     "must be an existing TOML file"),
+    (["--bearing", "problems/bearings/ruscitto.toml", "--load-newton", "10"],
+     "--speed-rpm = None: is required with --bearing"),
+])
+def test_bad_input_is_one_line_exit_2(args, message):
+    out = gfbopt("static", *args)
+    if message is None:       # a valid request: must succeed
+        assert out.returncode == 0, out.stderr
+        return
+    assert out.returncode == 2
+    assert "Traceback" not in out.stderr
+    assert len(out.stderr.strip().splitlines()) == 1
+    assert message in out.stderr
+
+
+def test_bad_bearing_file_is_one_line(tmp_path):
+    bad = tmp_path / "b.toml"
+    bad.write_text("[bearing]\nradius = 0.02\n")
+    out = gfbopt("static", "--bearing", str(bad), "--speed-rpm", "1000", "--load-newton", "1")
+    assert out.returncode == 2 and "is required but missing" in out.stderr
+    assert "Traceback" not in out.stderr
+
+
+def test_run_study_writes_results(tmp_path):
+    out = gfbopt("run", "problems/thesis_table_3_1.toml", "--results", str(tmp_path))
+    assert out.returncode == 0, out.stdout + out.stderr
+    folder = tmp_path / "thesis_table_3_1"
+    summary = json.loads((folder / "summary.json").read_text())
+    assert summary["passed"] is True
+    assert (folder / "table.csv").is_file() and (folder / "README.md").is_file()
+    assert (tmp_path / "index.md").is_file()
+
+
+def test_unknown_study_kind(tmp_path):
+    bad = tmp_path / "x.toml"
+    bad.write_text('kind = "dance"\n')
+    out = gfbopt("run", str(bad), "--results", str(tmp_path))
+    assert out.returncode == 2 and "kind = 'dance': must be one of" in out.stderr
