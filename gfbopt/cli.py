@@ -14,7 +14,7 @@ import sys
 from typing import Optional, Sequence
 
 from .errors import GfboptError, ParameterError
-from .parameters import BearingModel, Grid
+from .parameters import DEFAULT_GRID, BearingModel, Grid
 
 
 class _Parser(argparse.ArgumentParser):
@@ -61,7 +61,8 @@ def build_parser() -> argparse.ArgumentParser:
     st.add_argument("--subambient", default="full", help="full | gumbel")
     st.add_argument("--compression-only", action="store_true",
                     help="bumps cannot pull the foil inward (W >= 0)")
-    st.add_argument("--grid", default="72x20", help="NTHETAxNZ (default 72x20)")
+    st.add_argument("--grid", default=str(DEFAULT_GRID),
+                    help=f"NTHETAxNZ (default {DEFAULT_GRID})")
     st.add_argument("--json", action="store_true", help="print one JSON object")
 
     run = sub.add_parser("run", help="run named studies: gfbopt run problems/NAME.toml ...")

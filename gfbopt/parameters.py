@@ -331,4 +331,7 @@ class Grid:
         return f"{self.n_theta}x{self.n_z}"
 
 
-DEFAULT_GRID = Grid(72, 20)
+#: Default grid: its load error is <= 0.5 % of the grid-converged value over the validation
+#: cases up to ε = 0.9 (results/grid_convergence).  72 × 20 is 4× cheaper and within 0.5 % up
+#: to ε ≈ 0.6, 1.7 % at ε = 0.9.
+DEFAULT_GRID = Grid(144, 36)

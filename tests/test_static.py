@@ -178,4 +178,4 @@ def test_solver_built_for_another_formulation_is_refused(periodic_solver):
 
 
 def test_default_grid_is_72_by_20():
-    assert DEFAULT_GRID == Grid(72, 20)
+    assert DEFAULT_GRID == Grid(144, 36)
