@@ -41,7 +41,8 @@ from .foil import beam_deflection, beam_matrices, beam_residual, simple_deflecti
 from .parameters import DEFAULT_GRID, BearingModel, Grid, check_positive, _finite
 
 PARAMETERS = ("bearing_number", "compliance", "top_foil_coefficient", "length_ratio",
-              "load_mode", "target", "seam_angle", "seam_follows", "compression_only", "gumbel")
+              "load_mode", "target", "seam_angle", "seam_follows", "compression_only", "gumbel",
+              "position_mode", "attitude_target")
 
 #: residual tolerance on the Reynolds and force equations accepted as converged [-]
 RESIDUAL_TOLERANCE = 1e-7
@@ -103,7 +104,8 @@ class StaticSolver:
         n_beam = self.beam_mats.n_dofs if self.beam else 0
 
         par = ca.SX.sym("p", len(PARAMETERS))
-        lam, s, c, ld, mode, target, seam_angle, follows, comp, gumbel = ca.vertsplit(par)
+        (lam, s, c, ld, mode, target, seam_angle, follows, comp, gumbel,
+         position, attitude_target) = ca.vertsplit(par)
         pu = ca.SX.sym("P", st.n_unknown)
         hr = ca.SX.sym("H", m)
         q = ca.SX.sym("Q", m)
@@ -162,7 +164,8 @@ class StaticSolver:
         fa, fb = ca.sum1(sums[:nb]), ca.sum1(sums[nb:])
         fx = ca.cos(theta_seam) * fa - ca.sin(theta_seam) * fb
         fy = ca.sin(theta_seam) * fa + ca.cos(theta_seam) * fb
-        equations += [mode * (fx + target) + (1 - mode) * (ecc - target), fy]
+        equations += [mode * (fx + target) + (1 - mode) * (ecc - target),
+                      position * (phi - attitude_target) + (1 - position) * fy]
         g = ca.vertcat(*equations)
         opts = _default_ipopt_options()
         opts.update(ipopt_options or {})
@@ -192,17 +195,25 @@ class StaticSolver:
         self.build_time_s = time.perf_counter() - t0
 
     def jacobian_function(self) -> ca.Function:
-        """dg/dx(x, p) as a CasADi Function (sparse, built on demand)."""
-        x, par, g = self._symbols
-        return ca.Function("static_jacobian", [x, par], [ca.jacobian(g, x)], ["x", "p"], ["J"])
+        """(x, p) ↦ (g, dg/dx): IPOPT's own sparse constraint Jacobian (no rebuild)."""
+        return self._nlp.get_function("nlp_jac_g")
 
-    def parameters(self, model: BearingModel, load_mode: bool, target: float) -> np.ndarray:
-        """The parameter vector of ``model`` for a given eccentricity or load."""
-        follows = model.seam_angle is None
+    def parameters(self, model: BearingModel, load_mode: bool, target: float,
+                   attitude: Optional[float] = None,
+                   seam_angle: Optional[float] = None) -> np.ndarray:
+        """The parameter vector of ``model`` for a given eccentricity or load.
+
+        ``attitude`` [rad] fixes the journal position too (forces at a given position);
+        ``seam_angle`` [rad] overrides the model's seam (used to freeze a following seam).
+        """
+        seam = model.seam_angle if seam_angle is None else seam_angle
+        follows = seam is None
         return np.array([model.bearing_number, model.compliance, model.top_foil_coefficient,
                          model.length_ratio, float(load_mode), target,
-                         0.0 if follows else model.seam_angle, float(follows),
-                         float(model.compression_only), float(model.subambient == "gumbel")])
+                         0.0 if follows else seam, float(follows),
+                         float(model.compression_only), float(model.subambient == "gumbel"),
+                         float(attitude is not None),
+                         0.0 if attitude is None else float(attitude)])
 
     def matches(self, model: BearingModel, grid: Grid) -> bool:
         """True if this build can solve ``model`` on ``grid``."""
@@ -342,14 +353,15 @@ def first_order_pressure(model: BearingModel, z: np.ndarray, psi: np.ndarray,
     return 1 + eccentricity * np.real(np.outer(np.exp(1j * psi), f))
 
 
-def _cold_guess(solver: StaticSolver, model: BearingModel, eccentricity: float) -> np.ndarray:
+def _cold_guess(solver: StaticSolver, model: BearingModel, eccentricity: float,
+                attitude: Optional[float] = None) -> np.ndarray:
     """A starting point: Ausman's first-order pressure and every lifted variable consistent."""
     st = solver.stencil
     _, phi0 = small_eccentricity_limit(model)
     # The attitude angle falls roughly like (1 − ε²) as the film closes (cf. the short-bearing
     # law tan φ = π √(1 − ε²)/(4ε)); compliance delays the closing.
     closing = min(eccentricity / (1.0 + model.compliance), 0.95)
-    phi0 = min(max(phi0 * (1.0 - closing**2), 0.05), 1.5)
+    phi0 = min(max(phi0 * (1.0 - closing**2), 0.05), 1.5) if attitude is None else attitude
     seam = math.pi + phi0 if model.seam_angle is None else model.seam_angle
     theta = seam + st.psi
     shrink = 1.0 / (1.0 + model.compliance)       # a compliant film carries less pressure
@@ -421,7 +433,8 @@ def _check_target(model: BearingModel, eccentricity, load):
 
 
 def _postprocess(solver: StaticSolver, model: BearingModel, x: np.ndarray, stats: dict,
-                 load_mode: bool, target: float, elapsed: float) -> StaticSolution:
+                 load_mode: bool, target: float, elapsed: float,
+                 position_mode: bool = False) -> StaticSolution:
     """Recompute everything from the raw solution with numpy: residual, forces, profiles."""
     st, lay = solver.stencil, solver.layout
     ecc = float(x[lay.eccentricity])
@@ -455,7 +468,9 @@ def _postprocess(solver: StaticSolver, model: BearingModel, x: np.ndarray, stats
     force_p = p if model.subambient == "full" else 1 + np.maximum(p - 1, 0)
     fx, fy = disc.film_forces(disc.axial_integral(force_p, st, dz), theta,
                               st.theta_weight)
-    if load_mode:
+    if position_mode:
+        force_res = 0.0
+    elif load_mode:
         force_res = math.hypot(fx + target, fy)
     else:
         force_res = abs(fy)
@@ -494,7 +509,8 @@ def _minimum_film(hmat: np.ndarray, theta: np.ndarray, periodic: bool) -> tuple[
 
 
 def solve_static(model: BearingModel, *, eccentricity: Optional[float] = None,
-                 load: Optional[float] = None, grid: Grid = DEFAULT_GRID,
+                 load: Optional[float] = None, attitude_angle: Optional[float] = None,
+                 grid: Grid = DEFAULT_GRID,
                  solver: Optional[StaticSolver] = None,
                  initial: Optional[StaticSolution] = None,
                  continuation: bool = True, raise_on_failure: bool = False) -> StaticSolution:
@@ -505,6 +521,8 @@ def solve_static(model: BearingModel, *, eccentricity: Optional[float] = None,
     model : the non-dimensional bearing
     eccentricity : ε = e/c [-] (then the load and attitude angle are found), or
     load : W̄ = W/(p_a R²) [-] (then ε and the attitude angle are found)
+    attitude_angle : with ``eccentricity``, fixes the journal position too [rad]: the film
+        force at that position is returned (``load`` = −F_X, ``force``) without equilibrium
     grid : finite-difference grid (ignored when ``solver`` is given)
     solver : a prebuilt :class:`StaticSolver` (reuse it across a sweep)
     initial : a previous solution to warm-start from (same solver)
@@ -517,6 +535,11 @@ def solve_static(model: BearingModel, *, eccentricity: Optional[float] = None,
     StaticSolution, with ``success``, IPOPT's ``status`` and the ``residual`` recomputed.
     """
     load_mode, target = _check_target(model, eccentricity, load)
+    if attitude_angle is not None:
+        if load_mode:
+            raise ParameterError("attitude_angle", attitude_angle,
+                                 "fixes the position together with eccentricity, not with load")
+        attitude_angle = _finite("attitude_angle", attitude_angle)
     if solver is None:
         solver = solver_for(model, grid)
     elif not solver.matches(model, solver.grid):
@@ -528,7 +551,7 @@ def solve_static(model: BearingModel, *, eccentricity: Optional[float] = None,
         sol = _concentric(solver, model, t0)
     else:
         sol = _solve_with_continuation(solver, model, load_mode, target, initial,
-                                       continuation, t0)
+                                       continuation, t0, attitude_angle)
     if raise_on_failure and not sol.success:
         raise ConvergenceError("static equilibrium did not converge", sol.status,
                                max(sol.residual, sol.force_residual))
@@ -549,28 +572,33 @@ def _replace(sol: StaticSolution, **changes) -> StaticSolution:
     return replace(sol, **changes)
 
 
-def _solve_with_continuation(solver, model, load_mode, target, initial, continuation, t0):
-    p = solver.parameters(model, load_mode, target)
+def _solve_with_continuation(solver, model, load_mode, target, initial, continuation, t0,
+                             attitude=None):
+    p = solver.parameters(model, load_mode, target, attitude)
     if initial is not None and initial.state.size == solver.layout.size:
         x0 = initial.state
     else:
         x0 = _cold_guess(solver, model, target if not load_mode else
-                         min(0.5, target / max(small_eccentricity_limit(model)[0], 1e-9)))
+                         min(0.5, target / max(small_eccentricity_limit(model)[0], 1e-9)),
+                         attitude)
     x, stats = solver.run(x0, p)
-    sol = _postprocess(solver, model, x, stats, load_mode, target, time.perf_counter() - t0)
+    sol = _postprocess(solver, model, x, stats, load_mode, target, time.perf_counter() - t0,
+                       attitude is not None)
     if sol.success or not continuation:
         return sol
     # Continuation: march the target up from a small value, warm-starting each step.
     iterations = sol.iterations
     start = 0.1 * target
     x_prev = _cold_guess(solver, model, start if not load_mode else
-                         min(0.5, start / max(small_eccentricity_limit(model)[0], 1e-9)))
+                         min(0.5, start / max(small_eccentricity_limit(model)[0], 1e-9)),
+                         attitude)
     value, step = start, (target - start) / 4
     last = None
     while True:
-        x, stats = solver.run(x_prev, solver.parameters(model, load_mode, value))
+        x, stats = solver.run(x_prev, solver.parameters(model, load_mode, value, attitude))
         iterations += int(stats.get("iter_count", 0))
-        trial = _postprocess(solver, model, x, stats, load_mode, value, 0.0)
+        trial = _postprocess(solver, model, x, stats, load_mode, value, 0.0,
+                             attitude is not None)
         if trial.success:
             x_prev, last = x, value
             if value >= target:
@@ -587,7 +615,7 @@ def _solve_with_continuation(solver, model, load_mode, target, initial, continua
                 break
             value = min(target, last + step)
     final = _postprocess(solver, model, x if last == target else x_prev, stats, load_mode,
-                         target, time.perf_counter() - t0)
+                         target, time.perf_counter() - t0, attitude is not None)
     final = _replace(final, iterations=iterations)
     if last != target:
         final = _replace(final, success=False,
