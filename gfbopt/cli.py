@@ -11,6 +11,7 @@ import argparse
 import json
 import math
 import sys
+import time
 from typing import Optional, Sequence
 
 from .errors import GfboptError, ParameterError
@@ -39,6 +40,22 @@ def build_parser() -> argparse.ArgumentParser:
     sub = parser.add_subparsers(dest="command", required=True, parser_class=_Parser)
 
     st = sub.add_parser("static", help="static equilibrium at one operating point")
+    _operating_point_arguments(st)
+
+    lin = sub.add_parser("linear", help="stiffness, damping and linear stability threshold")
+    _operating_point_arguments(lin)
+    lin.add_argument("--whirl-ratio", type=_float("whirl-ratio"), nargs="+",
+                     default=[0.0, 0.5, 1.0], help="whirl ratios γ for K and C (default 0 0.5 1)")
+    lin.add_argument("--frame", default="load", choices=("load", "line-of-centres"),
+                     help="axes of K and C (default: load frame)")
+
+    run = sub.add_parser("run", help="run named studies: gfbopt run problems/NAME.toml ...")
+    run.add_argument("problems", nargs="+", help="study files (problems/NAME.toml)")
+    run.add_argument("--results", default="results", help="output folder (default results/)")
+    return parser
+
+
+def _operating_point_arguments(st: argparse.ArgumentParser) -> None:
     target = st.add_mutually_exclusive_group()
     target.add_argument("--eccentricity", type=_float("eccentricity"), help="ε = e/c [-]")
     target.add_argument("--load", type=_float("load"), help="W/(p_a R²) [-]")
@@ -64,11 +81,6 @@ def build_parser() -> argparse.ArgumentParser:
     st.add_argument("--grid", default=str(DEFAULT_GRID),
                     help=f"NTHETAxNZ (default {DEFAULT_GRID})")
     st.add_argument("--json", action="store_true", help="print one JSON object")
-
-    run = sub.add_parser("run", help="run named studies: gfbopt run problems/NAME.toml ...")
-    run.add_argument("problems", nargs="+", help="study files (problems/NAME.toml)")
-    run.add_argument("--results", default="results", help="output folder (default results/)")
-    return parser
 
 
 def _model_from_args(args) -> tuple[BearingModel, dict]:
@@ -145,6 +157,57 @@ def _static(args) -> int:
     return 0
 
 
+def _linear(args) -> int:
+    from .linear import coefficients, linear_threshold, linearise
+    from .static import solve_static, solver_for
+
+    model, extra = _model_from_args(args)
+    grid = Grid.parse(args.grid)
+    t0 = time.perf_counter()
+    solver = solver_for(model, grid)
+    sol = solve_static(model, eccentricity=extra.get("eccentricity"), load=extra.get("load"),
+                       solver=solver)
+    if not sol.success:
+        print(f"gfbopt: error: static equilibrium did not converge ({sol.message}); "
+              "no linearisation", file=sys.stderr)
+        return 1
+    lin = linearise(sol, solver)
+    threshold = linear_threshold(lin)
+    coeffs = coefficients(lin, args.whirl_ratio)
+    if args.frame == "line-of-centres":
+        coeffs = coeffs.in_line_of_centres_frame()
+    out = {"critical_mass": threshold.critical_mass, "whirl_ratio": threshold.whirl_ratio,
+           "stable_for_all_masses": threshold.stable_for_all_masses,
+           "threshold_message": threshold.message,
+           "stiffness": {f"{g:g}": coeffs.stiffness[k].tolist()
+                         for k, g in enumerate(coeffs.whirl_ratio)},
+           "damping": {f"{g:g}": coeffs.damping[k].tolist()
+                       for k, g in enumerate(coeffs.whirl_ratio)},
+           "frame": args.frame, "load": sol.load, "eccentricity": sol.eccentricity,
+           "attitude_angle_deg": math.degrees(sol.attitude_angle),
+           "success": bool(sol.success and threshold.success),
+           "bearing_number": model.bearing_number, "compliance": model.compliance,
+           "length_ratio": model.length_ratio, "foil": model.foil, "film": model.film,
+           "grid": str(grid), "wall_time_s": time.perf_counter() - t0}
+    if args.json:
+        print(json.dumps({k: _jsonable(v) for k, v in out.items()}))
+    else:
+        lines = [f"gfbopt linear — {model.foil} foil, {model.film} film, grid {grid}",
+                 f"  ε = {sol.eccentricity:.5f}, load W/(p_a R²) = {sol.load:.5f}, "
+                 f"attitude {out['attitude_angle_deg']:.3f} deg",
+                 (f"  critical mass M̄ = M c ω²/W0 = {threshold.critical_mass:.5g} at whirl "
+                  f"ratio {threshold.whirl_ratio:.4f}" if not threshold.stable_for_all_masses
+                  else f"  {threshold.message}"),
+                 f"  stiffness K c/(p_a R²) and damping C c ω/(p_a R²), {args.frame} frame:"]
+        for k, g in enumerate(coeffs.whirl_ratio):
+            kk, cc = coeffs.stiffness[k], coeffs.damping[k]
+            lines.append(f"    γ = {g:<6g} K = [[{kk[0, 0]:.4g}, {kk[0, 1]:.4g}], "
+                         f"[{kk[1, 0]:.4g}, {kk[1, 1]:.4g}]]  C = [[{cc[0, 0]:.4g}, "
+                         f"{cc[0, 1]:.4g}], [{cc[1, 0]:.4g}, {cc[1, 1]:.4g}]]")
+        print("\n".join(lines))
+    return 0 if out["success"] else 1
+
+
 def _jsonable(value):
     if isinstance(value, float) and not math.isfinite(value):
         return None
@@ -186,6 +249,8 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
     try:
         if args.command == "static":
             return _static(args)
+        if args.command == "linear":
+            return _linear(args)
         return _run(args)
     except GfboptError as exc:
         print(f"gfbopt: error: {exc}", file=sys.stderr)

@@ -326,3 +326,29 @@ def dimensional_coefficients(coeffs: Coefficients, geometry: BearingGeometry,
         for j, b in enumerate("xy"):
             frame[f"c{a}{b}_Ns_per_m"] = coeffs.damping[:, i, j] * scale_k / omega
     return pd.DataFrame(frame)
+
+
+# ------------------------------------------------------------- closed-form check
+def concentric_impedance(bearing_number: float, length_ratio: float,
+                         whirl_ratio: float) -> np.ndarray:
+    """Impedance Z(iγ) of a rigid, concentric (ε → 0) bearing from Ausman's first-order
+    theory (Ausman, J. Basic Eng. 83 (1961) 188; PHYSICS.md) [-], load-frame convention.
+
+    A forward circular whirl at γ sees the steady film of Λ(1 − 2γ), a backward one that of
+    Λ(1 + 2γ); with the static small-ε response u(Λ) = −2π (L/D) conj f̄(Λ) = k e^{−iφ} (f̄ the
+    axial mean of Ausman's first-order pressure, k the load per unit ε, φ the attitude) the
+    isotropic impedance [[a, b], [−b, a]] has a − i b = u(Λ(1 − 2γ)) (forward whirl) and
+    a + i b = conj u(Λ(1 + 2γ)) (backward whirl).
+    """
+    from .static import small_eccentricity_coefficient
+
+    def u(lam):
+        if lam == 0.0:
+            return 0.0j
+        return -2 * math.pi * length_ratio * np.conj(
+            small_eccentricity_coefficient(lam, length_ratio))
+
+    uf = u(bearing_number * (1 - 2 * whirl_ratio))
+    ub = u(bearing_number * (1 + 2 * whirl_ratio))
+    a, b = (uf + np.conj(ub)) / 2, (np.conj(ub) - uf) / 2j
+    return np.array([[a, b], [-b, a]])

@@ -94,3 +94,40 @@ def plot_grid_convergence(frame, out: Path) -> list[str]:
     ax.grid(alpha=0.3, which="both")
     ax.legend(fontsize=7)
     return [_save(fig, out / "grid_convergence.png")]
+
+
+def plot_stability_map(frame, axis: str, out: Path, title: str = "",
+                       crossovers=None) -> list[str]:
+    """Critical mass M̄ = M c ω²/W0 against ε or Λ per variant (thesis Figs 3.12, 3.13, …)."""
+    fig, ax = plt.subplots(figsize=(6, 4))
+    for label, sub in frame.groupby("variant", sort=False):
+        sub = sub.sort_values(axis)
+        ax.plot(sub[axis], sub["critical_mass"], marker="o", ms=3, label=label)
+    if crossovers is not None and "crossover_thesis" in crossovers:
+        for _, row in crossovers.dropna(subset=["crossover_thesis"]).iterrows():
+            ax.axvline(row["crossover_thesis"], color="grey", ls=":", lw=1)
+    ax.set_xlabel("eccentricity ratio ε" if axis == "eps" else "bearing number Λ")
+    ax.set_ylabel("critical mass M̄ = M c ω²/W0 [-]")
+    ax.set_title(title, fontsize=8)
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=8)
+    return [_save(fig, out / "critical_mass.png")]
+
+
+def plot_coefficients(frame, out: Path, title: str = "") -> list[str]:
+    """Dimensional stiffness [MN/m] and damping [kN s/m] against excitation frequency."""
+    files = []
+    for (label, speed, load_n), sub in frame.groupby(["variant", "speed_rpm", "load_newton"]):
+        fig, axes = plt.subplots(1, 2, figsize=(10, 4))
+        for key in ("xx", "xy", "yx", "yy"):
+            axes[0].plot(sub["frequency_hz"], sub[f"k{key}_N_per_m"] / 1e6, label=f"K{key}")
+            axes[1].plot(sub["frequency_hz"], sub[f"c{key}_Ns_per_m"] / 1e3, label=f"C{key}")
+        axes[0].set_ylabel("stiffness [MN/m]")
+        axes[1].set_ylabel("damping [kN s/m]")
+        for ax in axes:
+            ax.set_xlabel("excitation frequency [Hz]")
+            ax.grid(alpha=0.3)
+            ax.legend(fontsize=8)
+        fig.suptitle(f"{title}\n{label}, {speed:,.0f} rpm, {load_n:g} N", fontsize=8)
+        files.append(_save(fig, out / f"coefficients_{label}_{int(speed)}rpm_{int(load_n)}N.png"))
+    return files

@@ -323,8 +323,202 @@ def grid_convergence(study: dict, out: Path, summary: StudySummary) -> None:
     summary.files += plot_grid_convergence(frame, out)
 
 
+def _threshold_row(model: BearingModel, eps: float, solver: StaticSolver) -> dict:
+    """Static solve + linear threshold at one point, as a table row (failures recorded)."""
+    from .linear import linear_threshold, linearise
+
+    t0 = time.perf_counter()
+    sol = solve_static(model, eccentricity=eps, solver=solver)
+    row = {"load": sol.load, "attitude_deg": math.degrees(sol.attitude_angle),
+           "static_success": sol.success, "critical_mass": math.nan, "whirl_ratio": math.nan,
+           "stable_for_all_masses": False, "message": sol.message}
+    if sol.success:
+        thr = linear_threshold(linearise(sol, solver))
+        row.update(critical_mass=thr.critical_mass, whirl_ratio=thr.whirl_ratio,
+                   stable_for_all_masses=thr.stable_for_all_masses, message=thr.message)
+    row["success"] = bool(sol.success and (math.isfinite(row["critical_mass"])
+                                           or row["stable_for_all_masses"]))
+    row["wall_time_s"] = time.perf_counter() - t0
+    return row
+
+
+def _crossing(x: np.ndarray, a: np.ndarray, b: np.ndarray) -> list:
+    """x where curves a and b cross (linear interpolation of a − b)."""
+    d = a - b
+    out = []
+    for k in range(len(x) - 1):
+        if np.isfinite(d[k]) and np.isfinite(d[k + 1]) and d[k] * d[k + 1] < 0:
+            out.append(float(x[k] - d[k] * (x[k + 1] - x[k]) / (d[k + 1] - d[k])))
+    return out
+
+
+def linear_map(study: dict, out: Path, summary: StudySummary) -> None:
+    """Linear critical mass against ε or Λ per foil variant; crossovers with the rigid curve."""
+    from .plotting import plot_stability_map
+
+    grid = _grid_of(study)
+    cache = SolverCache(grid)
+    axis = study["sweep"]["variable"]            # "eps" or "Lambda"
+    values = np.asarray(study["sweep"]["values"], dtype=float)
+    fixed = study["fixed"]
+    records = []
+    for variant in study["variants"]:
+        opts = dict(study.get("model", {}))
+        opts.update(variant)
+        label = opts.get("label")
+        for v in values:
+            eps = v if axis == "eps" else fixed["eps"]
+            lam = v if axis == "Lambda" else fixed["Lambda"]
+            model = model_from_table(opts, bearing_number=lam,
+                                     length_ratio=fixed.get("L_over_D", 1.0))
+            row = _threshold_row(model, eps, cache(model))
+            records.append({"variant": label, "eps": eps, "Lambda": lam,
+                            "compliance": model.compliance,
+                            "top_foil_coefficient": model.top_foil_coefficient, **row})
+    frame = pd.DataFrame.from_records(records)
+    frame.to_csv(out / "map.csv", index=False, float_format="%.6g")
+    summary.files.append(str(out / "map.csv"))
+    # crossovers: where each foil variant's curve crosses the reference (rigid) curve
+    cross = []
+    for label, ref in study.get("crossover_pairs", []):
+        base = frame[frame["variant"] == ref].sort_values(axis)
+        sub = frame[frame["variant"] == label].sort_values(axis)
+        found = _crossing(sub[axis].to_numpy(), sub["critical_mass"].to_numpy(),
+                          base["critical_mass"].to_numpy())
+        for xc in found or [math.nan]:
+            cross.append({"variant": label, "against": ref, "variable": axis,
+                          "crossover": xc})
+    published = study.get("published_crossovers", [])
+    cross_frame = pd.DataFrame.from_records(cross, columns=["variant", "against", "variable",
+                                                            "crossover"])
+    pub_frame = pd.DataFrame.from_records(published)
+    if len(pub_frame):
+        cross_frame = cross_frame.merge(pub_frame, on=["variant", "against"], how="outer")
+    cross_frame.to_csv(out / "crossovers.csv", index=False, float_format="%.6g")
+    summary.files.append(str(out / "crossovers.csv"))
+    points = []
+    for p in study.get("thesis_points", []):          # the thesis's reported thresholds
+        opts = dict(study.get("model", {}))
+        opts.update(p["model"])
+        model = model_from_table(opts, bearing_number=p["Lambda"],
+                                 length_ratio=p.get("L_over_D", 1.0))
+        row = _threshold_row(model, p["eps"], cache(model))
+        points.append({"case": p["case"], "eps": p["eps"], "Lambda": p["Lambda"],
+                       "thesis_Mbar": p["Mbar"], "linear_Mbar": row["critical_mass"],
+                       "ratio_thesis_over_ours": p["Mbar"] / row["critical_mass"],
+                       "whirl_ratio": row["whirl_ratio"], "where": p.get("where", "")})
+    if points:
+        pd.DataFrame.from_records(points).to_csv(out / "thesis_points.csv", index=False,
+                                                 float_format="%.6g")
+        summary.files.append(str(out / "thesis_points.csv"))
+    summary.files += plot_stability_map(frame, axis, out, study.get("title", ""),
+                                        cross_frame if len(cross_frame) else None)
+    summary.checks.append(_check("all points converged (count of failures)",
+                                 float((~frame["success"]).sum()), 0))
+    for c in study.get("checks", []):
+        if c["kind"] == "whirl_ratio_range":
+            w = frame["whirl_ratio"]
+            summary.checks.append(_check("whirl ratio at threshold within [0.3, 0.6]: worst "
+                                         "distance outside", float(max(0.3 - w.min(),
+                                                                       w.max() - 0.6, 0)), 0))
+        if c["kind"] == "increases_with_eps":
+            for label, sub in frame.groupby("variant", sort=False):
+                d = np.diff(sub.sort_values("eps")["critical_mass"].to_numpy())
+                summary.checks.append(_check(f"{label}: M̄c rises with ε (largest fall)",
+                                             float(max(-d.min(), 0)), 0))
+
+
+def linear_coefficients(study: dict, out: Path, summary: StudySummary) -> None:
+    """Dimensional K [N/m] and C [N s/m] against excitation frequency for a bearing file."""
+    from .linear import coefficients, dimensional_coefficients, linear_threshold, linearise
+    from .plotting import plot_coefficients
+
+    grid = _grid_of(study)
+    cache = SolverCache(grid)
+    geometry = load_bearing(Path(study["_dir"]) / study["bearing"])
+    ratios = np.asarray(study["whirl_ratios"], dtype=float)
+    tables = []
+    for variant in study["variants"]:
+        opts = dict(study.get("model", {}))
+        opts.update(variant)
+        label = opts.pop("label")
+        foil = opts.pop("foil")
+        if "seam_angle_deg" in opts:
+            a = opts.pop("seam_angle_deg")
+            opts["seam_angle"] = None if a == "max_film" else math.radians(a)
+        for speed in study["speeds_rpm"]:
+            model = geometry.model(speed, foil=foil, **opts)
+            for load_n in study["loads_newton"]:
+                sol = solve_static(model, load=geometry.nondimensional_load(load_n),
+                                   solver=cache(model))
+                if not sol.success:
+                    summary.checks.append(_check(f"{label} {speed} rpm {load_n} N converged",
+                                                 1.0, 0.0))
+                    continue
+                lin = linearise(sol, cache(model))
+                thr = linear_threshold(lin)
+                table = dimensional_coefficients(coefficients(lin, ratios), geometry, speed)
+                table.insert(0, "load_newton", load_n)
+                table.insert(0, "variant", label)
+                table["eccentricity"] = sol.eccentricity
+                table["attitude_deg"] = math.degrees(sol.attitude_angle)
+                table["critical_mass"] = thr.critical_mass
+                table["threshold_whirl_ratio"] = thr.whirl_ratio
+                omega = speed * math.pi / 30
+                table["critical_rotor_mass_kg"] = (thr.critical_mass * load_n
+                                                   / (geometry.radial_clearance * omega**2))
+                tables.append(table)
+    frame = pd.concat(tables, ignore_index=True)
+    frame.to_csv(out / "coefficients.csv", index=False, float_format="%.6g")
+    summary.files.append(str(out / "coefficients.csv"))
+    # a plain table per operating point in the layout rotordynamics codes read
+    for (label, speed, load_n), sub in frame.groupby(["variant", "speed_rpm", "load_newton"]):
+        name = f"rotordynamics_{label}_{int(speed)}rpm_{int(load_n)}N.csv"
+        cols = ["frequency_hz"] + [c for c in sub.columns if c.endswith(("_N_per_m", "_Ns_per_m"))]
+        sub[cols].to_csv(out / name, index=False, float_format="%.8g")
+        summary.files.append(str(out / name))
+    summary.files += plot_coefficients(frame, out, study.get("title", ""))
+    summary.checks.append(_check("all static solves and thresholds converged (count of "
+                                 "failures)", float((~np.isfinite(frame["critical_mass"])).sum()),
+                                 0))
+
+
+def concentric_impedance_study(study: dict, out: Path, summary: StudySummary) -> None:
+    """The perturbation impedance at ε → 0 against Ausman's closed form."""
+    from .linear import concentric_impedance, impedance, linearise
+
+    grid = _grid_of(study)
+    cache = SolverCache(grid)
+    records = []
+    for case in study["cases"]:
+        model = BearingModel(bearing_number=case["Lambda"], foil="rigid",
+                             length_ratio=case["L_over_D"])
+        sol = solve_static(model, eccentricity=study["eps0"], solver=cache(model))
+        lin = linearise(sol, cache(model))
+        for gamma in study["whirl_ratios"]:
+            z = impedance(lin, 1j * gamma)
+            za = concentric_impedance(case["Lambda"], case["L_over_D"], gamma)
+            rec = {"Lambda": case["Lambda"], "L_over_D": case["L_over_D"],
+                   "whirl_ratio": gamma,
+                   "error_rel": float(np.abs(z - za).max() / np.abs(za).max())}
+            for i, a in enumerate("xy"):
+                for j, b in enumerate("xy"):
+                    rec[f"z{a}{b}_re"], rec[f"z{a}{b}_im"] = z[i, j].real, z[i, j].imag
+                    rec[f"z{a}{b}_ausman_re"] = za[i, j].real
+                    rec[f"z{a}{b}_ausman_im"] = za[i, j].imag
+            records.append(rec)
+    frame = pd.DataFrame.from_records(records)
+    frame.to_csv(out / "table.csv", index=False, float_format="%.6g")
+    summary.files.append(str(out / "table.csv"))
+    summary.checks.append(_check("max |Z − Z_Ausman| / max|Z_Ausman| over all points",
+                                 frame["error_rel"].max(), study["tolerance_rel"]))
+
+
 KINDS: dict[str, Callable] = {"static_table": static_table, "load_sweep": load_sweep,
-                              "profile": profile, "grid_convergence": grid_convergence}
+                              "profile": profile, "grid_convergence": grid_convergence,
+                              "linear_map": linear_map,
+                              "linear_coefficients": linear_coefficients,
+                              "concentric_impedance": concentric_impedance_study}
 
 
 def run_study(path: str | Path, results_root: str | Path = "results") -> StudySummary:

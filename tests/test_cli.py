@@ -110,3 +110,32 @@ def test_unknown_study_kind(tmp_path):
     bad.write_text('kind = "dance"\n')
     out = gfbopt("run", str(bad), "--results", str(tmp_path))
     assert out.returncode == 2 and "kind = 'dance': must be one of" in out.stderr
+
+
+def test_linear_json_contract():
+    out = gfbopt("linear", "--eccentricity", "0.4", "--bearing-number", "2", "--compliance",
+                 "1", "--length-ratio", "1", "--whirl-ratio", "0", "0.5", "--grid", "36x10",
+                 "--json")
+    assert out.returncode == 0, out.stderr
+    data = json.loads(out.stdout)
+    for key in ("critical_mass", "whirl_ratio", "stiffness", "damping", "load",
+                "attitude_angle_deg", "success"):
+        assert key in data
+    assert set(data["stiffness"]) == {"0", "0.5"}
+    assert len(data["damping"]["0.5"]) == 2 and len(data["damping"]["0.5"][0]) == 2
+    assert 1.0 < data["critical_mass"] < 4.0 and 0.4 < data["whirl_ratio"] < 0.55
+
+
+@pytest.mark.parametrize("args, message", [
+    (["--whirl-ratio", "-0.5"], "whirl_ratio = -0.5: must be finite and >= 0"),
+    (["--whirl-ratio", "nan"], "must be finite"),
+])
+def test_linear_bad_input(args, message):
+    out = gfbopt("linear", "--eccentricity", "0.4", "--bearing-number", "2", "--grid", "36x10",
+                 *args)
+    assert out.returncode == 2 and message in out.stderr and "Traceback" not in out.stderr
+
+
+def test_linear_at_zero_eccentricity_is_refused():
+    out = gfbopt("linear", "--eccentricity", "0", "--bearing-number", "2", "--grid", "36x10")
+    assert out.returncode == 2 and "must be > 0" in out.stderr

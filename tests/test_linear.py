@@ -130,15 +130,17 @@ def _transient_rigid_force(model, grid, x0, amplitude, gamma, periods=6):
     return k, cg / gamma
 
 
-def test_coefficients_equal_transient_response_to_small_harmonic_motion():
+@pytest.mark.parametrize("gamma, lam", [(0.6, 2.0), (0.15, 5.0)])
+def test_coefficients_equal_transient_response_to_small_harmonic_motion(gamma, lam):
     """Prescribed X = X0 + a sin γτ in the nonlinear time-dependent model (a = 1e-4): the
     first harmonic of the force gives K_·X and C_·X equal to the perturbation's within
     1 % of the largest coefficient (O(a) nonlinearity, time discretisation ~1e-6, start-up
-    transient decayed after 4 periods)."""
-    model = BearingModel(bearing_number=2.0, foil="rigid")
+    transient decayed after 4 periods).  At γ = 0.15, Λ = 5 the direct damping is negative,
+    and the transient agrees: a property of the compressible film, not of the linearisation."""
+    model = BearingModel(bearing_number=lam, foil="rigid")
     grid = Grid(24, 8)
     solver = solver_for(model, grid)
-    x0, gamma = 0.4, 0.6
+    x0 = 0.4
     sol = solve_static(model, eccentricity=x0, attitude_angle=0.0, solver=solver)
     # linearise at this (non-equilibrium) position: same algebra, W0 irrelevant here
     lin = linearise(sol.__class__(**{**sol.__dict__, "success": True}), solver)
