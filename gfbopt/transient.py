@@ -421,7 +421,8 @@ def _check_positive(name: str, value, integer: bool = False) -> float:
     except (TypeError, ValueError):
         raise ParameterError(name, value, "must be a number") from None
     if not math.isfinite(v) or v <= 0:
-        raise ParameterError(name, value, "must be finite and > 0")
+        raise ParameterError(name, value if isinstance(value, (int, str)) else v,
+                             "must be finite and > 0")
     return v
 
 
@@ -475,7 +476,7 @@ def integrate_orbits(tm: TransientModel, mass, revolutions: float = 10.0, *,
                                  "discretised system (Gershgorin bound); use a smaller step")
     t_end = 2 * math.pi * revolutions
     per_sample = max(1, int(round(sample_every / dt)))
-    n_steps = int(math.ceil(t_end / dt))
+    n_steps = int(math.ceil(t_end / dt - 1e-9))
     rhs = RightHandSide(tm, mass)
     active = np.ones(batch, dtype=bool)
     contact_tau = np.full(batch, np.nan)
@@ -516,7 +517,7 @@ def integrate_orbits(tm: TransientModel, mass, revolutions: float = 10.0, *,
                                          f"reached at τ = {tau:.3g}")
                 dt = STEP_SAFETY * new_limit   # automatic step: shrink and go on
                 per_sample = max(1, int(round(sample_every / dt)))
-                n_steps = step + int(math.ceil((t_end - tau) / dt))
+                n_steps = step + int(math.ceil((t_end - tau) / dt - 1e-9))
         if progress is not None and step % 200 == 0:
             progress(min(tau / t_end, 1.0))
     tau_arr = np.array(taus)
