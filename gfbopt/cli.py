@@ -14,6 +14,8 @@ import sys
 import time
 from typing import Optional, Sequence
 
+import numpy as np
+
 from .errors import GfboptError, ParameterError
 from .parameters import DEFAULT_GRID, BearingModel, Grid
 
@@ -48,6 +50,28 @@ def build_parser() -> argparse.ArgumentParser:
                      default=[0.0, 0.5, 1.0], help="whirl ratios γ for K and C (default 0 0.5 1)")
     lin.add_argument("--frame", default="load", choices=("load", "line-of-centres"),
                      help="axes of K and C (default: load frame)")
+
+    orb = sub.add_parser("orbit", help="journal-centre orbit of a rigid rotor (RK4 transient)")
+    _operating_point_arguments(orb)
+    orb.add_argument("--mass", type=_float("mass"), required=True, help="M̄ = M c ω²/W0 [-]")
+    orb.add_argument("--revolutions", type=_float("revolutions"), default=20.0,
+                     help="shaft revolutions to integrate (default 20)")
+    orb.add_argument("--kick", type=_float("kick"), default=1e-3,
+                     help="initial journal speed dX/dτ = dY/dτ = kick/√2 (default 1e-3)")
+    orb.add_argument("--time-step", type=_float("time-step"), default=None,
+                     help="Δτ [rad] (default: 0.9 × the RK4 stability limit)")
+    orb.add_argument("--plot", default=None, help="write the polar orbit plot to this PNG")
+    orb.add_argument("--csv", default=None, help="write the orbit table to this CSV")
+
+    crit = sub.add_parser("critical-mass", help="nonlinear critical mass by RK4 transients")
+    _operating_point_arguments(crit)
+    crit.add_argument("--tolerance", type=_float("tolerance"), default=0.005,
+                      help="relative tolerance on M̄_crit (default 0.005)")
+    crit.add_argument("--revolutions", type=_float("revolutions"), default=5.0,
+                      help="revolutions per transient (default 5)")
+    crit.add_argument("--batch", type=int, default=8, help="rotors per batch (default 8)")
+    crit.add_argument("--no-linear-start", action="store_true",
+                      help="do not centre the search on the linear threshold")
 
     run = sub.add_parser("run", help="run named studies: gfbopt run problems/NAME.toml ...")
     run.add_argument("problems", nargs="+", help="study files (problems/NAME.toml)")
@@ -208,6 +232,93 @@ def _linear(args) -> int:
     return 0 if out["success"] else 1
 
 
+def _progress_bar(label: str):
+    """A one-line progress bar on a terminal; nothing when stderr is not a TTY (CI, pipes)."""
+    if not sys.stderr.isatty():
+        return None
+
+    def show(fraction: float) -> None:
+        n = int(30 * fraction)
+        sys.stderr.write(f"\r{label} [{'#' * n}{'.' * (30 - n)}] {100 * fraction:5.1f} %")
+        if fraction >= 1.0:
+            sys.stderr.write("\n")
+        sys.stderr.flush()
+    return show
+
+
+def _transient_setup(args):
+    from .static import solve_static, solver_for
+    from .transient import transient_model
+
+    model, extra = _model_from_args(args)
+    grid = Grid.parse(args.grid)
+    solver = solver_for(model, grid)
+    sol = solve_static(model, eccentricity=extra.get("eccentricity"), load=extra.get("load"),
+                       solver=solver)
+    return model, grid, solver, sol, transient_model(sol)
+
+
+def _orbit(args) -> int:
+    from .transient import integrate_orbits
+
+    model, grid, _, sol, tm = _transient_setup(args)
+    orbit = integrate_orbits(tm, [args.mass], args.revolutions, kick=args.kick,
+                             time_step=args.time_step, progress=_progress_bar("orbit"))
+    table = orbit.to_frame(0)
+    if args.csv:
+        table.to_csv(args.csv, index=False, float_format="%.8g")
+    if args.plot:
+        from .plotting import plot_orbits
+
+        plot_orbits({f"M̄ = {args.mass:g}: {orbit.verdict[0]}": table}, args.plot,
+                    title=f"{model.foil}, ε0 = {sol.eccentricity:.3g}, Λ = "
+                    f"{model.bearing_number:g}, S = {model.compliance:g}")
+    out = {"verdict": orbit.verdict[0], "growth_rate": float(orbit.growth_rate[0]),
+           "whirl_ratio": float(orbit.whirl_ratio[0]), "revolutions": orbit.revolutions,
+           "min_film": float(np.nanmin(orbit.min_film[0])),
+           "final_amplitude": float(orbit.amplitude[0]), "contact": bool(orbit.contact[0]),
+           "contact_tau": float(orbit.contact_tau[0]), "mass": args.mass,
+           "time_step": orbit.time_step, "wall_time_s": orbit.wall_time_s,
+           "eccentricity": sol.eccentricity, "load": sol.load,
+           "attitude_angle_deg": math.degrees(sol.attitude_angle), "grid": str(grid)}
+    if args.json:
+        print(json.dumps({k: _jsonable(v) for k, v in out.items()}))
+    else:
+        print(f"gfbopt orbit — M̄ = {args.mass:g}: {out['verdict']}, growth rate "
+              f"{out['growth_rate']:.3g} per rad, whirl ratio {out['whirl_ratio']:.4g}, "
+              f"min film {out['min_film']:.4g}, {out['revolutions']:.1f} revolutions "
+              f"(Δτ = {orbit.time_step:.3g}) in {orbit.wall_time_s:.1f} s")
+    return 0
+
+
+def _critical_mass(args) -> int:
+    from .linear import linear_threshold, linearise
+    from .transient import find_critical_mass
+
+    model, grid, solver, sol, tm = _transient_setup(args)
+    linear = linear_threshold(linearise(sol, solver))
+    estimate = None if args.no_linear_start else linear.critical_mass
+    result = find_critical_mass(tm, tolerance=args.tolerance, linear_estimate=estimate,
+                                batch=args.batch, revolutions=args.revolutions,
+                                progress=_progress_bar("critical mass"))
+    out = result.to_dict()
+    out.update({"linear_critical_mass": linear.critical_mass,
+                "linear_whirl_ratio": linear.whirl_ratio, "eccentricity": sol.eccentricity,
+                "load": sol.load, "attitude_angle_deg": math.degrees(sol.attitude_angle),
+                "grid": str(grid), "foil": model.foil, "film": model.film,
+                "history": list(result.history)})
+    if args.json:
+        print(json.dumps({k: _jsonable(v) for k, v in out.items()}))
+    else:
+        print(f"gfbopt critical-mass — M̄_crit = {result.critical_mass:.5g} (bracket "
+              f"{result.bracket[0]:.5g}–{result.bracket[1]:.5g}), whirl ratio "
+              f"{result.whirl_ratio:.4g}; linear {linear.critical_mass:.5g} at "
+              f"{linear.whirl_ratio:.4g}; {result.transients} transients, "
+              f"{result.wall_time_s:.1f} s" + ("" if result.success else
+                                                f"  ** FAILED: {result.message}"))
+    return 0 if result.success else 1
+
+
 def _jsonable(value):
     if isinstance(value, float) and not math.isfinite(value):
         return None
@@ -251,6 +362,10 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
             return _static(args)
         if args.command == "linear":
             return _linear(args)
+        if args.command == "orbit":
+            return _orbit(args)
+        if args.command == "critical-mass":
+            return _critical_mass(args)
         return _run(args)
     except GfboptError as exc:
         print(f"gfbopt: error: {exc}", file=sys.stderr)

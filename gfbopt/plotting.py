@@ -131,3 +131,17 @@ def plot_coefficients(frame, out: Path, title: str = "") -> list[str]:
         fig.suptitle(f"{title}\n{label}, {speed:,.0f} rpm, {load_n:g} N", fontsize=8)
         files.append(_save(fig, out / f"coefficients_{label}_{int(speed)}rpm_{int(load_n)}N.png"))
     return files
+
+
+def plot_orbits(orbits: dict, path, title: str = "") -> str:
+    """Journal-centre orbits in polar form (ε against attitude), thesis Figs 3.9–3.11.
+
+    ``orbits`` maps a label to a table with columns eccentricity and attitude_deg.
+    """
+    fig = plt.figure(figsize=(5, 5))
+    ax = fig.add_subplot(projection="polar")
+    for label, table in orbits.items():
+        ax.plot(np.radians(table["attitude_deg"]), table["eccentricity"], lw=0.8, label=label)
+    ax.set_title(title, fontsize=8)
+    ax.legend(fontsize=7, loc="lower left", bbox_to_anchor=(-0.1, -0.15))
+    return _save(fig, Path(path))

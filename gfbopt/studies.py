@@ -514,11 +514,177 @@ def concentric_impedance_study(study: dict, out: Path, summary: StudySummary) ->
                                  frame["error_rel"].max(), study["tolerance_rel"]))
 
 
+def stability_point(model: dict, eps: float, grid: str, tolerance: float = 0.005,
+                    revolutions: float = 5.0) -> dict:
+    """One point of a transient stability map: static solve, linear threshold, and the
+    nonlinear critical mass centred on it.  Plain arguments, so it runs in a worker process."""
+    from .linear import linear_threshold, linearise
+    from .transient import find_critical_mass, transient_model
+
+    m = model_from_table(model)
+    solver = solver_for(m, Grid.parse(grid))
+    sol = solve_static(m, eccentricity=eps, solver=solver)
+    row = {"load": sol.load, "attitude_deg": math.degrees(sol.attitude_angle),
+           "static_success": sol.success}
+    if not sol.success:
+        return {**row, "success": False, "message": sol.message}
+    lin = linear_threshold(linearise(sol, solver))
+    result = find_critical_mass(transient_model(sol), tolerance=tolerance,
+                                linear_estimate=lin.critical_mass, revolutions=revolutions)
+    return {**row, "critical_mass": result.critical_mass, "whirl_ratio": result.whirl_ratio,
+            "bracket_low": result.bracket[0], "bracket_high": result.bracket[1],
+            "linear_critical_mass": lin.critical_mass, "linear_whirl_ratio": lin.whirl_ratio,
+            "transients": result.transients, "rotor_revolutions": result.rotor_revolutions,
+            "success": result.success, "message": result.message}
+
+
+def transient_map(study: dict, out: Path, summary: StudySummary) -> None:
+    """Nonlinear critical mass against ε or Λ per variant (thesis Figs 3.12, 3.13, 4.9,
+    4.10), with the linear threshold beside it and the crossovers against the thesis's."""
+    from .plotting import plot_stability_map
+    from .sweep import run_points
+
+    grid = str(_grid_of(study))
+    axis = study["sweep"]["variable"]
+    values = [float(v) for v in study["sweep"]["values"]]
+    fixed = study["fixed"]
+    points, labels = [], []
+    for variant in study["variants"]:
+        opts = dict(study.get("model", {}))
+        opts.update(variant)
+        label = opts.pop("label")
+        for v in values:
+            eps = v if axis == "eps" else fixed["eps"]
+            lam = v if axis == "Lambda" else fixed["Lambda"]
+            points.append({"model": {**opts, "bearing_number": lam,
+                                     "length_ratio": fixed.get("L_over_D", 1.0)},
+                           "eps": eps, "grid": grid,
+                           "tolerance": study.get("tolerance", 0.005),
+                           "revolutions": study.get("revolutions", 5.0)})
+            labels.append((label, eps, lam))
+    t0 = time.perf_counter()
+    rows = run_points(stability_point, points, workers=study.get("workers", 2))
+    elapsed = time.perf_counter() - t0
+    frame = pd.DataFrame.from_records(
+        [{"variant": lab, "eps": e, "Lambda": lam, **{k: v for k, v in r.items()
+                                                     if k != "traceback"}}
+         for (lab, e, lam), r in zip(labels, rows)])
+    frame["nonlinear_over_linear"] = frame["critical_mass"] / frame["linear_critical_mass"]
+    frame.to_csv(out / "map.csv", index=False, float_format="%.6g")
+    summary.files.append(str(out / "map.csv"))
+    cross = []
+    for label, ref in study.get("crossover_pairs", []):
+        base = frame[frame["variant"] == ref].sort_values(axis)
+        sub = frame[frame["variant"] == label].sort_values(axis)
+        found = _crossing(sub[axis].to_numpy(), sub["critical_mass"].to_numpy(),
+                          base["critical_mass"].to_numpy())
+        for xc in found or [math.nan]:
+            cross.append({"variant": label, "against": ref, "variable": axis, "crossover": xc})
+    cross_frame = pd.DataFrame.from_records(cross, columns=["variant", "against", "variable",
+                                                            "crossover"])
+    published = pd.DataFrame.from_records(study.get("published_crossovers", []))
+    if len(published):
+        cross_frame = cross_frame.merge(published, on=["variant", "against"], how="outer")
+    cross_frame.to_csv(out / "crossovers.csv", index=False, float_format="%.6g")
+    summary.files.append(str(out / "crossovers.csv"))
+    summary.files += plot_stability_map(frame, axis, out, study.get("title", ""),
+                                        cross_frame if len(cross_frame) else None)
+    summary.notes.append(f"{len(points)} points in {elapsed:.1f} s on "
+                         f"{study.get('workers', 2)} worker processes")
+    summary.checks.append(_check("all points converged (count of failures)",
+                                 float((~frame["success"].astype(bool)).sum()), 0))
+    summary.checks.append(_check("max |nonlinear/linear − 1| over the map",
+                                 float((frame["nonlinear_over_linear"] - 1).abs().max()),
+                                 study.get("nonlinear_linear_tolerance", 0.01)))
+
+
+def transient_points(study: dict, out: Path, summary: StudySummary) -> None:
+    """Nonlinear against linear critical mass at a list of operating points."""
+    from .sweep import run_points
+
+    grid = str(_grid_of(study))
+    points = [{"model": {**study.get("model", {}), **p["model"], "bearing_number": p["Lambda"]},
+               "eps": p["eps"], "grid": grid, "tolerance": study.get("tolerance", 0.005)}
+              for p in study["points"]]
+    rows = run_points(stability_point, points, workers=study.get("workers", 2))
+    frame = pd.DataFrame.from_records(
+        [{"label": p["label"], "eps": p["eps"], "Lambda": p["Lambda"],
+          **{k: v for k, v in r.items() if k != "traceback"}}
+         for p, r in zip(study["points"], rows)])
+    frame["nonlinear_over_linear"] = frame["critical_mass"] / frame["linear_critical_mass"]
+    frame.to_csv(out / "table.csv", index=False, float_format="%.7g")
+    summary.files.append(str(out / "table.csv"))
+    for _, r in frame.iterrows():
+        summary.checks.append(_check(f"{r['label']}: |M̄c nonlinear / linear − 1|",
+                                     abs(r["nonlinear_over_linear"] - 1),
+                                     study["tolerance_nonlinear_linear"]))
+
+
+def thesis_orbits(study: dict, out: Path, summary: StudySummary) -> None:
+    """The thesis's example orbits at its masses and at masses rescaled by our threshold."""
+    from .linear import linear_threshold, linearise
+    from .plotting import plot_orbits
+    from .transient import integrate_orbits, transient_model
+
+    grid = _grid_of(study)
+    cache = SolverCache(grid)
+    records = []
+    for case in study["cases"]:
+        opts = dict(study.get("model", {}))
+        opts.update(case["model"])
+        model = model_from_table(opts, bearing_number=case["Lambda"])
+        sol = solve_static(model, eccentricity=case["eps"], solver=cache(model))
+        ours = linear_threshold(linearise(sol, cache(model))).critical_mass
+        scale = ours / case["thesis_critical_mass"]
+        masses = [(f"thesis {m:g}", m, "thesis") for m in case["masses"]]
+        masses += [(f"scaled {m * scale:.3g}", m * scale, "scaled") for m in case["masses"]]
+        tm = transient_model(sol)
+        orbit = integrate_orbits(tm, [m for _, m, _ in masses], study.get("revolutions", 30),
+                                 kick=study.get("kick", 0.02))
+        tables = {}
+        for k, (label, mass, kind) in enumerate(masses):
+            table = orbit.to_frame(k)
+            tables[f"{label}: {orbit.verdict[k]}"] = table
+            name = f"orbit_{case['label']}_{kind}_{k % len(case['masses'])}.csv"
+            table.to_csv(out / name, index=False, float_format="%.6g")
+            summary.files.append(str(out / name))
+            thesis_verdict = case["verdicts"][k % len(case["masses"])]
+            records.append({"case": case["label"], "which": kind, "mass": mass,
+                            "thesis_mass": case["masses"][k % len(case["masses"])],
+                            "thesis_verdict": thesis_verdict, "verdict": orbit.verdict[k],
+                            "growth_rate": orbit.growth_rate[k],
+                            "whirl_ratio": orbit.whirl_ratio[k],
+                            "final_amplitude": orbit.amplitude[k],
+                            "min_film": float(np.nanmin(orbit.min_film[k])),
+                            "contact_tau": orbit.contact_tau[k],
+                            "our_linear_critical_mass": ours,
+                            "thesis_critical_mass": case["thesis_critical_mass"]})
+        for kind in ("thesis", "scaled"):
+            summary.files.append(plot_orbits(
+                {k: v for k, v in tables.items() if k.startswith(kind)},
+                out / f"orbits_{case['label']}_{kind}.png",
+                title=f"{case['label']}: {kind} masses (ε0 = {case['eps']}, Λ = {case['Lambda']})"))
+    frame = pd.DataFrame.from_records(records)
+    frame.to_csv(out / "verdicts.csv", index=False, float_format="%.6g")
+    summary.files.insert(0, str(out / "verdicts.csv"))
+    scaled = frame[frame["which"] == "scaled"]
+    expected = scaled["thesis_verdict"].map({"stable": "stable", "critical": "critical",
+                                             "unstable": "unstable"})
+    mismatch = sum(1 for v, e in zip(scaled["verdict"], expected)
+                   if e != "critical" and not (e == v or (e == "unstable" and v in
+                                                          ("contact", "limit cycle"))))
+    summary.checks.append(_check("scaled masses: verdicts that contradict the thesis's "
+                                 "(stable/unstable; 'critical' not checked)", mismatch, 0))
+
+
 KINDS: dict[str, Callable] = {"static_table": static_table, "load_sweep": load_sweep,
                               "profile": profile, "grid_convergence": grid_convergence,
                               "linear_map": linear_map,
                               "linear_coefficients": linear_coefficients,
-                              "concentric_impedance": concentric_impedance_study}
+                              "concentric_impedance": concentric_impedance_study,
+                              "transient_map": transient_map,
+                              "thesis_orbits": thesis_orbits,
+                              "transient_points": transient_points}
 
 
 def run_study(path: str | Path, results_root: str | Path = "results") -> StudySummary:
