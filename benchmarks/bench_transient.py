@@ -36,6 +36,11 @@ Bisection from [0.5, 2]·M̄_lin (the ends are taken as stable/unstable, not int
 (hi − lo) ≤ 1 % of (hi + lo)/2, i.e. M̄_crit = (hi + lo)/2 to 0.5 %.  If the baseline runs
 longer than ``--baseline-cap`` seconds at a point it stops bisecting and says so.
 
+For reference the same bisection is also run (``--variants``) with BDF given only
+``jac_sparsity=`` (the exact full pattern; scipy's own grouped differences, which the dense
+force rows turn into ~1500 evaluations per Jacobian) and with no Jacobian information at all
+(dense finite differences and dense LU — unfair to the baseline, reported but not judged).
+
 Usage::
 
     PYTHONPATH=. python benchmarks/bench_transient.py [--out results/benchmarks/transient_speed.json]
@@ -274,7 +279,19 @@ def check_baseline_jacobian(tm, mass: float) -> dict:
                                              / fr_scale)}
 
 
-def baseline_orbit(tm, mass: float) -> dict:
+#: baseline variants: how BDF gets its Jacobian
+VARIANTS = {
+    "grouped_analytic": "jac= grouped finite differences on the exact sparse pattern + "
+                        "analytic force rows (the baseline of the targets)",
+    "scipy_sparsity": "jac_sparsity= the exact full pattern; scipy's own grouped finite "
+                      "differences (the two dense force rows make every Φ column its own "
+                      "group: ~1500 evaluations per Jacobian)",
+    "dense": "no Jacobian information: scipy's dense finite differences and dense LU "
+             "(reference only; unfair to the baseline)",
+}
+
+
+def baseline_orbit(tm, mass: float, variant: str = "grouped_analytic") -> dict:
     """Integrate one kicked rotor for 5 revolutions with BDF; fit its growth rate."""
     t0 = time.perf_counter()
     rotor = FlatRotor(tm, mass)
@@ -290,8 +307,16 @@ def baseline_orbit(tm, mass: float) -> dict:
 
     contact.terminal = True
     contact.direction = -1
+    if variant == "grouped_analytic":
+        jac_kw = {"jac": rotor.jacobian}
+    elif variant == "scipy_sparsity":
+        jac_kw = {"jac_sparsity": rotor.pattern}
+    elif variant == "dense":
+        jac_kw = {}
+    else:
+        raise ValueError(f"unknown baseline variant {variant!r}")
     sol = solve_ivp(rotor, (0.0, t_end), y0, method="BDF", t_eval=t_eval, rtol=RTOL,
-                    atol=ATOL, jac=rotor.jacobian, events=contact)
+                    atol=ATOL, events=contact, **jac_kw)
     sx = tm.static
     x0 = sx.eccentricity * math.cos(sx.attitude_angle)
     y0_ = sx.eccentricity * math.sin(sx.attitude_angle)
@@ -311,7 +336,8 @@ def baseline_orbit(tm, mass: float) -> dict:
             "wall_s": time.perf_counter() - t0}
 
 
-def baseline_bisection(tm, linear_mass: float, cap_s: float) -> dict:
+def baseline_bisection(tm, linear_mass: float, cap_s: float,
+                       variant: str = "grouped_analytic") -> dict:
     """Serial bisection from [0.5, 2]·M̄_lin to a relative bracket width of 2·TOLERANCE."""
     t0 = time.perf_counter()
     lo, hi = 0.5 * linear_mass, 2.0 * linear_mass
@@ -323,9 +349,9 @@ def baseline_bisection(tm, linear_mass: float, cap_s: float) -> dict:
             capped = True
             break
         mid = 0.5 * (lo + hi)
-        run = baseline_orbit(tm, mid)
+        run = baseline_orbit(tm, mid, variant)
         history.append(run)
-        print(f"    baseline M̄ = {mid:.5f}: σ = {run['growth_rate']:+.3e}, "
+        print(f"    baseline[{variant}] M̄ = {mid:.5f}: σ = {run['growth_rate']:+.3e}, "
               f"{'unstable' if run['unstable'] else 'stable'}, nfev {run['nfev']}, "
               f"njev {run['njev']}, nlu {run['nlu']}, {run['wall_s']:.2f} s", flush=True)
         if run["unstable"]:
@@ -339,7 +365,8 @@ def baseline_bisection(tm, linear_mass: float, cap_s: float) -> dict:
             and last_unstable["growth_rate"] > last_stable["growth_rate"]:
         g_lo, g_hi = last_stable["growth_rate"], last_unstable["growth_rate"]
         interp = lo + (-g_lo / (g_hi - g_lo)) * (hi - lo)
-    return {"critical_mass": centre, "critical_mass_interpolated": interp,
+    return {"variant": variant, "jacobian": VARIANTS[variant],
+            "critical_mass": centre, "critical_mass_interpolated": interp,
             "bracket": [lo, hi], "relative_width": (hi - lo) / centre,
             "masses": len(history), "wall_s": wall, "capped": capped, "cap_s": cap_s,
             "rhs_evaluations": sum(r["rhs_evaluations_total"] for r in history),
@@ -349,7 +376,8 @@ def baseline_bisection(tm, linear_mass: float, cap_s: float) -> dict:
 
 
 # --------------------------------------------------------------------- benchmarks
-def bench_point(name: str, eccentricity: float, model: BearingModel, cap_s: float) -> dict:
+def bench_point(name: str, eccentricity: float, model: BearingModel, cap_s: float,
+                variants=("grouped_analytic",)) -> dict:
     print(f"\n[{name}] ε = {eccentricity}, Λ = {model.bearing_number}, S = {model.compliance}",
           flush=True)
     t = time.perf_counter()
@@ -384,7 +412,14 @@ def bench_point(name: str, eccentricity: float, model: BearingModel, cap_s: floa
     # baseline
     check = check_baseline_jacobian(tm, thr.critical_mass)
     print(f"  baseline Jacobian check: {check}", flush=True)
-    base = baseline_bisection(tm, thr.critical_mass, cap_s)
+    base = baseline_bisection(tm, thr.critical_mass, cap_s, "grouped_analytic")
+    others = {}
+    for v in variants:
+        if v != "grouped_analytic":
+            b = baseline_bisection(tm, thr.critical_mass, cap_s, v)
+            b["ratio_over_gfbopt"] = b["wall_s"] / alone_s
+            b["agreement_rel"] = abs(b["critical_mass"] / crit2.critical_mass - 1)
+            others[v] = b
     gf = crit2.critical_mass
     agree = abs(base["critical_mass"] / gf - 1)
 
@@ -417,6 +452,7 @@ def bench_point(name: str, eccentricity: float, model: BearingModel, cap_s: floa
         "gfbopt_no_linear_estimate": cm(blind, blind_s),
         "baseline_jacobian_check": check,
         "baseline": base,
+        "baseline_other_jacobians": others,
         "ratio_baseline_over_gfbopt": base["wall_s"] / alone_s,
         "ratio_baseline_over_gfbopt_with_linear": base["wall_s"] / with_linear_s,
         "ratio_baseline_over_gfbopt_no_estimate": base["wall_s"] / blind_s,
@@ -475,6 +511,14 @@ def print_report(out: dict) -> None:
                                             for p in points], "{:12.2f}")
     row("  / (gfbopt, no linear estimate)", [p["ratio_baseline_over_gfbopt_no_estimate"]
                                              for p in points], "{:12.2f}")
+    for v in VARIANTS:
+        if v == "grouped_analytic" or not any(v in p["baseline_other_jacobians"]
+                                              for p in points):
+            continue
+        get = lambda p, key: p["baseline_other_jacobians"].get(v, {}).get(key, math.nan)  # noqa
+        row(f"baseline, {v}: M̄crit", [get(p, "critical_mass") for p in points], "{:12.5f}")
+        row("  wall [s]", [get(p, "wall_s") for p in points], "{:12.2f}")
+        row("  ratio over gfbopt", [get(p, "ratio_over_gfbopt") for p in points], "{:12.2f}")
     row("|baseline/gfbopt − 1| [%]", [100 * p["agreement_rel"] for p in points], "{:12.3f}")
     row("|gfbopt/linear − 1| [%]", [100 * p["gfbopt_vs_linear_rel"] for p in points],
         "{:12.3f}")
@@ -483,11 +527,11 @@ def print_report(out: dict) -> None:
     row("  FD column groups", [p["baseline_jacobian_check"]["fd_groups"] for p in points],
         "{:12d}")
     for p in points:
-        if p["baseline"]["capped"]:
-            print(f"  NOTE: the baseline at '{p['name']}' was capped at "
-                  f"{p['baseline']['cap_s']:.0f} s; its bracket is "
-                  f"{p['baseline']['bracket']} (relative width "
-                  f"{p['baseline']['relative_width']:.3g}) — wall time is a lower bound")
+        for b in [p["baseline"], *p["baseline_other_jacobians"].values()]:
+            if b["capped"]:
+                print(f"  NOTE: the baseline ({b['variant']}) at '{p['name']}' was capped at "
+                      f"{b['cap_s']:.0f} s; its bracket is {b['bracket']} (relative width "
+                      f"{b['relative_width']:.3g}) — its wall time is a lower bound")
     print("\nTargets")
     for name, t in out["targets"].items():
         print(f"  {name:<52s} {t['measured']:10.4f}  target {t['target']:<10s} "
@@ -524,6 +568,9 @@ def main(argv=None) -> dict:
                                              "transient_speed.json"), help="JSON output path")
     parser.add_argument("--baseline-cap", type=float, default=300.0,
                         help="stop the baseline bisection at a point after this many s")
+    parser.add_argument("--variants", nargs="*", default=list(VARIANTS),
+                        help=f"baseline Jacobian variants (of {list(VARIANTS)}); "
+                             "'grouped_analytic' always runs")
     parser.add_argument("--points", nargs="*", default=list(POINTS),
                         help=f"operating points to run (of {list(POINTS)})")
     args = parser.parse_args(argv)
@@ -538,7 +585,9 @@ def main(argv=None) -> dict:
            "targets_from_issue": {"critical_mass_s": TARGETS["critical_mass_s"],
                                   "baseline_s_quoted": [30, 50],
                                   "agreement_rel": TARGETS["agreement_rel"]}}
-    out["points"] = [bench_point(n, *POINTS[n], cap_s=args.baseline_cap) for n in args.points]
+    out["baseline_variants"] = VARIANTS
+    out["points"] = [bench_point(n, *POINTS[n], cap_s=args.baseline_cap,
+                                 variants=args.variants) for n in args.points]
     out["targets"] = evaluate_targets(out)
     print_report(out)
     path = Path(args.out)

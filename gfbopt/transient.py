@@ -312,11 +312,14 @@ class RightHandSide:
         self.mass_load = np.asarray(mass, dtype=float) * tm.load
         self._guess = None
         self.evaluations = 0
+        #: smallest film H seen per rotor since the last reset (contact detection) [-]
+        self.min_film = np.full(self.mass_load.size, np.inf)
 
     def __call__(self, s: State) -> State:
         tm = self.tm
         self.evaluations += 1
         p, h = pressure_and_film(s.phi, s.x, s.y, tm, self._guess)
+        np.minimum(self.min_film, h.min(axis=(1, 2)), out=self.min_film)
         if tm.foil == "beam":
             self._guess = h[..., 0]
         dphi = flux_residual(p, h, tm) / (2 * tm.bearing_number)
@@ -480,6 +483,7 @@ def integrate_orbits(tm: TransientModel, mass, revolutions: float = 10.0, *,
     rhs = RightHandSide(tm, mass)
     active = np.ones(batch, dtype=bool)
     contact_tau = np.full(batch, np.nan)
+    contact_min = np.full(batch, np.nan)
     taus, xs, ys, hs = [], [], [], []
     tau = 0.0
 
@@ -494,16 +498,20 @@ def integrate_orbits(tm: TransientModel, mass, revolutions: float = 10.0, *,
 
     record(state)
     for step in range(1, n_steps + 1):
+        rhs.min_film[:] = np.inf
         state = rk4_step(rhs, state, dt, active.astype(float))
         tau += dt
         if not np.all(np.isfinite(state.x[active])):
             raise ParameterError("time_step", dt, "the integration blew up (non-finite state); "
                                  "the step is above the stability limit")
-        if step % per_sample == 0 or step == n_steps:
-            hmin = record(state)
-            touching = active & (hmin <= contact_film)
+        # contact: any RK stage of this step reached the threshold film (≤ one step late)
+        touching = active & (rhs.min_film <= contact_film)
+        if touching.any():
             contact_tau[touching] = tau
-            active &= ~touching
+            contact_min[touching] = rhs.min_film[touching]
+            active &= ~touching          # frozen from here on
+        if step % per_sample == 0 or step == n_steps or not active.any():
+            record(state)
             if not active.any():
                 break
         if step % check_every == 0:
@@ -524,6 +532,11 @@ def integrate_orbits(tm: TransientModel, mass, revolutions: float = 10.0, *,
     x = np.array(xs).T
     y = np.array(ys).T
     hmin = np.array(hs).T
+    for b in np.flatnonzero(np.isfinite(contact_tau)):   # the orbit ends at contact
+        after = tau_arr > contact_tau[b] + 1e-12
+        x[b, after] = y[b, after] = hmin[b, after] = np.nan
+        last = np.flatnonzero(~after)[-1]
+        hmin[b, last] = min(hmin[b, last], contact_min[b])
     sol = tm.static
     x0 = sol.eccentricity * math.cos(sol.attitude_angle)
     y0 = sol.eccentricity * math.sin(sol.attitude_angle)
