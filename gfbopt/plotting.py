@@ -145,3 +145,17 @@ def plot_orbits(orbits: dict, path, title: str = "") -> str:
     ax.set_title(title, fontsize=8)
     ax.legend(fontsize=7, loc="lower left", bbox_to_anchor=(-0.1, -0.15))
     return _save(fig, Path(path))
+
+
+def plot_bifurcation(frame, out: Path, title: str = "") -> list[str]:
+    """Limit-cycle amplitude against M̄/M̄_crit, reached from inside and from outside."""
+    fig, ax = plt.subplots(figsize=(5.5, 4))
+    ax.plot(frame["mass_ratio"], frame["amplitude_from_inside"], "o-", label="from a small kick")
+    ax.plot(frame["mass_ratio"], frame["amplitude_from_outside"], "x--",
+            label="from a large displacement")
+    ax.set_xlabel("M̄ / M̄_crit (linear)")
+    ax.set_ylabel("limit-cycle amplitude [clearances]")
+    ax.set_title(title, fontsize=8)
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=8)
+    return [_save(fig, out / "bifurcation.png")]

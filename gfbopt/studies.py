@@ -352,6 +352,25 @@ def _crossing(x: np.ndarray, a: np.ndarray, b: np.ndarray) -> list:
     return out
 
 
+def _crossover_table(frame: pd.DataFrame, study: dict, axis: str) -> pd.DataFrame:
+    """Where each pair of curves (``crossover_pairs``) cross in M̄_crit, beside the thesis's
+    published crossovers (``published_crossovers``); NaN where they do not cross."""
+    cross = []
+    for label, ref in study.get("crossover_pairs", []):
+        base = frame[frame["variant"] == ref].sort_values(axis)
+        sub = frame[frame["variant"] == label].sort_values(axis)
+        found = _crossing(sub[axis].to_numpy(), sub["critical_mass"].to_numpy(),
+                          base["critical_mass"].to_numpy())
+        for xc in found or [math.nan]:
+            cross.append({"variant": label, "against": ref, "variable": axis, "crossover": xc})
+    table = pd.DataFrame.from_records(cross, columns=["variant", "against", "variable",
+                                                      "crossover"])
+    published = pd.DataFrame.from_records(study.get("published_crossovers", []))
+    if len(published):
+        table = table.merge(published, on=["variant", "against"], how="outer")
+    return table
+
+
 def linear_map(study: dict, out: Path, summary: StudySummary) -> None:
     """Linear critical mass against ε or Λ per foil variant; crossovers with the rigid curve."""
     from .plotting import plot_stability_map
@@ -378,22 +397,7 @@ def linear_map(study: dict, out: Path, summary: StudySummary) -> None:
     frame = pd.DataFrame.from_records(records)
     frame.to_csv(out / "map.csv", index=False, float_format="%.6g")
     summary.files.append(str(out / "map.csv"))
-    # crossovers: where each foil variant's curve crosses the reference (rigid) curve
-    cross = []
-    for label, ref in study.get("crossover_pairs", []):
-        base = frame[frame["variant"] == ref].sort_values(axis)
-        sub = frame[frame["variant"] == label].sort_values(axis)
-        found = _crossing(sub[axis].to_numpy(), sub["critical_mass"].to_numpy(),
-                          base["critical_mass"].to_numpy())
-        for xc in found or [math.nan]:
-            cross.append({"variant": label, "against": ref, "variable": axis,
-                          "crossover": xc})
-    published = study.get("published_crossovers", [])
-    cross_frame = pd.DataFrame.from_records(cross, columns=["variant", "against", "variable",
-                                                            "crossover"])
-    pub_frame = pd.DataFrame.from_records(published)
-    if len(pub_frame):
-        cross_frame = cross_frame.merge(pub_frame, on=["variant", "against"], how="outer")
+    cross_frame = _crossover_table(frame, study, axis)
     cross_frame.to_csv(out / "crossovers.csv", index=False, float_format="%.6g")
     summary.files.append(str(out / "crossovers.csv"))
     points = []
@@ -572,19 +576,7 @@ def transient_map(study: dict, out: Path, summary: StudySummary) -> None:
     frame["nonlinear_over_linear"] = frame["critical_mass"] / frame["linear_critical_mass"]
     frame.to_csv(out / "map.csv", index=False, float_format="%.6g")
     summary.files.append(str(out / "map.csv"))
-    cross = []
-    for label, ref in study.get("crossover_pairs", []):
-        base = frame[frame["variant"] == ref].sort_values(axis)
-        sub = frame[frame["variant"] == label].sort_values(axis)
-        found = _crossing(sub[axis].to_numpy(), sub["critical_mass"].to_numpy(),
-                          base["critical_mass"].to_numpy())
-        for xc in found or [math.nan]:
-            cross.append({"variant": label, "against": ref, "variable": axis, "crossover": xc})
-    cross_frame = pd.DataFrame.from_records(cross, columns=["variant", "against", "variable",
-                                                            "crossover"])
-    published = pd.DataFrame.from_records(study.get("published_crossovers", []))
-    if len(published):
-        cross_frame = cross_frame.merge(published, on=["variant", "against"], how="outer")
+    cross_frame = _crossover_table(frame, study, axis)
     cross_frame.to_csv(out / "crossovers.csv", index=False, float_format="%.6g")
     summary.files.append(str(out / "crossovers.csv"))
     summary.files += plot_stability_map(frame, axis, out, study.get("title", ""),
@@ -677,6 +669,39 @@ def thesis_orbits(study: dict, out: Path, summary: StudySummary) -> None:
                                  "(stable/unstable; 'critical' not checked)", mismatch, 0))
 
 
+def bifurcation(study: dict, out: Path, summary: StudySummary) -> None:
+    """Limit-cycle amplitude against M̄/M̄_crit (supercritical Hopf: amplitude ∝ √(M̄ − M̄c))."""
+    from .linear import linear_threshold, linearise
+    from .plotting import plot_bifurcation
+    from .transient import limit_cycle_amplitudes, transient_model
+
+    grid = _grid_of(study)
+    model = model_from_table(study["model"])
+    solver = solver_for(model, grid)
+    sol = solve_static(model, eccentricity=study["eps"], solver=solver)
+    mc = linear_threshold(linearise(sol, solver)).critical_mass
+    ratios = np.asarray(study["mass_ratios"], dtype=float)
+    frame = limit_cycle_amplitudes(transient_model(sol), ratios * mc,
+                                   study.get("revolutions", 60.0),
+                                   tuple(study.get("kicks", (0.05, 0.6))))
+    frame.insert(0, "mass_ratio", ratios)
+    frame["linear_critical_mass"] = mc
+    frame.to_csv(out / "bifurcation.csv", index=False, float_format="%.6g")
+    summary.files.append(str(out / "bifurcation.csv"))
+    summary.files += plot_bifurcation(frame, out, study.get("title", ""))
+    both = frame[(frame["verdict_from_inside"] == "limit cycle")
+                 & (frame["verdict_from_outside"] == "limit cycle")]
+    if len(both):
+        gap = float(((both["amplitude_from_inside"] - both["amplitude_from_outside"]).abs()
+                     / both["amplitude_from_outside"]).max())
+        summary.checks.append(_check("limit cycles reached from inside and outside agree "
+                                     "(max relative difference)", gap,
+                                     study.get("cycle_tolerance", 0.05)))
+    summary.checks.append(_check("masses with an established limit cycle (count missing)",
+                                 float(len(frame) - len(both)),
+                                 float(study.get("allowed_without_cycle", 0))))
+
+
 KINDS: dict[str, Callable] = {"static_table": static_table, "load_sweep": load_sweep,
                               "profile": profile, "grid_convergence": grid_convergence,
                               "linear_map": linear_map,
@@ -684,7 +709,8 @@ KINDS: dict[str, Callable] = {"static_table": static_table, "load_sweep": load_s
                               "concentric_impedance": concentric_impedance_study,
                               "transient_map": transient_map,
                               "thesis_orbits": thesis_orbits,
-                              "transient_points": transient_points}
+                              "transient_points": transient_points,
+                              "bifurcation": bifurcation}
 
 
 def run_study(path: str | Path, results_root: str | Path = "results") -> StudySummary:

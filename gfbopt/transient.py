@@ -170,7 +170,8 @@ def rigid_film(x: np.ndarray, y: np.ndarray, tm: TransientModel) -> np.ndarray:
 
 
 def pressure_and_film(phi: np.ndarray, x: np.ndarray, y: np.ndarray, tm: TransientModel,
-                      guess: Optional[np.ndarray] = None) -> tuple[np.ndarray, np.ndarray]:
+                      guess: Optional[np.ndarray] = None,
+                      cache: Optional[dict] = None) -> tuple[np.ndarray, np.ndarray]:
     """Recover P (B, m, n_z + 1) and H from Φ = P H and the journal position.
 
     H has shape (B, m, n_z + 1) for the local law and (B, m, 1) — uniform along each θ row —
@@ -205,7 +206,7 @@ def pressure_and_film(phi: np.ndarray, x: np.ndarray, y: np.ndarray, tm: Transie
             if tm.compression_only:
                 a = np.maximum(a, hr)
         else:
-            a = _beam_film(hr, phit, c, tm, guess)
+            a = _beam_film(hr, phit, c, tm, guess, cache)
     p = phi / a[:, :, None]
     p = _set_boundary(p, tm)
     return p, a[:, :, None]          # film uniform along each θ row: shape (B, m, 1)
@@ -220,24 +221,37 @@ def _set_boundary(p: np.ndarray, tm: TransientModel) -> np.ndarray:
     return p
 
 
-def _beam_film(hr, phit, c, tm: TransientModel, guess):
+def _beam_film(hr, phit, c, tm: TransientModel, guess, cache: Optional[dict] = None):
     """Solve a = H_r + 𝓛 q, q = Φ̃/a + c − 1 (q = 0 on seam rows), for the row films a
-    (B, m) by Newton's method (2–3 steps from the previous evaluation's films)."""
+    (B, m).
+
+    Chord iterations a ← a − J⁻¹ f with the inverse Jacobian J = I + 𝓛 diag(Φ̃/a²) kept in
+    ``cache`` between evaluations (it changes little from one RK stage to the next); it is
+    recomputed when the iteration stalls.  Converged to |f| < 1e-13.
+    """
     lmap = tm.beam_map
     live = np.ones(hr.shape[1])
     if not tm.periodic:
         live[[0, -1]] = 0.0
-    a = hr.copy() if guess is None else guess.copy()
+    a = hr.copy() if guess is None or guess.shape != hr.shape else guess.copy()
+    cache = {} if cache is None else cache
     eye = np.eye(a.shape[1])
-    for _ in range(30):
+    previous = math.inf
+    for _ in range(40):
         q = (phit / a + c - 1.0) * live
         f = a - hr - q @ lmap.T
-        if np.abs(f).max() < 1e-13:
+        err = float(np.abs(f).max())
+        if err < 1e-13:
             return a
-        jac = eye[None] + lmap[None] * (live * phit / (a * a))[:, None, :]
-        a = a - np.linalg.solve(jac, f[..., None])[..., 0]
+        jinv = cache.get("jinv")
+        if jinv is None or jinv.shape[0] != a.shape[0] or err > 0.1 * previous:
+            jac = eye[None] + lmap[None] * (live * phit / (a * a))[:, None, :]
+            jinv = np.linalg.inv(jac)
+            cache["jinv"] = jinv
+        previous = err
+        a = a - np.einsum("bij,bj->bi", jinv, f)
     raise ConvergenceError("beam film did not converge in the transient model", "max_iter",
-                           float(np.abs(f).max()))
+                           err)
 
 
 def film_force(p: np.ndarray, tm: TransientModel) -> tuple[np.ndarray, np.ndarray]:
@@ -311,6 +325,7 @@ class RightHandSide:
         self.tm = tm
         self.mass_load = np.asarray(mass, dtype=float) * tm.load
         self._guess = None
+        self._cache: dict = {}
         self.evaluations = 0
         #: smallest film H seen per rotor since the last reset (contact detection) [-]
         self.min_film = np.full(self.mass_load.size, np.inf)
@@ -318,7 +333,7 @@ class RightHandSide:
     def __call__(self, s: State) -> State:
         tm = self.tm
         self.evaluations += 1
-        p, h = pressure_and_film(s.phi, s.x, s.y, tm, self._guess)
+        p, h = pressure_and_film(s.phi, s.x, s.y, tm, self._guess, self._cache)
         np.minimum(self.min_film, h.min(axis=(1, 2)), out=self.min_film)
         if tm.foil == "beam":
             self._guess = h[..., 0]
@@ -674,6 +689,44 @@ class CriticalMass:
                 "message": self.message}
 
 
+def _threshold_from_history(history: list) -> tuple:
+    """(M̄_crit, whirl ratio, bracket low, bracket high) from all transients so far.
+
+    The growth rate is linear in M̄ near the threshold: the zero of a least-squares line
+    through the (up to) four finite growth rates nearest the sign change is the estimate, so
+    a single noisy fit (growth rates ~1e-5 within 0.5 % of threshold) cannot break the
+    search.  The bracket is the nearest tested masses on either side of that zero.
+    """
+    pts = sorted((h["mass"], h["growth_rate"], h["whirl_ratio"]) for h in history
+                 if not math.isnan(h["growth_rate"]))
+    stable = [p for p in pts if p[1] < 0]
+    unstable = [p for p in pts if p[1] > 0]
+    if not stable or not unstable:
+        lo = max((p[0] for p in stable), default=0.0)
+        hi = min((p[0] for p in unstable), default=math.inf)
+        return math.nan, math.nan, lo, hi
+    # the sign change: between the largest stable mass below the smallest unstable one
+    first_unstable = min(p[0] for p in unstable)
+    last_stable = max((p[0] for p in stable if p[0] < first_unstable), default=None)
+    if last_stable is None:
+        last_stable = max(p[0] for p in stable)
+    centre = 0.5 * (last_stable + first_unstable)
+    near = sorted((p for p in pts if math.isfinite(p[1])), key=lambda p: abs(p[0] - centre))[:4]
+    m = np.array([p[0] for p in near])
+    g = np.array([p[1] for p in near])
+    if np.ptp(m) == 0:
+        return math.nan, math.nan, last_stable, first_unstable
+    slope, intercept = np.polyfit(m, g, 1)
+    mc = -intercept / slope if slope > 0 else centre
+    mc = min(max(mc, last_stable), first_unstable)     # never outside the verdicts' bracket
+    lo = max((p[0] for p in pts if p[0] <= mc), default=0.0)
+    hi = min((p[0] for p in pts if p[0] > mc), default=math.inf)
+    whirls = [p[2] for p in near if math.isfinite(p[2])]
+    whirl = float(np.interp(mc, [p[0] for p in near if math.isfinite(p[2])], whirls)) \
+        if whirls else math.nan
+    return float(mc), whirl, lo, hi
+
+
 def find_critical_mass(tm: TransientModel, *, tolerance: float = 0.005,
                        linear_estimate: Optional[float] = None, batch: int = 8,
                        revolutions: float = 5.0, settle: float = 1.0, kick: float = 1e-3,
@@ -683,9 +736,9 @@ def find_critical_mass(tm: TransientModel, *, tolerance: float = 0.005,
     Each round integrates ``batch`` rotors of different mass together and fits each orbit's
     growth rate (:func:`fit_growth_rate`).  Around a linear estimate the first batch spans
     ±(batch/2)·tolerance; otherwise a geometric batch over 0.25–64 brackets it first.  The
-    bracket (largest stable, smallest unstable mass) shrinks until its width is at most
-    2·tolerance of its centre; the threshold is the zero of the growth rate interpolated
-    linearly between the bracket's ends.  Contact counts as unstable.
+    threshold is the zero of a line fitted to the growth rates nearest the sign change
+    (:func:`_threshold_from_history`); rounds go on until the tested masses on either side of
+    it are at most 2·tolerance apart.  Contact and limit cycles count as unstable.
     """
     import time as _time
 
@@ -696,8 +749,6 @@ def find_critical_mass(tm: TransientModel, *, tolerance: float = 0.005,
     revolutions = _check_positive("revolutions", revolutions)
     t0 = _time.perf_counter()
     history = []
-    lo = (0.0, -math.inf, math.nan)        # (mass, growth, whirl) largest stable
-    hi = (math.inf, math.inf, math.nan)    # smallest unstable
     if linear_estimate is not None and math.isfinite(linear_estimate):
         half = batch // 2
         offsets = np.concatenate([np.arange(-half, 0) + 0.5, np.arange(0, batch - half) + 0.5])
@@ -707,51 +758,68 @@ def find_critical_mass(tm: TransientModel, *, tolerance: float = 0.005,
     evaluations = 0
     rotor_revs = 0.0
     message = ""
+    mc, whirl, lo, hi = math.nan, math.nan, 0.0, math.inf
     for round_ in range(max_rounds):
         orbit = integrate_orbits(tm, masses, revolutions, kick=kick, settle=settle)
         evaluations += orbit.evaluations
         rotor_revs += orbit.revolutions * masses.size
         for k, mm in enumerate(masses):
-            g = orbit.growth_rate[k]
-            unstable = orbit.verdict[k] in ("unstable", "contact", "limit cycle")
-            history.append({"round": round_, "mass": float(mm), "growth_rate": float(g),
+            g = float(orbit.growth_rate[k])
+            if orbit.verdict[k] in ("contact", "limit cycle"):
+                g = math.inf if not math.isfinite(g) or g <= 0 else g
+            history.append({"round": round_, "mass": float(mm), "growth_rate": g,
                             "whirl_ratio": float(orbit.whirl_ratio[k]),
                             "verdict": orbit.verdict[k]})
-            if unstable and mm < hi[0]:
-                hi = (float(mm), float(g), float(orbit.whirl_ratio[k]))
-            if not unstable and mm > lo[0]:
-                lo = (float(mm), float(g), float(orbit.whirl_ratio[k]))
         if progress is not None:
             progress((round_ + 1) / max_rounds)
-        if lo[0] >= hi[0]:
-            message = ("non-monotone verdicts: a heavier rotor was stable while a lighter one "
-                       "was not; the threshold is not a single crossing here")
-            break
-        if hi[0] == math.inf:            # everything stable: go heavier
-            masses = lo[0] * np.geomspace(1.1, 4.0, batch)
+        mc, whirl, lo, hi = _threshold_from_history(history)
+        if math.isnan(mc):
+            if lo == 0.0 and hi == math.inf:
+                message = "no finite growth rate was measured"
+                break
+            if hi == math.inf:            # everything stable: go heavier
+                masses = lo * np.geomspace(1.1, 4.0, batch)
+            else:                         # everything unstable: go lighter
+                masses = hi / np.geomspace(4.0, 1.1, batch)
             continue
-        if lo[0] == 0.0:                 # everything unstable: go lighter
-            masses = hi[0] / np.geomspace(4.0, 1.1, batch)
-            continue
-        centre = 0.5 * (lo[0] + hi[0])
-        if (hi[0] - lo[0]) <= 2 * tolerance * centre:
+        if (hi - lo) <= 2 * tolerance * mc:
             break
-        masses = np.linspace(lo[0], hi[0], batch + 2)[1:-1]
+        masses = np.linspace(lo, hi, batch + 2)[1:-1]
     wall = _time.perf_counter() - t0
-    ok = 0 < lo[0] < hi[0] < math.inf and (hi[0] - lo[0]) <= 2 * tolerance * 0.5 * (lo[0] + hi[0])
-    if ok:
-        g_lo, g_hi = lo[1], hi[1]
-        if math.isfinite(g_lo) and math.isfinite(g_hi) and g_hi > g_lo:
-            frac = -g_lo / (g_hi - g_lo)
-        else:
-            frac = 0.5
-        mc = lo[0] + frac * (hi[0] - lo[0])
-        whirl = lo[2] + frac * (hi[2] - lo[2]) if math.isfinite(hi[2]) else lo[2]
-    else:
-        mc, whirl = math.nan, math.nan
+    ok = math.isfinite(mc) and (hi - lo) <= 2 * tolerance * mc
+    if not ok:
         message = message or (f"no bracket of relative width {2 * tolerance:g} after "
-                              f"{max_rounds} rounds (bracket {lo[0]:.4g}–{hi[0]:.4g})")
-    return CriticalMass(mc, (lo[0], hi[0]), whirl,
+                              f"{max_rounds} rounds (bracket {lo:.4g}–{hi:.4g})")
+        mc = mc if math.isfinite(mc) else math.nan
+    return CriticalMass(mc if ok else math.nan, (lo, hi), whirl,
                         math.nan if linear_estimate is None else float(linear_estimate),
                         tuple(history), len(history), rotor_revs, evaluations, wall, ok,
                         message)
+
+
+def limit_cycle_amplitudes(tm: TransientModel, masses, revolutions: float = 60.0,
+                           kicks: tuple = (0.05, 0.6)) -> "pandas.DataFrame":
+    """Bifurcation diagram: the limit-cycle size against M̄ above the threshold.
+
+    Each mass runs twice in one batch, from the journal displaced along X by ``kicks[0]``
+    (inside the cycle) and by ``kicks[1]`` (outside) [clearances]; where both reach
+    the same final amplitude the cycle is established.  Amplitude: largest distance of the
+    journal centre from the equilibrium over the last two whirl periods [clearances].
+    """
+    import pandas as pd
+
+    masses = np.asarray(masses, dtype=float)
+    batch = 2 * masses.size
+    state = equilibrium_state(tm, batch)
+    n = masses.size
+    state.x[:n] += kicks[0]
+    state.x[n:] += kicks[1]
+    orbit = integrate_orbits(tm, np.concatenate([masses, masses]), revolutions, initial=state,
+                             settle=revolutions / 2)
+    return pd.DataFrame({
+        "mass": masses, "amplitude_from_inside": orbit.amplitude[:n],
+        "amplitude_from_outside": orbit.amplitude[n:],
+        "verdict_from_inside": orbit.verdict[:n], "verdict_from_outside": orbit.verdict[n:],
+        "whirl_ratio": orbit.whirl_ratio[:n],
+        "min_film": np.nanmin(orbit.min_film[:n], axis=1),
+        "wall_time_s": orbit.wall_time_s})

@@ -139,3 +139,42 @@ def test_linear_bad_input(args, message):
 def test_linear_at_zero_eccentricity_is_refused():
     out = gfbopt("linear", "--eccentricity", "0", "--bearing-number", "2", "--grid", "36x10")
     assert out.returncode == 2 and "must be > 0" in out.stderr
+
+
+def test_orbit_json_contract(tmp_path):
+    png, csv = tmp_path / "o.png", tmp_path / "o.csv"
+    out = gfbopt("orbit", "--eccentricity", "0.4", "--bearing-number", "2", "--compliance",
+                 "1", "--length-ratio", "1", "--mass", "2.5", "--revolutions", "4", "--grid",
+                 "24x8", "--plot", str(png), "--csv", str(csv), "--json")
+    assert out.returncode == 0, out.stderr
+    data = json.loads(out.stdout)
+    for key in ("verdict", "growth_rate", "revolutions", "min_film"):
+        assert key in data
+    assert data["verdict"] == "unstable" and data["growth_rate"] > 0
+    assert png.is_file() and csv.read_text().startswith("tau,x,y,eccentricity")
+    assert out.stderr == ""              # no progress bar off a terminal
+
+
+def test_critical_mass_json_contract():
+    out = gfbopt("critical-mass", "--eccentricity", "0.4", "--bearing-number", "2",
+                 "--compliance", "1", "--length-ratio", "1", "--grid", "24x8", "--json")
+    assert out.returncode == 0, out.stderr
+    data = json.loads(out.stdout)
+    for key in ("critical_mass", "whirl_ratio", "linear_critical_mass", "transients",
+                "wall_time_s", "success"):
+        assert key in data
+    assert data["success"] is True
+    assert data["critical_mass"] == pytest.approx(data["linear_critical_mass"], rel=0.01)
+
+
+@pytest.mark.parametrize("command, args, message", [
+    ("orbit", ["--mass", "0"], "mass = 0.0: must be finite and > 0"),
+    ("orbit", ["--mass", "2", "--revolutions", "-3"], "revolutions = -3.0: must be finite"),
+    ("orbit", ["--mass", "2", "--time-step", "0.5"], "exceeds the RK4 stability limit"),
+    ("critical-mass", ["--tolerance", "0"], "tolerance = 0.0: must be finite and > 0"),
+])
+def test_transient_bad_input(command, args, message):
+    out = gfbopt(command, "--eccentricity", "0.4", "--bearing-number", "2", "--grid", "24x8",
+                 *args)
+    assert out.returncode == 2, out.stdout
+    assert message in out.stderr and "Traceback" not in out.stderr
