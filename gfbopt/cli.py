@@ -50,6 +50,8 @@ def build_parser() -> argparse.ArgumentParser:
                      default=[0.0, 0.5, 1.0], help="whirl ratios γ for K and C (default 0 0.5 1)")
     lin.add_argument("--frame", default="load", choices=("load", "line-of-centres"),
                      help="axes of K and C (default: load frame)")
+    lin.add_argument("--mass", type=_float("mass"), default=None,
+                     help="also give the least stable eigenvalue at this M̄ = M c ω²/W0")
 
     orb = sub.add_parser("orbit", help="journal-centre orbit of a rigid rotor (RK4 transient)")
     _operating_point_arguments(orb)
@@ -200,6 +202,13 @@ def _linear(args) -> int:
     coeffs = coefficients(lin, args.whirl_ratio)
     if args.frame == "line-of-centres":
         coeffs = coeffs.in_line_of_centres_frame()
+    mode = None
+    if args.mass is not None:
+        from .linear import least_stable_mode
+
+        if not args.mass > 0:
+            raise ParameterError("--mass", args.mass, "must be > 0")
+        mode = least_stable_mode(lin, args.mass, threshold)
     out = {"critical_mass": threshold.critical_mass, "whirl_ratio": threshold.whirl_ratio,
            "stable_for_all_masses": threshold.stable_for_all_masses,
            "threshold_message": threshold.message,
@@ -213,6 +222,9 @@ def _linear(args) -> int:
            "bearing_number": model.bearing_number, "compliance": model.compliance,
            "length_ratio": model.length_ratio, "foil": model.foil, "film": model.film,
            "grid": str(grid), "wall_time_s": time.perf_counter() - t0}
+    if mode is not None:
+        out.update({"mass": args.mass, "growth_rate": mode.real,
+                    "mode_whirl_ratio": mode.imag})
     if args.json:
         print(json.dumps({k: _jsonable(v) for k, v in out.items()}))
     else:

@@ -308,6 +308,26 @@ def semi_discrete_eigenvalues(lin: Linearisation, mass: float, shift: complex,
     return shift + 1.0 / mu
 
 
+def least_stable_mode(lin: Linearisation, mass: float,
+                      threshold: Optional[LinearThreshold] = None) -> complex:
+    """The least stable whirling eigenvalue s of the rotor–bearing system at mass M̄ [-].
+
+    Re s is the growth rate per radian of shaft rotation (> 0: unstable), Im s the whirl
+    ratio.  Shift-invert eigenvalues of the semi-discrete system near the threshold whirl
+    (or 0.5), refined on the characteristic equation det(M̄W̄0 s² I + Z(s)) = 0.
+    """
+    threshold = threshold or linear_threshold(lin)
+    gamma = threshold.whirl_ratio if math.isfinite(threshold.whirl_ratio) else 0.5
+    ev = semi_discrete_eigenvalues(lin, mass, 1j * gamma, count=8)
+    whirling = ev[(np.abs(ev.imag) > 0.02) & (np.abs(ev.imag) < 3.0)]
+    if whirling.size == 0:
+        raise ConvergenceError("no whirling mode near the threshold frequency", "eigs",
+                               math.nan)
+    best = whirling[np.argmax(whirling.real)]
+    best = complex(best.real, abs(best.imag))
+    return characteristic_root(lin, mass, best)
+
+
 # ------------------------------------------------------------- dimensional output
 def dimensional_coefficients(coeffs: Coefficients, geometry: BearingGeometry,
                              speed_rpm: float) -> pd.DataFrame:

@@ -7,8 +7,8 @@ from scipy.integrate import solve_ivp
 
 from gfbopt import BearingModel, Grid, ParameterError, solve_static, solver_for
 from gfbopt import discretisation as disc
-from gfbopt.linear import (characteristic_root, coefficients, impedance, linear_threshold,
-                           linearise, semi_discrete_eigenvalues)
+from gfbopt.linear import (characteristic_root, coefficients, impedance, least_stable_mode,
+                           linear_threshold, linearise, semi_discrete_eigenvalues)
 
 GRID = Grid(36, 10)
 
@@ -206,3 +206,12 @@ def test_bad_linear_input():
     failed = sol.__class__(**{**sol.__dict__, "success": False, "status": "Infeasible"})
     with pytest.raises(ParameterError, match=r"status Infeasible.*did not converge"):
         linearise(failed)
+
+
+def test_least_stable_mode_changes_sign_at_the_threshold():
+    _, _, _, lin = _linearised("simple")
+    thr = linear_threshold(lin)
+    below = least_stable_mode(lin, 0.9 * thr.critical_mass, thr)
+    above = least_stable_mode(lin, 1.1 * thr.critical_mass, thr)
+    assert below.real < 0 < above.real
+    assert below.imag == pytest.approx(thr.whirl_ratio, abs=0.02)
