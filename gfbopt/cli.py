@@ -63,6 +63,7 @@ def build_parser() -> argparse.ArgumentParser:
     orb.add_argument("--time-step", type=_float("time-step"), default=None,
                      help="Δτ [rad] (default: 0.9 × the RK4 stability limit)")
     orb.add_argument("--plot", default=None, help="write the polar orbit plot to this PNG")
+    orb.add_argument("--method", default="rk4", help="rk4 (default) | bdf")
     orb.add_argument("--csv", default=None, help="write the orbit table to this CSV")
 
     crit = sub.add_parser("critical-mass", help="nonlinear critical mass by RK4 transients")
@@ -72,6 +73,7 @@ def build_parser() -> argparse.ArgumentParser:
     crit.add_argument("--revolutions", type=_float("revolutions"), default=5.0,
                       help="revolutions per transient (default 5)")
     crit.add_argument("--batch", type=int, default=8, help="rotors per batch (default 8)")
+    crit.add_argument("--method", default="rk4", help="rk4 (default) | bdf")
     crit.add_argument("--no-linear-start", action="store_true",
                       help="do not centre the search on the linear threshold")
 
@@ -275,7 +277,8 @@ def _orbit(args) -> int:
 
     model, grid, _, sol, tm = _transient_setup(args)
     orbit = integrate_orbits(tm, [args.mass], args.revolutions, kick=args.kick,
-                             time_step=args.time_step, progress=_progress_bar("orbit"))
+                             time_step=args.time_step, progress=_progress_bar("orbit"),
+                             method=args.method)
     table = orbit.to_frame(0)
     if args.csv:
         table.to_csv(args.csv, index=False, float_format="%.8g")
@@ -312,7 +315,7 @@ def _critical_mass(args) -> int:
     estimate = None if args.no_linear_start else linear.critical_mass
     result = find_critical_mass(tm, tolerance=args.tolerance, linear_estimate=estimate,
                                 batch=args.batch, revolutions=args.revolutions,
-                                progress=_progress_bar("critical mass"))
+                                progress=_progress_bar("critical mass"), method=args.method)
     out = result.to_dict()
     out.update({"linear_critical_mass": linear.critical_mass,
                 "linear_whirl_ratio": linear.whirl_ratio, "eccentricity": sol.eccentricity,

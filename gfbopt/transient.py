@@ -453,7 +453,8 @@ def integrate_orbits(tm: TransientModel, mass, revolutions: float = 10.0, *,
                      kick: float = 1e-3, initial: Optional[State] = None,
                      time_step: Optional[float] = None, sample_every: float = 0.2,
                      contact_film: float = 0.02, settle: float = 2.0,
-                     check_every: int = 50, progress=None) -> OrbitBatch:
+                     check_every: int = 50, progress=None,
+                     method: str = "rk4") -> OrbitBatch:
     """Advance a batch of rotors (one per entry of ``mass``, M̄ = M c ω²/W0) with classic RK4.
 
     Parameters
@@ -470,8 +471,23 @@ def integrate_orbits(tm: TransientModel, mass, revolutions: float = 10.0, *,
     settle : revolutions skipped before fitting the growth rate [-]
     check_every : steps between re-checks of the stability bound
     progress : optional callable(fraction) for progress display
+    method : 'rk4' (this batched engine) or 'bdf' (scipy's implicit BDF with a sparse
+        Jacobian, rotor by rotor: :mod:`gfbopt.implicit`; rigid and simple models; wins for
+        the rigid bearing, see benchmarks/bench_transient.py)
     """
     import time as _time
+
+    if method == "bdf":
+        if time_step is not None:
+            raise ParameterError("time_step", time_step, "applies to method='rk4' only (BDF "
+                                 "chooses its own steps)")
+        from .implicit import integrate_orbits_bdf
+
+        return integrate_orbits_bdf(tm, mass, revolutions, kick=kick, initial=initial,
+                                    sample_every=sample_every, contact_film=contact_film,
+                                    settle=settle)
+    if method != "rk4":
+        raise ParameterError("method", method, "must be 'rk4' or 'bdf'")
 
     t0 = _time.perf_counter()
     mass = np.atleast_1d(np.asarray(mass, dtype=float))
@@ -730,7 +746,8 @@ def _threshold_from_history(history: list) -> tuple:
 def find_critical_mass(tm: TransientModel, *, tolerance: float = 0.005,
                        linear_estimate: Optional[float] = None, batch: int = 8,
                        revolutions: float = 5.0, settle: float = 1.0, kick: float = 1e-3,
-                       max_rounds: int = 8, progress=None) -> CriticalMass:
+                       max_rounds: int = 8, progress=None,
+                       method: str = "rk4") -> CriticalMass:
     """Find M̄_crit to a relative ``tolerance`` with batches of RK4 transients.
 
     Each round integrates ``batch`` rotors of different mass together and fits each orbit's
@@ -760,7 +777,8 @@ def find_critical_mass(tm: TransientModel, *, tolerance: float = 0.005,
     message = ""
     mc, whirl, lo, hi = math.nan, math.nan, 0.0, math.inf
     for round_ in range(max_rounds):
-        orbit = integrate_orbits(tm, masses, revolutions, kick=kick, settle=settle)
+        orbit = integrate_orbits(tm, masses, revolutions, kick=kick, settle=settle,
+                                 method=method)
         evaluations += orbit.evaluations
         rotor_revs += orbit.revolutions * masses.size
         for k, mm in enumerate(masses):
