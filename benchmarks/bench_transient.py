@@ -22,7 +22,7 @@ rotor, Φ (72 × 21), X, Y, U, V packed into one vector of 1516 entries.  Its Ja
 to BDF as a sparse matrix:
 
 * the Φ–Φ block, the Φ rows' X and Y columns and the rotor rows are finite differences with
-  column grouping (``scipy.optimize._numdiff.group_columns``, the colouring BDF itself uses)
+  column grouping (``gfbopt.implicit.greedy_column_groups``)
   on the exact structural pattern: the 5-point stencil for the rigid film; for the axial-mean
   law every node of θ rows i − 1, i, i + 1 (the row film a_i depends on the whole row);
 * the two dense rows ∂(U', V')/∂Φ (the film force depends on every node, which would defeat
@@ -73,9 +73,9 @@ import numpy as np  # noqa: E402
 import scipy  # noqa: E402
 import scipy.sparse as sp  # noqa: E402
 from scipy.integrate import solve_ivp  # noqa: E402
-from scipy.optimize._numdiff import group_columns  # noqa: E402
 
 import gfbopt  # noqa: E402
+from gfbopt import implicit  # noqa: E402
 from gfbopt import BearingModel, Grid, solve_static, solver_for  # noqa: E402
 from gfbopt.linear import linear_threshold, linearise  # noqa: E402
 from gfbopt.transient import (RightHandSide, State, equilibrium_state,  # noqa: E402
@@ -119,125 +119,27 @@ def machine_info() -> dict:
 
 
 # ------------------------------------------------------------------- the baseline
-class FlatRotor:
-    """One rotor of mass M̄ as a flat ODE y' = f(y), y = (Φ.ravel(), X, Y, U, V), on top of
-    gfbopt's :class:`RightHandSide` (batch of one), with a sparse Jacobian (module doc)."""
+class FlatRotor(implicit.FlatRotor):
+    """gfbopt's BDF rotor (:class:`gfbopt.implicit.FlatRotor`: grouped finite differences on
+    the sparse pattern + analytic force rows) with call counters, the full pattern and a
+    dense finite-difference Jacobian for the one-off check."""
 
     def __init__(self, tm, mass: float):
-        if tm.foil not in ("rigid", "simple") or tm.compression_only or tm.gumbel \
-                or not tm.periodic:
-            raise ValueError("the baseline's analytic force rows cover the periodic rigid and "
-                             "simple (axial-mean, two-sided, full-film) models only")
-        self.tm = tm
-        self.mass = float(mass)
-        self.rhs = RightHandSide(tm, np.array([self.mass]))
-        self.m, self.nzn = tm.shape
-        self.n_phi = self.m * self.nzn
-        self.n = self.n_phi + 4
-        self.ix, self.iy, self.iu, self.iv = range(self.n_phi, self.n_phi + 4)
+        super().__init__(tm, mass)
         self.nfev = 0
         self.njev = 0
-        self._build_pattern()
-
-    # -- packing
-    def unpack(self, y: np.ndarray) -> State:
-        return State(y[:self.n_phi].reshape(1, self.m, self.nzn), y[self.ix:self.ix + 1],
-                     y[self.iy:self.iy + 1], y[self.iu:self.iu + 1], y[self.iv:self.iv + 1])
-
-    @staticmethod
-    def pack(s: State) -> np.ndarray:
-        return np.concatenate([s.phi.ravel(), s.x, s.y, s.u, s.v])
+        full = self.fd_pattern.tolil()
+        for r in (self.iu, self.iv):
+            full[r, self._inner] = 1.0
+        self.pattern = full.tocsc()
 
     def __call__(self, t, y):
         self.nfev += 1
-        return self.pack(self.rhs(self.unpack(y)))
+        return super().__call__(t, y)
 
-    # -- Jacobian structure
-    def _node(self, i, j):
-        return (i % self.m) * self.nzn + j
-
-    def _build_pattern(self):
-        """Finite-difference pattern (everything but the dense force rows' Φ columns)."""
-        m, nzn = self.m, self.nzn
-        rows, cols = [], []
-        interior = range(1, nzn - 1)
-        for i in range(m):
-            for j in interior:
-                r = self._node(i, j)
-                if self.tm.foil == "rigid":
-                    nbrs = [(i, j), (i - 1, j), (i + 1, j), (i, j - 1), (i, j + 1)]
-                    nbrs = [(a, b) for a, b in nbrs if 1 <= b <= nzn - 2]
-                else:
-                    nbrs = [(a, b) for a in (i - 1, i, i + 1) for b in interior]
-                for a, b in nbrs:
-                    rows.append(r)
-                    cols.append(self._node(a, b))
-                rows += [r, r]
-                cols += [self.ix, self.iy]
-        rows += [self.ix, self.iy]                      # X' = U, Y' = V
-        cols += [self.iu, self.iv]
-        for r in (self.iu, self.iv):                    # force rows: journal position
-            rows += [r, r]
-            cols += [self.ix, self.iy]
-        pattern = sp.coo_matrix((np.ones(len(rows)), (rows, cols)),
-                                shape=(self.n, self.n)).tocsc()
-        pattern.sum_duplicates()
-        pattern.data[:] = 1.0
-        self.fd_pattern = pattern
-        self.groups = group_columns(pattern)
-        self.n_groups = int(self.groups.max()) + 1
-        coo = pattern.tocoo()
-        self._fd_rows, self._fd_cols = coo.row, coo.col
-        # the dense rows: ∂(U', V')/∂Φ at interior nodes
-        inner = np.zeros((m, nzn), dtype=bool)
-        inner[:, 1:-1] = True
-        self._inner_idx = np.flatnonzero(inner.ravel())
-        full = pattern.copy().tolil()
-        for r in (self.iu, self.iv):
-            full[r, self._inner_idx] = 1.0
-        self.pattern = full.tocsc()
-
-    def force_rows(self, y: np.ndarray) -> np.ndarray:
-        """∂(U', V')/∂Φ at the interior nodes, shape (2, n_interior), analytically."""
-        tm = self.tm
-        s = self.unpack(y)
-        hr = 1.0 - s.x[0] * tm.cos - s.y[0] * tm.sin                     # (m,)
-        zw = tm.z_weight
-        total = zw.sum()
-        if tm.foil == "rigid":
-            g = zw[None, 1:-1] / hr[:, None]
-        else:
-            sc = tm.compliance
-            c = (zw[0] + zw[-1]) / total
-            phit = (s.phi[0][:, 1:-1] @ zw[1:-1]) / total
-            b = hr + sc * (c - 1.0)
-            root = np.sqrt(b * b + 4 * sc * phit)
-            a = 0.5 * (b + root)
-            da = sc / root
-            g = zw[None, 1:-1] * (1.0 / a - phit * da / (a * a))[:, None]
-        w = tm.theta_weight[:, None] / self.rhs.mass_load[0]
-        return np.vstack([(-(tm.cos[:, None] * w) * g).ravel(),
-                          (-(tm.sin[:, None] * w) * g).ravel()])
-
-    def jacobian(self, t, y) -> sp.csc_matrix:
-        """Grouped finite differences on the sparse pattern + analytic force rows."""
+    def jacobian(self, t, y):
         self.njev += 1
-        f0 = self(t, y)
-        steps = math.sqrt(np.finfo(float).eps) * np.maximum(1.0, np.abs(y))
-        df = np.empty((self.n_groups, self.n))
-        for k in range(self.n_groups):
-            mask = self.groups == k
-            yk = y.copy()
-            yk[mask] += steps[mask]
-            steps[mask] = yk[mask] - y[mask]            # exactly representable steps
-            df[k] = self(t, yk) - f0
-        vals = df[self.groups[self._fd_cols], self._fd_rows] / steps[self._fd_cols]
-        jac = sp.coo_matrix((vals, (self._fd_rows, self._fd_cols)), shape=(self.n, self.n))
-        fr = self.force_rows(y)
-        dense = sp.coo_matrix((fr.ravel(), (np.repeat([self.iu, self.iv], self._inner_idx.size),
-                                            np.tile(self._inner_idx, 2))),
-                              shape=(self.n, self.n))
-        return (jac + dense).tocsc()
+        return super().jacobian(t, y)
 
     def dense_fd_jacobian(self, y: np.ndarray) -> np.ndarray:
         """Plain column-by-column finite differences (for the one-off check only)."""
@@ -249,11 +151,6 @@ class FlatRotor:
             yk[k] += h
             jac[:, k] = (self(0.0, yk) - f0) / h
         return jac
-
-    def min_film(self, y: np.ndarray) -> float:
-        s = self.unpack(y)
-        _, h = pressure_and_film(s.phi.copy(), s.x, s.y, self.tm)
-        return float(h.min())
 
 
 def check_baseline_jacobian(tm, mass: float) -> dict:
