@@ -646,7 +646,11 @@ def classify(tau, dx, dy, contact, settle, kick, growth_tolerance: float = 2e-5,
     start = 2 * math.pi * settle
     for b in range(batch):
         valid = np.isfinite(dx[b])
+        # fit at most the last 10 revolutions: the dominant mode is settled by then, and the
+        # matrix pencil's cost grows with the square of the window
         window = valid & (tau >= start)
+        if window.any():
+            window &= tau >= tau[window].max() - 20 * math.pi
         r = np.hypot(dx[b], dy[b])
         last = valid & (tau >= tau[valid].max() - 4 * math.pi)
         amp[b] = float(r[last].max()) if last.any() else math.nan
@@ -838,6 +842,5 @@ def limit_cycle_amplitudes(tm: TransientModel, masses, revolutions: float = 60.0
         "mass": masses, "amplitude_from_inside": orbit.amplitude[:n],
         "amplitude_from_outside": orbit.amplitude[n:],
         "verdict_from_inside": orbit.verdict[:n], "verdict_from_outside": orbit.verdict[n:],
-        "whirl_ratio": orbit.whirl_ratio[:n],
         "min_film": np.nanmin(orbit.min_film[:n], axis=1),
         "wall_time_s": orbit.wall_time_s})
