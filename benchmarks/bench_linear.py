@@ -51,6 +51,8 @@ import numpy as np
 import scipy
 
 import gfbopt
+sys.path.insert(0, str(Path(__file__).resolve().parent))  # noqa: E402
+from machine import machine_info as _machine_info  # noqa: E402
 from gfbopt import BearingModel, Grid, solve_static, solver_for
 from gfbopt.linear import (coefficients, impedance, linear_threshold, linearise,
                            semi_discrete_eigenvalues)
@@ -84,23 +86,7 @@ def timed(function, repeats: int = REPEATS) -> tuple[float, list[float], object]
 
 
 def machine_info() -> dict:
-    return {
-        "date": datetime.datetime.now().astimezone().isoformat(timespec="seconds"),
-        "platform": platform.platform(),
-        "processor": platform.processor() or platform.machine(),
-        "cpu_count": os.cpu_count(),
-        "python": platform.python_version(),
-        "casadi": casadi.__version__,
-        "numpy": np.__version__,
-        "scipy": scipy.__version__,
-        "gfbopt": gfbopt.__version__,
-        "grid": str(GRID),
-        "repeats": REPEATS,
-        # semi_discrete_eigenvalues (ARPACK) is sensitive to OpenBLAS threading on small
-        # machines: record the thread settings the run used
-        "thread_env": {k: os.environ.get(k) for k in ("OPENBLAS_NUM_THREADS",
-                                                      "OMP_NUM_THREADS", "MKL_NUM_THREADS")},
-    }
+    return _machine_info(grid=str(GRID), repeats=REPEATS)
 
 
 def _entry(median: float, times: list[float]) -> dict:

@@ -46,6 +46,8 @@ import numpy as np
 import scipy
 
 import gfbopt
+sys.path.insert(0, str(Path(__file__).resolve().parent))  # noqa: E402
+from machine import machine_info as _machine_info  # noqa: E402
 from gfbopt import BearingModel, Grid, StaticSolver, solve_static
 
 HERE = Path(__file__).resolve().parent
@@ -94,18 +96,7 @@ def read_reference(path: Path) -> list[dict]:
 
 
 def machine_info() -> dict:
-    return {
-        "date": datetime.datetime.now().astimezone().isoformat(timespec="seconds"),
-        "platform": platform.platform(),
-        "processor": platform.processor() or platform.machine(),
-        "cpu_count": os.cpu_count(),
-        "python": platform.python_version(),
-        "casadi": casadi.__version__,
-        "numpy": np.__version__,
-        "scipy": scipy.__version__,
-        "gfbopt": gfbopt.__version__,
-        "grid": str(GRID),
-    }
+    return _machine_info(grid=str(GRID))
 
 
 # --------------------------------------------------------------------- benchmarks

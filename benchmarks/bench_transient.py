@@ -75,6 +75,8 @@ import scipy.sparse as sp  # noqa: E402
 from scipy.integrate import solve_ivp  # noqa: E402
 
 import gfbopt  # noqa: E402
+sys.path.insert(0, str(Path(__file__).resolve().parent))  # noqa: E402
+from machine import machine_info as _machine_info  # noqa: E402
 from gfbopt import implicit  # noqa: E402
 from gfbopt import BearingModel, Grid, solve_static, solver_for  # noqa: E402
 from gfbopt.linear import linear_threshold, linearise  # noqa: E402
@@ -102,20 +104,7 @@ POINTS = {
 
 
 def machine_info() -> dict:
-    return {
-        "date": datetime.datetime.now().astimezone().isoformat(timespec="seconds"),
-        "platform": platform.platform(),
-        "processor": platform.processor() or platform.machine(),
-        "cpu_count": os.cpu_count(),
-        "python": platform.python_version(),
-        "casadi": casadi.__version__,
-        "numpy": np.__version__,
-        "scipy": scipy.__version__,
-        "gfbopt": gfbopt.__version__,
-        "grid": str(GRID),
-        "thread_env": {k: os.environ.get(k) for k in ("OPENBLAS_NUM_THREADS",
-                                                      "OMP_NUM_THREADS", "MKL_NUM_THREADS")},
-    }
+    return _machine_info(grid=str(GRID))
 
 
 # ------------------------------------------------------------------- the baseline
