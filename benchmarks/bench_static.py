@@ -30,22 +30,15 @@ from __future__ import annotations
 
 import argparse
 import csv
-import datetime
 import importlib.util
 import json
 import math
-import os
-import platform
 import statistics
 import sys
 import time
 from pathlib import Path
 
-import casadi
-import numpy as np
-import scipy
 
-import gfbopt
 sys.path.insert(0, str(Path(__file__).resolve().parent))  # noqa: E402
 from machine import machine_info as _machine_info  # noqa: E402
 from gfbopt import BearingModel, Grid, StaticSolver, solve_static

@@ -59,30 +59,23 @@ for _var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
     os.environ[_var] = "1"
 
 import argparse  # noqa: E402
-import datetime  # noqa: E402
 import json  # noqa: E402
 import math  # noqa: E402
-import platform  # noqa: E402
 import statistics  # noqa: E402
 import sys  # noqa: E402
 import time  # noqa: E402
 from pathlib import Path  # noqa: E402
 
-import casadi  # noqa: E402
 import numpy as np  # noqa: E402
-import scipy  # noqa: E402
-import scipy.sparse as sp  # noqa: E402
 from scipy.integrate import solve_ivp  # noqa: E402
 
-import gfbopt  # noqa: E402
 sys.path.insert(0, str(Path(__file__).resolve().parent))  # noqa: E402
 from machine import machine_info as _machine_info  # noqa: E402
 from gfbopt import implicit  # noqa: E402
 from gfbopt import BearingModel, Grid, solve_static, solver_for  # noqa: E402
 from gfbopt.linear import linear_threshold, linearise  # noqa: E402
-from gfbopt.transient import (RightHandSide, State, equilibrium_state,  # noqa: E402
-                              find_critical_mass, fit_growth_rate, pressure_and_film,
-                              transient_model)
+from gfbopt.transient import (equilibrium_state,  # noqa: E402
+                              find_critical_mass, fit_growth_rate, transient_model)
 
 HERE = Path(__file__).resolve().parent
 REPO = HERE.parent

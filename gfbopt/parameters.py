@@ -18,7 +18,7 @@ W̄          W / (p_a R²)                                           ``load``
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, replace
 from typing import Optional
 
 from .errors import ParameterError

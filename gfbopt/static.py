@@ -27,7 +27,7 @@ from __future__ import annotations
 
 import math
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Optional
 
 import casadi as ca
@@ -568,7 +568,6 @@ def _concentric(solver: StaticSolver, model: BearingModel, t0: float) -> StaticS
 
 
 def _replace(sol: StaticSolution, **changes) -> StaticSolution:
-    from dataclasses import replace
     return replace(sol, **changes)
 
 

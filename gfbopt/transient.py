@@ -820,7 +820,7 @@ def find_critical_mass(tm: TransientModel, *, tolerance: float = 0.005,
 
 
 def limit_cycle_amplitudes(tm: TransientModel, masses, revolutions: float = 60.0,
-                           kicks: tuple = (0.05, 0.6)) -> "pandas.DataFrame":
+                           kicks: tuple = (0.05, 0.6)):
     """Bifurcation diagram: the limit-cycle size against M̄ above the threshold.
 
     Each mass runs twice in one batch, from the journal displaced along X by ``kicks[0]``
