@@ -159,16 +159,22 @@ def _check_whirl(values: Iterable[float]) -> np.ndarray:
 
 
 def coefficients(lin: Linearisation, whirl_ratios: Sequence[float]) -> Coefficients:
-    """K̄(γ) and C̄(γ) at each whirl ratio γ ≥ 0 (γ = 0: stiffness = static derivative; the
-    damping there is the limit dZ/d(iγ) from a one-sided difference at γ = 1e-6)."""
+    """K̄(γ) and C̄(γ) at each whirl ratio γ ≥ 0 in one call.
+
+    One sparse complex LU of A + iγB per γ (the matrix changes with γ; reusing SuperLU's
+    symbolic analysis across γ was measured to be slower, benchmarks/bench_linear.py).  At
+    γ = 0 the stiffness is the static derivative f A⁻¹ C_ξ and the damping its exact limit
+    dZ/ds = −f A⁻¹ B A⁻¹ C_ξ, from one real LU of A.
+    """
     g = _check_whirl(whirl_ratios)
     k = np.empty((g.size, 2, 2))
     c = np.empty((g.size, 2, 2))
     for n, gamma in enumerate(g):
         if gamma == 0.0:
-            z0 = impedance(lin, 0.0)
-            z1 = impedance(lin, 1e-6j)
-            k[n], c[n] = z0.real, (z1 - z0).imag / 1e-6
+            lu = spla.splu(lin.a.tocsc())
+            y0 = lu.solve(lin.c_xi)
+            k[n] = lin.force @ y0
+            c[n] = -(lin.force @ lu.solve(lin.b @ y0))
         else:
             z = impedance(lin, 1j * gamma)
             k[n], c[n] = z.real, z.imag / gamma
