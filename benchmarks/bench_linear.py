@@ -36,7 +36,6 @@ solve (prebuilt solver) ≤ 0.5 s.  Judged on the slowest of the three operating
 from __future__ import annotations
 
 import argparse
-import json
 import math
 import statistics
 import sys
@@ -46,7 +45,7 @@ from pathlib import Path
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))  # noqa: E402
-from machine import machine_info as _machine_info  # noqa: E402
+from machine import machine_info as _machine_info, write_report  # noqa: E402
 from gfbopt import BearingModel, Grid, solve_static, solver_for
 from gfbopt.linear import (coefficients, impedance, linear_threshold, linearise,
                            semi_discrete_eigenvalues)
@@ -228,10 +227,7 @@ def main(argv=None) -> dict:
     out["points"] = [bench_point(name, ecc, model) for name, (ecc, model) in POINTS.items()]
     out["targets"] = evaluate_targets(out)
     print_report(out)
-    path = Path(args.out)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    path.write_text(json.dumps(out, indent=2, default=float))
-    print(f"\nwrote {path}")
+    write_report(out, args.out)
     return out
 
 

@@ -31,7 +31,6 @@ from __future__ import annotations
 import argparse
 import csv
 import importlib.util
-import json
 import math
 import statistics
 import sys
@@ -40,7 +39,7 @@ from pathlib import Path
 
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))  # noqa: E402
-from machine import machine_info as _machine_info  # noqa: E402
+from machine import machine_info as _machine_info, write_report  # noqa: E402
 from gfbopt import BearingModel, Grid, StaticSolver, solve_static
 
 HERE = Path(__file__).resolve().parent
@@ -286,10 +285,7 @@ def main(argv=None) -> dict:
     out["tables_warm_chain"] = bench_tables(Path(args.reference_dir), warm_chain=True)
     out["targets"] = evaluate_targets(out)
     print_report(out)
-    path = Path(args.out)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    path.write_text(json.dumps(out, indent=2, default=float))
-    print(f"\nwrote {path}")
+    write_report(out, args.out)
     return out
 
 

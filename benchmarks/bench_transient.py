@@ -59,7 +59,6 @@ for _var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
     os.environ[_var] = "1"
 
 import argparse  # noqa: E402
-import json  # noqa: E402
 import math  # noqa: E402
 import statistics  # noqa: E402
 import sys  # noqa: E402
@@ -70,7 +69,7 @@ import numpy as np  # noqa: E402
 from scipy.integrate import solve_ivp  # noqa: E402
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))  # noqa: E402
-from machine import machine_info as _machine_info  # noqa: E402
+from machine import machine_info as _machine_info, write_report  # noqa: E402
 from gfbopt import implicit  # noqa: E402
 from gfbopt import BearingModel, Grid, solve_static, solver_for  # noqa: E402
 from gfbopt.linear import linear_threshold, linearise  # noqa: E402
@@ -501,10 +500,7 @@ def main(argv=None) -> dict:
                      for n in args.points]
     out["targets"] = evaluate_targets(out)
     print_report(out)
-    path = Path(args.out)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    path.write_text(json.dumps(out, indent=2, default=float))
-    print(f"\nwrote {path}")
+    write_report(out, args.out)
     return out
 
 

@@ -2,8 +2,10 @@
 from __future__ import annotations
 
 import datetime
+import json
 import os
 import platform
+from pathlib import Path
 
 import casadi
 import numpy as np
@@ -30,3 +32,12 @@ def machine_info(**extra) -> dict:
     }
     info.update(extra)
     return info
+
+
+def write_report(out: dict, path) -> Path:
+    """Write a benchmark's results as JSON (creating the folder) and say where."""
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    path.write_text(json.dumps(out, indent=2, default=float))
+    print(f"\nwrote {path}")
+    return path

@@ -175,10 +175,7 @@ def _static(args) -> int:
         out["speed_rpm"] = args.speed_rpm
         out["min_film_thickness_um"] = sol.min_film * geometry.radial_clearance * 1e6
         out["load_newton"] = geometry.load_newton(sol.load)
-    if args.json:
-        print(json.dumps({k: _jsonable(v) for k, v in out.items()}))
-    else:
-        print(_report(out))
+    _emit(out, args.json, lambda: _report(out))
     if not sol.success:
         print(f"gfbopt: solve did not converge: {sol.message}", file=sys.stderr)
         return 1
@@ -227,9 +224,7 @@ def _linear(args) -> int:
     if mode is not None:
         out.update({"mass": args.mass, "growth_rate": mode.real,
                     "mode_whirl_ratio": mode.imag})
-    if args.json:
-        print(json.dumps({k: _jsonable(v) for k, v in out.items()}))
-    else:
+    def report() -> str:
         lines = [f"gfbopt linear — {model.foil} foil, {model.film} film, grid {grid}",
                  f"  ε = {sol.eccentricity:.5f}, load W/(p_a R²) = {sol.load:.5f}, "
                  f"attitude {out['attitude_angle_deg']:.3f} deg",
@@ -242,7 +237,9 @@ def _linear(args) -> int:
             lines.append(f"    γ = {g:<6g} K = [[{kk[0, 0]:.4g}, {kk[0, 1]:.4g}], "
                          f"[{kk[1, 0]:.4g}, {kk[1, 1]:.4g}]]  C = [[{cc[0, 0]:.4g}, "
                          f"{cc[0, 1]:.4g}], [{cc[1, 0]:.4g}, {cc[1, 1]:.4g}]]")
-        print("\n".join(lines))
+        return "\n".join(lines)
+
+    _emit(out, args.json, report)
     return 0 if out["success"] else 1
 
 
@@ -296,13 +293,11 @@ def _orbit(args) -> int:
            "time_step": orbit.time_step, "wall_time_s": orbit.wall_time_s,
            "eccentricity": sol.eccentricity, "load": sol.load,
            "attitude_angle_deg": math.degrees(sol.attitude_angle), "grid": str(grid)}
-    if args.json:
-        print(json.dumps({k: _jsonable(v) for k, v in out.items()}))
-    else:
-        print(f"gfbopt orbit — M̄ = {args.mass:g}: {out['verdict']}, growth rate "
-              f"{out['growth_rate']:.3g} per rad, whirl ratio {out['whirl_ratio']:.4g}, "
-              f"min film {out['min_film']:.4g}, {out['revolutions']:.1f} revolutions "
-              f"(Δτ = {orbit.time_step:.3g}) in {orbit.wall_time_s:.1f} s")
+    _emit(out, args.json, lambda: (
+        f"gfbopt orbit — M̄ = {args.mass:g}: {out['verdict']}, growth rate "
+        f"{out['growth_rate']:.3g} per rad, whirl ratio {out['whirl_ratio']:.4g}, "
+        f"min film {out['min_film']:.4g}, {out['revolutions']:.1f} revolutions "
+        f"(Δτ = {orbit.time_step:.3g}) in {orbit.wall_time_s:.1f} s"))
     return 0
 
 
@@ -322,16 +317,19 @@ def _critical_mass(args) -> int:
                 "load": sol.load, "attitude_angle_deg": math.degrees(sol.attitude_angle),
                 "grid": str(grid), "foil": model.foil, "film": model.film,
                 "history": list(result.history)})
-    if args.json:
-        print(json.dumps({k: _jsonable(v) for k, v in out.items()}))
-    else:
-        print(f"gfbopt critical-mass — M̄_crit = {result.critical_mass:.5g} (bracket "
-              f"{result.bracket[0]:.5g}–{result.bracket[1]:.5g}), whirl ratio "
-              f"{result.whirl_ratio:.4g}; linear {linear.critical_mass:.5g} at "
-              f"{linear.whirl_ratio:.4g}; {result.transients} transients, "
-              f"{result.wall_time_s:.1f} s" + ("" if result.success else
-                                                f"  ** FAILED: {result.message}"))
+    _emit(out, args.json, lambda: (
+        f"gfbopt critical-mass — M̄_crit = {result.critical_mass:.5g} (bracket "
+        f"{result.bracket[0]:.5g}–{result.bracket[1]:.5g}), whirl ratio "
+        f"{result.whirl_ratio:.4g}; linear {linear.critical_mass:.5g} at "
+        f"{linear.whirl_ratio:.4g}; {result.transients} transients, "
+        f"{result.wall_time_s:.1f} s" + ("" if result.success else
+                                          f"  ** FAILED: {result.message}")))
     return 0 if result.success else 1
+
+
+def _emit(out: dict, as_json: bool, report) -> None:
+    """Print ``out`` as one JSON object, or the readable ``report()`` text."""
+    print(json.dumps({k: _jsonable(v) for k, v in out.items()}) if as_json else report())
 
 
 def _jsonable(value):

@@ -22,6 +22,7 @@ from dataclasses import dataclass
 import casadi as ca
 import numpy as np
 import scipy.sparse as sp
+import scipy.sparse.linalg  # noqa: F401  (sp.linalg)
 
 from .discretisation import _is_symbolic, positive_part
 
@@ -134,8 +135,18 @@ def beam_residual(u, q_nodes, mats: BeamMatrices, compliance, coefficient, compr
             - compliance * (mats.load @ q_nodes))
 
 
-def beam_deflection(q_nodes, mats: BeamMatrices, compliance, coefficient) -> np.ndarray:
-    """Solve the linear beam (no contact loss) for given loads; returns W at the n + 1 nodes."""
+def beam_dofs(q_nodes, mats: BeamMatrices, compliance, coefficient) -> np.ndarray:
+    """Free dofs u of the linear beam (bumps in contact everywhere) under nodal loads q.
+
+    q_nodes : P̄ − 1 at the n + 1 beam nodes (shape (n+1,), or (n+1, k) for k load cases) [-];
+    compliance S, coefficient C [-].  Solves (S C K_b + M) u = S G q.
+    """
     a = (compliance * coefficient * mats.bending + mats.foundation).tocsc()
-    u = sp.linalg.spsolve(a, compliance * (mats.load @ np.asarray(q_nodes, float)))
-    return np.concatenate([[0.0], u[0::2]])
+    rhs = compliance * (mats.load @ np.asarray(q_nodes, float))
+    return sp.linalg.splu(a).solve(np.asarray(rhs, dtype=float))
+
+
+def beam_deflection(q_nodes, mats: BeamMatrices, compliance, coefficient) -> np.ndarray:
+    """W at the n + 1 beam nodes (welded end first) under nodal loads q [-]."""
+    u = beam_dofs(q_nodes, mats, compliance, coefficient)
+    return np.concatenate([np.zeros((1,) + u.shape[1:]), u[0::2]])

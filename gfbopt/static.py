@@ -35,9 +35,7 @@ import numpy as np
 
 from . import discretisation as disc
 from .errors import ConvergenceError, ParameterError
-import scipy.sparse.linalg as spla
-
-from .foil import beam_deflection, beam_matrices, beam_residual, simple_deflection
+from .foil import beam_dofs, beam_matrices, beam_residual, simple_deflection
 from .parameters import DEFAULT_GRID, BearingModel, Grid, check_positive, _finite
 
 PARAMETERS = ("bearing_number", "compliance", "top_foil_coefficient", "length_ratio",
@@ -392,11 +390,9 @@ def consistent_state(solver: StaticSolver, model: BearingModel, p_full: np.ndarr
         x[lay.film] = h_rigid
     elif solver.beam:
         q_beam = np.append(mean_gauge, mean_gauge[0]) if st.periodic else mean_gauge
-        w = beam_deflection(q_beam, solver.beam_mats, model.compliance,
-                            model.top_foil_coefficient)
-        a = (model.compliance * model.top_foil_coefficient * solver.beam_mats.bending
-             + solver.beam_mats.foundation).tocsc()
-        x[lay.beam] = spla.spsolve(a, model.compliance * (solver.beam_mats.load @ q_beam))
+        u = beam_dofs(q_beam, solver.beam_mats, model.compliance, model.top_foil_coefficient)
+        x[lay.beam] = u
+        w = np.concatenate([[0.0], u[0::2]])
         x[lay.film] = np.maximum(h_rigid + w[:st.n_theta_nodes], 1e-3)
     else:
         x[lay.film] = np.maximum(h_rigid + simple_deflection(mean_gauge, model.compliance,
@@ -564,11 +560,7 @@ def _concentric(solver: StaticSolver, model: BearingModel, t0: float) -> StaticS
     sol = _postprocess(solver, model, x, {"success": True, "return_status": "Concentric",
                                           "iter_count": 0}, False, 0.0,
                        time.perf_counter() - t0)
-    return _replace(sol, attitude_angle=float("nan"))
-
-
-def _replace(sol: StaticSolution, **changes) -> StaticSolution:
-    return replace(sol, **changes)
+    return replace(sol, attitude_angle=float("nan"))
 
 
 def _solve_with_continuation(solver, model, load_mode, target, initial, continuation, t0,
@@ -615,9 +607,9 @@ def _solve_with_continuation(solver, model, load_mode, target, initial, continua
             value = min(target, last + step)
     final = _postprocess(solver, model, x if last == target else x_prev, stats, load_mode,
                          target, time.perf_counter() - t0, attitude is not None)
-    final = _replace(final, iterations=iterations)
+    final = replace(final, iterations=iterations)
     if last != target:
-        final = _replace(final, success=False,
+        final = replace(final, success=False,
                          message=f"continuation stopped at {last!r} of {target!r}; "
                                  + final.message)
     return final

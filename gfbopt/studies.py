@@ -371,29 +371,34 @@ def _crossover_table(frame: pd.DataFrame, study: dict, axis: str) -> pd.DataFram
     return table
 
 
+def _map_points(study: dict):
+    """(label, model options, ε, Λ, L/D) for every variant × swept value of a map study."""
+    axis = study["sweep"]["variable"]            # "eps" or "Lambda"
+    fixed = study["fixed"]
+    for variant in study["variants"]:
+        opts = dict(study.get("model", {}))
+        opts.update(variant)
+        label = opts.pop("label")
+        for v in study["sweep"]["values"]:
+            yield (label, opts, float(v) if axis == "eps" else fixed["eps"],
+                   float(v) if axis == "Lambda" else fixed["Lambda"],
+                   fixed.get("L_over_D", 1.0))
+
+
 def linear_map(study: dict, out: Path, summary: StudySummary) -> None:
     """Linear critical mass against ε or Λ per foil variant; crossovers with the rigid curve."""
     from .plotting import plot_stability_map
 
     grid = _grid_of(study)
     cache = SolverCache(grid)
-    axis = study["sweep"]["variable"]            # "eps" or "Lambda"
-    values = np.asarray(study["sweep"]["values"], dtype=float)
-    fixed = study["fixed"]
+    axis = study["sweep"]["variable"]
     records = []
-    for variant in study["variants"]:
-        opts = dict(study.get("model", {}))
-        opts.update(variant)
-        label = opts.get("label")
-        for v in values:
-            eps = v if axis == "eps" else fixed["eps"]
-            lam = v if axis == "Lambda" else fixed["Lambda"]
-            model = model_from_table(opts, bearing_number=lam,
-                                     length_ratio=fixed.get("L_over_D", 1.0))
-            row = _threshold_row(model, eps, cache(model))
-            records.append({"variant": label, "eps": eps, "Lambda": lam,
-                            "compliance": model.compliance,
-                            "top_foil_coefficient": model.top_foil_coefficient, **row})
+    for label, opts, eps, lam, ld in _map_points(study):
+        model = model_from_table(opts, bearing_number=lam, length_ratio=ld)
+        row = _threshold_row(model, eps, cache(model))
+        records.append({"variant": label, "eps": eps, "Lambda": lam,
+                        "compliance": model.compliance,
+                        "top_foil_coefficient": model.top_foil_coefficient, **row})
     frame = pd.DataFrame.from_records(records)
     frame.to_csv(out / "map.csv", index=False, float_format="%.6g")
     summary.files.append(str(out / "map.csv"))
@@ -550,22 +555,12 @@ def transient_map(study: dict, out: Path, summary: StudySummary) -> None:
 
     grid = str(_grid_of(study))
     axis = study["sweep"]["variable"]
-    values = [float(v) for v in study["sweep"]["values"]]
-    fixed = study["fixed"]
     points, labels = [], []
-    for variant in study["variants"]:
-        opts = dict(study.get("model", {}))
-        opts.update(variant)
-        label = opts.pop("label")
-        for v in values:
-            eps = v if axis == "eps" else fixed["eps"]
-            lam = v if axis == "Lambda" else fixed["Lambda"]
-            points.append({"model": {**opts, "bearing_number": lam,
-                                     "length_ratio": fixed.get("L_over_D", 1.0)},
-                           "eps": eps, "grid": grid,
-                           "tolerance": study.get("tolerance", 0.005),
-                           "revolutions": study.get("revolutions", 5.0)})
-            labels.append((label, eps, lam))
+    for label, opts, eps, lam, ld in _map_points(study):
+        points.append({"model": {**opts, "bearing_number": lam, "length_ratio": ld},
+                       "eps": eps, "grid": grid, "tolerance": study.get("tolerance", 0.005),
+                       "revolutions": study.get("revolutions", 5.0)})
+        labels.append((label, eps, lam))
     t0 = time.perf_counter()
     rows = run_points(stability_point, points, workers=study.get("workers", 2))
     elapsed = time.perf_counter() - t0

@@ -31,10 +31,9 @@ from dataclasses import dataclass
 from typing import Optional
 
 import numpy as np
-import scipy.sparse.linalg as spla
 
 from .errors import ConvergenceError, ParameterError
-from .foil import beam_matrices
+from .foil import beam_deflection, beam_matrices
 from .static import StaticSolution
 
 #: RK4's stability boundary on the negative real axis is 2.785; on the imaginary axis 2.828.
@@ -110,10 +109,8 @@ def transient_model(solution: StaticSolution) -> TransientModel:
                                  "beam model (use the simple model for bumps that let go)")
         n = solution.grid.n_theta
         mats = beam_matrices(n, dtheta)
-        a = (model.compliance * model.top_foil_coefficient * mats.bending
-             + mats.foundation).tocsc()
-        response = spla.splu(a).solve(model.compliance * mats.load.toarray())  # (2n, n+1)
-        w = np.vstack([np.zeros(n + 1), response[0::2]])      # W at beam nodes 0..n
+        # W at beam nodes 0..n per unit load at each node (columns): the static beam law
+        w = beam_deflection(np.eye(n + 1), mats, model.compliance, model.top_foil_coefficient)
         if periodic:       # film rows 0..n−1; the free end (node n) sees row 0's load
             w = w[:n]
             w[:, 0] += w[:, n]
