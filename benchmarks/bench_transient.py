@@ -22,7 +22,7 @@ rotor, Φ (72 × 21), X, Y, U, V packed into one vector of 1516 entries.  Its Ja
 to BDF as a sparse matrix:
 
 * the Φ–Φ block, the Φ rows' X and Y columns and the rotor rows are finite differences with
-  column grouping (``gfbopt.implicit.greedy_column_groups``)
+  column grouping (``gfbopt.transient.bdf.greedy_column_groups``)
   on the exact structural pattern: the 5-point stencil for the rigid film; for the axial-mean
   law every node of θ rows i − 1, i, i + 1 (the row film a_i depends on the whole row);
 * the two dense rows ∂(U', V')/∂Φ (the film force depends on every node, which would defeat
@@ -70,7 +70,7 @@ from scipy.integrate import solve_ivp  # noqa: E402
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))  # noqa: E402
 from machine import machine_info as _machine_info, write_report  # noqa: E402
-from gfbopt import implicit  # noqa: E402
+from gfbopt.transient import bdf as implicit  # noqa: E402
 from gfbopt import BearingModel, Grid, solve_static, solver_for  # noqa: E402
 from gfbopt.linear import linear_threshold, linearise  # noqa: E402
 from gfbopt.transient import (equilibrium_state,  # noqa: E402
@@ -101,7 +101,7 @@ def machine_info() -> dict:
 
 # ------------------------------------------------------------------- the baseline
 class FlatRotor(implicit.FlatRotor):
-    """gfbopt's BDF rotor (:class:`gfbopt.implicit.FlatRotor`: grouped finite differences on
+    """gfbopt's BDF rotor (:class:`gfbopt.transient.bdf.FlatRotor`: grouped finite differences on
     the sparse pattern + analytic force rows) with call counters, the full pattern and a
     dense finite-difference Jacobian for the one-off check."""
 

@@ -40,8 +40,8 @@ import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
 from gfbopt import discretisation as disc
-from gfbopt.parameters import BearingModel, Grid
-from gfbopt.static import first_order_pressure
+from gfbopt.inputs import BearingModel, Grid
+from gfbopt.physics.closed_forms import first_order_pressure
 
 
 def film_thickness(stencil: disc.Stencil, eccentricity: float) -> np.ndarray:

@@ -17,7 +17,7 @@ from typing import Optional, Sequence
 import numpy as np
 
 from .errors import GfboptError, ParameterError
-from .parameters import DEFAULT_GRID, BearingModel, Grid
+from .inputs import DEFAULT_GRID, BearingModel, Grid
 
 
 class _Parser(argparse.ArgumentParser):
@@ -118,7 +118,7 @@ def _model_from_args(args) -> tuple[BearingModel, dict]:
                   subambient=args.subambient, compression_only=args.compression_only,
                   seam_angle=None if args.seam_angle is None else math.radians(args.seam_angle))
     if args.bearing is not None:
-        from .bearing_file import load_bearing
+        from .inputs import load_bearing
 
         if args.speed_rpm is None:
             raise ParameterError("--speed-rpm", None, "is required with --bearing")

@@ -4,7 +4,7 @@ This module is the one definition of the film physics.  The same functions evalu
 numpy arrays (numbers) and on CasADi SX column vectors (symbols): they only use
 elementwise arithmetic and integer-array indexing, which both support.
 
-Reynolds equation (PHYSICS.md; θ = x/R, Z = z/R, τ = ω t)::
+Reynolds equation (docs/PHYSICS.md; θ = x/R, Z = z/R, τ = ω t)::
 
     ∂/∂θ (P H³ ∂P/∂θ) + ∂/∂Z (P H³ ∂P/∂Z) = Λ ∂(PH)/∂θ + 2Λ ∂(PH)/∂τ
 
@@ -32,7 +32,8 @@ from dataclasses import dataclass
 import casadi as ca
 import numpy as np
 
-from .parameters import Grid
+from .inputs.grid import Grid
+from .physics.algebra import cos, is_symbolic, sin, weighted_sum
 
 
 @dataclass(frozen=True)
@@ -87,6 +88,13 @@ class Stencil:
         return np.linspace(-length_ratio, length_ratio, self.n_z_nodes)
 
 
+def trapezoid_weights(n_nodes: int) -> np.ndarray:
+    """Trapezoid-rule weights per unit spacing on ``n_nodes`` equally spaced nodes [-]."""
+    w = np.ones(n_nodes)
+    w[[0, -1]] = 0.5
+    return w
+
+
 def make_stencil(grid: Grid, periodic: bool) -> Stencil:
     """Index arrays of the five-point stencil on ``grid`` for a periodic or seamed film."""
     n_theta, n_z = grid.n_theta, grid.n_z
@@ -103,11 +111,8 @@ def make_stencil(grid: Grid, periodic: bool) -> Stencil:
     east_row = (i_u + 1) % m
     west_row = (i_u - 1) % m
     unknown = i_u * nzn + j_u
-    theta_weight = np.full(m, dpsi)
-    if not periodic:
-        theta_weight[[0, -1]] = 0.5 * dpsi
-    z_weight = np.ones(nzn)
-    z_weight[[0, -1]] = 0.5
+    theta_weight = dpsi * (np.ones(m) if periodic else trapezoid_weights(m))
+    z_weight = trapezoid_weights(nzn)
     return Stencil(grid=grid, periodic=periodic, n_theta_nodes=m, n_z_nodes=nzn, psi=psi,
                    dpsi=dpsi, unknown=unknown, row=i_u,
                    east=east_row * nzn + j_u, west=west_row * nzn + j_u,
@@ -154,34 +159,10 @@ def axial_integral(p, st: Stencil, dz):
     dz : axial spacing ΔZ [-].  Returns a vector of length st.n_theta_nodes.
     """
     w = st.z_weight_unit
-    if _is_symbolic(p, dz):
+    if is_symbolic(p, dz):
         pm = ca.reshape(p - 1, st.n_z_nodes, st.n_theta_nodes)  # column i = θ node i
         return ca.mtimes(pm.T, ca.DM(w)) * dz
     return (np.reshape(p, (st.n_theta_nodes, st.n_z_nodes)) - 1.0) @ w * dz
-
-
-def _is_symbolic(*values) -> bool:
-    return any(isinstance(v, (ca.SX, ca.MX, ca.DM)) for v in values)
-
-
-def cos(x):
-    """cos on numbers or CasADi symbols."""
-    return ca.cos(x) if _is_symbolic(x) else np.cos(x)
-
-
-def sin(x):
-    """sin on numbers or CasADi symbols."""
-    return ca.sin(x) if _is_symbolic(x) else np.sin(x)
-
-
-def positive_part(x):
-    """max(x, 0) elementwise on numbers or CasADi symbols."""
-    return ca.fmax(x, 0) if _is_symbolic(x) else np.maximum(x, 0.0)
-
-
-def weighted_sum(weights: np.ndarray, x):
-    """Σ_k weights_k x_k on numbers or CasADi symbols."""
-    return ca.dot(ca.DM(weights), x) if _is_symbolic(x) else float(np.dot(weights, x))
 
 
 def film_forces(q, theta, weights):

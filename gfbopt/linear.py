@@ -38,7 +38,9 @@ import scipy.sparse.linalg as spla
 from scipy.optimize import brentq
 
 from .errors import ConvergenceError, ParameterError
-from .parameters import BearingGeometry
+from .inputs.bearing import BearingGeometry
+from .inputs.conversions import rpm_to_rad_per_s, stiffness_scale, whirl_frequency_hz
+from .physics.foil_laws import foil_law
 from .static import StaticSolution, StaticSolver, solver_for
 
 
@@ -75,42 +77,28 @@ def linearise(solution: StaticSolution, solver: Optional[StaticSolver] = None) -
     model = solution.model
     if solver is None:
         solver = solver_for(model, solution.grid)
-    lay, st = solver.layout, solver.stencil
-    n = lay.eccentricity                     # y = every variable except ε and φ
-    # Freeze the seam where the static solution put it (foil fixed in the housing).
-    p = solver.parameters(model, False, solution.eccentricity, solution.attitude_angle,
-                          seam_angle=solution.seam_angle)
-    _, jac = solver.jacobian_function()(solution.state, p)
-    jac = sp.csc_matrix(jac.sparse())
-    a = jac[:n, :n].tocsc()
-    # Only the film rows depend on the journal: H_rigid = 1 − X cos θ − Y sin θ, and the
-    # film equation is H − H_rigid − W = 0, so ∂/∂X = cos θ_i, ∂/∂Y = sin θ_i.
-    theta = solution.theta
-    rows = np.arange(lay.film.start, lay.film.stop)
-    c_xi = np.zeros((n, 2))
-    c_xi[rows, 0] = np.cos(theta)
-    c_xi[rows, 1] = np.sin(theta)
-    # Squeeze term −2Λ (H Ṗ + P Ḣ) at the unknown nodes.
+    elif not solver.matches(model, solution.grid):
+        raise ParameterError("solver", f"{solver.film} film, {solver.law.name} structure",
+                             "was not built for this solution's grid and formulation")
+    blocks = solver.perturbation_blocks(solution)
+    n = blocks.a.shape[0]
+    # Squeeze term −2Λ (H Ṗ + P Ḣ) at the unknown pressure nodes; Ḣ is the lifted film's
+    # rate, plus (local law) the foil following the node's own pressure.
     lam = model.bearing_number
+    st = solver.stencil
     pressure = solution.pressure.ravel()[st.unknown]
     film = solution.film.ravel()[st.unknown]
-    n_u = st.n_unknown
+    n_u = blocks.n_pressure
     dp = -2 * lam * film
-    if solver.deflection_law == "local":       # Ḣ = Ḣ_rigid + S w'(P) Ṗ at the node
-        slope = np.ones(n_u) if not model.compression_only else (pressure > 1).astype(float)
-        dp = dp - 2 * lam * pressure * model.compliance * slope
+    slope = foil_law(model).squeeze_film_slope(pressure, model.compliance,
+                                                model.compression_only)
+    if slope is not None:
+        dp = dp - 2 * lam * pressure * slope
     b = sp.csc_matrix((np.concatenate([dp, -2 * lam * pressure]),
                        (np.concatenate([np.arange(n_u), np.arange(n_u)]),
-                        np.concatenate([np.arange(n_u), lay.film.start + st.row]))),
+                        np.concatenate([np.arange(n_u), blocks.film_of_pressure]))),
                       shape=(n, n))
-    # F_X = cos θ_s ΣA_k − sin θ_s ΣB_k, F_Y = sin θ_s ΣA_k + cos θ_s ΣB_k (partial sums)
-    sums = np.arange(lay.partial_sums.start, lay.partial_sums.stop)
-    nb = sums.size // 2
-    ts = solution.seam_angle
-    force = np.zeros((2, n))
-    force[0, sums[:nb]], force[0, sums[nb:]] = math.cos(ts), -math.sin(ts)
-    force[1, sums[:nb]], force[1, sums[nb:]] = math.sin(ts), math.cos(ts)
-    return Linearisation(solution, a, b, c_xi, force, solution.load)
+    return Linearisation(solution, blocks.a, b, blocks.c_xi, blocks.force, solution.load)
 
 
 def impedance(lin: Linearisation, s: complex) -> np.ndarray:
@@ -341,10 +329,11 @@ def dimensional_coefficients(coeffs: Coefficients, geometry: BearingGeometry,
 
     K = K̄ p_a R²/c, C = C̄ p_a R²/(c ω), f = γ ω/(2π).
     """
-    omega = speed_rpm * 2 * math.pi / 60
-    scale_k = geometry.ambient_pressure * geometry.radius**2 / geometry.radial_clearance
+    omega = rpm_to_rad_per_s(speed_rpm)
+    scale_k = stiffness_scale(geometry.ambient_pressure, geometry.radius,
+                              geometry.radial_clearance)
     frame = {"speed_rpm": speed_rpm, "whirl_ratio": coeffs.whirl_ratio,
-             "frequency_hz": coeffs.whirl_ratio * omega / (2 * math.pi)}
+             "frequency_hz": whirl_frequency_hz(coeffs.whirl_ratio, omega)}
     for i, a in enumerate("xy"):
         for j, b in enumerate("xy"):
             frame[f"k{a}{b}_N_per_m"] = coeffs.stiffness[:, i, j] * scale_k
@@ -352,29 +341,3 @@ def dimensional_coefficients(coeffs: Coefficients, geometry: BearingGeometry,
         for j, b in enumerate("xy"):
             frame[f"c{a}{b}_Ns_per_m"] = coeffs.damping[:, i, j] * scale_k / omega
     return pd.DataFrame(frame)
-
-
-# ------------------------------------------------------------- closed-form check
-def concentric_impedance(bearing_number: float, length_ratio: float,
-                         whirl_ratio: float) -> np.ndarray:
-    """Impedance Z(iγ) of a rigid, concentric (ε → 0) bearing from Ausman's first-order
-    theory (Ausman, J. Basic Eng. 83 (1961) 188; PHYSICS.md) [-], load-frame convention.
-
-    A forward circular whirl at γ sees the steady film of Λ(1 − 2γ), a backward one that of
-    Λ(1 + 2γ); with the static small-ε response u(Λ) = −2π (L/D) conj f̄(Λ) = k e^{−iφ} (f̄ the
-    axial mean of Ausman's first-order pressure, k the load per unit ε, φ the attitude) the
-    isotropic impedance [[a, b], [−b, a]] has a − i b = u(Λ(1 − 2γ)) (forward whirl) and
-    a + i b = conj u(Λ(1 + 2γ)) (backward whirl).
-    """
-    from .static import small_eccentricity_coefficient
-
-    def u(lam):
-        if lam == 0.0:
-            return 0.0j
-        return -2 * math.pi * length_ratio * np.conj(
-            small_eccentricity_coefficient(lam, length_ratio))
-
-    uf = u(bearing_number * (1 - 2 * whirl_ratio))
-    ub = u(bearing_number * (1 + 2 * whirl_ratio))
-    a, b = (uf + np.conj(ub)) / 2, (np.conj(ub) - uf) / 2j
-    return np.array([[a, b], [-b, a]])

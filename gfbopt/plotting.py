@@ -141,7 +141,7 @@ def plot_orbits(orbits: dict, path, title: str = "") -> str:
     fig = plt.figure(figsize=(5, 5))
     ax = fig.add_subplot(projection="polar")
     for label, table in orbits.items():
-        ax.plot(np.radians(table["attitude_deg"]), table["eccentricity"], lw=0.8, label=label)
+        ax.plot(np.radians(table["attitude_angle_deg"]), table["eccentricity"], lw=0.8, label=label)
     ax.set_title(title, fontsize=8)
     ax.legend(fontsize=7, loc="lower left", bbox_to_anchor=(-0.1, -0.15))
     return _save(fig, Path(path))

@@ -32,11 +32,16 @@ from typing import Optional
 
 import casadi as ca
 import numpy as np
+import scipy.sparse as sp
 
 from . import discretisation as disc
 from .errors import ConvergenceError, ParameterError
-from .foil import beam_dofs, beam_matrices, beam_residual, simple_deflection
-from .parameters import DEFAULT_GRID, BearingModel, Grid, check_positive, _finite
+from .inputs.checks import check_finite, check_positive
+from .inputs.grid import DEFAULT_GRID, Grid
+from .inputs.model import FILM_MODELS, BearingModel
+from .physics.closed_forms import first_order_pressure, small_eccentricity_limit
+from .physics.film import force_gauge, rigid_film_polar
+from .physics.foil_laws import FOIL_LAWS, FoilParameters, static_structure
 
 PARAMETERS = ("bearing_number", "compliance", "top_foil_coefficient", "length_ratio",
               "load_mode", "target", "seam_angle", "seam_follows", "compression_only", "gumbel",
@@ -72,6 +77,22 @@ class Layout:
     size: int
 
 
+@dataclass(frozen=True, eq=False)
+class PerturbationBlocks:
+    """The static model's equations g(y, ξ) = 0 seen from the linearisation (all [-]).
+
+    a : ∂g/∂y (sparse); c_xi : ∂g/∂(X, Y) (n × 2); force : ∂(F_X, F_Y)/∂y (2 × n);
+    n_pressure : the unknown pressures are y[:n_pressure] (in the stencil's order);
+    film_of_pressure : index in y of the lifted film of each unknown pressure node's row.
+    """
+
+    a: sp.csc_matrix
+    c_xi: np.ndarray
+    force: np.ndarray
+    n_pressure: int
+    film_of_pressure: np.ndarray
+
+
 class StaticSolver:
     """The CasADi/IPOPT equilibrium problem for one grid, film type and foil structure.
 
@@ -83,23 +104,28 @@ class StaticSolver:
     ----------
     grid : the finite-difference grid
     film : 'periodic' or 'seam'
-    beam : True for the 1D FE top foil, False for the rigid/simple foundation
-    deflection_law : 'mean' or 'local' (simple model only)
+    foil_law : the static structure, a law of :mod:`gfbopt.physics.foil_laws` with its own
+        model: 'simple' (also serves rigid models, S = 0), 'local' or 'beam'
     ipopt_options : overrides of the IPOPT options (CasADi ``nlpsol`` keys)
     """
 
-    def __init__(self, grid: Grid = DEFAULT_GRID, film: str = "periodic", beam: bool = False,
-                 deflection_law: str = "mean", ipopt_options: Optional[dict] = None):
+    def __init__(self, grid: Grid = DEFAULT_GRID, film: str = "periodic",
+                 foil_law: str = "simple", ipopt_options: Optional[dict] = None):
         t0 = time.perf_counter()
+        if film not in FILM_MODELS:
+            raise ParameterError("film", film, f"must be one of {', '.join(FILM_MODELS)}")
+        structures = sorted({law.static_structure for law in FOIL_LAWS.values()})
+        if foil_law not in structures:
+            raise ParameterError("foil_law", foil_law, "must be one of "
+                                 f"{', '.join(structures)} (rigid models use 'simple')")
         self.grid = grid
         self.film = film
-        self.beam = bool(beam)
-        self.deflection_law = deflection_law
+        self.law = FOIL_LAWS[foil_law]
         st = disc.make_stencil(grid, periodic=(film == "periodic"))
         self.stencil = st
-        m, nzn, n_el = st.n_theta_nodes, st.n_z_nodes, grid.n_theta
-        self.beam_mats = beam_matrices(n_el, st.dpsi) if self.beam else None
-        n_beam = self.beam_mats.n_dofs if self.beam else 0
+        m = st.n_theta_nodes
+        self.law_data = self.law.prepare(grid, st.dpsi)
+        n_beam = self.law.extra_unknowns(grid)
 
         par = ca.SX.sym("p", len(PARAMETERS))
         (lam, s, c, ld, mode, target, seam_angle, follows, comp, gumbel,
@@ -129,28 +155,16 @@ class StaticSolver:
         p_full[st.unknown.tolist()] = pu
         theta_seam = follows * (math.pi + phi) + (1 - follows) * seam_angle
         theta = theta_seam + ca.DM(st.psi)
-        h_rigid = 1 - ecc * ca.cos(theta - phi)
-        row_of_node = np.repeat(np.arange(m), nzn).tolist()
+        h_rigid = rigid_film_polar(ecc, phi, theta)
         mean_gauge = q / (2 * ld)
-        equations = []
-        if deflection_law == "local":
-            h_nodes = hr[row_of_node] + simple_deflection(p_full - 1, s, comp)
-            film_eq = hr - h_rigid
-        else:
-            if self.beam:
-                w_beam = ca.vertcat(0, u[0::2])           # nodes 0..n, welded end first
-                w_rows = w_beam[:m]
-                q_beam = ca.vertcat(mean_gauge, mean_gauge[0]) if st.periodic else mean_gauge
-            else:
-                w_rows = simple_deflection(mean_gauge, s, comp)
-            h_nodes = hr[row_of_node]
-            film_eq = hr - (h_rigid + w_rows)
+        h_nodes, film_eq, foil_eq = self.law.static_film(
+            h_rigid, hr, mean_gauge, p_full, u, FoilParameters(s, c, comp), st, self.law_data)
         reynolds = disc.reynolds_residual(p_full, h_nodes, st, lam, dz)
-        force_p = 1 + (1 - gumbel) * (p_full - 1) + gumbel * ca.fmax(p_full - 1, 0)
-        equations += [reynolds, film_eq, q - disc.axial_integral(p_full, st, dz),
-                      qf - disc.axial_integral(force_p, st, dz)]
-        if self.beam:
-            equations.append(beam_residual(u, q_beam, self.beam_mats, s, c, comp))
+        force_p = 1 + force_gauge(p_full - 1, gumbel)
+        equations = [reynolds, film_eq, q - disc.axial_integral(p_full, st, dz),
+                     qf - disc.axial_integral(force_p, st, dz)]
+        if foil_eq is not None:
+            equations.append(foil_eq)
         # F = −Σ w (cos θ, sin θ) Q^F with θ = θ_s + ψ: partial sums of the ψ-frame force
         # components A = −Σ w cos ψ Q^F and B = −Σ w sin ψ Q^F, then a rotation by θ_s.
         w = st.theta_weight
@@ -184,7 +198,7 @@ class StaticSolver:
         lbx = -np.inf * np.ones(self.layout.size)
         ubx = np.inf * np.ones(self.layout.size)
         lbx[self.layout.pressure] = 1e-6
-        if deflection_law != "local":
+        if self.law.lifted_film_is_total:
             lbx[self.layout.film] = 1e-6
         lbx[self.layout.eccentricity] = 0.0
         lbx[self.layout.attitude] = -0.5 * math.pi
@@ -213,11 +227,42 @@ class StaticSolver:
                          float(attitude is not None),
                          0.0 if attitude is None else float(attitude)])
 
+    @property
+    def key(self) -> tuple:
+        """(grid, film, static structure): what this build can solve (:func:`solver_key`)."""
+        return (self.grid, self.film, self.law.name)
+
     def matches(self, model: BearingModel, grid: Grid) -> bool:
         """True if this build can solve ``model`` on ``grid``."""
-        law = model.deflection_law if model.foil == "simple" else "mean"
-        return (grid == self.grid and model.film == self.film
-                and (model.foil == "beam") == self.beam and law == self.deflection_law)
+        return self.key == solver_key(model, grid)
+
+    def perturbation_blocks(self, solution: "StaticSolution") -> "PerturbationBlocks":
+        """What the linearisation needs from this build about ``solution`` (its own layout
+        stays private): the Jacobian of the equations in y = every variable except ε and φ,
+        with the seam frozen where the static solution put it (the top foil is fixed in the
+        housing), how the journal position enters, and the film-force map.
+        """
+        lay, st = self.layout, self.stencil
+        n = lay.eccentricity
+        p = self.parameters(solution.model, False, solution.eccentricity,
+                            solution.attitude_angle, seam_angle=solution.seam_angle)
+        _, jac = self.jacobian_function()(solution.state, p)
+        a = sp.csc_matrix(jac.sparse())[:n, :n].tocsc()
+        # Only the lifted film rows depend on the journal: their equation is
+        # H − H_r − W = 0 (or H − H_r for the local law), H_r = 1 − X cos θ − Y sin θ.
+        film_rows = np.arange(lay.film.start, lay.film.stop)
+        c_xi = np.zeros((n, 2))
+        c_xi[film_rows, 0] = np.cos(solution.theta)
+        c_xi[film_rows, 1] = np.sin(solution.theta)
+        # F_X = cos θ_s ΣA_k − sin θ_s ΣB_k, F_Y = sin θ_s ΣA_k + cos θ_s ΣB_k (partial sums)
+        sums = np.arange(lay.partial_sums.start, lay.partial_sums.stop)
+        nb = sums.size // 2
+        ts = solution.seam_angle
+        force = np.zeros((2, n))
+        force[0, sums[:nb]], force[0, sums[nb:]] = math.cos(ts), -math.sin(ts)
+        force[1, sums[:nb]], force[1, sums[nb:]] = math.sin(ts), math.cos(ts)
+        return PerturbationBlocks(a, c_xi, force, st.n_unknown,
+                                  lay.film.start + st.row)
 
     def run(self, x0: np.ndarray, p: np.ndarray) -> tuple[np.ndarray, dict]:
         """One IPOPT solve from ``x0``; returns (x, stats)."""
@@ -225,11 +270,40 @@ class StaticSolver:
         return np.asarray(sol["x"]).ravel(), self._nlp.stats()
 
 
+def solver_key(model: BearingModel, grid: Grid) -> tuple:
+    """The one definition of which build serves ``model`` on ``grid``: (grid, film, structure).
+
+    Λ, S, C, L/D, the seam angle, the eccentricity or load and the compression-only and
+    Gümbel switches are parameters of a build, so they are not part of the key.
+    """
+    return (grid, model.film, static_structure(model))
+
+
 def solver_for(model: BearingModel, grid: Grid = DEFAULT_GRID, **kwargs) -> StaticSolver:
     """Build the :class:`StaticSolver` that fits ``model`` on ``grid``."""
-    law = model.deflection_law if model.foil == "simple" else "mean"
-    return StaticSolver(grid, film=model.film, beam=(model.foil == "beam"),
-                        deflection_law=law, **kwargs)
+    _, film, structure = solver_key(model, grid)
+    return StaticSolver(grid, film=film, foil_law=structure, **kwargs)
+
+
+class SolverCache:
+    """One :class:`StaticSolver` per (grid, film, structure), built on first use.
+
+    Use one per process (IPOPT is not thread-safe; builds cannot be pickled): a sweep, a
+    study or a worker process keeps one and calls ``cache(model, grid)`` for every point.
+    """
+
+    def __init__(self, grid: Grid = DEFAULT_GRID):
+        self.grid = grid
+        self._solvers: dict = {}
+
+    def __call__(self, model: BearingModel, grid: Optional[Grid] = None) -> StaticSolver:
+        key = solver_key(model, grid or self.grid)
+        if key not in self._solvers:
+            self._solvers[key] = solver_for(model, key[0])
+        return self._solvers[key]
+
+    def __len__(self) -> int:
+        return len(self._solvers)
 
 
 # ------------------------------------------------------------------------ results
@@ -269,8 +343,7 @@ class StaticSolution:
     @property
     def mean_pressure(self) -> np.ndarray:
         """Axially averaged pressure P̄ at each θ node [-]."""
-        w = np.ones(self.z.size)
-        w[[0, -1]] = 0.5
+        w = disc.trapezoid_weights(self.z.size)
         return self.pressure @ w / w.sum()
 
     @property
@@ -305,52 +378,6 @@ class StaticSolution:
 
 
 # ------------------------------------------------------------------- initial guess
-def small_eccentricity_coefficient(bearing_number: float, length_ratio: float,
-                                   compliance: float = 0.0, law: str = "mean") -> complex:
-    """Axial mean f̄ of Ausman's first-order pressure P = 1 + ε Re{f(Z) e^{iψ}} [-].
-
-    ψ from the maximum-film line.  Rigid: f'' − k² f = iΛ, k² = 1 + iΛ, f(±L/D) = 0, so
-    f̄ = −iΛ/(1 + iΛ)·[1 − tanh(k L/D)/(k L/D)].  Local law W = S(P − 1): k² = 1 + iΛ(1 + S)
-    and the factor −iΛ/(1 + iΛ(1 + S)); axial-mean law: f̄_S = g/(1 − S g), g the rigid f̄.
-    (PHYSICS.md; Ausman, J. Basic Eng. 1961.)  As ε → 0, W/(p_a L D)/ε = (π/2)|f̄| and
-    tan φ = Im f̄/Re f̄.
-    """
-    lam, ld, s = bearing_number, length_ratio, compliance
-    if law == "local":
-        k = np.sqrt(1 + 1j * lam * (1 + s))
-        return complex(-1j * lam / (1 + 1j * lam * (1 + s)) * (1 - np.tanh(k * ld) / (k * ld)))
-    k = np.sqrt(1 + 1j * lam)
-    g = -1j * lam / (1 + 1j * lam) * (1 - np.tanh(k * ld) / (k * ld))
-    return complex(g / (1 - s * g))
-
-
-def small_eccentricity_limit(model: BearingModel) -> tuple[float, float]:
-    """(load per unit ε, attitude angle [rad]) of the rigid/simple bearing as ε → 0.
-
-    Load is W/(p_a R²) per unit ε = 4 (L/D)·(π/2)|f̄|; exact for the periodic film.
-    """
-    s = 0.0 if model.is_rigid else model.compliance
-    fbar = small_eccentricity_coefficient(model.bearing_number, model.length_ratio, s,
-                                          model.deflection_law)
-    # tan φ = Im f̄/Re f̄ with φ in (0, π): both parts of f̄ are negative for a rigid bearing
-    return (4 * model.length_ratio * 0.5 * math.pi * abs(fbar),
-            math.atan2(fbar.imag, fbar.real) % math.pi)
-
-
-def first_order_pressure(model: BearingModel, z: np.ndarray, psi: np.ndarray,
-                         eccentricity: float) -> np.ndarray:
-    """Ausman's first-order pressure 1 + ε Re{f(Z) e^{iψ}} of the rigid bearing [-].
-
-    f(Z) = (iΛ/k²)(cosh kZ / cosh k(L/D) − 1), k² = 1 + iΛ; ψ from the maximum-film line
-    [rad], Z ∈ [−L/D, L/D].  Returns an array of shape (psi.size, z.size).  Used as the cold
-    start of the nonlinear solve (and as an exact small-ε check in the tests).
-    """
-    lam, ld = model.bearing_number, model.length_ratio
-    k = np.sqrt(1 + 1j * lam)
-    f = 1j * lam / k**2 * (np.cosh(k * z) / np.cosh(k * ld) - 1)
-    return 1 + eccentricity * np.real(np.outer(np.exp(1j * psi), f))
-
-
 def _cold_guess(solver: StaticSolver, model: BearingModel, eccentricity: float,
                 attitude: Optional[float] = None) -> np.ndarray:
     """A starting point: Ausman's first-order pressure and every lifted variable consistent."""
@@ -379,24 +406,13 @@ def consistent_state(solver: StaticSolver, model: BearingModel, p_full: np.ndarr
     theta = seam + st.psi
     dz = st.axial_spacing(model.length_ratio)
     q = disc.axial_integral(p_full, st, dz)
-    force_p = p_full if model.subambient == "full" else 1 + np.maximum(p_full - 1, 0)
-    qf = disc.axial_integral(force_p, st, dz)
+    qf = disc.axial_integral(1 + force_gauge(p_full - 1, model.subambient == "gumbel"), st, dz)
     mean_gauge = q / (2 * model.length_ratio)
-    comp = float(model.compression_only)
     x = np.zeros(lay.size)
     x[lay.pressure] = p_full[st.unknown]
-    h_rigid = 1 - eccentricity * np.cos(theta - attitude)
-    if solver.deflection_law == "local":
-        x[lay.film] = h_rigid
-    elif solver.beam:
-        q_beam = np.append(mean_gauge, mean_gauge[0]) if st.periodic else mean_gauge
-        u = beam_dofs(q_beam, solver.beam_mats, model.compliance, model.top_foil_coefficient)
-        x[lay.beam] = u
-        w = np.concatenate([[0.0], u[0::2]])
-        x[lay.film] = np.maximum(h_rigid + w[:st.n_theta_nodes], 1e-3)
-    else:
-        x[lay.film] = np.maximum(h_rigid + simple_deflection(mean_gauge, model.compliance,
-                                                             comp), 1e-3)
+    h_rigid = rigid_film_polar(eccentricity, attitude, theta)
+    x[lay.film], x[lay.beam] = solver.law.start(h_rigid, mean_gauge, _foil_parameters(model),
+                                                st, solver.law_data)
     x[lay.axial] = q
     x[lay.force] = qf
     parts = [disc.film_forces(qf[b], st.psi[b], st.theta_weight[b]) for b in solver._blocks]
@@ -411,12 +427,18 @@ def consistent_state(solver: StaticSolver, model: BearingModel, p_full: np.ndarr
 
 
 # ------------------------------------------------------------------------ solving
+def _foil_parameters(model: BearingModel) -> FoilParameters:
+    """The foil groups of ``model`` as numbers (the numpy side of the foil law)."""
+    return FoilParameters(model.compliance, model.top_foil_coefficient,
+                          float(model.compression_only))
+
+
 def _check_target(model: BearingModel, eccentricity, load):
     if (eccentricity is None) == (load is None):
         raise ParameterError("eccentricity/load", (eccentricity, load),
                              "give exactly one of eccentricity or load")
     if eccentricity is not None:
-        e = _finite("eccentricity", eccentricity)
+        e = check_finite("eccentricity", eccentricity)
         if e < 0:
             raise ParameterError("eccentricity", eccentricity, "must be >= 0")
         if model.is_rigid and e >= 1.0:
@@ -442,26 +464,13 @@ def _postprocess(solver: StaticSolver, model: BearingModel, x: np.ndarray, stats
     dz = st.axial_spacing(model.length_ratio)
     q = disc.axial_integral(p, st, dz)
     mean_gauge = q / (2 * model.length_ratio)
-    s = model.compliance
-    comp = float(model.compression_only)
-    h_rigid = 1 - ecc * np.cos(theta - phi)
+    h_rigid = rigid_film_polar(ecc, phi, theta)
     nzn = st.n_z_nodes
-    if solver.deflection_law == "local":
-        w_nodes = simple_deflection(p - 1, s, comp)
-        beam_res = 0.0
-    elif solver.beam:
-        u = x[lay.beam]
-        w_beam = np.concatenate([[0.0], u[0::2]])
-        q_beam = np.append(mean_gauge, mean_gauge[0]) if st.periodic else mean_gauge
-        beam_res = float(np.abs(beam_residual(u, q_beam, solver.beam_mats, s,
-                                              model.top_foil_coefficient, comp)).max())
-        w_nodes = np.repeat(w_beam[:st.n_theta_nodes], nzn)
-    else:
-        w_nodes = np.repeat(simple_deflection(mean_gauge, s, comp), nzn)
-        beam_res = 0.0
+    w_nodes, foil_res = solver.law.deflection(p, mean_gauge, x[lay.beam],
+                                              _foil_parameters(model), st, solver.law_data)
     h = np.repeat(h_rigid, nzn) + w_nodes
     reynolds = disc.reynolds_residual(p, h, st, model.bearing_number, dz)
-    force_p = p if model.subambient == "full" else 1 + np.maximum(p - 1, 0)
+    force_p = 1 + force_gauge(p - 1, model.subambient == "gumbel")
     fx, fy = disc.film_forces(disc.axial_integral(force_p, st, dz), theta,
                               st.theta_weight)
     if position_mode:
@@ -470,7 +479,7 @@ def _postprocess(solver: StaticSolver, model: BearingModel, x: np.ndarray, stats
         force_res = math.hypot(fx + target, fy)
     else:
         force_res = abs(fy)
-    residual = max(float(np.abs(reynolds).max()) if reynolds.size else 0.0, beam_res)
+    residual = max(float(np.abs(reynolds).max()) if reynolds.size else 0.0, foil_res)
     status = str(stats.get("return_status", "unknown"))
     hmat = h.reshape(st.n_theta_nodes, nzn)
     ok = bool(bool(stats.get("success", False)) and residual < RESIDUAL_TOLERANCE
@@ -535,11 +544,11 @@ def solve_static(model: BearingModel, *, eccentricity: Optional[float] = None,
         if load_mode:
             raise ParameterError("attitude_angle", attitude_angle,
                                  "fixes the position together with eccentricity, not with load")
-        attitude_angle = _finite("attitude_angle", attitude_angle)
+        attitude_angle = check_finite("attitude_angle", attitude_angle)
     if solver is None:
         solver = solver_for(model, grid)
     elif not solver.matches(model, solver.grid):
-        raise ParameterError("solver", f"{solver.film}/{'beam' if solver.beam else 'foundation'}",
+        raise ParameterError("solver", f"{solver.film} film, {solver.law.name} structure",
                              f"was built for another formulation than film={model.film}, "
                              f"foil={model.foil}, deflection_law={model.deflection_law}")
     t0 = time.perf_counter()

@@ -30,11 +30,10 @@ from typing import Callable
 import numpy as np
 import pandas as pd
 
-from . import __version__
-from .bearing_file import bearing_from_dict, load_bearing, read_toml
+from .version import __version__
 from .errors import ParameterError
-from .parameters import DEFAULT_GRID, BearingModel, Grid
-from .static import StaticSolver, solve_static, solver_for
+from .inputs import DEFAULT_GRID, BearingModel, Grid, bearing_from_dict, load_bearing, read_toml
+from .static import SolverCache, StaticSolver, solve_static, solver_for
 
 
 @dataclass
@@ -78,21 +77,6 @@ def model_from_table(table: dict, **overrides) -> BearingModel:
         return BearingModel(**values)
     except TypeError as exc:
         raise ParameterError("model", values, f"is not a valid model description ({exc})") from None
-
-
-class SolverCache:
-    """One :class:`StaticSolver` per formulation (built once, reused for every point)."""
-
-    def __init__(self, grid: Grid):
-        self.grid = grid
-        self._solvers: dict = {}
-
-    def __call__(self, model: BearingModel) -> StaticSolver:
-        law = model.deflection_law if model.foil == "simple" else "mean"
-        key = (model.film, model.foil == "beam", law)
-        if key not in self._solvers:
-            self._solvers[key] = solver_for(model, self.grid)
-        return self._solvers[key]
 
 
 def _metadata(study: dict, grid: Grid) -> dict:
@@ -494,7 +478,8 @@ def linear_coefficients(study: dict, out: Path, summary: StudySummary) -> None:
 
 def concentric_impedance_study(study: dict, out: Path, summary: StudySummary) -> None:
     """The perturbation impedance at ε → 0 against Ausman's closed form."""
-    from .linear import concentric_impedance, impedance, linearise
+    from .linear import impedance, linearise
+    from .physics.closed_forms import concentric_impedance
 
     grid = _grid_of(study)
     cache = SolverCache(grid)

@@ -21,4 +21,4 @@ def default_solver():
 
 @pytest.fixture(scope="session")
 def local_law_solver():
-    return StaticSolver(Grid(72, 20), film="periodic", deflection_law="local")
+    return StaticSolver(Grid(72, 20), film="periodic", foil_law="local")

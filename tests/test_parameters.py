@@ -5,8 +5,9 @@ from pathlib import Path
 import pytest
 
 from gfbopt import BearingGeometry, BearingModel, Grid, ParameterError
-from gfbopt.bearing_file import load_bearing
-from gfbopt.parameters import bump_compliance, rpm_to_rad_per_s
+from gfbopt.inputs import load_bearing
+from gfbopt.inputs.conversions import rpm_to_rad_per_s
+from gfbopt.physics.bump import bump_compliance
 
 REPO = Path(__file__).resolve().parents[1]
 RUSCITTO_FILE = REPO / "problems" / "bearings" / "ruscitto.toml"

@@ -7,8 +7,8 @@ import pytest
 
 from gfbopt import (BearingModel, ConvergenceError, Grid, ParameterError, StaticSolver,
                     solve_static)
-from gfbopt.bearing_file import load_bearing
-from gfbopt.parameters import DEFAULT_GRID
+from gfbopt.inputs import load_bearing
+from gfbopt.inputs import DEFAULT_GRID
 
 # Thesis Table 3.1 (Yang et al.), L/D = 1, S = 0: (Λ, ε, attitude [deg], W/(p_a R²))
 YANG = [(0.6, 0.2, 79.080, 0.1806), (0.6, 0.4, 74.020, 0.4020), (0.6, 0.6, 61.450, 0.7555),

@@ -1,19 +1,14 @@
-"""Foil models: how the top foil deflects under the film pressure.
+"""Euler–Bernoulli top foil on the bump foundation: cubic Hermite finite elements.
 
-W is the top-foil deflection over the clearance, positive away from the journal; q = P̄ − 1
-is the axially averaged gauge pressure at each θ node (PHYSICS.md).
+Thesis eq. (4.2) (Mohan, IIT Guwahati; ``docs/PHYSICS.md``): C d⁴W/dθ⁴ + W/S = q with
+q = P̄ − 1 the axially averaged gauge pressure, W the top-foil deflection over the clearance
+(positive away from the journal).  The welded end (θ = seam) is clamped, W = dW/dθ = 0; the
+other end is free.  Cubic Hermite elements on the θ grid (thesis Appendix B; J. N. Reddy,
+*An Introduction to the Finite Element Method*, 3rd ed., McGraw-Hill, 2006, ch. 5).  With
+``compression_only`` the bump reaction is max(W, 0)/S.
 
-* rigid : W = 0 (plain self-acting gas bearing, S = 0);
-* simple elastic foundation (Heshmat et al. 1983): W = S q, or W = S max(q, 0) when the
-  bumps cannot pull the foil towards the journal (``compression_only``);
-* beam : Euler–Bernoulli top foil on the bump foundation, thesis eq. (4.2),
-  C d⁴W/dθ⁴ + W/S = q, welded end (θ = seam) clamped W = dW/dθ = 0, other end free,
-  cubic Hermite elements on the θ grid (thesis Appendix B; Reddy, *An Introduction to the
-  Finite Element Method*).  With ``compression_only`` the bump reaction is max(W, 0)/S.
-
-The beam equations are assembled multiplied by S, S C K_b u + M r(u) = S G q, so that
-S = 0 gives W = 0 (rigid) without dividing by zero and C = 0 gives the L²-projection of the
-simple law.
+The equations are assembled multiplied by S, S C K_b u + M r(u) = S G q, so that S = 0 gives
+W = 0 (rigid) without dividing by zero and C = 0 gives the L²-projection of the simple law.
 """
 from __future__ import annotations
 
@@ -24,7 +19,7 @@ import numpy as np
 import scipy.sparse as sp
 import scipy.sparse.linalg  # noqa: F401  (sp.linalg)
 
-from .discretisation import _is_symbolic, positive_part
+from .algebra import is_symbolic, positive_part
 
 
 @dataclass(frozen=True)
@@ -90,22 +85,13 @@ def _to_dm(m: sp.spmatrix) -> ca.DM:
                  m.data.tolist())
 
 
-def simple_deflection(q, compliance, compression_only):
-    """W = S q, or S max(q, 0) when ``compression_only`` is 1 [-].
-
-    q : P̄ − 1 at each θ node [-]; compliance : S [-]; compression_only : 0 or 1 (may be a
-    CasADi parameter, so the choice is arithmetic rather than an ``if``).
-    """
-    return compliance * ((1 - compression_only) * q + compression_only * positive_part(q))
-
-
 def foundation_reaction_dofs(u, compression_only):
     """Hermite dofs of the bump reaction S·(bump force): u itself, or its positive part.
 
     u : free dofs (W_1, W'_1, …, W_n, W'_n).  With ``compression_only`` the reaction is
     interpolated from (max(W_k, 0), W'_k·[W_k > 0]) — exact wherever W > 0 on an element.
     """
-    if _is_symbolic(u, compression_only):
+    if is_symbolic(u, compression_only):
         w = u[0::2]
         dw = u[1::2]
         rw = positive_part(w)
@@ -127,7 +113,7 @@ def beam_residual(u, q_nodes, mats: BeamMatrices, compliance, coefficient, compr
     compliance S, coefficient C [-]; compression_only 0/1.
     """
     r = foundation_reaction_dofs(u, compression_only)
-    if _is_symbolic(u, q_nodes, compliance, coefficient):
+    if is_symbolic(u, q_nodes, compliance, coefficient):
         kb, mf, gl = _to_dm(mats.bending), _to_dm(mats.foundation), _to_dm(mats.load)
         return (compliance * coefficient * ca.mtimes(kb, u) + ca.mtimes(mf, r)
                 - compliance * ca.mtimes(gl, q_nodes))

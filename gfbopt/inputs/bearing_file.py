@@ -20,8 +20,8 @@ try:  # Python >= 3.11
 except ModuleNotFoundError:  # pragma: no cover - Python 3.10
     import tomli as tomllib
 
-from .errors import ParameterError
-from .parameters import BearingGeometry
+from ..errors import ParameterError
+from .bearing import BearingGeometry
 
 _FIELDS = {f.name: f for f in dataclasses.fields(BearingGeometry)}
 _OPTIONAL = {name for name, f in _FIELDS.items()

@@ -1,6 +1,6 @@
 """Implicit (BDF) integration of the same transient model, one rotor at a time.
 
-The right-hand side is :class:`gfbopt.transient.RightHandSide` (one physics); this module only
+The right-hand side is :class:`gfbopt.transient.system.RightHandSide` (one physics); this module only
 flattens a rotor's state to a vector y = (Φ, X, Y, U, V) and gives scipy's BDF a sparse
 Jacobian: grouped finite differences on the exact sparsity pattern of the stencil, plus the
 two dense rows ∂(U', V')/∂Φ written analytically (left to finite differences they would make
@@ -22,9 +22,9 @@ import numpy as np
 import scipy.sparse as sp
 from scipy.integrate import solve_ivp
 
-from .errors import ParameterError
-from .transient import (OrbitBatch, RightHandSide, State, TransientModel, _check_positive,
-                        classify, equilibrium_state, pressure_and_film)
+from ..errors import ParameterError
+from .result import OrbitBatch, finish_orbits
+from .system import RightHandSide, State, TransientModel, equilibrium_state, pressure_and_film
 
 
 def greedy_column_groups(pattern: sp.csc_matrix) -> np.ndarray:
@@ -53,9 +53,10 @@ class FlatRotor:
     """One rotor of mass M̄ as y' = f(y), y = (Φ.ravel(), X, Y, U, V), with its Jacobian."""
 
     def __init__(self, tm: TransientModel, mass: float):
-        if tm.foil not in ("rigid", "simple") or tm.gumbel:
-            raise ParameterError("method", "bdf", "supports the rigid and simple (axial-mean, "
-                                 "full-film force) models only; use method='rk4'")
+        tm.law.check_engine("bdf")
+        if tm.gumbel:
+            raise ParameterError("method", "bdf", "supports the full-film force only "
+                                 "(subambient='full'); use method='rk4' with the Gümbel force")
         self.tm = tm
         self.rhs = RightHandSide(tm, np.array([float(mass)]))
         self.m, self.nzn = tm.shape
@@ -164,18 +165,15 @@ class FlatRotor:
         return float(h.min())
 
 
-def integrate_orbits_bdf(tm: TransientModel, mass, revolutions: float = 10.0, *,
-                         kick: float = 1e-3, initial: Optional[State] = None,
-                         sample_every: float = 0.2, contact_film: float = 0.02,
-                         settle: float = 2.0, rtol: float = 1e-6,
-                         atol: float = 1e-9) -> OrbitBatch:
-    """The same contract as :func:`gfbopt.transient.integrate_orbits`, with scipy's BDF
-    (variable step, ``rtol``/``atol``) on each rotor in turn."""
+def integrate_bdf(tm: TransientModel, mass: np.ndarray, revolutions: float, *,
+                  kick: float, initial: Optional[State], sample_every: float,
+                  contact_film: float, settle: float, rtol: float = 1e-6,
+                  atol: float = 1e-9, progress=None) -> OrbitBatch:
+    """The same contract as :func:`gfbopt.transient.orbit.integrate_orbits`, with scipy's BDF
+    (variable step, ``rtol``/``atol``) on each rotor in turn.  A rotor whose integration
+    fails ends the run with ``success=False`` and scipy's message; rotors already done are
+    kept."""
     t0 = time.perf_counter()
-    mass = np.atleast_1d(np.asarray(mass, dtype=float))
-    for mm in mass:
-        _check_positive("mass", mm)
-    revolutions = _check_positive("revolutions", revolutions)
     start = initial if initial is not None else equilibrium_state(tm, mass.size)
     if initial is None:
         start.u[:] = kick / math.sqrt(2)
@@ -188,6 +186,7 @@ def integrate_orbits_bdf(tm: TransientModel, mass, revolutions: float = 10.0, *,
     contact = np.zeros(mass.size, dtype=bool)
     contact_tau = np.full(mass.size, np.nan)
     evaluations = 0
+    failure = ""
     for b, mm in enumerate(mass):
         rotor = FlatRotor(tm, mm)
         y0 = rotor.pack(State(start.phi[b:b + 1], start.x[b:b + 1], start.y[b:b + 1],
@@ -205,15 +204,15 @@ def integrate_orbits_bdf(tm: TransientModel, mass, revolutions: float = 10.0, *,
         x[b, :k] = sol.y[rotor.ix]
         y[b, :k] = sol.y[rotor.iy]
         hmin[b, :k] = [rotor.min_film(sol.y[:, i]) for i in range(k)]
+        if progress is not None:
+            progress((b + 1) / mass.size)
         if sol.status == 1 and sol.t_events[0].size:
             contact[b] = True
             contact_tau[b] = float(sol.t_events[0][0])
         elif sol.status != 0:
-            raise ParameterError("method", "bdf", f"BDF failed: {sol.message}")
-    sx = tm.static
-    x0 = sx.eccentricity * math.cos(sx.attitude_angle)
-    y0_ = sx.eccentricity * math.sin(sx.attitude_angle)
-    growth, whirl, amp, verdicts = classify(tau, x - x0, y - y0_, contact, settle, kick)
-    return OrbitBatch(tau, x, y, hmin, (x0, y0_), mass, growth, whirl, amp, contact,
-                      contact_tau, tuple(verdicts), math.nan, evaluations,
-                      time.perf_counter() - t0, revolutions)
+            failure = f"BDF failed for rotor {b} (M̄ = {mm:.6g}): {sol.message}"
+            break
+    return finish_orbits(tm, tau, x, y, hmin, contact, contact_tau, mass, settle=settle,
+                         kick=kick, time_step=math.nan, evaluations=evaluations, started=t0,
+                         revolutions=revolutions, method="bdf", success=not failure,
+                         message=failure)

@@ -1,0 +1,113 @@
+"""The non-dimensional bearing model: groups (Λ, S, C, L/D) and the formulation options."""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, replace
+from typing import Optional
+
+from ..errors import ParameterError
+from .checks import check_choice, check_finite, check_flag, check_nonnegative, check_positive
+
+FOIL_MODELS = ("rigid", "simple", "beam")
+FILM_MODELS = ("periodic", "seam")
+DEFLECTION_LAWS = ("mean", "local")
+SUBAMBIENT_TREATMENTS = ("full", "gumbel")
+
+
+@dataclass(frozen=True)
+class BearingModel:
+    """The non-dimensional bearing model solved by gfbopt.
+
+    Attributes
+    ----------
+    bearing_number : Λ = 6 μ ω R²/(p_a c²) [-], > 0
+    compliance : S = p_a α / c [-], ≥ 0 (0 = rigid plain gas bearing)
+    length_ratio : L/D [-], > 0
+    foil : 'rigid', 'simple' (W = S (P̄ − 1)) or 'beam' (1D FE top foil on the bumps)
+    top_foil_coefficient : C [-], ≥ 0, used by the beam model only
+    film : 'periodic' (no seam) or 'seam' (P = 1 at the top-foil ends)
+    seam_angle : angle of the welded (fixed) end of the top foil measured from the load line
+        in the direction of rotation [rad]; ``None`` puts the seam at the maximum-film line
+        (the thesis's convention: θ measured from the line of centres, P = 1 at θ = 0, 2π).
+        For a periodic film it only places the fixed end of the beam foil.
+    compression_only : if True the bumps cannot pull the foil towards the journal (W ≥ 0
+        for the simple model; the bump reaction acts only where W > 0 for the beam).
+    deflection_law : 'mean' — the foil deflects with the axially averaged pressure,
+        W = S (P̄ − 1) (thesis, Heshmat's strip model); 'local' — with the local pressure,
+        W = S (P − 1) (simple model only).
+    subambient : 'full' — the whole film pressure acts on the journal; 'gumbel' — gauge
+        pressure below ambient is dropped from the force integral,
+        F = −∬ max(P − 1, 0)(cos θ, sin θ) dθ dZ (the convention that reproduces the Λ = 1
+        rows of thesis Table 3.2; docs/literature_table_3_2.md).  The pressure field itself
+        is the full-film solution in both cases.
+    """
+
+    bearing_number: float
+    compliance: float = 0.0
+    length_ratio: float = 1.0
+    foil: str = "simple"
+    top_foil_coefficient: float = 0.0
+    film: str = "periodic"
+    seam_angle: Optional[float] = None
+    compression_only: bool = False
+    deflection_law: str = "mean"
+    subambient: str = "full"
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "bearing_number",
+                           check_positive("bearing_number", self.bearing_number))
+        object.__setattr__(self, "compliance", check_nonnegative("compliance", self.compliance))
+        object.__setattr__(self, "length_ratio", check_positive("length_ratio", self.length_ratio))
+        object.__setattr__(self, "top_foil_coefficient",
+                           check_nonnegative("top_foil_coefficient", self.top_foil_coefficient))
+        check_choice("foil", self.foil, FOIL_MODELS)
+        check_choice("film", self.film, FILM_MODELS)
+        check_choice("deflection_law", self.deflection_law, DEFLECTION_LAWS)
+        check_choice("subambient", self.subambient, SUBAMBIENT_TREATMENTS)
+        if self.deflection_law == "local" and self.foil == "beam":
+            raise ParameterError("deflection_law", self.deflection_law,
+                                 "'local' applies to the simple foil model only (the beam is "
+                                 "loaded by the axially averaged pressure)")
+        object.__setattr__(self, "compression_only",
+                           check_flag("compression_only", self.compression_only))
+        if self.foil == "rigid" and self.compliance != 0.0:
+            raise ParameterError("compliance", self.compliance,
+                                 "must be 0 with foil='rigid' (a rigid bearing has no bump "
+                                 "foundation); use foil='simple' or 'beam' for S > 0")
+        if self.seam_angle is not None:
+            object.__setattr__(self, "seam_angle", check_finite("seam_angle", self.seam_angle))
+        if self.length_ratio > 10.0:
+            raise ParameterError("length_ratio", self.length_ratio, "must be <= 10")
+
+    @property
+    def is_rigid(self) -> bool:
+        """True when the film sees no foil motion (foil='rigid' or S = 0)."""
+        return self.foil == "rigid" or self.compliance == 0.0
+
+    @property
+    def foil_law(self) -> str:
+        """Name of the foil law in :mod:`gfbopt.physics.foil_laws` this model uses:
+        'rigid' (also any S = 0), 'simple' (axial-mean law), 'local' or 'beam'."""
+        if self.is_rigid:
+            return "rigid"
+        if self.foil == "beam":
+            return "beam"
+        return "local" if self.deflection_law == "local" else "simple"
+
+    def options(self) -> dict:
+        """The formulation options, as every output states them (angles in degrees)."""
+        return {"foil": self.foil, "foil_law": self.foil_law, "film": self.film,
+                "seam_angle_deg": ("max_film" if self.seam_angle is None
+                                   else math.degrees(self.seam_angle)),
+                "deflection_law": self.deflection_law,
+                "compression_only": self.compression_only, "subambient": self.subambient}
+
+    def groups(self) -> dict:
+        """The non-dimensional groups Λ, S, C, L/D of this model."""
+        return {"bearing_number": self.bearing_number, "compliance": self.compliance,
+                "top_foil_coefficient": self.top_foil_coefficient,
+                "length_ratio": self.length_ratio}
+
+    def replace(self, **changes) -> "BearingModel":
+        """A copy with ``changes`` applied (validated again)."""
+        return replace(self, **changes)

@@ -1,0 +1,376 @@
+"""The registry of foil laws: how the top foil deflects under the film pressure.
+
+W is the top-foil deflection over the clearance, positive away from the journal, and
+q = P̄ − 1 the axially averaged gauge pressure at each θ row (``docs/PHYSICS.md``, "Foil
+models").  Each law is one object that owns everything the engines need from it:
+
+* its static equations (written once, evaluated on CasADi symbols for the IPOPT model and on
+  numpy arrays to re-check the solution): :meth:`FoilLaw.static_film`,
+  :meth:`FoilLaw.deflection`, :meth:`FoilLaw.start`;
+* its dynamic response for the linear analysis: :meth:`FoilLaw.squeeze_film_slope`
+  (how the film at a node moves with the pressure there);
+* its transient recovery of P and H from Φ = P H and the journal position:
+  :meth:`FoilLaw.transient_data`, :meth:`FoilLaw.recover`;
+* and which engines support it (:attr:`FoilLaw.engines`).
+
+=========  =====================================================  ===========================
+law        deflection                                             reference
+=========  =====================================================  ===========================
+rigid      W = 0 (plain gas bearing, or any S = 0)                —
+simple     W = S q, q = P̄ − 1 (axial-mean law, Heshmat's strips)   Heshmat et al. (1983)
+local      W = S (P − 1) at every node                            e.g. Peng & Carpino (1993)
+beam       C d⁴W/dθ⁴ + W/S = q, Hermite elements                  thesis eq. (4.2), App. B
+=========  =====================================================  ===========================
+
+``compression_only`` (bumps cannot pull the foil towards the journal) is a property of the
+simple, local and beam laws: W = S max(q, 0), S max(P − 1, 0), and a bump reaction
+max(W, 0)/S respectively.  Adding a law is one subclass here plus its tests.
+
+References: H. Heshmat, J. A. Walowit, O. Pinkus, "Analysis of gas-lubricated foil journal
+bearings", J. Lubr. Technol. 105(4) (1983) 647–655, doi:10.1115/1.3254698; J.-P. Peng,
+M. Carpino, "Calculation of stiffness and damping coefficients for elastically supported gas
+foil bearings", J. Tribol. 115(1) (1993) 20–27.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Optional
+
+import casadi as ca
+import numpy as np
+
+from ..errors import ConvergenceError, ParameterError
+from .algebra import is_symbolic, positive_part
+from .beam import BeamMatrices, beam_deflection, beam_dofs, beam_matrices, beam_residual
+
+#: Engines a law may support: the CasADi/IPOPT equilibrium, the linearisation, and the
+#: transient integrators.
+ENGINES = ("static", "linear", "rk4", "rkc", "bdf")
+
+
+@dataclass(frozen=True)
+class FoilParameters:
+    """The foil's groups as the static equations see them (numbers or CasADi symbols).
+
+    compliance S [-], coefficient C [-] (beam only), compression_only 0/1.
+    """
+
+    compliance: object
+    coefficient: object
+    compression_only: object
+
+
+def simple_deflection(q, compliance, compression_only):
+    """W = S q, or S max(q, 0) when ``compression_only`` is 1 [-].
+
+    q : gauge pressure (P̄ − 1 per row, or P − 1 per node) [-]; compliance S [-];
+    compression_only 0 or 1 (may be a CasADi parameter, so the choice is arithmetic).
+    """
+    return compliance * ((1 - compression_only) * q + compression_only * positive_part(q))
+
+
+def _rows_to_nodes(rows, st):
+    """Repeat one value per θ row along the axial nodes (flat node order, numbers/symbols)."""
+    if is_symbolic(rows):
+        return rows[np.repeat(np.arange(st.n_theta_nodes), st.n_z_nodes).tolist()]
+    return np.repeat(rows, st.n_z_nodes)
+
+
+def _set_boundary(p: np.ndarray, periodic: bool) -> np.ndarray:
+    """P = 1 on the axial edges, and on the seam rows of a seamed film."""
+    p[..., :, 0] = 1.0
+    p[..., :, -1] = 1.0
+    if not periodic:
+        p[..., 0, :] = 1.0
+        p[..., -1, :] = 1.0
+    return p
+
+
+def _row_mean_phi(phi: np.ndarray, hr: np.ndarray, tm) -> tuple[np.ndarray, float]:
+    """(Φ̃, c) with P̄ = Φ̃/a + c on each row whose film is a (axially uniform film).
+
+    Φ̃ = Σ_interior w Φ / Σ w and c = Σ_ends w / Σ w; seam rows carry P = 1, so their
+    Φ̃ is set to make P̄ − 1 = 0 there.
+    """
+    zw = tm.z_weight
+    total = zw.sum()
+    interior = np.ones(phi.shape[-1], dtype=bool)
+    interior[[0, -1]] = False
+    phit = (phi[..., interior] @ zw[interior]) / total
+    c = zw[~interior].sum() / total
+    if not tm.periodic:
+        phit[:, [0, -1]] = (1.0 - c) * hr[:, [0, -1]]
+    return phit, c
+
+
+class FoilLaw:
+    """Base class: one foil law (see the module docstring for the contract)."""
+
+    #: registry name
+    name: str = ""
+    #: one line for reports
+    description: str = ""
+    #: the law whose static model serves this one (the rigid bearing is the simple
+    #: foundation with S = 0, so it needs no model of its own)
+    static_structure: str = ""
+    #: engines that support the law (subset of ENGINES)
+    engines: tuple = ()
+    #: True when the lifted film variable of the static model is the whole film H (> 0
+    #: bound); False when it is only the rigid part (the local law adds W per node)
+    lifted_film_is_total: bool = True
+
+    # ------------------------------------------------------------------ static model
+    def extra_unknowns(self, grid) -> int:
+        """Number of foil unknowns beside the film (e.g. the beam's Hermite dofs)."""
+        return 0
+
+    def prepare(self, grid, dpsi: float):
+        """Grid-dependent data the law needs (e.g. beam matrices), or None."""
+        return None
+
+    def static_film(self, h_rigid, lifted, mean_gauge, p_full, u, foil: FoilParameters, st,
+                    data) -> tuple:
+        """(H at every node, lifted-film equations per row, extra foil equations or None).
+
+        h_rigid : H_r per row; lifted : the lifted film per row; mean_gauge : P̄ − 1 per row;
+        p_full : P at every node (flat); u : extra unknowns; st : the grid's Stencil.
+        Numbers or CasADi symbols.
+        """
+        raise NotImplementedError(f"foil law {self.name!r} has no static model")
+
+    def deflection(self, p_full, mean_gauge, u, foil: FoilParameters, st, data) -> tuple:
+        """(W at every node (flat), max |foil equation residual|) from a solved state (numpy)."""
+        raise NotImplementedError(f"foil law {self.name!r} has no static model")
+
+    def start(self, h_rigid, mean_gauge, foil: FoilParameters, st, data) -> tuple:
+        """(lifted film per row, extra unknowns) consistent with a guessed pressure (numpy)."""
+        raise NotImplementedError(f"foil law {self.name!r} has no static model")
+
+    # ------------------------------------------------------------------ linear model
+    def squeeze_film_slope(self, pressure: np.ndarray, compliance: float,
+                           compression_only: bool) -> Optional[np.ndarray]:
+        """∂H/∂P at the unknown nodes where the film follows the local pressure, else None.
+
+        The squeeze term −2Λ ∂(PH)/∂τ then carries −2Λ P (∂H/∂P) Ṗ besides −2Λ H Ṗ.
+        """
+        return None
+
+    # --------------------------------------------------------------- transient model
+    def transient_data(self, model, grid, periodic: bool, dtheta: float):
+        """Precomputed data of the transient recovery (e.g. the beam's compliance map)."""
+        return None
+
+    def recover(self, phi: np.ndarray, hr: np.ndarray, tm, guess=None, cache=None) -> tuple:
+        """(P, H) of a batch from Φ = P H (B, m, n_z + 1) and the rigid film H_r (B, m).
+
+        H has shape (B, m, n_z + 1) when it varies along Z, else (B, m, 1).
+        """
+        raise NotImplementedError(f"foil law {self.name!r} has no transient model")
+
+    def check_engine(self, engine: str) -> None:
+        """Refuse an engine the law does not support (one line naming both)."""
+        if engine not in self.engines:
+            raise ParameterError("method" if engine in ("rk4", "rkc", "bdf") else "engine",
+                                 engine, f"does not support the {self.name} foil law "
+                                 f"({self.description}); supported: {', '.join(self.engines)}")
+
+
+class SimpleLaw(FoilLaw):
+    """Simple elastic foundation, axial-mean law W = S (P̄ − 1) (Heshmat et al. 1983)."""
+
+    name = "simple"
+    description = "simple elastic foundation, W = S (P̄ − 1)"
+    static_structure = "simple"
+    engines = ("static", "linear", "rk4", "rkc", "bdf")
+
+    def static_film(self, h_rigid, lifted, mean_gauge, p_full, u, foil, st, data):
+        w_rows = simple_deflection(mean_gauge, foil.compliance, foil.compression_only)
+        return _rows_to_nodes(lifted, st), lifted - (h_rigid + w_rows), None
+
+    def deflection(self, p_full, mean_gauge, u, foil, st, data):
+        w = simple_deflection(mean_gauge, foil.compliance, foil.compression_only)
+        return _rows_to_nodes(w, st), 0.0
+
+    def start(self, h_rigid, mean_gauge, foil, st, data):
+        w = simple_deflection(mean_gauge, foil.compliance, foil.compression_only)
+        return np.maximum(h_rigid + w, 1e-3), np.zeros(0)
+
+    def recover(self, phi, hr, tm, guess=None, cache=None):
+        # On each row H = a with a = H_r + S (P̄ − 1) and P = Φ/a, P̄ = Φ̃/a + c, so
+        # a² − b a − S Φ̃ = 0 with b = H_r + S (c − 1): closed form.
+        phit, c = _row_mean_phi(phi, hr, tm)
+        s = tm.compliance
+        b = hr + s * (c - 1.0)
+        a = 0.5 * (b + np.sqrt(b * b + 4 * s * phit))
+        if tm.compression_only:
+            a = np.maximum(a, hr)
+        p = _set_boundary(phi / a[:, :, None], tm.periodic)
+        return p, a[:, :, None]
+
+
+class RigidLaw(SimpleLaw):
+    """Rigid bearing surface, W = 0 (a plain self-acting gas bearing, or S = 0)."""
+
+    name = "rigid"
+    description = "rigid bearing surface, W = 0"
+    static_structure = "simple"
+
+    def recover(self, phi, hr, tm, guess=None, cache=None):
+        p = _set_boundary(phi / hr[:, :, None], tm.periodic)
+        return p, hr[:, :, None]
+
+
+class LocalLaw(FoilLaw):
+    """Simple foundation with the local law W = S (P − 1) at every node."""
+
+    name = "local"
+    description = "simple elastic foundation, local law W = S (P − 1)"
+    static_structure = "local"
+    engines = ("static", "linear", "rk4", "rkc")
+    lifted_film_is_total = False
+
+    def static_film(self, h_rigid, lifted, mean_gauge, p_full, u, foil, st, data):
+        w = simple_deflection(p_full - 1, foil.compliance, foil.compression_only)
+        return _rows_to_nodes(lifted, st) + w, lifted - h_rigid, None
+
+    def deflection(self, p_full, mean_gauge, u, foil, st, data):
+        return simple_deflection(p_full - 1, foil.compliance, foil.compression_only), 0.0
+
+    def start(self, h_rigid, mean_gauge, foil, st, data):
+        return h_rigid, np.zeros(0)
+
+    def squeeze_film_slope(self, pressure, compliance, compression_only):
+        slope = np.ones(pressure.size) if not compression_only else (pressure > 1).astype(float)
+        return compliance * slope
+
+    def recover(self, phi, hr, tm, guess=None, cache=None):
+        # S P² + (H_r − S) P − Φ = 0 per node: closed form.
+        s = tm.compliance
+        hr3 = hr[:, :, None]
+        p = (-(hr3 - s) + np.sqrt((hr3 - s) ** 2 + 4 * s * phi)) / (2 * s)
+        if tm.compression_only:   # W = S max(P − 1, 0): where P < 1 the film is rigid
+            p = np.where(p < 1.0, phi / hr3, p)
+        p = _set_boundary(p, tm.periodic)
+        h = hr3 + (s * (p - 1.0) if not tm.compression_only else s * np.maximum(p - 1.0, 0))
+        return p, h
+
+
+class BeamLaw(FoilLaw):
+    """Euler–Bernoulli top foil on the bump foundation (:mod:`gfbopt.physics.beam`)."""
+
+    name = "beam"
+    description = "Euler–Bernoulli top foil on the bumps, C d⁴W/dθ⁴ + W/S = P̄ − 1"
+    static_structure = "beam"
+    engines = ("static", "linear", "rk4", "rkc")
+
+    def extra_unknowns(self, grid) -> int:
+        return 2 * grid.n_theta
+
+    def prepare(self, grid, dpsi: float) -> BeamMatrices:
+        return beam_matrices(grid.n_theta, dpsi)
+
+    @staticmethod
+    def _beam_load(mean_gauge, st):
+        """q at the n + 1 beam nodes, welded end first (a periodic film's free end sees
+        row 0's load)."""
+        if not st.periodic:
+            return mean_gauge
+        if is_symbolic(mean_gauge):
+            return ca.vertcat(mean_gauge, mean_gauge[0])
+        return np.append(mean_gauge, mean_gauge[0])
+
+    def static_film(self, h_rigid, lifted, mean_gauge, p_full, u, foil, st, data):
+        w_rows = ca.vertcat(0, u[0::2])[:st.n_theta_nodes]
+        residual = beam_residual(u, self._beam_load(mean_gauge, st), data, foil.compliance,
+                                 foil.coefficient, foil.compression_only)
+        return _rows_to_nodes(lifted, st), lifted - (h_rigid + w_rows), residual
+
+    def deflection(self, p_full, mean_gauge, u, foil, st, data):
+        w_beam = np.concatenate([[0.0], u[0::2]])
+        res = beam_residual(u, self._beam_load(mean_gauge, st), data, foil.compliance,
+                            foil.coefficient, foil.compression_only)
+        return _rows_to_nodes(w_beam[:st.n_theta_nodes], st), float(np.abs(res).max())
+
+    def start(self, h_rigid, mean_gauge, foil, st, data):
+        u = beam_dofs(self._beam_load(mean_gauge, st), data, foil.compliance, foil.coefficient)
+        w = np.concatenate([[0.0], u[0::2]])
+        return np.maximum(h_rigid + w[:st.n_theta_nodes], 1e-3), u
+
+    def transient_data(self, model, grid, periodic, dtheta):
+        if model.compression_only:
+            raise ParameterError("compression_only", True, "is not available in the transient "
+                                 "beam model (use the simple model for bumps that let go)")
+        n = grid.n_theta
+        mats = beam_matrices(n, dtheta)
+        # W at beam nodes 0..n per unit load at each node (columns): the static beam law
+        w = beam_deflection(np.eye(n + 1), mats, model.compliance, model.top_foil_coefficient)
+        if periodic:       # film rows 0..n−1; the free end (node n) sees row 0's load
+            w = w[:n]
+            w[:, 0] += w[:, n]
+            return w[:, :n]
+        return w
+
+    def recover(self, phi, hr, tm, guess=None, cache=None):
+        phit, c = _row_mean_phi(phi, hr, tm)
+        a = _beam_film(hr, phit, c, tm, guess, cache)
+        p = _set_boundary(phi / a[:, :, None], tm.periodic)
+        return p, a[:, :, None]
+
+
+def _beam_film(hr, phit, c, tm, guess, cache: Optional[dict] = None):
+    """Solve a = H_r + 𝓛 q, q = Φ̃/a + c − 1 (q = 0 on seam rows), for the row films a
+    (B, m), 𝓛 = ``tm.foil_data`` the beam's compliance map.
+
+    Chord iterations a ← a − J⁻¹ f with the inverse Jacobian J = I + 𝓛 diag(Φ̃/a²) kept in
+    ``cache`` between evaluations (it changes little from one RK stage to the next); it is
+    recomputed when the iteration stalls.  Converged to |f| < 1e-13.
+    """
+    lmap = tm.foil_data
+    live = np.ones(hr.shape[1])
+    if not tm.periodic:
+        live[[0, -1]] = 0.0
+    a = hr.copy() if guess is None or guess.shape != hr.shape else guess.copy()
+    cache = {} if cache is None else cache
+    eye = np.eye(a.shape[1])
+    previous = math.inf
+    err = math.inf
+    for _ in range(40):
+        q = (phit / a + c - 1.0) * live
+        f = a - hr - q @ lmap.T
+        err = float(np.abs(f).max())
+        if err < 1e-13:
+            return a
+        jinv = cache.get("jinv")
+        if jinv is None or jinv.shape[0] != a.shape[0] or err > 0.1 * previous:
+            jac = eye[None] + lmap[None] * (live * phit / (a * a))[:, None, :]
+            jinv = np.linalg.inv(jac)
+            cache["jinv"] = jinv
+        previous = err
+        a = a - np.einsum("bij,bj->bi", jinv, f)
+    raise ConvergenceError("beam film did not converge in the transient model", "max_iter",
+                           err)
+
+
+#: The registry: law name → law.
+FOIL_LAWS: dict[str, FoilLaw] = {law.name: law for law in (RigidLaw(), SimpleLaw(), LocalLaw(),
+                                                           BeamLaw())}
+
+
+def foil_law(model) -> FoilLaw:
+    """The foil law of a :class:`~gfbopt.inputs.model.BearingModel` (``model.foil_law``)."""
+    return FOIL_LAWS[model.foil_law]
+
+
+def static_structure(model) -> str:
+    """Name of the law whose static CasADi model serves ``model``.
+
+    The simple foundation with S = 0 is the rigid bearing, so rigid models share it; a model
+    that asks for the local law or the beam keeps that structure even at S = 0 (S is a
+    parameter of the build).
+    """
+    if model.foil == "beam":
+        return "beam"
+    if model.foil == "simple" and model.deflection_law == "local":
+        return "local"
+    return "simple"

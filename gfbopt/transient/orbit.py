@@ -1,0 +1,72 @@
+"""Journal-centre orbits of a batch of rigid rotors: one driver, several integration methods.
+
+=========  ===================================================================================
+method     what it is
+=========  ===================================================================================
+rk4        classic explicit Runge–Kutta, batched over rotors (:mod:`.rk4`): the reference
+bdf        scipy's implicit BDF with a sparse Jacobian, rotor by rotor (:mod:`.bdf`)
+=========  ===================================================================================
+
+Each method is one module with one ``integrate_*`` function of the same signature, listed in
+:data:`METHODS`; the driver validates the input once and dispatches.
+"""
+from __future__ import annotations
+
+from typing import Callable, Optional
+
+from ..errors import ParameterError
+from .bdf import integrate_bdf
+from .result import OrbitBatch, check_masses, check_positive
+from .rk4 import integrate_rk4
+from .system import State, TransientModel
+
+#: method name → (integrator, options it accepts beyond the common ones)
+METHODS: dict[str, tuple[Callable, tuple]] = {
+    "rk4": (integrate_rk4, ("time_step", "check_every")),
+    "bdf": (integrate_bdf, ("rtol", "atol")),
+}
+
+
+def integrate_orbits(tm: TransientModel, mass, revolutions: float = 10.0, *,
+                     kick: float = 1e-3, initial: Optional[State] = None,
+                     sample_every: float = 0.2, contact_film: float = 0.02,
+                     settle: float = 2.0, progress=None, method: str = "rk4",
+                     **method_options) -> OrbitBatch:
+    """Advance a batch of rotors (one per entry of ``mass``, M̄ = M c ω²/W0).
+
+    Parameters
+    ----------
+    tm : the transient model (:func:`gfbopt.transient.system.transient_model`)
+    mass : M̄ of each rotor [-], > 0
+    revolutions : length of the run in shaft revolutions [-]
+    kick : initial journal velocity dX/dτ = dY/dτ = kick/√2 from the equilibrium [-]
+    initial : a batch state to start from instead of the kicked equilibrium
+    sample_every : Δτ between stored samples [rad]
+    contact_film : minimum film H at which a rotor is in contact; its run stops there [-]
+    settle : revolutions skipped before fitting the growth rate [-]
+    progress : optional callable(fraction) for progress display
+    method : a key of :data:`METHODS` ('rk4' or 'bdf')
+    method_options : options of that method only — rk4: ``time_step`` Δτ [rad] (default
+        from the stability bound; a step above the RK4 stability limit is refused),
+        ``check_every`` (steps between re-checks of the bound); bdf: ``rtol``, ``atol``.
+        An option the chosen method does not use is refused, not ignored.
+
+    Returns
+    -------
+    OrbitBatch, with ``success`` False and a message when the integration failed at run time.
+    """
+    if method not in METHODS:
+        raise ParameterError("method", method, f"must be one of {', '.join(METHODS)}")
+    integrate, accepted = METHODS[method]
+    for key, value in method_options.items():
+        if key not in accepted and value is not None:
+            users = [m for m, (_, opts) in METHODS.items() if key in opts]
+            raise ParameterError(key, value, f"applies to method={'/'.join(users) or '?'} "
+                                 f"only, not to method='{method}'")
+    options = {k: v for k, v in method_options.items() if v is not None}
+    tm.law.check_engine(method)
+    mass = check_masses(mass)
+    revolutions = check_positive("revolutions", revolutions)
+    return integrate(tm, mass, revolutions, kick=kick, initial=initial,
+                     sample_every=sample_every, contact_film=contact_film, settle=settle,
+                     progress=progress, **options)

@@ -1,0 +1,258 @@
+"""Nonlinear time-transient model of a rigid rotor on gas foil bearings (numpy, batched).
+
+State of each rotor (a batch of B rotors advances together, one array per quantity):
+
+* Φ = P H at every grid node, shape (B, m, n_z + 1) — the conserved quantity of the
+  time-dependent Reynolds equation 2Λ ∂(PH)/∂τ = R(P, H) (docs/PHYSICS.md), so
+  ∂Φ/∂τ = R(P, H)/(2Λ) with R the steady residual of :mod:`gfbopt.discretisation`;
+* the journal centre (X, Y) and its velocity (U, V) = (X', Y'), τ = ω t.
+
+The foil is massless and follows the pressure at every instant (as in the static model), so P
+and H are recovered from Φ and (X, Y) algebraically:
+
+* rigid: H = H_r = 1 − X cos θ − Y sin θ, P = Φ/H;
+* simple, axial-mean law: on each θ row H = a with a = H_r + S(P̄ − 1) and P = Φ/a, so
+  a² − b a − S Φ̃ = 0 (b, Φ̃ from the row's axial sums) — closed form; with compression-only
+  bumps a = max(that, H_r);
+* simple, local law: S P² + (H_r − S) P − Φ = 0 per node — closed form;
+* beam: W = 𝓛 (P̄ − 1) with 𝓛 the (dense, m × m) compliance of the Hermite beam on the bump
+  foundation; a few Newton steps per evaluation solve a − H_r − 𝓛(P̄(a) − 1) = 0.
+
+Rotor (per bearing, load W̄0 along X): M̄ W̄0 X'' = F_X + W̄0, M̄ W̄0 Y'' = F_Y.
+
+The flux stencil here is a 2-D slicing version of :func:`gfbopt.discretisation.reynolds_residual`
+for speed; ``tests/test_transient.py`` proves the two equal to round-off, and that a static
+equilibrium is a fixed point of this right-hand side.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Optional
+
+import numpy as np
+
+from ..discretisation import trapezoid_weights
+from ..errors import ParameterError
+from ..physics.film import force_gauge
+from ..physics.film import rigid_film_tabulated
+from ..physics.foil_laws import FoilLaw, foil_law
+from ..static import StaticSolution
+
+
+
+@dataclass(frozen=True, eq=False)
+class TransientModel:
+    """Everything the right-hand side needs, precomputed from a static equilibrium.
+
+    Angles θ [rad] from the load line; all quantities non-dimensional (docs/PHYSICS.md).
+    """
+
+    static: StaticSolution
+    bearing_number: float
+    compliance: float
+    load: float
+    periodic: bool
+    cos: np.ndarray          # (m,)
+    sin: np.ndarray          # (m,)
+    theta_weight: np.ndarray  # (m,)
+    z_weight: np.ndarray     # (n_z + 1,) trapezoid weights × ΔZ
+    dtheta: float
+    dz: float
+    law: FoilLaw             # the foil law (gfbopt.physics.foil_laws): owns P/H recovery
+    compression_only: bool
+    gumbel: bool
+    foil_data: Optional[np.ndarray]  # the law's precomputed data (beam: W per unit P̄ − 1)
+
+    @property
+    def foil(self) -> str:
+        """Name of the foil law: 'rigid', 'simple', 'local' or 'beam'."""
+        return self.law.name
+
+    @property
+    def shape(self) -> tuple:
+        return self.static.pressure.shape
+
+
+def transient_model(solution: StaticSolution) -> TransientModel:
+    """The transient model around a converged static equilibrium ``solution``.
+
+    A seam on the maximum-film line is frozen where the static solution put it (the top foil
+    is fixed in the housing).
+    """
+    if not solution.success:
+        raise ParameterError("solution", f"status {solution.status}",
+                             "the static equilibrium did not converge; no transient from it")
+    model = solution.model
+    if solution.load <= 0 or not math.isfinite(solution.attitude_angle):
+        raise ParameterError("solution.load", solution.load,
+                             "must be > 0 (the rotor mass parameter M̄ = M c ω²/W0 needs a load)")
+    m, nzn = solution.pressure.shape
+    periodic = model.film == "periodic"
+    dtheta = 2 * math.pi / solution.grid.n_theta
+    dz = 2 * model.length_ratio / solution.grid.n_z
+    tw = dtheta * (np.ones(m) if periodic else trapezoid_weights(m))
+    zw = dz * trapezoid_weights(nzn)
+    law = foil_law(model)
+    foil_data = law.transient_data(model, solution.grid, periodic, dtheta)
+    return TransientModel(
+        static=solution, bearing_number=model.bearing_number, compliance=model.compliance,
+        load=solution.load, periodic=periodic, cos=np.cos(solution.theta),
+        sin=np.sin(solution.theta), theta_weight=tw, z_weight=zw, dtheta=dtheta, dz=dz,
+        law=law, compression_only=bool(model.compression_only),
+        gumbel=model.subambient == "gumbel", foil_data=foil_data)
+
+
+# ----------------------------------------------------------------------- kernel
+def flux_residual(p: np.ndarray, h: np.ndarray, tm: TransientModel) -> np.ndarray:
+    """Steady Reynolds residual R(P, H) at every node (zero on boundary nodes) [-].
+
+    p : array (..., m, n_z + 1); h : the same shape, or (..., m, 1) when H is uniform along
+    each θ row (then H³ is formed per row, and the axial face value is just H³).  The same
+    stencil as :func:`gfbopt.discretisation.reynolds_residual`, written with slices.
+    """
+    lam = tm.bearing_number
+    dth, dz = tm.dtheta, tm.dz
+    h3 = h * h * h
+    p2 = p * p
+    ph = p * h
+    if tm.periodic:
+        h3e = np.roll(h3, -1, axis=-2)
+        p2e = np.roll(p2, -1, axis=-2)
+        phe = np.roll(ph, -1, axis=-2)
+        # flux through the face i+½ for every row i (wraps round)
+        fe = 0.25 * (h3 + h3e) * (p2e - p2) / dth - 0.5 * lam * (ph + phe)
+        dflux = (fe - np.roll(fe, 1, axis=-2)) / dth
+    else:
+        fe = (0.25 * (h3[..., :-1, :] + h3[..., 1:, :]) * (p2[..., 1:, :] - p2[..., :-1, :]) / dth
+              - 0.5 * lam * (ph[..., :-1, :] + ph[..., 1:, :]))
+        dflux = np.zeros_like(p)
+        dflux[..., 1:-1, :] = (fe[..., 1:, :] - fe[..., :-1, :]) / dth
+    if h.shape[-1] == 1:
+        fn = (0.5 / dz) * h3 * (p2[..., :, 1:] - p2[..., :, :-1])
+    else:
+        fn = 0.25 * (h3[..., :, :-1] + h3[..., :, 1:]) * (p2[..., :, 1:] - p2[..., :, :-1]) / dz
+    res = np.zeros_like(p)
+    res[..., :, 1:-1] = dflux[..., :, 1:-1] + (fn[..., :, 1:] - fn[..., :, :-1]) / dz
+    if not tm.periodic:
+        res[..., [0, -1], :] = 0.0
+    return res
+
+
+def rigid_film(x: np.ndarray, y: np.ndarray, tm: TransientModel) -> np.ndarray:
+    """H_r = 1 − X cos θ − Y sin θ per θ row, shape (B, m) (:mod:`gfbopt.physics.film`)."""
+    return rigid_film_tabulated(x[:, None], y[:, None], tm.cos, tm.sin)
+
+
+def pressure_and_film(phi: np.ndarray, x: np.ndarray, y: np.ndarray, tm: TransientModel,
+                      guess: Optional[np.ndarray] = None,
+                      cache: Optional[dict] = None) -> tuple[np.ndarray, np.ndarray]:
+    """Recover P (B, m, n_z + 1) and H from Φ = P H and the journal position.
+
+    The foil law does it (:meth:`gfbopt.physics.foil_laws.FoilLaw.recover`).  H has shape
+    (B, m, n_z + 1) for the local law and (B, m, 1) — uniform along each θ row — otherwise.
+    Boundary nodes carry P = 1.  ``guess`` (B, m) is a starting film for the beam's Newton.
+    """
+    return tm.law.recover(phi, rigid_film(x, y, tm), tm, guess, cache)
+
+
+def film_force(p: np.ndarray, tm: TransientModel) -> tuple[np.ndarray, np.ndarray]:
+    """F = −∬ (P − 1)(cos θ, sin θ) dθ dZ for each rotor (Gümbel: max(P − 1, 0)) [-]."""
+    q = force_gauge(p - 1.0, tm.gumbel) @ tm.z_weight                       # (B, m)
+    w = tm.theta_weight
+    return -(q * tm.cos) @ w, -(q * tm.sin) @ w
+
+
+@dataclass
+class State:
+    """A batch of rotor states: Φ (B, m, n_z+1), X, Y, U, V (B,)."""
+
+    phi: np.ndarray
+    x: np.ndarray
+    y: np.ndarray
+    u: np.ndarray
+    v: np.ndarray
+
+    def axpy(self, alpha, d: "State") -> "State":
+        """self + alpha·d; ``alpha`` a scalar or one value per rotor (B,)."""
+        a = np.asarray(alpha, dtype=float)
+        ap = a[:, None, None] if a.ndim else a
+        return State(self.phi + ap * d.phi, self.x + a * d.x, self.y + a * d.y,
+                     self.u + a * d.u, self.v + a * d.v)
+
+
+
+class RightHandSide:
+    """dState/dτ for a batch of rotors with masses ``mass`` (M̄, shape (B,)).
+
+    Keeps the last beam films as the Newton guess of the next evaluation.
+    """
+
+    def __init__(self, tm: TransientModel, mass: np.ndarray):
+        self.tm = tm
+        self.mass_load = np.asarray(mass, dtype=float) * tm.load
+        self._guess = None
+        self._cache: dict = {}
+        self.evaluations = 0
+        #: smallest film H seen per rotor since the last reset (contact detection) [-]
+        self.min_film = np.full(self.mass_load.size, np.inf)
+
+    def __call__(self, s: State) -> State:
+        tm = self.tm
+        self.evaluations += 1
+        p, h = pressure_and_film(s.phi, s.x, s.y, tm, self._guess, self._cache)
+        np.minimum(self.min_film, h.min(axis=(1, 2)), out=self.min_film)
+        if tm.law.name == "beam":
+            self._guess = h[..., 0]
+        dphi = flux_residual(p, h, tm) / (2 * tm.bearing_number)
+        fx, fy = film_force(p, tm)
+        return State(dphi, s.u, s.v, (fx + tm.load) / self.mass_load, fy / self.mass_load)
+
+
+def equilibrium_state(tm: TransientModel, batch: int) -> State:
+    """The static equilibrium replicated ``batch`` times (Φ = P H, journal at rest)."""
+    sol = tm.static
+    phi = np.broadcast_to(sol.pressure * sol.film, (batch,) + sol.pressure.shape).copy()
+    x0 = sol.eccentricity * math.cos(sol.attitude_angle)
+    y0 = sol.eccentricity * math.sin(sol.attitude_angle)
+    full = lambda v: np.full(batch, v)  # noqa: E731
+    return State(phi, full(x0), full(y0), full(0.0), full(0.0))
+
+
+# -------------------------------------------------------------- stability bound
+def stiffness_bound(s: State, tm: TransientModel) -> float:
+    """Gershgorin bound on |λ| of ∂(dΦ/dτ)/∂Φ at state ``s`` [1/rad of shaft rotation].
+
+    With P = Φ/H (foil coupling neglected: it is non-local and non-stiff), row sums of
+    |∂R/∂P_k|/H_k over the five-point stencil, over 2Λ.  RK4 is stable for Δτ·λ ≤ 2.78.
+    """
+    p, h = pressure_and_film(s.phi, s.x, s.y, tm)
+    lam, dth, dz = tm.bearing_number, tm.dtheta, tm.dz
+    h3 = h ** 3
+    roll = (lambda a, k: np.roll(a, k, axis=-2)) if tm.periodic else _shift
+    he3, hw3 = roll(h3, -1), roll(h3, 1)
+    hn3 = np.concatenate([h3[..., 1:], h3[..., -1:]], axis=-1)
+    hs3 = np.concatenate([h3[..., :1], h3[..., :-1]], axis=-1)
+    pe, pw = roll(p, -1), roll(p, 1)
+    hh_e, hh_w = roll(h, -1), roll(h, 1)
+    ce = 0.25 * (h3 + he3) / dth
+    cw = 0.25 * (h3 + hw3) / dth
+    cn = 0.25 * (h3 + hn3) / dz
+    cs = 0.25 * (h3 + hs3) / dz
+    pn = np.concatenate([p[..., 1:], p[..., -1:]], axis=-1)
+    ps = np.concatenate([p[..., :1], p[..., :-1]], axis=-1)
+    diag = (2 * p * (ce + cw) / dth + 2 * p * (cn + cs) / dz) / h
+    off = (np.abs(2 * ce * pe - 0.5 * lam * hh_e) / dth / hh_e
+           + np.abs(2 * cw * pw + 0.5 * lam * hh_w) / dth / hh_w
+           + 2 * cn * pn / dz / h + 2 * cs * ps / dz / h)
+    bound = (diag + off)[..., :, 1:-1]
+    if not tm.periodic:
+        bound = bound[..., 1:-1, :]
+    return float(bound.max() / (2 * lam))
+
+
+def _shift(a: np.ndarray, k: int) -> np.ndarray:
+    """Non-periodic neighbour along θ (edge rows repeat; they are boundary rows anyway)."""
+    if k == -1:
+        return np.concatenate([a[..., 1:, :], a[..., -1:, :]], axis=-2)
+    return np.concatenate([a[..., :1, :], a[..., :-1, :]], axis=-2)
