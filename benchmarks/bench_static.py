@@ -7,7 +7,7 @@ Measures
 * solve: one equilibrium at a given (Λ, ε), rigid periodic film, L/D = 1 — cold
   (``solve_static`` without ``initial``) and warm (``initial=`` the solution at ε − 0.01),
   median of 10 each [s];
-* the hand-written sparse Newton (benchmarks/newton_reference.py) on the same point, cold,
+* the hand-written sparse Newton (tests/verification/newton_reference.py, the test oracle) on the same point, cold,
   median of 10 [s], and the ratios IPOPT/Newton;
 * cold solves at a few low-Λ points where gfbopt's cold start is known to be hard;
 * the whole of thesis Tables 3.1 and 3.2, *including* the one solver build they need (both
@@ -50,7 +50,7 @@ TARGETS = {"build_s": 1.0, "solve_warm_s": 0.1, "solve_cold_s": 0.3, "tables_tot
 
 def _load_newton_reference():
     spec = importlib.util.spec_from_file_location("newton_reference",
-                                                  HERE / "newton_reference.py")
+                                                  REPO / "tests" / "verification" / "newton_reference.py")
     module = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(module)
     return module

@@ -1,7 +1,7 @@
 """Shared fixtures: solvers are expensive to build (~0.6 s), so build each once per session."""
 import pytest
 
-from gfbopt import DEFAULT_GRID, Grid, StaticSolver
+from gfbopt import Grid, StaticSolver
 
 
 @pytest.fixture(scope="session")
@@ -12,11 +12,6 @@ def periodic_solver():
 @pytest.fixture(scope="session")
 def coarse_periodic_solver():
     return StaticSolver(Grid(36, 10), film="periodic")
-
-
-@pytest.fixture(scope="session")
-def default_solver():
-    return StaticSolver(DEFAULT_GRID, film="periodic")
 
 
 @pytest.fixture(scope="session")

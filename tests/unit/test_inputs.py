@@ -9,7 +9,7 @@ from gfbopt.inputs import load_bearing
 from gfbopt.inputs.conversions import rpm_to_rad_per_s
 from gfbopt.physics.bump import bump_compliance
 
-REPO = Path(__file__).resolve().parents[1]
+REPO = Path(__file__).resolve().parents[2]
 RUSCITTO_FILE = REPO / "problems" / "bearings" / "ruscitto.toml"
 
 RUSCITTO = dict(radius=19.05e-3, length=38.1e-3, radial_clearance=20e-6,

@@ -1,4 +1,4 @@
-"""The hand-written sparse Newton reference (benchmarks/newton_reference.py) against gfbopt.
+"""The hand-written sparse Newton reference (tests/verification/newton_reference.py) against gfbopt.
 
 (a) its analytic Jacobian equals central finite differences of gfbopt's residual;
 (b) its equilibrium equals gfbopt's CasADi/IPOPT equilibrium for the rigid periodic bearing.
@@ -13,7 +13,7 @@ import pytest
 from gfbopt import BearingModel, Grid, solve_static
 from gfbopt import discretisation as disc
 
-_PATH = Path(__file__).resolve().parents[1] / "benchmarks" / "newton_reference.py"
+_PATH = Path(__file__).resolve().parent / "newton_reference.py"
 _SPEC = importlib.util.spec_from_file_location("newton_reference", _PATH)
 newton_reference = importlib.util.module_from_spec(_SPEC)
 _SPEC.loader.exec_module(newton_reference)

@@ -1,0 +1,764 @@
+"""Bump-foil geometry for a target compliance: a geometric program (cvxpy, ``gp=True``).
+
+Given the radial clearance, the foil material and ranges for the pitch s, half bump length l0
+and bump thickness t_b, :func:`design_bump_foil` finds the geometry whose compliance
+coefficient S = p_a α / c equals a target (or lies in a band) at the least bump bending stress
+(or another monomial objective), subject to
+
+* box bounds on s, l0, t_b (and on the top-foil thickness t_top when it is designed too),
+* the bump closing within its pitch, 2 l0 + gap ≤ s, written (2 l0 + gap)/s ≤ 1,
+* the bending stress limit σ_b = 3 Δp s l0 / t_b² ≤ σ_allow,
+* optionally the top-foil sag Δp s⁴ (1 − ν²)/(32 E t_top³) ≤ κ_c c, the top-foil stress
+  Δp s²/(2 t_top²) ≤ σ_top, and no bump flattening Δp α ≤ κ h_b.
+
+Every quantity is a monomial in (s, l0, t_b, t_top) and every constraint a posynomial ≤ monomial,
+so the problem is a geometric program: convex in the logarithms of the variables, solved to its
+global optimum in milliseconds.  The formulas are those of :mod:`gfbopt.physics.bump`, evaluated
+here on cvxpy variables and, for checking the answer, on the returned floats.
+
+Two kinds of constraint are kept apart.  *Geometry* (the ranges and the bump closing) is what
+the designer can make; a target compliance outside what the geometry allows is bad input
+(``ParameterError``).  *Limits* (stresses, sag, flattening) are engineering judgement; when they
+make the problem infeasible the result says so (``success=False``) and a relaxed GP — each
+limit multiplied by a factor t_i ≥ 1, the product of the t_i minimised — says which limits must
+move and by how much, with the geometry held.
+
+With a bearing radius R the number of bumps N = 2πR/s must be a whole number: the continuous
+optimum is rounded down and up, the pitch fixed to 2πR/N and the GP solved again; the better
+feasible N is kept.  (The feasible pitches form an interval — the feasible set is convex in
+log s — so if neither neighbour of the continuous optimum is feasible no whole N is.)
+"""
+from __future__ import annotations
+
+import math
+import time
+import warnings
+from collections.abc import Sequence
+from dataclasses import asdict, dataclass
+
+try:
+    import cvxpy as cp
+except ImportError as exc:  # pragma: no cover - depends on the installation
+    raise ImportError("gfbopt.design needs cvxpy: pip install 'gfbopt[design]'") from exc
+
+from ..errors import ConvergenceError, ParameterError
+from ..physics import bump
+from .materials import Material, get_material
+
+__all__ = ["BINDING_TOLERANCE", "OBJECTIVES", "BumpDesign", "BumpDesignSpec", "Relaxation",
+           "compliance_range", "design_bump_foil"]
+
+#: Monomials that can be minimised.  Ties (several geometries with the same objective) are
+#: broken by the least bump stress.
+OBJECTIVES = ("stress", "pitch", "number_of_bumps", "thickness", "half_length",
+              "top_foil_thickness", "top_foil_sag")
+
+#: A constraint g ≤ 1 is reported as binding when 1 − g < BINDING_TOLERANCE at the solution.
+BINDING_TOLERANCE = 1e-6
+# A returned geometry is accepted when it meets every constraint to this relative tolerance
+# (Clarabel's own feasibility tolerance is 1e-8 in the logarithms of the variables).
+_CHECK_TOLERANCE = 1e-5
+# Ties: the second GP keeps the objective within this relative amount of its optimum.
+_TIE_TOLERANCE = 1e-7
+# A relaxation factor above 1 + this is reported as a limit that must move.
+_RELAXATION_THRESHOLD = 1e-5
+_SUCCESS_STATUSES = ("optimal", "optimal_inaccurate")
+
+
+# ---------------------------------------------------------------------------- checks
+def _positive(name: str, value) -> float:
+    try:
+        v = float(value)
+    except (TypeError, ValueError):
+        raise ParameterError(name, value, "must be a real number") from None
+    if not math.isfinite(v) or v <= 0.0:
+        raise ParameterError(name, value, "must be finite and > 0")
+    return v
+
+
+def _optional_positive(name: str, value) -> float | None:
+    return None if value is None else _positive(name, value)
+
+
+def _range(name: str, value) -> tuple[float, float]:
+    try:
+        low, high = value
+    except (TypeError, ValueError):
+        raise ParameterError(name, value, "must be a pair (low, high)") from None
+    low, high = _positive(f"{name} low", low), _positive(f"{name} high", high)
+    if low >= high:
+        raise ParameterError(name, value, "low must be < high")
+    return low, high
+
+
+def _mm(x: float) -> str:
+    return f"{x * 1e3:.4g} mm"
+
+
+def _um(x: float) -> str:
+    return f"{x * 1e6:.4g} µm"
+
+
+def _mpa(x: float) -> str:
+    return f"{x * 1e-6:.4g} MPa"
+
+
+# ------------------------------------------------------------------------------ spec
+@dataclass(frozen=True)
+class BumpDesignSpec:
+    """What a bump foil must satisfy.  SI units throughout.
+
+    Attributes
+    ----------
+    radial_clearance : radial clearance c [m]
+    radius : bearing radius R [m]; when given the number of bumps 2πR/s is made whole
+    ambient_pressure : ambient pressure p_a [Pa] (default 101325)
+    material : registered material name or a :class:`Material` (default Inconel X-750 at
+        20 °C); stored as a Material
+    youngs_modulus, poisson_ratio, allowable_stress : override the material's E [Pa], ν [-]
+        and σ_allow [Pa] (None: the material's value)
+    design_pressure : film pressure above ambient the foil must carry, Δp [Pa] (default 1 bar)
+    pitch_range : (low, high) bump pitch s [m] (default 2–6 mm)
+    half_length_range : (low, high) half bump length l0 [m] (default 0.5–3 mm)
+    thickness_range : (low, high) bump foil thickness t_b [m] (default 50–200 µm)
+    gap : flat length between neighbouring bumps: 2 l0 + gap ≤ s [m] (default 0.2 mm)
+    top_foil_thickness_range : (low, high) top-foil thickness t_top [m]; when given the top foil
+        is designed too, its stress Δp s²/(2 t_top²) is limited and the thinnest top foil that
+        meets its limits is returned (unless a top-foil objective is chosen)
+    sag_limit : κ_c, top-foil sag ≤ κ_c c [-] (needs top_foil_thickness_range)
+    top_foil_allowable_stress : top-foil stress limit [Pa] (default: the allowable stress)
+    flattening_limit : κ in the no-flattening limit Δp α ≤ κ h_b, 0 < κ ≤ 1 [-]
+    bump_height : free bump height h_b [m] (given with flattening_limit)
+    objective : monomial to minimise, one of :data:`OBJECTIVES` (default 'stress')
+    """
+
+    radial_clearance: float
+    radius: float | None = None
+    ambient_pressure: float = 101325.0
+    material: str | Material = "inconel-x750"
+    youngs_modulus: float | None = None
+    poisson_ratio: float | None = None
+    allowable_stress: float | None = None
+    design_pressure: float = 1e5
+    pitch_range: tuple[float, float] = (2e-3, 6e-3)
+    half_length_range: tuple[float, float] = (0.5e-3, 3e-3)
+    thickness_range: tuple[float, float] = (50e-6, 200e-6)
+    gap: float = 0.2e-3
+    top_foil_thickness_range: tuple[float, float] | None = None
+    sag_limit: float | None = None
+    top_foil_allowable_stress: float | None = None
+    flattening_limit: float | None = None
+    bump_height: float | None = None
+    objective: str = "stress"
+
+    def __post_init__(self) -> None:
+        def put(key, value):
+            object.__setattr__(self, key, value)
+
+        for key in ("radial_clearance", "ambient_pressure", "design_pressure"):
+            put(key, _positive(key, getattr(self, key)))
+        for key in ("radius", "youngs_modulus", "allowable_stress", "sag_limit",
+                    "top_foil_allowable_stress", "flattening_limit", "bump_height"):
+            put(key, _optional_positive(key, getattr(self, key)))
+        gap = self.gap
+        try:
+            gap = float(gap)
+        except (TypeError, ValueError):
+            raise ParameterError("gap", self.gap, "must be a real number") from None
+        if not math.isfinite(gap) or gap < 0.0:
+            raise ParameterError("gap", self.gap, "must be finite and >= 0")
+        put("gap", gap)
+        if isinstance(self.material, str):
+            put("material", get_material(self.material))
+        elif not isinstance(self.material, Material):
+            raise ParameterError("material", self.material,
+                                 "must be a material name or a Material")
+        if self.poisson_ratio is not None:
+            nu = self.poisson_ratio
+            if not (isinstance(nu, (int, float)) and -1.0 < nu < 0.5):
+                raise ParameterError("poisson_ratio", nu, "must lie in (-1, 0.5)")
+            put("poisson_ratio", float(nu))
+        for key in ("pitch_range", "half_length_range", "thickness_range"):
+            put(key, _range(key, getattr(self, key)))
+        if self.top_foil_thickness_range is not None:
+            put("top_foil_thickness_range",
+                _range("top_foil_thickness_range", self.top_foil_thickness_range))
+        else:
+            for key in ("sag_limit", "top_foil_allowable_stress"):
+                if getattr(self, key) is not None:
+                    raise ParameterError(key, getattr(self, key),
+                                         "needs top_foil_thickness_range (the top foil is "
+                                         "not designed without it)")
+        if (self.flattening_limit is None) != (self.bump_height is None):
+            raise ParameterError("flattening_limit", self.flattening_limit,
+                                 "needs bump_height too (Δp α <= κ h_b uses both)")
+        if self.flattening_limit is not None and self.flattening_limit > 1.0:
+            raise ParameterError("flattening_limit", self.flattening_limit,
+                                 "must be <= 1 (a fraction of the bump height)")
+        if self.objective not in OBJECTIVES:
+            raise ParameterError("objective", self.objective,
+                                 f"must be one of {', '.join(OBJECTIVES)}")
+        if self.objective.startswith("top_foil") and self.top_foil_thickness_range is None:
+            raise ParameterError("objective", self.objective, "needs top_foil_thickness_range")
+        shortest = 2.0 * self.half_length_range[0] + self.gap
+        if shortest > self.pitch_range[1]:
+            raise ParameterError(
+                "half_length_range", self.half_length_range,
+                f"2 x shortest half length + gap = {_mm(shortest)} exceeds the largest pitch "
+                f"{_mm(self.pitch_range[1])}: no bump closes within its pitch")
+        if self.radius is not None:
+            n_min, n_max = self.bump_count_range
+            if n_min > n_max:
+                raise ParameterError(
+                    "radius", self.radius,
+                    f"no whole number of bumps N gives a pitch 2πR/N within "
+                    f"[{_mm(self.pitch_range[0])}, {_mm(self.pitch_range[1])}]")
+
+    # Resolved values -----------------------------------------------------------
+    @property
+    def effective_youngs_modulus(self) -> float:
+        """E [Pa]: the override, else the material's."""
+        return (self.material.youngs_modulus if self.youngs_modulus is None
+                else self.youngs_modulus)
+
+    @property
+    def effective_poisson_ratio(self) -> float:
+        """ν [-]: the override, else the material's."""
+        return self.material.poisson_ratio if self.poisson_ratio is None else self.poisson_ratio
+
+    @property
+    def effective_allowable_stress(self) -> float:
+        """Bump allowable stress σ_allow [Pa]: the override, else the material's."""
+        return (self.material.allowable_stress if self.allowable_stress is None
+                else self.allowable_stress)
+
+    @property
+    def effective_top_foil_allowable_stress(self) -> float:
+        """Top-foil allowable stress [Pa] (default: the bump allowable stress)."""
+        return (self.effective_allowable_stress if self.top_foil_allowable_stress is None
+                else self.top_foil_allowable_stress)
+
+    @property
+    def bump_count_range(self) -> tuple[int, int]:
+        """(N_min, N_max): whole numbers of bumps whose pitch 2πR/N lies in pitch_range."""
+        if self.radius is None:
+            raise ParameterError("radius", None, "is needed for a number of bumps")
+        circumference = 2.0 * math.pi * self.radius
+        return (max(1, math.ceil(circumference / self.pitch_range[1] - 1e-9)),
+                math.floor(circumference / self.pitch_range[0] + 1e-9))
+
+    def to_dict(self) -> dict:
+        """Inputs and resolved material values as a plain dict (SI units)."""
+        out = asdict(self)
+        out["material"] = self.material.to_dict()
+        out.update(youngs_modulus=self.effective_youngs_modulus,
+                   poisson_ratio=self.effective_poisson_ratio,
+                   allowable_stress=self.effective_allowable_stress)
+        if self.top_foil_thickness_range is not None:
+            out["top_foil_allowable_stress"] = self.effective_top_foil_allowable_stress
+        return out
+
+
+# ---------------------------------------------------------------------------- result
+@dataclass(frozen=True)
+class Relaxation:
+    """A limit that must move for the design to exist.
+
+    Attributes
+    ----------
+    limit : what moves, e.g. 'allowable stress'
+    factor : required / current value (> 1)
+    current, required : the limit now and the least value that makes the design feasible,
+        in ``unit``
+    unit : unit of current and required ('MPa', 'µm' or '' for a ratio)
+    """
+
+    limit: str
+    factor: float
+    current: float
+    required: float
+    unit: str
+
+    def describe(self) -> str:
+        """E.g. 'allowable stress must rise by 23 % (to 295 MPa)'."""
+        to = f"{self.required:.4g} {self.unit}".rstrip()
+        return f"{self.limit} must rise by {100.0 * (self.factor - 1.0):.3g} % (to {to})"
+
+
+@dataclass(frozen=True)
+class BumpDesign:
+    """A designed bump foil, or why there is none.  SI units.
+
+    Attributes
+    ----------
+    status : solver status of the final GP ('optimal', 'optimal_inaccurate', 'infeasible', …)
+    success : True when a geometry meeting every constraint was found
+    message : one paragraph: the optimum, or which limits must move and by how much
+    target_compliance : (low, high) target S [-] (low == high for a single value)
+    objective : the monomial minimised
+    pitch, half_length, thickness : bump pitch s, half length l0, thickness t_b [m]
+        (NaN without success)
+    top_foil_thickness : t_top [m], None when the top foil is not designed
+    compliance : S = p_a α / c of the returned geometry [-]
+    bump_compliance : α [m³/N]
+    bump_stress : σ_b at the design pressure [Pa]
+    bump_deflection : Δp α [m]
+    top_foil_sag, top_foil_stress : [m], [Pa], None when the top foil is not designed
+    number_of_bumps : whole N = 2πR/s, None without a radius
+    binding_constraints : names of the constraints active at the optimum
+    compliance_range : (min, max) S achievable under every constraint (NaN if none)
+    geometric_compliance_range : (min, max) S under the geometry constraints alone
+    relaxations : the limits that must move (empty on success)
+    solver : the conic solver cvxpy used
+    solves : number of GPs solved
+    wall_time_s : wall time of the whole design [s]
+    """
+
+    status: str
+    success: bool
+    message: str
+    target_compliance: tuple[float, float]
+    objective: str
+    pitch: float
+    half_length: float
+    thickness: float
+    top_foil_thickness: float | None
+    compliance: float
+    bump_compliance: float
+    bump_stress: float
+    bump_deflection: float
+    top_foil_sag: float | None
+    top_foil_stress: float | None
+    number_of_bumps: int | None
+    binding_constraints: tuple[str, ...]
+    compliance_range: tuple[float, float]
+    geometric_compliance_range: tuple[float, float]
+    relaxations: tuple[Relaxation, ...]
+    solver: str
+    solves: int
+    wall_time_s: float
+
+    def to_dict(self) -> dict:
+        """The result as a plain dict (tuples as lists, relaxations as dicts)."""
+        out = asdict(self)
+        for key in ("target_compliance", "binding_constraints", "compliance_range",
+                    "geometric_compliance_range"):
+            out[key] = list(out[key])
+        out["relaxations"] = [dict(asdict(r), description=r.describe())
+                              for r in self.relaxations]
+        return out
+
+
+# ----------------------------------------------------------------- the program parts
+@dataclass(frozen=True)
+class _Limit:
+    """One constraint, ``ratio <= 1``; a limit (relaxable) when ``relax`` is given."""
+
+    name: str
+    ratio: object  # cvxpy expression or float
+    relax: tuple[str, float, float, str] | None = None  # (label, value, scale, unit)
+
+
+@dataclass(frozen=True)
+class _Geometry:
+    """Design variables (cvxpy variables) or their values (floats)."""
+
+    pitch: object
+    half_length: object
+    thickness: object
+    top_foil_thickness: object = None
+
+
+def _quantities(spec: BumpDesignSpec, g: _Geometry) -> dict:
+    """Every monomial of the design, on floats or on cvxpy variables alike."""
+    e, nu, dp = spec.effective_youngs_modulus, spec.effective_poisson_ratio, spec.design_pressure
+    alpha = bump.bump_compliance(g.pitch, g.half_length, g.thickness, e, nu)
+    q = {"alpha": alpha,
+         "compliance": bump.compliance_coefficient(alpha, spec.ambient_pressure,
+                                                   spec.radial_clearance),
+         "stress": bump.bump_bending_stress(dp, g.pitch, g.half_length, g.thickness),
+         "deflection": bump.bump_deflection(dp, alpha)}
+    if g.top_foil_thickness is not None:
+        q["top_foil_sag"] = bump.top_foil_sag(dp, g.pitch, g.top_foil_thickness, e, nu)
+        q["top_foil_stress"] = bump.top_foil_stress(dp, g.pitch, g.top_foil_thickness)
+    return q
+
+
+def _objective(spec: BumpDesignSpec, g: _Geometry, q: dict):
+    return {"stress": q["stress"], "pitch": g.pitch, "number_of_bumps": 1.0 / g.pitch,
+            "thickness": g.thickness, "half_length": g.half_length,
+            "top_foil_thickness": g.top_foil_thickness,
+            "top_foil_sag": q.get("top_foil_sag")}[spec.objective]
+
+
+def _limits(spec: BumpDesignSpec, g: _Geometry, q: dict, pitch_fixed: bool,
+            include_limits: bool = True) -> list[_Limit]:
+    """All constraints as ``ratio <= 1``: geometry first, then the (relaxable) limits."""
+    out = []
+
+    def box(label, var, bounds, fmt):
+        out.append(_Limit(f"{label} >= {fmt(bounds[0])}", bounds[0] / var))
+        out.append(_Limit(f"{label} <= {fmt(bounds[1])}", var / bounds[1]))
+
+    if not pitch_fixed:
+        box("pitch", g.pitch, spec.pitch_range, _mm)
+    box("half length", g.half_length, spec.half_length_range, _mm)
+    box("bump thickness", g.thickness, spec.thickness_range, _um)
+    if spec.top_foil_thickness_range is not None:
+        box("top-foil thickness", g.top_foil_thickness, spec.top_foil_thickness_range, _um)
+    out.append(_Limit("bump closes within pitch", (2.0 * g.half_length + spec.gap) / g.pitch))
+    if not include_limits:
+        return out
+    allowable = spec.effective_allowable_stress
+    out.append(_Limit("bump stress <= allowable", q["stress"] / allowable,
+                      ("allowable stress", allowable, 1e-6, "MPa")))
+    if spec.top_foil_thickness_range is not None:
+        top_allowable = spec.effective_top_foil_allowable_stress
+        out.append(_Limit("top-foil stress <= allowable", q["top_foil_stress"] / top_allowable,
+                          ("top-foil allowable stress", top_allowable, 1e-6, "MPa")))
+        if spec.sag_limit is not None:
+            out.append(_Limit("top-foil sag <= limit",
+                              q["top_foil_sag"] / (spec.sag_limit * spec.radial_clearance),
+                              ("top-foil sag limit κ_c", spec.sag_limit, 1.0, "")))
+    if spec.flattening_limit is not None:
+        allowed = spec.flattening_limit * spec.bump_height
+        out.append(_Limit("no bump flattening", q["deflection"] / allowed,
+                          ("no-flattening limit κ h_b", allowed, 1e6, "µm")))
+    return out
+
+
+def _target_limits(q: dict, target: tuple[float, float]) -> list:
+    """cvxpy constraints putting S on the target (an equality) or in the band."""
+    low, high = target
+    if low == high:
+        return [q["compliance"] == low]
+    return [q["compliance"] / high <= 1.0, low / q["compliance"] <= 1.0]
+
+
+def _variables(spec: BumpDesignSpec, pitch: float | None) -> _Geometry:
+    top = (cp.Variable(pos=True, name="top_foil_thickness")
+           if spec.top_foil_thickness_range is not None else None)
+    return _Geometry(pitch if pitch is not None else cp.Variable(pos=True, name="pitch"),
+                     cp.Variable(pos=True, name="half_length"),
+                     cp.Variable(pos=True, name="thickness"), top)
+
+
+def _values(g: _Geometry) -> _Geometry:
+    def value(x):
+        return None if x is None else float(x.value) if isinstance(x, cp.Expression) else x
+    return _Geometry(value(g.pitch), value(g.half_length), value(g.thickness),
+                     value(g.top_foil_thickness))
+
+
+def _solve(problem: cp.Problem) -> tuple[str, str]:
+    """Solve a GP; return (status, solver name).
+
+    cvxpy's warnings (e.g. 'Solution may be inaccurate') are recorded, not raised: the status
+    carries the same information and the answer is re-checked with the plain formulas.
+    """
+    with warnings.catch_warnings(record=True):
+        warnings.simplefilter("always")
+        try:
+            problem.solve(gp=True)
+        except cp.error.SolverError as exc:
+            return f"solver_error: {exc}", ""
+    status = str(problem.status)  # 'optimal_inaccurate' already flags a doubtful answer
+    stats = problem.solver_stats
+    return status, (stats.solver_name if stats is not None else "")
+
+
+# ---------------------------------------------------------------- compliance range
+def _compliance_range(spec: BumpDesignSpec, include_limits: bool) -> tuple[float, float]:
+    g = _variables(spec, None)
+    q = _quantities(spec, g)
+    constraints = [lim.ratio <= 1.0
+                   for lim in _limits(spec, g, q, pitch_fixed=False,
+                                      include_limits=include_limits)]
+    ends = []
+    for objective in (q["compliance"], 1.0 / q["compliance"]):
+        status, _ = _solve(cp.Problem(cp.Minimize(objective), constraints))
+        if status not in _SUCCESS_STATUSES:
+            if include_limits:
+                return (math.nan, math.nan)
+            raise ConvergenceError("compliance range over the geometry ranges not found",
+                                   status=status)
+        ends.append(_quantities(spec, _values(g))["compliance"])
+    return (ends[0], ends[1])
+
+
+def compliance_range(spec: BumpDesignSpec, limits: bool = True) -> tuple[float, float]:
+    """Least and greatest compliance coefficient S the spec allows, by two GPs.
+
+    Parameters
+    ----------
+    spec : the design specification
+    limits : True — under every constraint (geometry, stresses, sag, flattening);
+        False — under the geometry constraints only (ranges, bump closing)
+
+    Returns
+    -------
+    (S_min, S_max) [-]; (nan, nan) when the limits leave no feasible geometry.
+    """
+    return _compliance_range(spec, limits)
+
+
+# --------------------------------------------------------------------- one design GP
+@dataclass(frozen=True)
+class _Solution:
+    status: str
+    solver: str
+    geometry: _Geometry | None = None
+    binding: tuple[str, ...] = ()
+    objective: float = math.nan
+
+    @property
+    def ok(self) -> bool:
+        return self.geometry is not None
+
+
+def _binding(limits: Sequence[_Limit]) -> tuple[str, ...]:
+    return tuple(lim.name for lim in limits if 1.0 - lim.ratio < BINDING_TOLERANCE)
+
+
+def _check(spec: BumpDesignSpec, g: _Geometry, target: tuple[float, float],
+           pitch_fixed: bool) -> tuple[str, ...]:
+    """Re-evaluate the plain formulas on ``g``: the names of the constraints it violates."""
+    q = _quantities(spec, g)
+    bad = [lim.name for lim in _limits(spec, g, q, pitch_fixed)
+           if lim.ratio > 1.0 + _CHECK_TOLERANCE]
+    s = q["compliance"]
+    if not target[0] * (1.0 - _CHECK_TOLERANCE) <= s <= target[1] * (1.0 + _CHECK_TOLERANCE):
+        bad.append(f"compliance S = {s:.6g} on target")
+    return tuple(bad)
+
+
+def _thinnest_top_foil(spec: BumpDesignSpec, pitch: float) -> float:
+    """The thinnest top foil in its range meeting the top-foil stress and sag limits [m].
+
+    The stress scales as t_top⁻² and the sag as t_top⁻³, so each limit fixes a least
+    thickness from the formula evaluated at t_top = 1 m.
+    """
+    dp, e, nu = spec.design_pressure, spec.effective_youngs_modulus, spec.effective_poisson_ratio
+    low, high = spec.top_foil_thickness_range
+    need = [low, (bump.top_foil_stress(dp, pitch, 1.0)
+                  / spec.effective_top_foil_allowable_stress) ** 0.5]
+    if spec.sag_limit is not None:
+        need.append((bump.top_foil_sag(dp, pitch, 1.0, e, nu)
+                     / (spec.sag_limit * spec.radial_clearance)) ** (1.0 / 3.0))
+    return min(max(need), high)
+
+
+def _solve_design(spec: BumpDesignSpec, target: tuple[float, float],
+                  pitch: float | None = None) -> tuple[_Solution, int]:
+    """Minimise the objective at the target S (pitch fixed when given); (solution, GPs)."""
+    g = _variables(spec, pitch)
+    q = _quantities(spec, g)
+    constraints = ([lim.ratio <= 1.0 for lim in _limits(spec, g, q, pitch is not None)]
+                   + _target_limits(q, target))
+    objective = _objective(spec, g, q)
+    if not isinstance(objective, cp.Expression) or objective.is_constant():
+        objective = q["stress"]  # the pitch is fixed: the pitch objectives are constants
+    status, solver = _solve(cp.Problem(cp.Minimize(objective), constraints))
+    solves = 1
+    if status not in _SUCCESS_STATUSES:
+        return _Solution(status, solver), solves
+    values = _values(g)
+    if objective is not q["stress"]:
+        # Ties: among the optimal geometries take the one of least bump stress.
+        cap = float(objective.value) * (1.0 + _TIE_TOLERANCE)
+        status2, _ = _solve(cp.Problem(cp.Minimize(q["stress"]),
+                                       constraints + [objective / cap <= 1.0]))
+        solves += 1
+        if status2 in _SUCCESS_STATUSES:
+            values = _values(g)
+    if (values.top_foil_thickness is not None
+            and spec.objective not in ("top_foil_thickness", "top_foil_sag")):
+        values = _Geometry(values.pitch, values.half_length, values.thickness,
+                           _thinnest_top_foil(spec, values.pitch))
+    violated = _check(spec, values, target, pitch is not None)
+    if violated:
+        return _Solution(f"{status}, but the answer violates {', '.join(violated)}",
+                         solver), solves
+    q_values = _quantities(spec, values)
+    limits = _limits(spec, values, q_values, pitch is not None)
+    binding = _binding(limits)
+    if target[0] != target[1]:
+        s = q_values["compliance"]
+        binding += tuple(name for name, ratio in (("compliance >= lower target", target[0] / s),
+                                                  ("compliance <= upper target", s / target[1]))
+                         if 1.0 - ratio < BINDING_TOLERANCE)
+    objective_value = _objective(spec, values, q_values)
+    return _Solution(status, solver, values, binding, float(objective_value)), solves
+
+
+def _relaxations(spec: BumpDesignSpec, target: tuple[float, float],
+                 pitch: float | None = None) -> tuple[tuple[Relaxation, ...] | None, str]:
+    """Least moves of the limits (geometry held) that make the design feasible.
+
+    Each limit ratio_i ≤ 1 becomes ratio_i ≤ t_i, t_i ≥ 1, and ∏ t_i is minimised (a GP).
+    Returns (relaxations, status); relaxations is None when even that GP has no solution
+    (the geometry alone cannot reach the target).
+    """
+    g = _variables(spec, pitch)
+    q = _quantities(spec, g)
+    limits = _limits(spec, g, q, pitch is not None)
+    constraints = _target_limits(q, target)
+    factors = []
+    for lim in limits:
+        if lim.relax is None:
+            constraints.append(lim.ratio <= 1.0)
+        else:
+            t = cp.Variable(pos=True)
+            factors.append((lim, t))
+            constraints += [lim.ratio <= t, t >= 1.0]
+    product = factors[0][1]
+    for _, t in factors[1:]:
+        product = product * t
+    status, _ = _solve(cp.Problem(cp.Minimize(product), constraints))
+    if status not in _SUCCESS_STATUSES:
+        return None, status
+    moves = []
+    for lim, t in factors:
+        factor = float(t.value)
+        if factor > 1.0 + _RELAXATION_THRESHOLD:
+            label, value, scale, unit = lim.relax
+            moves.append(Relaxation(label, factor, value * scale, value * factor * scale, unit))
+    return tuple(moves), status
+
+
+# --------------------------------------------------------------------------- design
+def _check_target(target) -> tuple[float, float]:
+    if isinstance(target, (tuple, list)):
+        low, high = _range("target compliance band", target)
+        return low, high
+    value = _positive("target compliance S", target)
+    return value, value
+
+
+def _describe_target(target: tuple[float, float]) -> str:
+    low, high = target
+    return f"S = {low:.4g}" if low == high else f"S in [{low:.4g}, {high:.4g}]"
+
+
+def _outputs(spec: BumpDesignSpec, g: _Geometry | None) -> dict:
+    """The geometry and what the plain formulas give for it (NaN without a geometry)."""
+    if g is None:
+        top = math.nan if spec.top_foil_thickness_range is not None else None
+        return {"pitch": math.nan, "half_length": math.nan, "thickness": math.nan,
+                "top_foil_thickness": top, "compliance": math.nan,
+                "bump_compliance": math.nan, "bump_stress": math.nan,
+                "bump_deflection": math.nan, "top_foil_sag": top, "top_foil_stress": top}
+    q = _quantities(spec, g)
+    return {"pitch": g.pitch, "half_length": g.half_length, "thickness": g.thickness,
+            "top_foil_thickness": g.top_foil_thickness, "compliance": q["compliance"],
+            "bump_compliance": q["alpha"], "bump_stress": q["stress"],
+            "bump_deflection": q["deflection"], "top_foil_sag": q.get("top_foil_sag"),
+            "top_foil_stress": q.get("top_foil_stress")}
+
+
+def _infeasible_message(target, pitch, moves, relax_status, with_limits) -> str:
+    where = "" if pitch is None else f" with the pitch fixed at {_mm(pitch)}"
+    if moves is None:
+        return (f"infeasible: {_describe_target(target)} cannot be reached{where} within the "
+                f"half-length and thickness ranges, whatever the limits "
+                f"(relaxation GP: {relax_status})")
+    text = (f"infeasible: {_describe_target(target)}{where} breaks the limits; with the "
+            "geometry ranges held, " + "; ".join(m.describe() for m in moves))
+    if pitch is None and math.isfinite(with_limits[0]):
+        text += (f". Under the present limits S can range over "
+                 f"[{with_limits[0]:.4g}, {with_limits[1]:.4g}]")
+    elif pitch is None:
+        text += ". Under the present limits no geometry is feasible at any S"
+    return text
+
+
+def design_bump_foil(spec: BumpDesignSpec,
+                     target_compliance: float | tuple[float, float]) -> BumpDesign:
+    """The bump-foil geometry that meets ``spec`` at the target compliance coefficient.
+
+    Parameters
+    ----------
+    spec : the design specification (ranges, limits, material, objective)
+    target_compliance : S [-], or a band (low, high)
+
+    Returns
+    -------
+    BumpDesign with ``success=False`` and the limits that must move when the limits exclude
+    every geometry (no exception for a valid but infeasible spec).
+
+    Raises
+    ------
+    ParameterError
+        bad target, or a target outside what the geometry ranges allow.
+    ConvergenceError
+        the solver failed on the (always feasible) geometry-range GPs.
+    """
+    start = time.perf_counter()
+    target = _check_target(target_compliance)
+    geometric = _compliance_range(spec, include_limits=False)
+    low_ok = target[1] >= geometric[0] * (1.0 - 1e-9)
+    high_ok = target[0] <= geometric[1] * (1.0 + 1e-9)
+    if not (low_ok and high_ok):
+        value = target[0] if target[0] == target[1] else target
+        name = "target compliance S" if target[0] == target[1] else "target compliance band"
+        raise ParameterError(
+            name, value,
+            f"outside the achievable range [{geometric[0]:.4g}, {geometric[1]:.4g}] under "
+            "these limits (pitch, half-length and thickness ranges; bump closing within "
+            "the pitch)")
+    with_limits = _compliance_range(spec, include_limits=True)
+    solves = 4
+
+    def result(solution: _Solution, status: str, message: str, relaxations=(),
+               number_of_bumps=None) -> BumpDesign:
+        return BumpDesign(
+            status=status, success=solution.ok, message=message, target_compliance=target,
+            objective=spec.objective, number_of_bumps=number_of_bumps,
+            binding_constraints=solution.binding, compliance_range=with_limits,
+            geometric_compliance_range=geometric, relaxations=tuple(relaxations or ()),
+            solver=solution.solver, solves=solves, wall_time_s=time.perf_counter() - start,
+            **_outputs(spec, solution.geometry))
+
+    continuous, used = _solve_design(spec, target)
+    solves += used
+    if not continuous.ok:
+        moves, relax_status = _relaxations(spec, target)
+        solves += 1
+        return result(continuous, continuous.status,
+                      _infeasible_message(target, None, moves, relax_status, with_limits),
+                      moves)
+    summary = (f"{continuous.status}: minimum {spec.objective.replace('_', ' ')} at "
+               f"{_describe_target(target)}")
+    if spec.radius is None:
+        return result(continuous, continuous.status, summary)
+
+    # A whole number of bumps: round the continuous optimum down and up, fix the pitch, solve.
+    # At least one of the two lies in bump_count_range (the spec checked that a whole N fits
+    # the pitch range, and the continuous pitch lies in it).
+    n_cont = bump.number_of_bumps(spec.radius, continuous.geometry.pitch)
+    n_min, n_max = spec.bump_count_range
+    nearest = round(n_cont)
+    candidates = ([nearest] if abs(n_cont - nearest) < 1e-9
+                  else [math.floor(n_cont), math.ceil(n_cont)])
+    tried = []
+    for n in (n for n in candidates if n_min <= n <= n_max):
+        solution, used = _solve_design(spec, target, pitch=2.0 * math.pi * spec.radius / n)
+        solves += used
+        tried.append((n, solution))
+    feasible = [(sol.objective, abs(n - n_cont), n, sol) for n, sol in tried if sol.ok]
+    if feasible:
+        _, _, n, solution = min(feasible, key=lambda item: item[:3])
+        return result(solution, solution.status,
+                      f"{summary} with N = {n} bumps (pitch 2πR/N = "
+                      f"{_mm(solution.geometry.pitch)}; the continuous optimum has "
+                      f"N = {n_cont:.4g}, pitch {_mm(continuous.geometry.pitch)})",
+                      number_of_bumps=n)
+    n, failed = min(tried, key=lambda item: abs(item[0] - n_cont))
+    pitch = 2.0 * math.pi * spec.radius / n
+    moves, relax_status = _relaxations(spec, target, pitch)
+    solves += 1
+    message = (f"infeasible: no whole number of bumps meets the limits (the continuous "
+               f"optimum has N = {n_cont:.4g}, pitch {_mm(continuous.geometry.pitch)}; tried "
+               f"N = {', '.join(str(k) for k, _ in tried)}). For N = {n}: "
+               + _infeasible_message(target, pitch, moves, relax_status, with_limits))
+    return result(failed, "infeasible", message, moves)
