@@ -133,18 +133,27 @@ def plot_coefficients(frame, out: Path, title: str = "") -> list[str]:
     return files
 
 
-def plot_orbits(orbits: dict, path, title: str = "") -> str:
-    """Journal-centre orbits in polar form (ε against attitude), thesis Figs 3.9–3.11.
+def save_figure(fig, path) -> str:
+    """Lay out ``fig``, write it to ``path`` (PNG, 120 dpi), close it; returns the path."""
+    return _save(fig, Path(path))
 
-    ``orbits`` maps a label to a table with columns eccentricity and attitude_deg.
+
+def plot_orbits(orbits: dict, ax=None, title: str = ""):
+    """Journal-centre orbits in polar form (ε against attitude angle), thesis Figs 3.9–3.11.
+
+    ``orbits`` maps a legend label to a table with columns ``eccentricity`` [-] and
+    ``attitude_angle_deg`` [deg]; ``ax`` a polar Axes (a new figure when None).  Returns the
+    Axes.
     """
-    fig = plt.figure(figsize=(5, 5))
-    ax = fig.add_subplot(projection="polar")
+    if ax is None:
+        fig = plt.figure(figsize=(5.5, 5.5))
+        ax = fig.add_subplot(projection="polar")
     for label, table in orbits.items():
-        ax.plot(np.radians(table["attitude_angle_deg"]), table["eccentricity"], lw=0.8, label=label)
+        ax.plot(np.radians(table["attitude_angle_deg"]), table["eccentricity"], lw=0.8,
+                label=label)
     ax.set_title(title, fontsize=8)
     ax.legend(fontsize=7, loc="lower left", bbox_to_anchor=(-0.1, -0.15))
-    return _save(fig, Path(path))
+    return ax
 
 
 def plot_bifurcation(frame, out: Path, title: str = "") -> list[str]:

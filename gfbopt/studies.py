@@ -595,7 +595,7 @@ def transient_points(study: dict, out: Path, summary: StudySummary) -> None:
 def thesis_orbits(study: dict, out: Path, summary: StudySummary) -> None:
     """The thesis's example orbits at its masses and at masses rescaled by our threshold."""
     from .linear import linear_threshold, linearise
-    from .plotting import plot_orbits
+    from .plotting import plot_orbits, save_figure
     from .transient import integrate_orbits, transient_model
 
     grid = _grid_of(study)
@@ -632,10 +632,10 @@ def thesis_orbits(study: dict, out: Path, summary: StudySummary) -> None:
                             "our_linear_critical_mass": ours,
                             "thesis_critical_mass": case["thesis_critical_mass"]})
         for kind in ("thesis", "scaled"):
-            summary.files.append(plot_orbits(
-                {k: v for k, v in tables.items() if k.startswith(kind)},
-                out / f"orbits_{case['label']}_{kind}.png",
-                title=f"{case['label']}: {kind} masses (ε0 = {case['eps']}, Λ = {case['Lambda']})"))
+            ax = plot_orbits({k: v for k, v in tables.items() if k.startswith(kind)},
+                             title=f"{case['label']}: {kind} masses (ε0 = {case['eps']}, "
+                             f"Λ = {case['Lambda']})")
+            summary.files.append(save_figure(ax.figure, out / f"orbits_{case['label']}_{kind}.png"))
     frame = pd.DataFrame.from_records(records)
     frame.to_csv(out / "verdicts.csv", index=False, float_format="%.6g")
     summary.files.insert(0, str(out / "verdicts.csv"))

@@ -12,8 +12,8 @@ import argparse
 import json
 import math
 
-from gfbopt.design.materials import MATERIALS, get_material
-from gfbopt.errors import ParameterError
+from ..design.materials import MATERIALS, get_material
+from ..errors import ParameterError
 
 __all__ = ["register", "run"]
 
@@ -202,7 +202,8 @@ def _report(out: dict) -> str:
 
 def run(args: argparse.Namespace) -> int:
     """Design the bump foil from parsed ``args``; print it; 0 on success, 1 if infeasible."""
-    from gfbopt.design.geometry_program import BumpDesignSpec, design_bump_foil
+    from ..design.geometry_program import BumpDesignSpec, design_bump_foil
+    from ..provenance import provenance
 
     top_range = args.top_foil_thickness_range
     spec = BumpDesignSpec(
@@ -218,5 +219,8 @@ def run(args: argparse.Namespace) -> int:
         objective=args.objective)
     design = design_bump_foil(spec, _target(args.target_compliance))
     out = _jsonable(_output(design, spec))
+    if args.json:
+        out["provenance"] = provenance(command="design", objective=args.objective,
+                                       material=args.material)
     print(json.dumps(out) if args.json else _report(out))
     return 0 if design.success else 1

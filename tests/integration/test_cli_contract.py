@@ -48,6 +48,31 @@ def test_dimensional_static():
     assert data["load_newton"] == pytest.approx(50.0, rel=1e-9)
 
 
+def test_version_and_provenance_in_every_json_output():
+    out = gfbopt("--version")
+    assert out.returncode == 0 and out.stdout.startswith("gfbopt ")
+    version = out.stdout.split()[1]
+    data = json.loads(gfbopt("static", "--eccentricity", "0.5", "--bearing-number", "1",
+                             "--compliance", "1", "--film", "seam", "--grid", "36x10",
+                             "--json").stdout)
+    prov = data["provenance"]
+    assert prov["gfbopt_version"] == version
+    assert len(prov["source_commit"]) == 40 and isinstance(prov["source_dirty"], bool)
+    assert prov["options"]["film"] == "seam" and prov["options"]["foil_law"] == "simple"
+    assert prov["options"]["grid"] == "36x10" and "M̄ = M c ω²/W0" in prov["conventions"]
+
+
+def test_provenance_is_the_gfbopt_source_not_the_working_directory(tmp_path):
+    """Run from an unrelated git repository: the commit recorded is gfbopt's own."""
+    subprocess.run(["git", "init", "-q", str(tmp_path)], check=True)
+    out = subprocess.run([sys.executable, "-m", "gfbopt", "static", "--eccentricity", "0.3",
+                          "--bearing-number", "1", "--grid", "24x8", "--json"],
+                         capture_output=True, text=True, cwd=tmp_path, timeout=300)
+    head = subprocess.run(["git", "-C", str(REPO), "rev-parse", "HEAD"], capture_output=True,
+                          text=True).stdout.strip()
+    assert json.loads(out.stdout)["provenance"]["source_commit"] == head
+
+
 def test_readable_report():
     out = gfbopt("static", "--eccentricity", "0.5", "--bearing-number", "1", "--grid", "36x10")
     assert out.returncode == 0
@@ -68,9 +93,22 @@ def test_readable_report():
     (["--eccentricity", "0.5", "--bearing-number", "1", "--grid", "big"],
      "must be written NTHETAxNZ"),
     (["--eccentricity", "0.5", "--bearing-number", "1", "--foil", "plastic"],
-     "--foil = 'plastic': must be one of rigid, simple, beam"),
+     "argument --foil: invalid choice: 'plastic'"),
     (["--eccentricity", "0.5", "--bearing-number", "1", "--film", "open"],
-     "film = 'open': must be one of periodic, seam"),
+     "argument --film: invalid choice: 'open'"),
+    # options the chosen mode would ignore are refused with the reason
+    (["--bearing", "problems/bearings/ruscitto.toml", "--speed-rpm", "30000", "--load-newton",
+      "10", "--length-ratio", "1"], "--length-ratio = 1.0: is taken from the bearing file"),
+    (["--eccentricity", "0.5", "--bearing-number", "1", "--speed-rpm", "30000"],
+     "--speed-rpm = 30000.0: needs --bearing FILE.toml"),
+    (["--eccentricity", "0.5", "--bearing-number", "1", "--foil", "rigid", "--compliance", "1"],
+     "--compliance = 1.0: is not used with --foil rigid"),
+    (["--eccentricity", "0.5", "--bearing-number", "1", "--compliance", "1", "--seam-angle",
+      "90"], "--seam-angle = 90.0: is not used with a periodic film"),
+    (["--eccentricity", "0.5", "--bearing-number", "1", "--compliance", "1",
+      "--top-foil-coefficient", "1"], "--top-foil-coefficient = 1.0: is used by the beam foil only"),
+    (["--eccentricity", "0.5", "--bearing-number", "1", "--film", "seam", "--seam-angle",
+      "400"], "--seam-angle = 400.0: must lie in [0, 360) degrees"),
     (["--bearing", "nope.toml", "--speed-rpm", "1000", "--load-newton", "10"],
      "must be an existing TOML file"),
     (["--bearing", "problems/bearings/ruscitto.toml", "--load-newton", "10"],

@@ -1,24 +1,14 @@
 """``gfbopt design`` end to end: register the sub-command on a fresh argparse parser, parse,
 run, read what it prints.  (The main ``gfbopt`` command wires in ``register`` itself.)"""
 import argparse
-import importlib.util
 import json
 import math
-from pathlib import Path
 
 import pytest
 
-import gfbopt
+from gfbopt.cli import design as cli_design
 from gfbopt.design import OBJECTIVES
 from gfbopt.errors import ParameterError
-
-try:
-    from gfbopt.cli import design as cli_design
-except ImportError:  # gfbopt.cli is still a single module: load the file directly
-    _path = Path(gfbopt.__file__).parent / "cli" / "design.py"
-    _spec = importlib.util.spec_from_file_location("gfbopt_cli_design", _path)
-    cli_design = importlib.util.module_from_spec(_spec)
-    _spec.loader.exec_module(cli_design)
 
 EXAMPLE = ["design", "--target-compliance", "0.664", "--radial-clearance", "32e-6"]
 

@@ -1,0 +1,212 @@
+"""Shared pieces of the sub-commands: the operating-point options, the rules that refuse
+options which would be ignored, JSON output with provenance, and the progress bar."""
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import sys
+from dataclasses import dataclass
+from typing import Callable, Optional
+
+import numpy as np
+
+from ..errors import ParameterError
+from ..inputs import DEFAULT_GRID, BearingGeometry, BearingModel, Grid
+from ..provenance import provenance
+
+
+class Parser(argparse.ArgumentParser):
+    """An argument parser whose errors are one line and exit 2 (no traceback)."""
+
+    def error(self, message: str) -> None:
+        self.exit(2, f"gfbopt: error: {message}\n")
+
+
+def number(name: str) -> Callable[[str], float]:
+    """argparse type: a finite float, with the option's name in the error."""
+    def parse(text: str) -> float:
+        try:
+            value = float(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"{name} = {text!r}: must be a number") from None
+        if not math.isfinite(value):
+            raise argparse.ArgumentTypeError(f"{name} = {text!r}: must be finite (not NaN)")
+        return value
+    return parse
+
+
+def add_operating_point(sub: argparse.ArgumentParser) -> None:
+    """Options that define the bearing, its formulation and the operating point."""
+    target = sub.add_mutually_exclusive_group()
+    target.add_argument("--eccentricity", type=number("eccentricity"), help="ε = e/c [-]")
+    target.add_argument("--load", type=number("load"), help="W/(p_a R²) [-]")
+    target.add_argument("--load-newton", type=number("load-newton"), help="static load per "
+                        "bearing [N] (with --bearing and --speed-rpm)")
+    sub.add_argument("--bearing-number", type=number("bearing-number"), help="Λ [-]")
+    sub.add_argument("--compliance", type=number("compliance"), default=None, help="S [-]")
+    sub.add_argument("--length-ratio", type=number("length-ratio"), default=None,
+                     help="L/D [-] (default 1; taken from the file with --bearing)")
+    sub.add_argument("--top-foil-coefficient", type=number("top-foil-coefficient"),
+                     default=None, help="C [-] (beam foil only)")
+    sub.add_argument("--bearing", help="bearing TOML file (dimensional input, SI)")
+    sub.add_argument("--speed-rpm", type=number("speed-rpm"), help="shaft speed [rpm] "
+                     "(with --bearing)")
+    sub.add_argument("--foil", default=None, choices=("rigid", "simple", "beam"),
+                     help="foil model (default: simple, or rigid when S = 0)")
+    sub.add_argument("--film", default="periodic", choices=("periodic", "seam"),
+                     help="periodic: full 360° film; seam: P = 1 at the top-foil ends "
+                     "(default periodic)")
+    sub.add_argument("--seam-angle", type=number("seam-angle"), default=None,
+                     help="welded end of the top foil, degrees from the load line in the "
+                     "direction of rotation (default: on the maximum-film line); seam film, "
+                     "or the beam's welded end with a periodic film")
+    sub.add_argument("--deflection-law", default="mean", choices=("mean", "local"),
+                     help="mean: W = S(P̄ − 1); local: W = S(P − 1) (simple foil only)")
+    sub.add_argument("--subambient", default="full", choices=("full", "gumbel"),
+                     help="full film force, or Gümbel: sub-ambient pressure dropped")
+    sub.add_argument("--compression-only", action="store_true",
+                     help="bumps cannot pull the foil inward (W >= 0)")
+    sub.add_argument("--grid", default=str(DEFAULT_GRID),
+                     help=f"NTHETAxNZ (default {DEFAULT_GRID})")
+    sub.add_argument("--json", action="store_true", help="print one JSON object")
+
+
+@dataclass(frozen=True)
+class OperatingPoint:
+    """What the operating-point options describe (non-dimensional model and target)."""
+
+    model: BearingModel
+    grid: Grid
+    eccentricity: Optional[float] = None
+    load: Optional[float] = None
+    geometry: Optional[BearingGeometry] = None
+    speed_rpm: Optional[float] = None
+    load_newton: Optional[float] = None
+
+
+def _refuse(option: str, value, reason: str) -> None:
+    raise ParameterError(option, value, reason)
+
+
+def _refuse_ignored_options(args) -> None:
+    """Options that the chosen mode would ignore are refused, with the reason (one line)."""
+    dimensional = args.bearing is not None
+    if dimensional:
+        for option, value in (("--length-ratio", args.length_ratio),
+                              ("--compliance", args.compliance),
+                              ("--bearing-number", args.bearing_number)):
+            if value is not None:
+                _refuse(option, value, "is taken from the bearing file (--bearing); do not "
+                        "also give it")
+        if args.speed_rpm is None:
+            _refuse("--speed-rpm", None, "is required with --bearing")
+    else:
+        if args.speed_rpm is not None:
+            _refuse("--speed-rpm", args.speed_rpm, "needs --bearing FILE.toml (a speed in rpm "
+                    "means nothing without the bearing's dimensions); give --bearing-number")
+        if args.load_newton is not None:
+            _refuse("--load-newton", args.load_newton, "needs --bearing FILE.toml and "
+                    "--speed-rpm")
+        if args.bearing_number is None:
+            _refuse("--bearing-number", None, "is required (or give --bearing)")
+    foil = args.foil
+    if foil == "rigid":
+        if args.compliance not in (None, 0.0):
+            _refuse("--compliance", args.compliance, "is not used with --foil rigid (a rigid "
+                    "bearing has no bump foundation)")
+        if args.compression_only:
+            _refuse("--compression-only", True, "is not used with --foil rigid (no bumps)")
+        if args.deflection_law != "mean":
+            _refuse("--deflection-law", args.deflection_law, "is not used with --foil rigid")
+    if args.top_foil_coefficient is not None and foil != "beam":
+        _refuse("--top-foil-coefficient", args.top_foil_coefficient, "is used by the beam "
+                "foil only; add --foil beam")
+    if args.seam_angle is not None:
+        if args.film == "periodic" and foil != "beam":
+            _refuse("--seam-angle", args.seam_angle, "is not used with a periodic film (no "
+                    "seam) unless the beam foil needs its welded end; add --film seam")
+        if not 0.0 <= args.seam_angle < 360.0:
+            _refuse("--seam-angle", args.seam_angle, "must lie in [0, 360) degrees")
+
+
+def operating_point(args) -> OperatingPoint:
+    """The model and target (eccentricity or load) from the parsed options."""
+    _refuse_ignored_options(args)
+    common = dict(film=args.film, deflection_law=args.deflection_law,
+                  subambient=args.subambient, compression_only=args.compression_only,
+                  seam_angle=None if args.seam_angle is None else math.radians(args.seam_angle))
+    grid = Grid.parse(args.grid)
+    extra: dict = {}
+    if args.bearing is not None:
+        from ..inputs import load_bearing
+
+        geometry = load_bearing(args.bearing)
+        model = geometry.model(args.speed_rpm, foil=args.foil or "simple", **common)
+        if args.top_foil_coefficient is not None:
+            model = model.replace(top_foil_coefficient=args.top_foil_coefficient)
+        extra.update(geometry=geometry, speed_rpm=args.speed_rpm)
+        if args.load_newton is not None:
+            extra.update(load=geometry.nondimensional_load(args.load_newton),
+                         load_newton=args.load_newton)
+    else:
+        compliance = 0.0 if args.compliance is None else args.compliance
+        foil = args.foil or ("rigid" if compliance == 0.0 else "simple")
+        model = BearingModel(bearing_number=args.bearing_number, compliance=compliance,
+                             length_ratio=1.0 if args.length_ratio is None else args.length_ratio,
+                             foil=foil, top_foil_coefficient=args.top_foil_coefficient or 0.0,
+                             **common)
+    if args.eccentricity is not None:
+        extra["eccentricity"] = args.eccentricity
+    elif args.load is not None:
+        extra["load"] = args.load
+    if "eccentricity" not in extra and "load" not in extra:
+        _refuse("--eccentricity/--load", None, "give one of them" + (
+            " (or --load-newton)" if args.bearing is not None else ""))
+    return OperatingPoint(model=model, grid=grid, **extra)
+
+
+def describe(op: OperatingPoint, **more) -> dict:
+    """Inputs and conventions of an operating point, for every output."""
+    out = {**op.model.groups(), **op.model.options(), "grid": str(op.grid)}
+    if op.geometry is not None:
+        out.update(bearing=op.geometry.name, speed_rpm=op.speed_rpm,
+                   radial_clearance_m=op.geometry.radial_clearance)
+    out.update(more)
+    return out
+
+
+def emit(out: dict, as_json: bool, report: Callable[[], str], options: dict) -> None:
+    """Print ``out`` as one JSON object (with provenance), or the readable ``report()``."""
+    if as_json:
+        payload = {**out, "provenance": provenance(**options)}
+        print(json.dumps(_jsonable(payload)))
+    else:
+        print(report())
+
+
+def _jsonable(value):
+    if isinstance(value, dict):
+        return {k: _jsonable(v) for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [_jsonable(v) for v in value]
+    if isinstance(value, np.generic):
+        value = value.item()
+    if isinstance(value, float) and not math.isfinite(value):
+        return None
+    return value
+
+
+def progress_bar(label: str, enabled: bool = True):
+    """A one-line progress bar on a terminal; nothing when stderr is not a TTY (CI, pipes)
+    or when ``enabled`` is False (e.g. with --json)."""
+    if not enabled or not sys.stderr.isatty():
+        return None
+
+    def show(fraction: float) -> None:
+        n = int(30 * fraction)
+        sys.stderr.write(f"\r{label} [{'#' * n}{'.' * (30 - n)}] {100 * fraction:5.1f} %")
+        if fraction >= 1.0:
+            sys.stderr.write("\n")
+        sys.stderr.flush()
+    return show

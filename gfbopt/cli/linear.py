@@ -1,0 +1,81 @@
+"""``gfbopt linear``: stiffness and damping against whirl ratio, and the linear threshold."""
+from __future__ import annotations
+
+import math
+import sys
+import time
+
+from ..errors import ParameterError
+from .common import add_operating_point, describe, emit, number, operating_point
+
+
+def register(subparsers) -> None:
+    sub = subparsers.add_parser("linear", help="stiffness, damping and linear stability "
+                                "threshold")
+    add_operating_point(sub)
+    sub.add_argument("--whirl-ratio", type=number("whirl-ratio"), nargs="+",
+                     default=[0.0, 0.5, 1.0], help="whirl ratios γ for K and C (default 0 0.5 1)")
+    sub.add_argument("--frame", default="load", choices=("load", "line-of-centres"),
+                     help="axes of K and C (default: load frame)")
+    sub.add_argument("--mass", type=number("mass"), default=None,
+                     help="also give the least stable eigenvalue at this M̄ = M c ω²/W0")
+    sub.set_defaults(handler=run)
+
+
+def run(args) -> int:
+    from ..linear import coefficients, least_stable_mode, linear_threshold, linearise
+    from ..static import solve_static, solver_for
+
+    op = operating_point(args)
+    if args.mass is not None and not args.mass > 0:
+        raise ParameterError("--mass", args.mass, "must be > 0")
+    t0 = time.perf_counter()
+    solver = solver_for(op.model, op.grid)
+    sol = solve_static(op.model, eccentricity=op.eccentricity, load=op.load, solver=solver)
+    if not sol.success:
+        print(f"gfbopt: error: static equilibrium did not converge ({sol.message}); "
+              "no linearisation", file=sys.stderr)
+        return 1
+    lin = linearise(sol, solver)
+    threshold = linear_threshold(lin)
+    coeffs = coefficients(lin, args.whirl_ratio)
+    if args.frame == "line-of-centres":
+        coeffs = coeffs.in_line_of_centres_frame()
+    mode = least_stable_mode(lin, args.mass, threshold) if args.mass is not None else None
+    out = {**describe(op, frame=args.frame),
+           "critical_mass": threshold.critical_mass, "whirl_ratio": threshold.whirl_ratio,
+           "stable_for_all_masses": threshold.stable_for_all_masses,
+           "threshold_message": threshold.message,
+           "stiffness": {f"{g:g}": coeffs.stiffness[k].tolist()
+                         for k, g in enumerate(coeffs.whirl_ratio)},
+           "damping": {f"{g:g}": coeffs.damping[k].tolist()
+                       for k, g in enumerate(coeffs.whirl_ratio)},
+           "load": sol.load, "eccentricity": sol.eccentricity,
+           "attitude_angle_deg": math.degrees(sol.attitude_angle),
+           "success": bool(sol.success and threshold.success),
+           "message": sol.message or threshold.message,
+           "wall_time_s": time.perf_counter() - t0}
+    if mode is not None:
+        out.update({"mass": args.mass, "growth_rate": mode.real, "mode_whirl_ratio": mode.imag})
+
+    def report() -> str:
+        model = op.model
+        lines = [f"gfbopt linear — {model.foil} foil, {model.film} film, grid {op.grid}",
+                 f"  ε = {sol.eccentricity:.5f}, load W/(p_a R²) = {sol.load:.5f}, "
+                 f"attitude {out['attitude_angle_deg']:.3f} deg",
+                 (f"  critical mass M̄ = M c ω²/W0 = {threshold.critical_mass:.5g} at whirl "
+                  f"ratio {threshold.whirl_ratio:.4f}" if not threshold.stable_for_all_masses
+                  else f"  {threshold.message}"),
+                 f"  stiffness K c/(p_a R²) and damping C c ω/(p_a R²), {args.frame} frame:"]
+        for k, g in enumerate(coeffs.whirl_ratio):
+            kk, cc = coeffs.stiffness[k], coeffs.damping[k]
+            lines.append(f"    γ = {g:<6g} K = [[{kk[0, 0]:.4g}, {kk[0, 1]:.4g}], "
+                         f"[{kk[1, 0]:.4g}, {kk[1, 1]:.4g}]]  C = [[{cc[0, 0]:.4g}, "
+                         f"{cc[0, 1]:.4g}], [{cc[1, 0]:.4g}, {cc[1, 1]:.4g}]]")
+        if mode is not None:
+            lines.append(f"  least stable mode at M̄ = {args.mass:g}: growth rate "
+                         f"{mode.real:.4g} per rad, whirl ratio {mode.imag:.4f}")
+        return "\n".join(lines)
+
+    emit(out, args.json, report, describe(op, frame=args.frame))
+    return 0 if out["success"] else 1

@@ -1,0 +1,46 @@
+"""``gfbopt static``: one static equilibrium (non-dimensional, or SI from a bearing file)."""
+from __future__ import annotations
+
+import sys
+
+from .common import add_operating_point, describe, emit, operating_point
+
+
+def register(subparsers) -> None:
+    sub = subparsers.add_parser("static", help="static equilibrium at one operating point")
+    add_operating_point(sub)
+    sub.set_defaults(handler=run)
+
+
+def run(args) -> int:
+    from ..static import solve_static
+
+    op = operating_point(args)
+    sol = solve_static(op.model, eccentricity=op.eccentricity, load=op.load, grid=op.grid)
+    out = {**describe(op), **sol.to_dict(), "message": sol.message}
+    if op.geometry is not None:
+        out["min_film_thickness_um"] = sol.min_film * op.geometry.radial_clearance * 1e6
+        out["load_newton"] = op.geometry.load_newton(sol.load)
+    emit(out, args.json, lambda: _report(out), describe(op))
+    if not sol.success:
+        print(f"gfbopt: solve did not converge: {sol.message}", file=sys.stderr)
+        return 1
+    return 0
+
+
+def _report(out: dict) -> str:
+    lines = [f"gfbopt static — {out['foil']} foil, {out['film']} film, grid {out['grid']}",
+             f"  Λ = {out['bearing_number']:.4g}, S = {out['compliance']:.4g}, "
+             f"L/D = {out['length_ratio']:.4g}, C = {out['top_foil_coefficient']:.4g}",
+             f"  eccentricity ε          {out['eccentricity']:.5f}",
+             f"  load W/(p_a R²)         {out['load']:.5f}",
+             f"  attitude angle          {out['attitude_angle_deg']:.3f} deg",
+             f"  minimum film h/c        {out['min_film']:.5f} at "
+             f"{out['min_film_angle_deg']:.1f} deg from the load line"]
+    if "min_film_thickness_um" in out:
+        lines.append(f"  minimum film            {out['min_film_thickness_um']:.2f} µm "
+                     f"(load {out['load_newton']:.2f} N at {out['speed_rpm']:.0f} rpm)")
+    lines.append(f"  solver: {out['status']}, {out['iterations']} iterations, residual "
+                 f"{out['residual']:.1e}, {out['solve_time_s']:.3f} s"
+                 + ("" if out["success"] else "  ** NOT CONVERGED **"))
+    return "\n".join(lines)
