@@ -23,7 +23,7 @@ _DEFAULT_MATERIAL = "inconel-x750"
 _OBJECTIVES = ("stress", "pitch", "number_of_bumps", "thickness", "half_length",
                "top_foil_thickness", "top_foil_sag")
 _REFERENCES = (
-    "Heshmat, Walowit & Pinkus 1983, J. Lubr. Technol. 105(4):647-655, doi:10.1115/1.3254698 "
+    "Heshmat, Walowit & Pinkus 1983, J. Lubr. Technol. 105(4):647-655 "
     "(bump compliance); Young & Budynas 2002, Roark's Formulas for Stress and Strain, 7th ed., "
     "Table 8.1 (top-foil sag and stress, clamped strip)")
 _FORMULAS = {

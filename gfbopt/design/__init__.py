@@ -4,13 +4,14 @@
 module                         what it holds
 =============================  ===========================================================
 :mod:`.materials`              foil materials (E, ν, allowable stress) with their sources
+:mod:`.spec`                   the design specification and result (validated inputs)
 :mod:`.geometry_program`       pitch, half length and thickness for a target compliance S
                                (cvxpy geometric program), infeasibility diagnosis
 =============================  ===========================================================
 
-The formulas themselves are in :mod:`gfbopt.physics.bump`.  cvxpy is an optional dependency
-(``pip install 'gfbopt[design]'``) and takes about a second to import, so the geometry
-program is imported on first use: the materials (and ``gfbopt design --help``) work without it.
+The formulas themselves are in :mod:`gfbopt.physics.bump`.  cvxpy takes about a second to
+import, so the geometry program is imported on first use: the materials, the specification
+and ``gfbopt design --help`` do not pay for it.
 """
 from __future__ import annotations
 

@@ -11,7 +11,7 @@ Sources
   (tokkinwire.com, "Alloy X-750 (INCONEL X-750)").  Another distributor's table
   (jainsteels.in) gives 213.7 GPa at 27 °C and 172.4 GPa at 538 °C: the hot value differs by
   about 7 % between sources.  The 20 °C value is the one of the Ruscitto bearing
-  (Ruscitto, McCormick & Gray 1978, NASA TP-1175, as listed in the seed thesis, Table 3.3).
+  (Ruscitto, McCormick & Gray 1978, NASA CR-135368, as listed in the thesis (Mohan, IIT Guwahati, 2010), Table 3.3).
 * Poisson's ratio 0.29: the value of the Ruscitto bearing (same source); it is also the usual
   handbook value for nickel–chromium alloys.  Taken as temperature independent.
 * Allowable stress: a design choice, half the minimum 0.2 % yield strength of UNS N07750
@@ -80,7 +80,7 @@ MATERIALS: Mapping[str, Material] = MappingProxyType({
         name="inconel-x750", youngs_modulus=214e9, poisson_ratio=0.29,
         allowable_stress=_X750_ALLOWABLE,
         source=("INCONEL alloy X-750 at 20 C: E = 214 GPa (Special Metals SMC-067 via the "
-                "Tokkin datasheet; Ruscitto et al. 1978, NASA TP-1175), nu = 0.29 (Ruscitto "
+                "Tokkin datasheet; Ruscitto et al. 1978, NASA CR-135368), nu = 0.29 (Ruscitto "
                 f"et al. 1978); {_X750_ALLOWABLE_BASIS}")),
     "inconel-x750-538c": Material(
         name="inconel-x750-538c", youngs_modulus=184e9, poisson_ratio=0.29,

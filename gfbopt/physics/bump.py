@@ -24,7 +24,7 @@ p − p_a) [Pa], p_a ambient pressure [Pa], c radial clearance [m], R bearing ra
 References
 ----------
 Heshmat, H., Walowit, J. A. & Pinkus, O. (1983). Analysis of gas-lubricated foil journal
-    bearings. Journal of Lubrication Technology 105(4), 647–655. doi:10.1115/1.3254698.
+    bearings. Journal of Lubrication Technology 105(4), 647–655.
 Young, W. C. & Budynas, R. G. (2002). Roark's Formulas for Stress and Strain, 7th ed.,
     McGraw-Hill. Table 8.1 (straight beams: uniformly distributed load, both ends fixed —
     maximum deflection w l⁴/(384 E I), end moment w l²/12) with the plate modulus
@@ -44,8 +44,7 @@ __all__ = [
 def bump_compliance(pitch, half_length, thickness, youngs_modulus, poisson_ratio):
     """Bump-foil compliance per unit area α = 2 s l0³ (1 − ν²) / (E t_b³).
 
-    Heshmat, Walowit & Pinkus (1983), J. Lubr. Technol. 105(4):647–655,
-    doi:10.1115/1.3254698.
+    Heshmat, Walowit & Pinkus (1983), J. Lubr. Technol. 105(4):647–655.
 
     Parameters
     ----------

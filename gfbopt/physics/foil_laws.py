@@ -27,7 +27,7 @@ simple, local and beam laws: W = S max(q, 0), S max(P − 1, 0), and a bump reac
 max(W, 0)/S respectively.  Adding a law is one subclass here plus its tests.
 
 References: H. Heshmat, J. A. Walowit, O. Pinkus, "Analysis of gas-lubricated foil journal
-bearings", J. Lubr. Technol. 105(4) (1983) 647–655, doi:10.1115/1.3254698; J.-P. Peng,
+bearings", J. Lubr. Technol. 105(4) (1983) 647–655; J.-P. Peng,
 M. Carpino, "Calculation of stiffness and damping coefficients for elastically supported gas
 foil bearings", J. Tribol. 115(1) (1993) 20–27.
 """

@@ -9,10 +9,9 @@ import pytest
 
 from gfbopt.physics import bump
 
-# Ruscitto, McCormick & Gray 1978, NASA TP-1175 — the bump-foil test bearing as listed in the
-# seed thesis, Table 3.3 (/work/shared/reference/ruscitto_bearing.csv; the repository's
-# problems/bearings/ruscitto.toml holds the same values and cites the report as NASA
-# CR-135368).  SI units.
+# Ruscitto, McCormick & Gray 1978, NASA CR-135368 — the bump-foil test bearing as listed in the
+# thesis (Mohan, IIT Guwahati, 2010), Table 3.3; problems/bearings/ruscitto.toml holds the same
+# values.  SI units.
 RUSCITTO = {"radius": 19.05e-3, "radial_clearance": 20e-6, "top_foil_thickness": 101.6e-6,
             "bump_thickness": 101.6e-6, "pitch": 4.572e-3, "half_length": 1.778e-3,
             "youngs_modulus": 214e9, "poisson_ratio": 0.29, "ambient_pressure": 1.0e5}
