@@ -63,7 +63,7 @@ def bump_compliance(pitch, half_length, thickness, youngs_modulus, poisson_ratio
 
 
 def compliance_coefficient(alpha, ambient_pressure, radial_clearance):
-    """Compliance coefficient S = p_a α / c (PHYSICS.md).
+    """Compliance coefficient S = p_a α / c (docs/PHYSICS.md).
 
     Parameters
     ----------

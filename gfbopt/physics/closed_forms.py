@@ -22,7 +22,7 @@ def small_eccentricity_coefficient(bearing_number: float, length_ratio: float,
     ψ from the maximum-film line.  Rigid: f'' − k² f = iΛ, k² = 1 + iΛ, f(±L/D) = 0, so
     f̄ = −iΛ/(1 + iΛ)·[1 − tanh(k L/D)/(k L/D)].  Local law W = S(P − 1): k² = 1 + iΛ(1 + S)
     and the factor −iΛ/(1 + iΛ(1 + S)); axial-mean law: f̄_S = g/(1 − S g), g the rigid f̄.
-    (PHYSICS.md; Ausman, J. Basic Eng. 1961.)  As ε → 0, W/(p_a L D)/ε = (π/2)|f̄| and
+    (docs/PHYSICS.md; Ausman, J. Basic Eng. 1961.)  As ε → 0, W/(p_a L D)/ε = (π/2)|f̄| and
     tan φ = Im f̄/Re f̄.
     """
     lam, ld, s = bearing_number, length_ratio, compliance
@@ -64,7 +64,7 @@ def first_order_pressure(model: BearingModel, z: np.ndarray, psi: np.ndarray,
 def concentric_impedance(bearing_number: float, length_ratio: float,
                          whirl_ratio: float) -> np.ndarray:
     """Impedance Z(iγ) of a rigid, concentric (ε → 0) bearing from Ausman's first-order
-    theory (Ausman, J. Basic Eng. 83 (1961) 188; PHYSICS.md) [-], load-frame convention.
+    theory (Ausman, J. Basic Eng. 83 (1961) 188; docs/PHYSICS.md) [-], load-frame convention.
 
     A forward circular whirl at γ sees the steady film of Λ(1 − 2γ), a backward one that of
     Λ(1 + 2γ); with the static small-ε response u(Λ) = −2π (L/D) conj f̄(Λ) = k e^{−iφ} (f̄ the

@@ -33,7 +33,7 @@ def test_ruscitto_compliance_matches_hand_value_and_physics_md():
     assert alpha == pytest.approx(2.0975e-10, rel=1e-4)
     s = bump.compliance_coefficient(alpha, r["ambient_pressure"], r["radial_clearance"])
     assert s == pytest.approx(1e5 * alpha / 20e-6, rel=1e-14)
-    assert s == pytest.approx(1.05, abs=0.005)  # PHYSICS.md: S ≈ 1.05 for this bearing
+    assert s == pytest.approx(1.05, abs=0.005)  # docs/PHYSICS.md: S ≈ 1.05 for this bearing
     # Heshmat's stiffness per unit area K = E t_b³ / (2 s l0³ (1 − ν²)) = 1/α
     assert bump.bump_stiffness_per_area(alpha) == pytest.approx(
         214e9 * 101.6e-6**3 / (2 * 4.572e-3 * 1.778e-3**3 * (1 - 0.29**2)), rel=1e-14)

@@ -36,7 +36,7 @@ def test_concentric_journal_carries_no_load(periodic_solver):
 @pytest.mark.parametrize("compliance, law", [(0.0, "mean"), (1.0, "mean"), (1.0, "local")])
 def test_small_eccentricity_matches_ausman(periodic_solver, local_law_solver, compliance, law):
     """As ε → 0 the load per unit ε and the attitude angle tend to Ausman's first-order values
-    (PHYSICS.md).  At ε = 1e-3 the nonlinear terms are O(ε) = 0.1 %; the 72 × 20 grid error is
+    (docs/PHYSICS.md).  At ε = 1e-3 the nonlinear terms are O(ε) = 0.1 %; the 72 × 20 grid error is
     ≤ 0.3 % (grid_convergence), hence 0.5 % and 0.3°."""
     foil = "rigid" if compliance == 0 else "simple"
     model = BearingModel(bearing_number=2.0, compliance=compliance, foil=foil,
