@@ -1,0 +1,15 @@
+"""Design of experiments: sample plans, a kill-safe Parquet results store, and Sobol
+sensitivity indices.
+
+=======================  ==================================================================
+module                   what it holds
+=======================  ==================================================================
+:mod:`.sampling`         factorial, Latin hypercube, Sobol, explicit lists, Saltelli designs
+:mod:`.store`            one tidy table per study as atomic Parquet parts, fixed schema, resume
+:mod:`.sensitivity`      first-order and total Sobol indices with confidence intervals
+=======================  ==================================================================
+"""
+from .sampling import METHODS, SamplePlan, Variable, sample
+from .store import ResultStore, read_results
+
+__all__ = ["METHODS", "ResultStore", "SamplePlan", "Variable", "read_results", "sample"]
