@@ -1,19 +1,31 @@
-"""Speed of gfbopt's static equilibrium (CasADi/IPOPT) on the 72 × 20 grid, in one run.
+"""Speed of gfbopt's static equilibrium (CasADi/IPOPT): build, solve, CLI, in one run.
 
 Measures
 --------
-* build: time to construct :class:`gfbopt.StaticSolver` (rigid/simple foundation, and the
-  beam top foil), median of 3 [s];
+* build formulations, at 72 × 20 and 144 × 36: the current build (θ-strip Reynolds mapped in
+  MX, Jacobian by the chain rule, :mod:`gfbopt.static.model`), median of 3, wall and CPU
+  time [s], split into the symbolic problem and the rest (functions + ``nlpsol``); and the
+  flat-SX reference formulation (the residual expanded to one SX graph, CasADi's AD Jacobian
+  and its default derivative functions: what gfbopt ≤ 0.2 built), once per grid; ratio;
+* serialisation: the built ``nlpsol`` saved with ``Function.save`` and loaded with
+  ``casadi.Function.load`` (what a disk cache of the build would do): load time against the
+  build time, file size, and the loaded solver's solution against the built one's;
+* build: time to construct :class:`gfbopt.StaticSolver` at 72 × 20 (rigid/simple foundation,
+  and the beam top foil), median of 3 [s];
 * solve: one equilibrium at a given (Λ, ε), rigid periodic film, L/D = 1 — cold
   (``solve_static`` without ``initial``) and warm (``initial=`` the solution at ε − 0.01),
   median of 10 each [s];
-* the hand-written sparse Newton (tests/verification/newton_reference.py, the test oracle) on the same point, cold,
-  median of 10 [s], and the ratios IPOPT/Newton;
+* the hand-written sparse Newton (tests/verification/newton_reference.py, the test oracle) on
+  the same point, cold, median of 10 [s], and the ratios IPOPT/Newton;
 * cold solves at a few low-Λ points where gfbopt's cold start is known to be hard;
 * the whole of thesis Tables 3.1 and 3.2, *including* the one solver build they need (both
   tables are one formulation: periodic film, rigid/simple foundation, axial-mean law; Λ, S,
   L/D and the sub-ambient switch are CasADi parameters), solved cold row by row, and again
-  with each row warm-started from the previous ε of the same (Λ, S) group.
+  with each row warm-started from the previous ε of the same (Λ, S) group;
+* the command line end to end at the default grid 144 × 36: ``gfbopt static`` and
+  ``gfbopt linear`` (ε = 0.5, Λ = 1, ``--json``), each called twice in fresh processes, wall
+  and CPU time [s] (the machine's load average is recorded: on a shared machine wall time
+  includes waiting for a core, CPU time does not).
 
 Table 3.1: rigid, periodic, full film.  Table 3.2: ``BearingModel(bearing_number=1,
 compliance=S, foil='simple' if S > 0 else 'rigid', subambient='gumbel')``.
@@ -21,31 +33,48 @@ compliance=S, foil='simple' if S > 0 else 'rigid', subambient='gumbel')``.
 Usage::
 
     PYTHONPATH=. python benchmarks/bench_static.py [--out results/benchmarks/static_speed.json]
+        [--sections formulations,serialisation,build,points,tables,cli]
 
 Prints a table and writes a JSON file with the machine, date and library versions.
-Targets (from the issue): build ≤ 1 s; solve ≤ 0.1 s warm, ≤ 0.3 s cold and no slower
-than the Newton reference; Tables 3.1 + 3.2 ≤ 5 s including the build.
+Targets: build ≤ 1 s at 72 × 20; solve ≤ 0.1 s warm, ≤ 0.3 s cold and no slower than the
+Newton reference; Tables 3.1 + 3.2 ≤ 5 s including the build; at the default grid
+``gfbopt static`` ≤ 2 s and ``gfbopt linear`` ≤ 4 s end to end on the second call (issue 8).
 """
 from __future__ import annotations
 
 import argparse
 import csv
 import importlib.util
+import json
 import math
+import os
+import resource
 import statistics
+import subprocess
 import sys
+import tempfile
 import time
 from pathlib import Path
+
+import casadi as ca
+import numpy as np
 
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))  # noqa: E402
 from machine import machine_info as _machine_info, write_report  # noqa: E402
-from gfbopt import BearingModel, Grid, StaticSolver, solve_static
+from gfbopt import DEFAULT_GRID, BearingModel, Grid, StaticSolver, solve_static  # noqa: E402
+from gfbopt.static import PARAMETERS, default_ipopt_options  # noqa: E402
+from gfbopt.static.model import build_problem  # noqa: E402
 
 HERE = Path(__file__).resolve().parent
 REPO = HERE.parent
 GRID = Grid(72, 20)
-TARGETS = {"build_s": 1.0, "solve_warm_s": 0.1, "solve_cold_s": 0.3, "tables_total_s": 5.0}
+FORMULATION_GRIDS = (Grid(72, 20), DEFAULT_GRID)
+SECTIONS = ("formulations", "serialisation", "build", "points", "tables", "cli")
+TARGETS = {"build_s": 1.0, "solve_warm_s": 0.1, "solve_cold_s": 0.3, "tables_total_s": 5.0,
+           "cli_static_s": 2.0, "cli_linear_s": 4.0}
+#: the CLI calls timed end to end (default grid): ε = 0.5, Λ = 1, simple foundation S = 0
+CLI_POINT = ["--eccentricity", "0.5", "--bearing-number", "1", "--json"]
 
 
 def _load_newton_reference():
@@ -60,6 +89,20 @@ newton_reference = _load_newton_reference()
 
 
 # ------------------------------------------------------------------------ helpers
+def timed_cpu(function, repeats: int) -> dict:
+    """Run ``function()`` ``repeats`` times: median wall and CPU time [s], all wall times, and
+    the last result (key ``result``)."""
+    wall, cpu = [], []
+    result = None
+    for _ in range(repeats):
+        t0, c0 = time.perf_counter(), time.process_time()
+        result = function()
+        wall.append(time.perf_counter() - t0)
+        cpu.append(time.process_time() - c0)
+    return {"median_s": statistics.median(wall), "cpu_median_s": statistics.median(cpu),
+            "times_s": wall, "result": result}
+
+
 def timed(function, repeats: int) -> tuple[float, list[float], object]:
     """Run ``function()`` ``repeats`` times; return (median wall time [s], all times, last result)."""
     times = []
@@ -91,13 +134,123 @@ def machine_info() -> dict:
     return _machine_info(grid=str(GRID))
 
 
-# --------------------------------------------------------------------- benchmarks
+# ------------------------------------------------------------ build formulations
+def _flat_reference_build(solver: StaticSolver) -> ca.Function:
+    """The flat-SX formulation of the same equations: the residual expanded into one SX
+    graph, and an ``nlpsol`` left to derive its own Jacobian (and gradient of the
+    Lagrangian) by AD of that graph, with the same empty Hessian: gfbopt ≤ 0.2's build."""
+    flat = solver.residual_function.expand()
+    x = ca.SX.sym("x", solver.layout.size)
+    p = ca.SX.sym("p", len(PARAMETERS))
+    g = flat(x, p)
+    opts = default_ipopt_options()
+    for key in ("no_nlp_grad", "calc_lam_p"):
+        opts.pop(key)
+    lam_f, lam_g = ca.SX.sym("lam_f"), ca.SX.sym("lam_g", g.shape[0])
+    opts["hess_lag"] = ca.Function("zero_hessian", [x, p, lam_f, lam_g],
+                                   [ca.SX(ca.Sparsity(x.shape[0], x.shape[0]))],
+                                   ["x", "p", "lam_f", "lam_g"], ["triu_hess_gamma_x_x"])
+    return ca.nlpsol("flat_reference", "ipopt", {"x": x, "p": p, "f": 0, "g": g}, opts)
+
+
+def bench_formulations(grids=FORMULATION_GRIDS, repeats: int = 3) -> list[dict]:
+    """Current build (median of ``repeats``; symbolic problem vs the rest) against the flat-SX
+    reference build (once) at each grid, and the two Jacobians compared at one state."""
+    StaticSolver(Grid(12, 4))            # load the IPOPT plugin once, outside the timings
+    out = []
+    for grid in grids:
+        build = timed_cpu(lambda grid=grid: StaticSolver(grid), repeats)
+        solver = build.pop("result")
+        problem = timed_cpu(lambda s=solver: build_problem(s.stencil, s.law, s.law_data),
+                            repeats)
+        problem.pop("result")
+        reference = timed_cpu(lambda s=solver: _flat_reference_build(s), 1)
+        flat = reference.pop("result")
+        model = BearingModel(bearing_number=1.0, compliance=0.5)
+        sol = solve_static(model, eccentricity=0.6, solver=solver)
+        p = solver.parameters(model, False, 0.6)
+        _, jac = solver.jacobian_function()(sol.state, p)
+        _, jac_flat = flat.get_function("nlp_jac_g")(sol.state, p)
+        diff = np.abs(np.asarray(jac.nonzeros()) - np.asarray(jac_flat.nonzeros())).max()
+        out.append({
+            "grid": str(grid), "n_unknowns": solver.layout.size,
+            "build": build, "symbolic_problem": problem,
+            "flat_reference_build": reference,
+            "ratio_flat_over_build": reference["median_s"] / build["median_s"],
+            "jacobian_same_sparsity": jac.sparsity() == jac_flat.sparsity(),
+            "jacobian_max_rel_diff": float(diff / np.abs(jac_flat.nonzeros()).max()),
+            "flat_reference_jacobian_instructions":
+                flat.get_function("nlp_jac_g").n_instructions(),
+        })
+    return out
+
+
+def bench_serialisation(grids=FORMULATION_GRIDS, repeats: int = 3) -> list[dict]:
+    """Would a disk cache of the build pay?  Save the built nlpsol, load it back (CasADi's
+    own serialisation, IPOPT plugin, custom Jacobian and Hessian), and compare the load time
+    with the build time; the loaded solver must solve to the same state."""
+    out = []
+    model = BearingModel(bearing_number=1.0, compliance=0.5)
+    with tempfile.TemporaryDirectory() as folder:
+        path = os.path.join(folder, "static_nlpsol.casadi")
+        for grid in grids:
+            build = timed_cpu(lambda grid=grid: StaticSolver(grid), repeats)
+            solver = build.pop("result")
+            save = timed_cpu(lambda s=solver: s._nlp.save(path), 1)
+            save.pop("result")
+            load = timed_cpu(lambda: ca.Function.load(path), repeats)
+            loaded = load.pop("result")
+            built_sol = solve_static(model, eccentricity=0.6, solver=solver)
+            solver._nlp = loaded
+            loaded_sol = solve_static(model, eccentricity=0.6, solver=solver)
+            out.append({
+                "grid": str(grid), "build": build, "save": save, "load": load,
+                "file_mb": os.path.getsize(path) / 1e6,
+                "ratio_load_over_build_wall": load["median_s"] / build["median_s"],
+                "ratio_load_over_build_cpu": load["cpu_median_s"] / build["cpu_median_s"],
+                "loaded_state_max_diff": float(np.abs(loaded_sol.state
+                                                      - built_sol.state).max()),
+            })
+    return out
+
+
+# ------------------------------------------------------------------ command line
+def _run_cli(command: str) -> dict:
+    """One ``gfbopt COMMAND`` at the default grid in a fresh process: wall and CPU [s]."""
+    env = dict(os.environ, PYTHONPATH=str(REPO) + os.pathsep + os.environ.get("PYTHONPATH", ""))
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
+    load = os.getloadavg()[0]
+    t0 = time.perf_counter()
+    proc = subprocess.run([sys.executable, "-m", "gfbopt", command, *CLI_POINT], env=env,
+                          capture_output=True, text=True, check=False)
+    wall = time.perf_counter() - t0
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
+    row = {"command": command, "wall_s": wall, "cpu_s": cpu, "load_average_1min": load,
+           "returncode": proc.returncode}
+    if proc.returncode == 0:
+        data = json.loads(proc.stdout)
+        row.update({k: data[k] for k in ("success", "solve_time_s", "wall_time_s",
+                                         "critical_mass") if k in data})
+    else:
+        row["stderr"] = proc.stderr[-2000:]
+    return row
+
+
+def bench_cli(calls: int = 2) -> dict:
+    """``gfbopt static`` and ``gfbopt linear`` at the default grid, ``calls`` times each."""
+    return {command: [_run_cli(command) for _ in range(calls)]
+            for command in ("static", "linear")}
+
+
+# ------------------------------------------------------------ 72 × 20 benchmarks
 def bench_build(repeats: int = 3) -> dict:
     """Median time to build the StaticSolver, foundation and beam formulations [s]."""
     out = {}
     for name, beam in (("foundation", False), ("beam", True)):
-        median, times, solver = timed(lambda: StaticSolver(GRID, film="periodic", foil_law="beam" if beam else "simple"),
-                                      repeats)
+        law = "beam" if beam else "simple"
+        median, times, solver = timed(
+            lambda law=law: StaticSolver(GRID, film="periodic", foil_law=law), repeats)
         out[name] = {"median_s": median, "times_s": times,
                      "n_variables": solver.layout.size, "n_equations": solver.n_equations}
     return out
@@ -141,9 +294,10 @@ def bench_hard_cold(solver: StaticSolver, points, repeats: int = 3) -> list[dict
         model = BearingModel(bearing_number=lam, foil="rigid", length_ratio=1.0)
         first = solve_static(model, eccentricity=ecc, solver=solver, continuation=False)
         median, times, sol = timed(
-            lambda: solve_static(model, eccentricity=ecc, solver=solver), repeats)
+            lambda m=model, e=ecc: solve_static(m, eccentricity=e, solver=solver), repeats)
         newton, _, ref = timed(
-            lambda: newton_reference.solve_rigid_newton(lam, ecc, 1.0, GRID), repeats)
+            lambda lam=lam, e=ecc: newton_reference.solve_rigid_newton(lam, e, 1.0, GRID),
+            repeats)
         out.append({"bearing_number": lam, "eccentricity": ecc,
                     "first_attempt_status": first.status,
                     "first_attempt_iterations": first.iterations,
@@ -210,28 +364,55 @@ def print_report(out: dict) -> None:
     info = out["machine"]
     print(f"gfbopt static benchmark, grid {info['grid']}, {info['date']}")
     print(f"  {info['platform']}, {info['cpu_count']} CPUs, python {info['python']}, "
-          f"casadi {info['casadi']}, numpy {info['numpy']}, scipy {info['scipy']}")
-    print("\nBuild (median of 3)")
-    for name, b in out["build"].items():
-        print(f"  {name:<11s} {b['median_s']:7.3f} s   ({b['n_variables']} unknowns)")
-    print("\nOne equilibrium, rigid periodic, L/D = 1 (median of 10)")
-    print(f"  {'Λ':>4s} {'ε':>5s} {'IPOPT cold':>11s} {'it':>3s} {'IPOPT warm':>11s} {'it':>3s} "
-          f"{'Newton':>8s} {'it':>3s} {'cold/N':>7s} {'warm/N':>7s} {'dW rel':>8s} {'dφ °':>8s}")
-    for p in out["points"]:
-        print(f"  {p['bearing_number']:4.1f} {p['eccentricity']:5.2f} {p['ipopt_cold_s']:9.4f} s "
-              f"{p['ipopt_cold_iterations']:3d} {p['ipopt_warm_s']:9.4f} s "
-              f"{p['ipopt_warm_iterations']:3d} {p['newton_cold_s']:6.4f} s "
-              f"{p['newton_iterations']:3d} {p['ratio_cold_ipopt_over_newton']:7.2f} "
-              f"{p['ratio_warm_ipopt_over_newton']:7.2f} {p['load_rel_diff']:8.1e} "
-              f"{p['attitude_diff_deg']:8.1e}")
-    print("\nHard cold starts (median of 3; gfbopt's continuation fallback included)")
-    for p in out["hard_cold"]:
-        print(f"  Λ={p['bearing_number']:.1f} ε={p['eccentricity']:.2f}: first attempt "
-              f"{p['first_attempt_status']} ({p['first_attempt_iterations']} it); "
-              f"with fallback {p['ipopt_cold_s']:.3f} s, {p['ipopt_iterations_total']} it, "
-              f"success={p['success']}; Newton {p['newton_cold_s']:.4f} s "
-              f"({p['newton_iterations']} it)")
+          f"casadi {info['casadi']}, numpy {info['numpy']}, scipy {info['scipy']}; "
+          f"load average at start {info['load_average_1min']:.2f}")
+    if "formulations" in out:
+        print("\nBuild formulations (current: median of 3; flat-SX reference: once)")
+        print(f"  {'grid':>7s} {'unknowns':>8s} {'build':>8s} {'cpu':>7s} {'symbolic':>9s} "
+              f"{'flat SX':>8s} {'cpu':>7s} {'flat/new':>8s} {'same J':>6s} {'dJ rel':>8s}")
+        for r in out["formulations"]:
+            b, f = r["build"], r["flat_reference_build"]
+            print(f"  {r['grid']:>7s} {r['n_unknowns']:8d} {b['median_s']:7.3f}s "
+                  f"{b['cpu_median_s']:6.3f}s {r['symbolic_problem']['median_s']:8.3f}s "
+                  f"{f['median_s']:7.3f}s {f['cpu_median_s']:6.3f}s "
+                  f"{r['ratio_flat_over_build']:8.1f} {r['jacobian_same_sparsity']!s:>6s} "
+                  f"{r['jacobian_max_rel_diff']:8.1e}")
+    if "serialisation" in out:
+        print("\nSerialised nlpsol (what a disk cache would load) vs building it (median of 3)")
+        for r in out["serialisation"]:
+            print(f"  {r['grid']:>7s} build {r['build']['median_s']:.3f} s "
+                  f"(cpu {r['build']['cpu_median_s']:.3f}); load {r['load']['median_s']:.3f} s "
+                  f"(cpu {r['load']['cpu_median_s']:.3f}); save {r['save']['median_s']:.3f} s; "
+                  f"{r['file_mb']:.1f} MB; load/build {r['ratio_load_over_build_wall']:.2f} "
+                  f"(cpu {r['ratio_load_over_build_cpu']:.2f}); "
+                  f"loaded solution differs by {r['loaded_state_max_diff']:.1e}")
+    if "build" in out:
+        print("\nBuild at 72 × 20 (median of 3)")
+        for name, b in out["build"].items():
+            print(f"  {name:<11s} {b['median_s']:7.3f} s   ({b['n_variables']} unknowns)")
+    if "points" in out:
+        print("\nOne equilibrium, rigid periodic, L/D = 1 (median of 10)")
+        print(f"  {'Λ':>4s} {'ε':>5s} {'IPOPT cold':>11s} {'it':>3s} {'IPOPT warm':>11s} "
+              f"{'it':>3s} {'Newton':>8s} {'it':>3s} {'cold/N':>7s} {'warm/N':>7s} "
+              f"{'dW rel':>8s} {'dφ °':>8s}")
+        for p in out["points"]:
+            print(f"  {p['bearing_number']:4.1f} {p['eccentricity']:5.2f} "
+                  f"{p['ipopt_cold_s']:9.4f} s {p['ipopt_cold_iterations']:3d} "
+                  f"{p['ipopt_warm_s']:9.4f} s {p['ipopt_warm_iterations']:3d} "
+                  f"{p['newton_cold_s']:6.4f} s {p['newton_iterations']:3d} "
+                  f"{p['ratio_cold_ipopt_over_newton']:7.2f} "
+                  f"{p['ratio_warm_ipopt_over_newton']:7.2f} {p['load_rel_diff']:8.1e} "
+                  f"{p['attitude_diff_deg']:8.1e}")
+        print("\nHard cold starts (median of 3; gfbopt's continuation fallback included)")
+        for p in out["hard_cold"]:
+            print(f"  Λ={p['bearing_number']:.1f} ε={p['eccentricity']:.2f}: first attempt "
+                  f"{p['first_attempt_status']} ({p['first_attempt_iterations']} it); "
+                  f"with fallback {p['ipopt_cold_s']:.3f} s, {p['ipopt_iterations_total']} it, "
+                  f"success={p['success']}; Newton {p['newton_cold_s']:.4f} s "
+                  f"({p['newton_iterations']} it)")
     for key, label in (("tables_cold", "cold rows"), ("tables_warm_chain", "warm chain")):
+        if key not in out:
+            continue
         t = out[key]
         print(f"\nTables 3.1 + 3.2, {label}: total {t['total_s']:.3f} s "
               f"(build {t['build_s']:.3f} s + solves {t['solves_s']:.3f} s), "
@@ -245,23 +426,41 @@ def print_report(out: dict) -> None:
                       f"{100 * r['load_rel_error']:7.2f} {r['attitude_deg']:7.2f} "
                       f"{r['attitude_deg_reference']:6.2f} {r['attitude_error_deg']:6.2f} "
                       f"{r['iterations']:3d} {r['solve_s']:6.3f}")
+    if "cli" in out:
+        print(f"\nCommand line at the default grid {DEFAULT_GRID} (fresh process per call)")
+        for command, calls in out["cli"].items():
+            for k, c in enumerate(calls, 1):
+                extra = (f"success={c.get('success')}" if c["returncode"] == 0
+                         else f"FAILED (exit {c['returncode']})")
+                print(f"  gfbopt {command:<6s} call {k}: wall {c['wall_s']:6.2f} s, "
+                      f"cpu {c['cpu_s']:6.2f} s, load average {c['load_average_1min']:.2f}, "
+                      f"{extra}")
     print("\nTargets")
     for name, row in out["targets"].items():
-        print(f"  {name:<34s} {row['measured']:8.3f}  target {row['target']:<10} "
+        print(f"  {name:<40s} {row['measured']:8.3f}  target {row['target']:<10} "
               f"{'met' if row['met'] else 'NOT met'}")
 
 
 def evaluate_targets(out: dict) -> dict:
-    main = out["points"][0]
-    checks = {
-        "build foundation [s]": (out["build"]["foundation"]["median_s"], TARGETS["build_s"]),
-        "build beam [s]": (out["build"]["beam"]["median_s"], TARGETS["build_s"]),
-        "solve warm [s]": (main["ipopt_warm_s"], TARGETS["solve_warm_s"]),
-        "solve cold [s]": (main["ipopt_cold_s"], TARGETS["solve_cold_s"]),
-        "solve cold / Newton cold [-]": (main["ratio_cold_ipopt_over_newton"], 1.0),
-        "tables 3.1+3.2 cold, with build [s]": (out["tables_cold"]["total_s"],
-                                               TARGETS["tables_total_s"]),
-    }
+    checks = {}
+    if "build" in out:
+        checks["build foundation [s]"] = (out["build"]["foundation"]["median_s"],
+                                          TARGETS["build_s"])
+        checks["build beam [s]"] = (out["build"]["beam"]["median_s"], TARGETS["build_s"])
+    if "points" in out:
+        main = out["points"][0]
+        checks["solve warm [s]"] = (main["ipopt_warm_s"], TARGETS["solve_warm_s"])
+        checks["solve cold [s]"] = (main["ipopt_cold_s"], TARGETS["solve_cold_s"])
+        checks["solve cold / Newton cold [-]"] = (main["ratio_cold_ipopt_over_newton"], 1.0)
+    if "tables_cold" in out:
+        checks["tables 3.1+3.2 cold, with build [s]"] = (out["tables_cold"]["total_s"],
+                                                         TARGETS["tables_total_s"])
+    if "cli" in out:
+        for command, target in (("static", "cli_static_s"), ("linear", "cli_linear_s")):
+            second = out["cli"][command][-1]
+            checks[f"gfbopt {command} 2nd call, wall [s]"] = (second["wall_s"],
+                                                              TARGETS[target])
+            checks[f"gfbopt {command} 2nd call, cpu [s]"] = (second["cpu_s"], TARGETS[target])
     return {name: {"measured": value, "target": f"<= {limit}", "met": value <= limit}
             for name, (value, limit) in checks.items()}
 
@@ -272,17 +471,34 @@ def main(argv=None) -> dict:
                                              "static_speed.json"), help="JSON output path")
     parser.add_argument("--reference-dir", default="/work/shared/reference",
                         help="folder with thesis_table_3_1.csv and thesis_table_3_2.csv")
+    parser.add_argument("--sections", default=",".join(SECTIONS),
+                        help=f"comma-separated subset of {', '.join(SECTIONS)} (default: all)")
     args = parser.parse_args(argv)
+    sections = [name.strip() for name in args.sections.split(",") if name.strip()]
+    unknown = sorted(set(sections) - set(SECTIONS))
+    if unknown:
+        parser.error(f"--sections: unknown {', '.join(unknown)}; choose from "
+                     f"{', '.join(SECTIONS)}")
 
-    out = {"machine": machine_info()}
-    out["build"] = bench_build(3)
-    solver = StaticSolver(GRID, film="periodic")
-    # the first point is the one the targets are judged on
-    out["points"] = [bench_point(solver, lam, 0.6, 10) for lam in (1.0, 0.6, 3.0)]
-    out["hard_cold"] = bench_hard_cold(solver, [(0.6, 0.2), (0.6, 0.4)], 3)
-    del solver
-    out["tables_cold"] = bench_tables(Path(args.reference_dir), warm_chain=False)
-    out["tables_warm_chain"] = bench_tables(Path(args.reference_dir), warm_chain=True)
+    out = {"machine": dict(machine_info(), load_average_1min=os.getloadavg()[0],
+                           sections=sections)}
+    if "formulations" in sections:
+        out["formulations"] = bench_formulations()
+    if "serialisation" in sections:
+        out["serialisation"] = bench_serialisation()
+    if "build" in sections:
+        out["build"] = bench_build(3)
+    if "points" in sections:
+        solver = StaticSolver(GRID, film="periodic")
+        # the first point is the one the targets are judged on
+        out["points"] = [bench_point(solver, lam, 0.6, 10) for lam in (1.0, 0.6, 3.0)]
+        out["hard_cold"] = bench_hard_cold(solver, [(0.6, 0.2), (0.6, 0.4)], 3)
+        del solver
+    if "tables" in sections:
+        out["tables_cold"] = bench_tables(Path(args.reference_dir), warm_chain=False)
+        out["tables_warm_chain"] = bench_tables(Path(args.reference_dir), warm_chain=True)
+    if "cli" in sections:
+        out["cli"] = bench_cli(2)
     out["targets"] = evaluate_targets(out)
     print_report(out)
     write_report(out, args.out)
