@@ -6,7 +6,9 @@ Operating points (ε, Λ, S), L/D = 1, periodic film, axial-mean law:
 * (0.4, 2, 1) simple foundation — ``BearingModel(bearing_number=2, compliance=1)``;
 * (0.4, 2, 0) rigid — ``BearingModel(bearing_number=2, foil='rigid')``.
 
-gfbopt (median of ``--repeats``, default 3; the search without an estimate once)
+gfbopt (median of ``--repeats``, default 3; the search without an estimate once), with the
+default method of the search (``rkc``, two transients bracketing the linear threshold, kick
+start; benchmarks/bench_critical_mass.py compares the methods at the default grid)
 --------------------------------------------------------------------------------
 * ``find_critical_mass(transient_model(sol), linear_estimate=M̄_lin, tolerance=0.005)`` alone;
 * the same including the linear threshold (``solve_static`` cold with a prebuilt solver +
@@ -385,7 +387,7 @@ def print_report(out: dict) -> None:
     row("  bracket half-width [%]", [100 * p["gfbopt"]["relative_half_width"] for p in points],
         "{:12.3f}")
     row("  transients", [p["gfbopt"]["transients"] for p in points], "{:12d}")
-    row("  rounds (batches of 8)", [p["gfbopt"]["rounds"] for p in points], "{:12d}")
+    row("  rounds (2 transients each)", [p["gfbopt"]["rounds"] for p in points], "{:12d}")
     row("  find_critical_mass [s]", [p["gfbopt"]["wall_s"] for p in points])
     row("  + linear threshold [s]", [p["gfbopt_with_linear_threshold"]["wall_s"]
                                      for p in points])

@@ -6,24 +6,33 @@ module                      responsibility
 :mod:`.system`              the method-of-lines system: state Φ = P H and the journal, right-hand
                             side, recovery of P and H through the foil law, stiffness bound
 :mod:`.rk4`                 classic Runge–Kutta, batched (the reference method)
+:mod:`.rkc`                 damped Runge–Kutta–Chebyshev (RKC2), batched: stages from the
+                            stiffness bound, step from accuracy (the default of the searches)
 :mod:`.bdf`                 scipy's implicit BDF with a sparse Jacobian, rotor by rotor
 :mod:`.orbit`               the driver :func:`integrate_orbits` and the :data:`METHODS` table
 :mod:`.result`              :class:`OrbitBatch`, the result every method returns
 :mod:`.fits`                matrix-pencil growth rates and verdicts
+:mod:`.mode`                the least-stable linear mode shape as a starting perturbation
 :mod:`.critical_mass`       the critical-mass search and limit-cycle amplitudes
 ==========================  ========================================================================
 
-Imports point one way: system → methods → orbit → critical_mass (no cycle).
+Imports point one way: system → methods → orbit → critical_mass (no cycle); :mod:`.mode`
+uses only :mod:`gfbopt.linear`'s Linearisation and the stencil.
 """
-from .critical_mass import CriticalMass, find_critical_mass, limit_cycle_amplitudes
+from .critical_mass import (DEFAULT_METHOD, CriticalMass, find_critical_mass,
+                            limit_cycle_amplitudes)
 from .fits import VERDICTS, classify, fit_growth_rate
 from .orbit import METHODS, integrate_orbits
+from .mode import LinearMode, linear_mode
 from .result import OrbitBatch
 from .rk4 import RK4_STABILITY_RADIUS, STEP_SAFETY, rk4_step, stable_time_step
+from .rkc import accuracy_step, rkc_coefficients, rkc_stability_interval, rkc_step, stages_for
 from .system import (RightHandSide, State, TransientModel, equilibrium_state, film_force,
                      flux_residual, pressure_and_film, stiffness_bound, transient_model)
 
-__all__ = ["CriticalMass", "METHODS", "OrbitBatch", "RK4_STABILITY_RADIUS", "RightHandSide",
+__all__ = ["CriticalMass", "DEFAULT_METHOD", "LinearMode", "METHODS", "OrbitBatch",
+           "RK4_STABILITY_RADIUS", "RightHandSide", "accuracy_step", "linear_mode",
+           "rkc_coefficients", "rkc_stability_interval", "rkc_step", "stages_for",
            "STEP_SAFETY", "State", "TransientModel", "VERDICTS", "classify",
            "equilibrium_state", "film_force", "find_critical_mass", "fit_growth_rate",
            "flux_residual", "integrate_orbits", "limit_cycle_amplitudes", "pressure_and_film",

@@ -4,6 +4,8 @@
 method     what it is
 =========  ===================================================================================
 rk4        classic explicit Runge–Kutta, batched over rotors (:mod:`.rk4`): the reference
+rkc        damped second-order Runge–Kutta–Chebyshev, batched (:mod:`.rkc`): stages from the
+           stiffness bound, step from accuracy; ≈ 15× fewer evaluations than RK4 at 144 × 36
 bdf        scipy's implicit BDF with a sparse Jacobian, rotor by rotor (:mod:`.bdf`)
 =========  ===================================================================================
 
@@ -18,11 +20,13 @@ from ..errors import ParameterError
 from .bdf import integrate_bdf
 from .result import OrbitBatch, check_masses, check_positive
 from .rk4 import integrate_rk4
+from .rkc import integrate_rkc
 from .system import State, TransientModel
 
 #: method name → (integrator, options it accepts beyond the common ones)
 METHODS: dict[str, tuple[Callable, tuple]] = {
     "rk4": (integrate_rk4, ("time_step", "check_every")),
+    "rkc": (integrate_rkc, ("time_step", "stages", "check_every")),
     "bdf": (integrate_bdf, ("rtol", "atol")),
 }
 
@@ -44,12 +48,17 @@ def integrate_orbits(tm: TransientModel, mass, revolutions: float = 10.0, *,
     sample_every : Δτ between stored samples [rad]
     contact_film : minimum film H at which a rotor is in contact; its run stops there [-]
     settle : revolutions skipped before fitting the growth rate [-]
-    progress : optional callable(fraction) for progress display
-    method : a key of :data:`METHODS` ('rk4' or 'bdf')
+    progress : optional callable(fraction in [0, 1]) for progress display
+    method : a key of :data:`METHODS` ('rk4', 'rkc' or 'bdf').  The default stays 'rk4',
+        the reference whose numbers the regression tier pins; the searches and the CLI
+        default to 'rkc' (:data:`gfbopt.transient.critical_mass.DEFAULT_METHOD`: ≈ 13×
+        faster at equal accuracy at 144 × 36, see that module).
     method_options : options of that method only — rk4: ``time_step`` Δτ [rad] (default
         from the stability bound; a step above the RK4 stability limit is refused),
-        ``check_every`` (steps between re-checks of the bound); bdf: ``rtol``, ``atol``.
-        An option the chosen method does not use is refused, not ignored.
+        ``check_every`` (steps between re-checks of the bound); rkc: ``time_step`` (default
+        chosen for accuracy), ``stages`` (default from the stiffness bound; a step or stage
+        count outside the stability region is refused), ``check_every``; bdf: ``rtol``,
+        ``atol``.  An option the chosen method does not use is refused, not ignored.
 
     Returns
     -------

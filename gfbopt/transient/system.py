@@ -116,27 +116,51 @@ def flux_residual(p: np.ndarray, h: np.ndarray, tm: TransientModel) -> np.ndarra
     h3 = h * h * h
     p2 = p * p
     ph = p * h
+    # (in-place steps, the same floating-point operations as the plain formula: it is the
+    # cost of every right-hand-side evaluation)
     if tm.periodic:
-        h3e = np.roll(h3, -1, axis=-2)
-        p2e = np.roll(p2, -1, axis=-2)
-        phe = np.roll(ph, -1, axis=-2)
-        # flux through the face i+½ for every row i (wraps round)
-        fe = 0.25 * (h3 + h3e) * (p2e - p2) / dth - 0.5 * lam * (ph + phe)
-        dflux = (fe - np.roll(fe, 1, axis=-2)) / dth
+        # flux through the face i+½ for every row i (wraps round):
+        # fe = 0.25 (H³ + H³_e)(P²_e − P²)/Δθ − 0.5 Λ (PH + PH_e)
+        fe = _east(p2)
+        fe -= p2
+        fe *= 0.25 * (h3 + _east(h3))
+        fe /= dth
+        advect = _east(ph)
+        advect += ph
+        advect *= 0.5 * lam
+        fe -= advect
+        dflux = _west(fe)
+        np.subtract(fe, dflux, out=dflux)
+        dflux /= dth
     else:
         fe = (0.25 * (h3[..., :-1, :] + h3[..., 1:, :]) * (p2[..., 1:, :] - p2[..., :-1, :]) / dth
               - 0.5 * lam * (ph[..., :-1, :] + ph[..., 1:, :]))
         dflux = np.zeros_like(p)
         dflux[..., 1:-1, :] = (fe[..., 1:, :] - fe[..., :-1, :]) / dth
+    fn = p2[..., :, 1:] - p2[..., :, :-1]
     if h.shape[-1] == 1:
-        fn = (0.5 / dz) * h3 * (p2[..., :, 1:] - p2[..., :, :-1])
+        fn *= (0.5 / dz) * h3
     else:
-        fn = 0.25 * (h3[..., :, :-1] + h3[..., :, 1:]) * (p2[..., :, 1:] - p2[..., :, :-1]) / dz
+        fn *= 0.25 * (h3[..., :, :-1] + h3[..., :, 1:])
+        fn /= dz
     res = np.zeros_like(p)
-    res[..., :, 1:-1] = dflux[..., :, 1:-1] + (fn[..., :, 1:] - fn[..., :, :-1]) / dz
+    axial = fn[..., :, 1:] - fn[..., :, :-1]
+    axial /= dz
+    axial += dflux[..., :, 1:-1]
+    res[..., :, 1:-1] = axial
     if not tm.periodic:
         res[..., [0, -1], :] = 0.0
     return res
+
+
+def _east(a: np.ndarray) -> np.ndarray:
+    """Periodic east neighbour along θ, np.roll(a, -1, axis=-2) (4× faster for small arrays)."""
+    return np.concatenate([a[..., 1:, :], a[..., :1, :]], axis=-2)
+
+
+def _west(a: np.ndarray) -> np.ndarray:
+    """Periodic west neighbour along θ, np.roll(a, 1, axis=-2)."""
+    return np.concatenate([a[..., -1:, :], a[..., :-1, :]], axis=-2)
 
 
 def rigid_film(x: np.ndarray, y: np.ndarray, tm: TransientModel) -> np.ndarray:
@@ -204,7 +228,8 @@ class RightHandSide:
         np.minimum(self.min_film, h.min(axis=(1, 2)), out=self.min_film)
         if tm.law.name == "beam":
             self._guess = h[..., 0]
-        dphi = flux_residual(p, h, tm) / (2 * tm.bearing_number)
+        dphi = flux_residual(p, h, tm)
+        dphi /= 2 * tm.bearing_number
         fx, fy = film_force(p, tm)
         return State(dphi, s.u, s.v, (fx + tm.load) / self.mass_load, fy / self.mass_load)
 

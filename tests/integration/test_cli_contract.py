@@ -208,7 +208,12 @@ def test_critical_mass_json_contract():
 @pytest.mark.parametrize("command, args, message", [
     ("orbit", ["--mass", "0"], "mass = 0.0: must be finite and > 0"),
     ("orbit", ["--mass", "2", "--revolutions", "-3"], "revolutions = -3.0: must be finite"),
-    ("orbit", ["--mass", "2", "--time-step", "0.5"], "exceeds the RK4 stability limit"),
+    ("orbit", ["--mass", "2", "--method", "rk4", "--time-step", "0.5"],
+     "exceeds the RK4 stability limit"),
+    ("orbit", ["--mass", "2", "--time-step", "0.5", "--stages", "2"],
+     "exceeds the RKC stability interval"),
+    ("orbit", ["--mass", "2", "--method", "bdf", "--time-step", "0.01"],
+     "--time-step"),
     ("critical-mass", ["--tolerance", "0"], "tolerance = 0.0: must be finite and > 0"),
 ])
 def test_transient_bad_input(command, args, message):

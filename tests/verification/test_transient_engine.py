@@ -258,7 +258,8 @@ def test_bdf_refuses_models_it_does_not_cover():
     _, tm = _model("beam_seam", grid=Grid(24, 8))
     with pytest.raises(ParameterError, match=r"^method = 'bdf': does not support the beam foil law"):
         integrate_orbits(tm, [3.0], revolutions=1, method="bdf")
-    with pytest.raises(ParameterError, match=r"^method = 'euler': must be one of rk4, bdf"):
+    with pytest.raises(ParameterError,
+                       match=r"^method = 'euler': must be one of rk4, rkc, bdf"):
         integrate_orbits(tm, [3.0], revolutions=1, method="euler")
 
 
