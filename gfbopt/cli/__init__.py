@@ -5,10 +5,12 @@ module                 commands
 =====================  =================================================================
 :mod:`.static`         ``gfbopt static``
 :mod:`.linear`         ``gfbopt linear``
+:mod:`.stability`      ``gfbopt stability`` (SI: verdict, margin, onset speed, K and C)
 :mod:`.transient`      ``gfbopt orbit``, ``gfbopt critical-mass``
 :mod:`.design`         ``gfbopt design``
 :mod:`.run`            ``gfbopt run``
 :mod:`.common`         operating-point options, refusal of ignored options, JSON output
+:mod:`.si`             a bearing file's [model] options merged with the command line
 =====================  =================================================================
 
 Bad input prints one line naming the parameter, its value and the rule, and exits with
@@ -23,10 +25,10 @@ from typing import Optional, Sequence
 
 from ..errors import GfboptError
 from ..version import __version__
-from . import design, linear, run, static, transient
+from . import design, linear, run, stability, static, transient
 from .common import Parser
 
-COMMANDS = (static, linear, transient, design, run)
+COMMANDS = (static, linear, stability, transient, design, run)
 
 
 def build_parser() -> Parser:

@@ -14,6 +14,7 @@ import numpy as np
 from ..errors import ParameterError
 from ..inputs import DEFAULT_GRID, BearingGeometry, BearingModel, Grid
 from ..provenance import provenance
+from .si import fill_model_options, seam_angle_text
 
 
 class Parser(argparse.ArgumentParser):
@@ -54,15 +55,18 @@ def add_operating_point(sub: argparse.ArgumentParser) -> None:
                      "(with --bearing)")
     sub.add_argument("--foil", default=None, choices=("rigid", "simple", "beam"),
                      help="foil model (default: simple, or rigid when S = 0)")
-    sub.add_argument("--film", default="periodic", choices=("periodic", "seam"),
+    sub.add_argument("--film", default=None, choices=("periodic", "seam"),
                      help="periodic: full 360° film; seam: P = 1 at the top-foil ends "
-                     "(default periodic)")
-    sub.add_argument("--seam-angle", type=number("seam-angle"), default=None,
+                     "(default: periodic; with --bearing, the file's [model] table, else a "
+                     "seam 180° from the load — gfbopt.cli.si)")
+    sub.add_argument("--seam-angle", type=seam_angle_text, default=None,
                      help="welded end of the top foil, degrees from the load line in the "
-                     "direction of rotation (default: on the maximum-film line); seam film, "
-                     "or the beam's welded end with a periodic film")
-    sub.add_argument("--deflection-law", default="mean", choices=("mean", "local"),
-                     help="mean: W = S(P̄ − 1); local: W = S(P − 1) (simple foil only)")
+                     "direction of rotation, or max_film (the maximum-film line; the default "
+                     "without --bearing); seam film, or the beam's welded end with a "
+                     "periodic film")
+    sub.add_argument("--deflection-law", default=None, choices=("mean", "local"),
+                     help="mean: W = S(P̄ − 1); local: W = S(P − 1) (simple foil only; "
+                     "default mean, or the bearing file's)")
     sub.add_argument("--subambient", default="full", choices=("full", "gumbel"),
                      help="full film force, or Gümbel: sub-ambient pressure dropped")
     sub.add_argument("--compression-only", action="store_true",
@@ -132,10 +136,12 @@ def _refuse_ignored_options(args) -> None:
 
 def operating_point(args) -> OperatingPoint:
     """The model and target (eccentricity or load) from the parsed options."""
+    fill_model_options(args)      # the bearing file's [model] table and the defaults
     _refuse_ignored_options(args)
     common = dict(film=args.film, deflection_law=args.deflection_law,
                   subambient=args.subambient, compression_only=args.compression_only,
-                  seam_angle=None if args.seam_angle is None else math.radians(args.seam_angle))
+                  seam_angle=None if args.seam_angle is None else math.radians(args.seam_angle),
+                  loss_factor=args.loss_factor)
     grid = Grid.parse(args.grid)
     extra: dict = {}
     if args.bearing is not None:

@@ -1,4 +1,8 @@
-"""``gfbopt linear``: stiffness and damping against whirl ratio, and the linear threshold."""
+"""``gfbopt linear``: stiffness and damping against whirl ratio, and the linear threshold.
+
+With ``--loss-factor η > 0`` (structural damping of the bumps) the damping at whirl ratio 0 is
+reported as null: hysteretic damping η k/γ is unbounded at zero frequency.
+"""
 from __future__ import annotations
 
 import math
@@ -19,6 +23,10 @@ def register(subparsers) -> None:
                      help="axes of K and C (default: load frame)")
     sub.add_argument("--mass", type=number("mass"), default=None,
                      help="also give the least stable eigenvalue at this M̄ = M c ω²/W0")
+    sub.add_argument("--loss-factor", type=number("loss-factor"), default=None,
+                     help="structural loss factor η of the bump foundation, 0–1: its "
+                     "stiffness becomes k(1 + iη sign γ) in the perturbation (default 0, or "
+                     "the bearing file's)")
     sub.set_defaults(handler=run)
 
 

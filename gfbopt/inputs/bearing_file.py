@@ -8,7 +8,18 @@ The file has a ``[bearing]`` table whose keys are the fields of
     radius = 19.05e-3            # m
     ...
 
-Anything outside ``[bearing]`` (``source``, notes) is kept as metadata and not interpreted.
+An optional ``[model]`` table states the formulation the bearing is meant to be analysed with
+(:class:`~gfbopt.inputs.options.ModelOptions`; defaults in
+:func:`~gfbopt.inputs.options.resolve_model_options`)::
+
+    [model]
+    film = "seam"               # "periodic" | "seam"
+    seam_angle_deg = 180.0      # top-foil welded end from the load line, [0, 360), or "max_film"
+    foil = "simple"             # "rigid" | "simple" | "beam"
+    deflection_law = "mean"     # "mean" | "local"
+    loss_factor = 0.0           # structural loss factor η of the bumps [-]
+
+Anything else (``source``, notes) is kept as metadata and not interpreted.
 """
 from __future__ import annotations
 
@@ -22,6 +33,7 @@ except ModuleNotFoundError:  # pragma: no cover - Python 3.10
 
 from ..errors import ParameterError
 from .bearing import BearingGeometry
+from .options import ModelOptions
 
 _FIELDS = {f.name: f for f in dataclasses.fields(BearingGeometry)}
 _OPTIONAL = {name for name, f in _FIELDS.items()
@@ -62,3 +74,15 @@ def load_bearing(path: str | Path) -> BearingGeometry:
     if "bearing" not in data:
         raise ParameterError(f"{path}: [bearing]", None, "table is required but missing")
     return bearing_from_dict(data["bearing"], where=f"{Path(path).name}: bearing")
+
+
+def load_bearing_file(path: str | Path) -> tuple[BearingGeometry, ModelOptions]:
+    """The bearing (``[bearing]``, SI) and the model options its ``[model]`` table states
+    (options not stated are None; fill them with
+    :func:`~gfbopt.inputs.options.resolve_model_options`)."""
+    data = read_toml(path)
+    geometry = load_bearing(path)
+    name = Path(path).name
+    options = (ModelOptions.from_table(data["model"], where=f"{name}: model")
+               if "model" in data else ModelOptions())
+    return geometry, options

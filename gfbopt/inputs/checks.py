@@ -45,3 +45,20 @@ def check_flag(name: str, value) -> bool:
     if not isinstance(value, (bool, int)) or value not in (0, 1):
         raise ParameterError(name, value, "must be true or false")
     return bool(value)
+
+
+def check_loss_factor(value) -> float:
+    """Return a structural loss factor η [-] as float; ParameterError unless 0 ≤ η ≤ 1.
+
+    η is a fraction: the energy dissipated per cycle is 2π η times the peak elastic energy
+    (phase lag arctan η between force and deflection); bump foils are usually quoted at
+    0.1–0.5.  Values above 1 are refused as a likely percentage given by mistake.
+    """
+    eta = check_finite("loss_factor", value)
+    if eta < 0.0:
+        raise ParameterError("loss_factor", value, "must be >= 0 (a negative loss factor "
+                             "would feed energy into the rotor)")
+    if eta > 1.0:
+        raise ParameterError("loss_factor", value, "must be <= 1 (a fraction: 0.2 means "
+                             "20 %; bump foils are usually quoted at 0.1–0.5)")
+    return eta

@@ -12,7 +12,14 @@ S          p_a α / c                                       :func:`compliance_fr
 C          E_t I_t c / (R⁴ L p_a),  I_t = L t_t³/12        :func:`top_foil_coefficient_from_geometry`
 W̄          W / (p_a R²)                                    :func:`load_to_nondimensional`
 M̄          M c ω² / W0 (M, W0 per bearing)                 :func:`mass_parameter`
-K̄, C̄      K c/(p_a R²), C c ω/(p_a R²)                    :func:`stiffness_scale`
+K̄, C̄      K c/(p_a R²), C c ω/(p_a R²)                    :func:`stiffness_scale`,
+                                                           :func:`damping_scale`
+γ          Ω/ω = 2π f/ω (f the whirl frequency [Hz])       :func:`whirl_frequency_hz`,
+                                                           :func:`whirl_ratio_from_frequency`
+σ          growth rate per radian of shaft rotation        :func:`growth_rate_per_second`
+δ          −2π σ/γ, logarithmic decrement per whirl cycle  :func:`logarithmic_decrement`
+H          h/c                                             :func:`film_thickness_um`
+W0 = M g   static load of a horizontal rigid rotor         :func:`rotor_weight_newton`
 =========  ==============================================  =================================
 """
 from __future__ import annotations
@@ -88,6 +95,32 @@ def mass_from_parameter(mass_parameter_value: float, radial_clearance: float, om
 def stiffness_scale(ambient_pressure: float, radius: float, radial_clearance: float) -> float:
     """p_a R²/c [N/m]: K = K̄ · this; damping C = C̄ · this / ω [N s/m]."""
     return ambient_pressure * radius**2 / radial_clearance
+
+
+def damping_scale(ambient_pressure: float, radius: float, radial_clearance: float,
+                  omega: float) -> float:
+    """p_a R²/(c ω) [N s/m]: damping C = C̄ · this.  p_a [Pa], R [m], c [m], ω [rad/s]."""
+    return stiffness_scale(ambient_pressure, radius, radial_clearance) / omega
+
+
+def whirl_ratio_from_frequency(frequency_hz: float, omega: float) -> float:
+    """Whirl ratio γ = 2π f/ω [-] of an excitation at f [Hz] on a shaft turning at ω [rad/s]."""
+    return 2.0 * math.pi * frequency_hz / omega
+
+
+def film_thickness_um(film: float, radial_clearance: float) -> float:
+    """Film thickness h = H c in micrometres [µm] for H = h/c [-] and c [m]."""
+    return film * radial_clearance * 1e6
+
+
+#: standard gravity g [m/s²] (CGPM 1901)
+STANDARD_GRAVITY = 9.80665
+
+
+def rotor_weight_newton(mass_kg: float) -> float:
+    """Static load W0 = M g [N] of a rotor mass M [kg] carried by one bearing of a horizontal
+    rigid rotor (gravity only, g = 9.80665 m/s²)."""
+    return mass_kg * STANDARD_GRAVITY
 
 
 def whirl_frequency_hz(whirl_ratio: float, omega: float) -> float:

@@ -6,12 +6,33 @@ from dataclasses import dataclass, replace
 from typing import Optional
 
 from ..errors import ParameterError
-from .checks import check_choice, check_finite, check_flag, check_nonnegative, check_positive
+from .checks import (check_choice, check_finite, check_flag, check_loss_factor,
+                     check_nonnegative, check_positive)
 
 FOIL_MODELS = ("rigid", "simple", "beam")
 FILM_MODELS = ("periodic", "seam")
 DEFLECTION_LAWS = ("mean", "local")
 SUBAMBIENT_TREATMENTS = ("full", "gumbel")
+
+
+def film_convention(film: str, seam_angle: Optional[float], foil: str = "simple") -> str:
+    """One line naming the film convention (docs/PHYSICS.md §4), for every output.
+
+    film : 'periodic' or 'seam'; seam_angle : the welded end from the load line [rad], or
+    None for the seam on the maximum-film line; foil : the foil model.
+    """
+    if film == "periodic":
+        text = "periodic film: full 360° film, no seam (plain gas bearing idealisation)"
+        if foil == "beam":
+            text += ("; the beam's welded end on the maximum-film line" if seam_angle is None
+                     else f"; the beam's welded end {math.degrees(seam_angle):.4g}° from the "
+                     "load line")
+        return text
+    if seam_angle is None:
+        return ("seam on the maximum-film line (thesis convention: the seam follows the "
+                "attitude angle in the static solution and is frozen for the dynamics)")
+    return (f"seam at a fixed housing angle: top-foil welded end {math.degrees(seam_angle):.4g}°"
+            " from the load line in the direction of rotation")
 
 
 @dataclass(frozen=True)
@@ -40,6 +61,13 @@ class BearingModel:
         F = −∬ max(P − 1, 0)(cos θ, sin θ) dθ dZ (the convention that reproduces the Λ = 1
         rows of thesis Table 3.2; docs/literature_table_3_2.md).  The pressure field itself
         is the full-film solution in both cases.
+    loss_factor : structural loss factor η [-] of the bump foundation, 0 ≤ η ≤ 1 (default 0:
+        no structural damping).  Hysteretic damping: for motion at whirl ratio γ the
+        foundation stiffness is k (1 + iη sign γ), i.e. the compliance S/(1 + iη sign γ)
+        (docs/PHYSICS.md §7).  It acts on the dynamics only (the static equilibrium does not
+        depend on it) and needs a foundation: η > 0 is refused with foil='rigid' or S = 0.
+        The linear analysis supports it (:mod:`gfbopt.linear`); an engine that does not is
+        refused a damped model by :func:`gfbopt.physics.foil_laws.foil_law`.
     """
 
     bearing_number: float
@@ -52,6 +80,7 @@ class BearingModel:
     compression_only: bool = False
     deflection_law: str = "mean"
     subambient: str = "full"
+    loss_factor: float = 0.0
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "bearing_number",
@@ -78,6 +107,13 @@ class BearingModel:
             object.__setattr__(self, "seam_angle", check_finite("seam_angle", self.seam_angle))
         if self.length_ratio > 10.0:
             raise ParameterError("length_ratio", self.length_ratio, "must be <= 10")
+        object.__setattr__(self, "loss_factor", check_loss_factor(self.loss_factor))
+        if self.loss_factor > 0.0 and self.is_rigid:
+            raise ParameterError("loss_factor", self.loss_factor, (
+                "must be 0 with foil='rigid' (a rigid bearing has no bump foundation to damp)"
+                if self.foil == "rigid" else
+                "must be 0 when the compliance S = 0 (the foundation does not deflect, so "
+                "there is nothing for its structural damping to act on)"))
 
     @property
     def is_rigid(self) -> bool:
@@ -100,7 +136,9 @@ class BearingModel:
                 "seam_angle_deg": ("max_film" if self.seam_angle is None
                                    else math.degrees(self.seam_angle)),
                 "deflection_law": self.deflection_law,
-                "compression_only": self.compression_only, "subambient": self.subambient}
+                "compression_only": self.compression_only, "subambient": self.subambient,
+                "loss_factor": self.loss_factor,
+                "film_convention": film_convention(self.film, self.seam_angle, self.foil)}
 
     def groups(self) -> dict:
         """The non-dimensional groups Λ, S, C, L/D of this model."""

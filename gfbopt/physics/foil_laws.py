@@ -8,7 +8,10 @@ models").  Each law is one object that owns everything the engines need from it:
   numpy arrays to re-check the solution): :meth:`FoilLaw.static_film`,
   :meth:`FoilLaw.deflection`, :meth:`FoilLaw.start`;
 * its dynamic response for the linear analysis: :meth:`FoilLaw.squeeze_film_slope`
-  (how the film at a node moves with the pressure there);
+  (how the film at a node moves with the pressure there) and
+  :meth:`FoilLaw.compliance_terms` (which entries of the linearised equations carry the
+  foundation compliance S, so that the linear analysis can make the foundation stiffness
+  complex, k → k (1 + iη sign γ), for the structural loss factor η: :class:`ComplianceTerms`);
 * its transient recovery of P and H from Φ = P H and the journal position:
   :meth:`FoilLaw.transient_data`, :meth:`FoilLaw.recover`;
 * and which engines support it (:attr:`FoilLaw.engines`).
@@ -39,10 +42,12 @@ from typing import Optional
 
 import casadi as ca
 import numpy as np
+import scipy.sparse as sp
 
 from ..errors import ConvergenceError, ParameterError
 from .algebra import is_symbolic, positive_part
 from .beam import BeamMatrices, beam_deflection, beam_dofs, beam_matrices, beam_residual
+from .compliance import ComplianceTerms, PerturbationContext, active, embed
 
 #: Engines a law may support: the CasADi/IPOPT equilibrium, the linearisation, and the
 #: transient integrators.
@@ -119,6 +124,10 @@ class FoilLaw:
     #: True when the lifted film variable of the static model is the whole film H (> 0
     #: bound); False when it is only the rigid part (the local law adds W per node)
     lifted_film_is_total: bool = True
+    #: engines that model the structural loss factor η of the foundation (a damped model is
+    #: refused by the others: :func:`foil_law`).  The transient engines join when their
+    #: Kelvin–Voigt foil state τ_f dW/dτ + W = S q, τ_f = η/γ_ref, lands (PHYSICS.md §7).
+    loss_factor_engines: tuple = ()
 
     # ------------------------------------------------------------------ static model
     def extra_unknowns(self, grid) -> int:
@@ -156,6 +165,15 @@ class FoilLaw:
         """
         return None
 
+    def compliance_terms(self, ctx: PerturbationContext) -> Optional[ComplianceTerms]:
+        """The entries of the linearised equations that carry the foundation compliance S
+        (:class:`ComplianceTerms`), or None when the law has no foundation (rigid).
+
+        This is the foil's dynamic compliance in the linearisation: the linear analysis
+        replaces S by S/(1 + iη sign γ) in exactly these entries.
+        """
+        return None
+
     # --------------------------------------------------------------- transient model
     def transient_data(self, model, grid, periodic: bool, dtheta: float):
         """Precomputed data of the transient recovery (e.g. the beam's compliance map)."""
@@ -183,6 +201,7 @@ class SimpleLaw(FoilLaw):
     description = "simple elastic foundation, W = S (P̄ − 1)"
     static_structure = "simple"
     engines = ("static", "linear", "rk4", "rkc", "bdf")
+    loss_factor_engines = ("linear",)
 
     def static_film(self, h_rigid, lifted, mean_gauge, p_full, u, foil, st, data):
         w_rows = simple_deflection(mean_gauge, foil.compliance, foil.compression_only)
@@ -195,6 +214,15 @@ class SimpleLaw(FoilLaw):
     def start(self, h_rigid, mean_gauge, foil, st, data):
         w = simple_deflection(mean_gauge, foil.compliance, foil.compression_only)
         return np.maximum(h_rigid + w, 1e-3), np.zeros(0)
+
+    def compliance_terms(self, ctx):
+        # Lifted film row i: H_i − H_r,i − S c_i Q_i/(2 L/D) = 0 (c_i = 1, or [q_i > 0] for
+        # compression-only bumps), so ∂/∂Q_i = −S c_i/(2 L/D) ∝ S.  Nothing else carries S:
+        # Reynolds sees the row film H_i, and the squeeze term the rate of H_i.
+        values = (-ctx.compliance / (2.0 * ctx.length_ratio)
+                  * active(ctx.mean_gauge, ctx.compression_only))
+        a = sp.csc_matrix((values, (ctx.film_rows, ctx.axial_cols)), shape=(ctx.size, ctx.size))
+        return ComplianceTerms(a, None, "compliance")
 
     def recover(self, phi, hr, tm, guess=None, cache=None):
         # On each row H = a with a = H_r + S (P̄ − 1) and P = Φ/a, P̄ = Φ̃/a + c, so
@@ -215,6 +243,10 @@ class RigidLaw(SimpleLaw):
     name = "rigid"
     description = "rigid bearing surface, W = 0"
     static_structure = "simple"
+    loss_factor_engines = ()
+
+    def compliance_terms(self, ctx):
+        return None
 
     def recover(self, phi, hr, tm, guess=None, cache=None):
         p = _set_boundary(phi / hr[:, :, None], tm.periodic)
@@ -228,6 +260,7 @@ class LocalLaw(FoilLaw):
     description = "simple elastic foundation, local law W = S (P − 1)"
     static_structure = "local"
     engines = ("static", "linear", "rk4", "rkc")
+    loss_factor_engines = ("linear",)
     lifted_film_is_total = False
 
     def static_film(self, h_rigid, lifted, mean_gauge, p_full, u, foil, st, data):
@@ -243,6 +276,18 @@ class LocalLaw(FoilLaw):
     def squeeze_film_slope(self, pressure, compliance, compression_only):
         slope = np.ones(pressure.size) if not compression_only else (pressure > 1).astype(float)
         return compliance * slope
+
+    def compliance_terms(self, ctx):
+        # The film at unknown node k is H_k = H_r,row + S c_k (P_k − 1), so the Reynolds rows'
+        # derivative in P_k is ∂R/∂P|_H + (∂R/∂H_k) S c_k: the second part ∝ S.  The squeeze
+        # term −2Λ (H Ṗ + P Ḣ) carries −2Λ P_k S c_k Ṗ_k (∝ S) on the diagonal.
+        n_p = ctx.pressure.size
+        slope = self.squeeze_film_slope(ctx.pressure, ctx.compliance, ctx.compression_only)
+        rows = np.arange(n_p)
+        a = embed(ctx.film_sensitivity() @ sp.diags(slope), rows, rows, ctx.size)
+        b = embed(sp.diags(-2.0 * ctx.bearing_number * ctx.pressure * slope), rows, rows,
+                   ctx.size)
+        return ComplianceTerms(a, b, "compliance")
 
     def recover(self, phi, hr, tm, guess=None, cache=None):
         # S P² + (H_r − S) P − Φ = 0 per node: closed form.
@@ -263,6 +308,7 @@ class BeamLaw(FoilLaw):
     description = "Euler–Bernoulli top foil on the bumps, C d⁴W/dθ⁴ + W/S = P̄ − 1"
     static_structure = "beam"
     engines = ("static", "linear", "rk4", "rkc")
+    loss_factor_engines = ("linear",)
 
     def extra_unknowns(self, grid) -> int:
         return 2 * grid.n_theta
@@ -296,6 +342,17 @@ class BeamLaw(FoilLaw):
         u = beam_dofs(self._beam_load(mean_gauge, st), data, foil.compliance, foil.coefficient)
         w = np.concatenate([[0.0], u[0::2]])
         return np.maximum(h_rigid + w[:st.n_theta_nodes], 1e-3), u
+
+    def compliance_terms(self, ctx):
+        # Beam rows, multiplied by S: S C K_b u + M r(u) − S G q = 0.  Divided by S the
+        # foundation term is M r(u)/S, the bump stiffness; a complex stiffness k/S gives
+        # S C K_b u + k M r(u) − S G q (the row scale leaves the solution unchanged).  So the
+        # entries M ∂r/∂u ∝ 1/S scale with the stiffness; ∂r/∂u = 1, or [W_k > 0] on both
+        # dofs of node k for compression-only bumps.
+        w = ctx.beam_dofs[0::2]
+        acting = np.repeat(active(w, ctx.compression_only), 2)
+        block = ctx.law_data.foundation @ sp.diags(acting)
+        return ComplianceTerms(embed(block, ctx.beam, ctx.beam, ctx.size), None, "stiffness")
 
     def transient_data(self, model, grid, periodic, dtheta):
         if model.compression_only:
@@ -357,9 +414,21 @@ FOIL_LAWS: dict[str, FoilLaw] = {law.name: law for law in (RigidLaw(), SimpleLaw
                                                            BeamLaw())}
 
 
-def foil_law(model) -> FoilLaw:
-    """The foil law of a :class:`~gfbopt.inputs.model.BearingModel` (``model.foil_law``)."""
-    return FOIL_LAWS[model.foil_law]
+def foil_law(model, engine: Optional[str] = None) -> FoilLaw:
+    """The foil law of a :class:`~gfbopt.inputs.model.BearingModel` (``model.foil_law``).
+
+    A model with structural damping (``loss_factor`` η > 0) is handed only to an engine that
+    names itself and models η (:attr:`FoilLaw.loss_factor_engines`; today the linear
+    analysis, ``engine='linear'``), so that no engine ignores the damping silently.
+    """
+    law = FOIL_LAWS[model.foil_law]
+    eta = getattr(model, "loss_factor", 0.0)
+    if eta > 0.0 and engine not in law.loss_factor_engines:
+        who = f"the {engine} engine" if engine else "the transient engines"
+        raise ParameterError("loss_factor", eta, "structural damping of the bumps is modelled "
+                             f"by the linear analysis only, not by {who} yet: use "
+                             "loss_factor = 0 for orbits and nonlinear critical masses")
+    return law
 
 
 def static_structure(model) -> str:

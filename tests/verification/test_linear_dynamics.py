@@ -215,3 +215,29 @@ def test_least_stable_mode_changes_sign_at_the_threshold():
     above = least_stable_mode(lin, 1.1 * thr.critical_mass, thr)
     assert below.real < 0 < above.real
     assert below.imag == pytest.approx(thr.whirl_ratio, abs=0.02)
+
+
+@pytest.mark.parametrize("seam_deg, unstable", [(90.0, True), (180.0, False)])
+def test_unstable_massless_journal_gives_zero_critical_mass(seam_deg, unstable):
+    """A seam inside the loaded arc (welded end 90° from the load; the Ruscitto bearing at
+    20,000 rpm and 20 N: Λ = 3.4, S = 1.05, W̄ = 0.55) pushes the massless journal's
+    half-frequency mode — neutral for a concentric periodic film — into the right half plane:
+    the rotor whirls at every mass.  The impedance scan finds no crossing with M̄ > 0 there (the
+    roots cross at negative u), which linear_threshold once reported as 'stable for every
+    rotor mass'; its stability probe below the crossings now gives M̄c = 0.  Checked against
+    eigenvalues at M̄ = 0.01, 1 and 5 (growth > 0; the nonlinear transient agrees: growth
+    0.020 and 0.037 per rad at M̄ = 0.2 and 1 on this grid).  With the welded end opposite the
+    load (180°) small rotors are stable and M̄c > 0."""
+    model = BearingModel(bearing_number=3.4, compliance=1.05, film="seam",
+                         seam_angle=math.radians(seam_deg))
+    lin = linearise(solve_static(model, load=0.55, grid=GRID))
+    thr = linear_threshold(lin)
+    assert bool(thr.critical_mass == 0.0) == unstable
+    assert bool(thr.probe_growth_rate > 0) == unstable and not thr.stable_for_all_masses
+    for mass in (0.01, 1.0):
+        assert bool(least_stable_mode(lin, mass, thr).real > 0) == unstable
+    if unstable:
+        assert "unstable for every rotor mass" in thr.message
+        assert least_stable_mode(lin, 5.0, thr).real > 0
+    else:
+        assert 1.0 < thr.critical_mass < 5.0 and thr.message == ""

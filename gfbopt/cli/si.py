@@ -1,0 +1,83 @@
+"""Command-line helpers for SI input: the formulation options a bearing file states, merged
+with the command line, and the parsing of SI quantities (masses, loads, angles).
+
+Rule for a bearing file's ``[model]`` table (film, seam_angle_deg, foil, deflection_law,
+loss_factor; :func:`gfbopt.inputs.options.merge_options`): an option given on the command line
+wins; an option the file states fills what the command line left out; what neither states
+takes the default of :func:`gfbopt.inputs.options.resolve_model_options` (for a bump-foil
+bearing, a seam with the welded end 180° from the load).  Two cases keep the file's options
+apart:
+
+* ``--film`` different from the file's film drops the file's seam angle too (it belonged to
+  the file's film convention);
+* ``--foil rigid`` drops the whole ``[model]`` table: it describes the bearing's bump foil
+  (its film seam, deflection law and structural damping), which a rigid comparison has not.
+
+Without ``--bearing`` (non-dimensional input) the defaults stay those of the non-dimensional
+model: periodic film, axial-mean law, no structural damping.
+"""
+from __future__ import annotations
+
+import argparse
+import math
+from ..inputs.options import MAX_FILM, ModelOptions, merge_options
+
+
+def seam_angle_text(text: str):
+    """argparse type: degrees from the load line in [0, 360), or 'max_film'."""
+    if text.strip().lower() in (MAX_FILM, "max-film"):
+        return MAX_FILM
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"seam-angle = {text!r}: must be a number of degrees "
+                                         "or 'max_film'") from None
+    if not math.isfinite(value):
+        raise argparse.ArgumentTypeError(f"seam-angle = {text!r}: must be finite (not NaN)")
+    return value
+
+
+def stated_options(args) -> ModelOptions:
+    """The formulation options given on the command line (None where not given).
+
+    ``args.seam_angle`` is in degrees (or 'max_film'); a value outside [0, 360) is refused
+    here with the option's name, before anything is solved.
+    """
+    angle = getattr(args, "seam_angle", None)
+    if angle is not None and angle != MAX_FILM:
+        if not 0.0 <= angle < 360.0:
+            from ..errors import ParameterError
+
+            raise ParameterError("--seam-angle", angle, "must lie in [0, 360) degrees from the "
+                                 "load line in the direction of rotation")
+        angle = math.radians(angle)
+    return ModelOptions(film=getattr(args, "film", None), seam_angle=angle,
+                        foil=getattr(args, "foil", None),
+                        deflection_law=getattr(args, "deflection_law", None),
+                        loss_factor=getattr(args, "loss_factor", None))
+
+
+def fill_model_options(args) -> ModelOptions:
+    """Fill ``args.film``, ``seam_angle`` (degrees, None for the maximum-film line), ``foil``,
+    ``deflection_law`` and ``loss_factor`` in place for :func:`gfbopt.cli.common.operating_point`
+    (bearing file and defaults with ``--bearing``; the non-dimensional defaults without), and
+    return the complete options."""
+    cli = stated_options(args)
+    if getattr(args, "bearing", None) is not None:
+        from ..inputs.bearing_file import load_bearing_file
+
+        resolved = merge_options(cli, load_bearing_file(args.bearing)[1])
+    else:
+        resolved = ModelOptions(film=cli.film or "periodic", seam_angle=cli.seam_angle,
+                                foil=cli.foil, deflection_law=cli.deflection_law or "mean",
+                                loss_factor=0.0 if cli.loss_factor is None else cli.loss_factor)
+    args.film = resolved.film
+    args.deflection_law = resolved.deflection_law
+    args.loss_factor = resolved.loss_factor
+    if getattr(args, "bearing", None) is not None:
+        args.foil = resolved.foil
+        args.seam_angle = (None if resolved.seam_angle in (None, MAX_FILM)
+                           else math.degrees(resolved.seam_angle))
+    elif cli.seam_angle == MAX_FILM:
+        args.seam_angle = None
+    return resolved

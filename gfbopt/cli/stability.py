@@ -1,0 +1,185 @@
+"""``gfbopt stability``: is my rotor stable, with what margin, from what speed — in SI units.
+
+A thin layer over :func:`gfbopt.rotor.stability`, :func:`gfbopt.rotor.onset_speed` and
+:func:`gfbopt.rotor.coefficient_table`::
+
+    gfbopt stability --bearing FILE.toml --rotor-mass-kg M [--load-newton F] --speed-rpm N
+                     [--loss-factor η] [--onset | --speed-range A B] [film and foil options]
+                     [--csv FILE] [--json]
+
+M and F are per bearing; without ``--load-newton`` the load is the rotor's weight M g (a
+horizontal rigid rotor).  ``--onset`` searches (N/4, 2N); ``--speed-range`` sets the range.
+``--csv`` writes K [N/m] and C [N s/m] against excitation frequency [Hz] at the operating point,
+one row per frequency, including the threshold whirl frequency ("matched whirl").
+Formulation options not given come from the bearing file's ``[model]`` table, else the
+defaults (:mod:`gfbopt.cli.si`); every output states the conventions used.
+"""
+from __future__ import annotations
+
+import sys
+
+from ..errors import ParameterError
+from ..inputs.grid import DEFAULT_GRID
+from .common import emit, number
+from .si import seam_angle_text, stated_options
+
+#: --onset without --speed-range searches (N/4, 2N) around the operating speed N [rpm]
+ONSET_RANGE = (0.25, 2.0)
+
+
+def register(subparsers) -> None:
+    sub = subparsers.add_parser("stability", help="is the rotor stable, with what margin, "
+                                "from what speed (SI units)")
+    sub.add_argument("--bearing", required=True, help="bearing TOML file (SI; optional "
+                     "[model] table)")
+    sub.add_argument("--rotor-mass-kg", type=number("rotor-mass-kg"), default=None,
+                     help="rotor mass carried by one bearing [kg]")
+    sub.add_argument("--mass", type=number("mass"), default=None,
+                     help="the rotor as M̄ = M c ω²/W0 at --speed-rpm instead (needs "
+                     "--load-newton; not with --rotor-mass-kg)")
+    sub.add_argument("--load-newton", type=number("load-newton"), default=None,
+                     help="static load on one bearing [N] (default: the rotor's weight M g)")
+    sub.add_argument("--speed-rpm", type=number("speed-rpm"), default=None,
+                     help="shaft speed of the operating point [rpm]")
+    sub.add_argument("--loss-factor", type=number("loss-factor"), default=None,
+                     help="structural loss factor η of the bumps, 0–1 (default 0, or the file's)")
+    onset = sub.add_mutually_exclusive_group()
+    onset.add_argument("--onset", action="store_true", help="also find the onset speed of "
+                       f"whirl in ({ONSET_RANGE[0]:g} N, {ONSET_RANGE[1]:g} N)")
+    onset.add_argument("--speed-range", type=number("speed-range"), nargs=2, default=None,
+                       metavar=("LOW", "HIGH"), help="find the onset speed in this range [rpm]")
+    sub.add_argument("--film", default=None, choices=("periodic", "seam"),
+                     help="film convention (default: the file's, else a seam 180° from the "
+                     "load)")
+    sub.add_argument("--seam-angle", type=seam_angle_text, default=None,
+                     help="top-foil welded end, degrees from the load line in the direction "
+                     "of rotation [0, 360), or max_film")
+    sub.add_argument("--foil", default=None, choices=("rigid", "simple", "beam"),
+                     help="foil model (default: the file's, else simple)")
+    sub.add_argument("--deflection-law", default=None, choices=("mean", "local"),
+                     help="mean: W = S(P̄ − 1); local: W = S(P − 1) (default: the file's, else "
+                     "mean)")
+    sub.add_argument("--frequency-hz", type=number("frequency-hz"), nargs="+", default=None,
+                     help="excitation frequencies of the K, C table [Hz] (default: 0.1 … 1.0 "
+                     "times the shaft frequency, plus the matched whirl)")
+    sub.add_argument("--csv", default=None, help="write K, C against frequency to this CSV")
+    sub.add_argument("--grid", default=str(DEFAULT_GRID),
+                     help=f"NTHETAxNZ (default {DEFAULT_GRID})")
+    sub.add_argument("--json", action="store_true", help="print one JSON object")
+    sub.set_defaults(handler=run)
+
+
+def _check(args) -> None:
+    """Bad or contradictory input: one line, before anything is built or solved."""
+    if args.rotor_mass_kg is not None and args.mass is not None:
+        raise ParameterError("--mass", args.mass, "contradicts --rotor-mass-kg: give the rotor "
+                             "either in kg or as the non-dimensional M̄, not both")
+    if args.rotor_mass_kg is None and args.mass is None:
+        raise ParameterError("--rotor-mass-kg", None, "is required (rotor mass per bearing)")
+    for option, value in (("--rotor-mass-kg", args.rotor_mass_kg), ("--mass", args.mass),
+                          ("--load-newton", args.load_newton), ("--speed-rpm", args.speed_rpm)):
+        if value is not None and not value > 0:
+            raise ParameterError(option, value, "must be > 0")
+    if args.loss_factor is not None and args.loss_factor < 0:
+        raise ParameterError("--loss-factor", args.loss_factor, "must be >= 0 (a negative loss "
+                             "factor would feed energy into the rotor)")
+    if args.mass is not None and (args.load_newton is None or args.speed_rpm is None):
+        raise ParameterError("--mass", args.mass, "needs --load-newton and --speed-rpm (with "
+                             "the load taken as the weight M g, M̄ = c ω²/g does not depend "
+                             "on M)")
+    if args.speed_rpm is None and args.speed_range is None:
+        raise ParameterError("--speed-rpm", None, "is required (or give --speed-range)")
+    if args.onset and args.speed_rpm is None:
+        raise ParameterError("--onset", True, "needs --speed-rpm (it searches around it)")
+    if args.speed_rpm is None and (args.csv or args.frequency_hz):
+        raise ParameterError("--csv/--frequency-hz", args.csv or args.frequency_hz,
+                             "need --speed-rpm (the coefficients belong to an operating point)")
+    if args.speed_range is not None:
+        low, high = args.speed_range
+        if not 0 < low < high:
+            raise ParameterError("--speed-range", args.speed_range,
+                                 "must be two speeds 0 < LOW < HIGH [rpm]")
+
+
+def run(args) -> int:
+    from ..inputs import Grid, OperatingPoint, Rotor
+    from ..inputs.bearing_file import load_bearing_file
+    from ..inputs.conversions import mass_from_parameter, rpm_to_rad_per_s
+    from ..inputs.options import merge_options
+    from ..rotor import coefficient_table, onset_speed, stability
+    from ..static import SolverCache
+
+    _check(args)
+    grid = Grid.parse(args.grid)
+    bearing, file_options = load_bearing_file(args.bearing)
+    options = merge_options(stated_options(args), file_options)
+    if args.mass is not None:      # M = M̄ W0/(c ω²): the same rotor, in kg
+        mass = mass_from_parameter(args.mass, bearing.radial_clearance,
+                                   rpm_to_rad_per_s(args.speed_rpm), args.load_newton)
+    else:
+        mass = args.rotor_mass_kg
+    rotor = Rotor(mass)
+    cache = SolverCache(grid)
+    common = dict(options=options, grid=grid, cache=cache)
+    out = {"bearing": bearing.name, "rotor_mass_kg": mass, "grid": str(grid),
+           "conventions": options.to_dict()}
+    result = table = onset = None
+    if args.speed_rpm is not None:
+        result = stability(bearing, rotor, OperatingPoint(args.speed_rpm, args.load_newton),
+                           **common)
+        out.update({k: v for k, v in result.to_dict().items() if k != "conventions"})
+        out["conventions"] = result.conventions
+        table = coefficient_table(result.linearisation, bearing, args.speed_rpm,
+                                  args.frequency_hz, result.threshold_whirl_ratio)
+        out["coefficients"] = table.to_dict()
+        if args.csv:
+            table.write_csv(args.csv)
+            out["csv"] = str(args.csv)
+    if args.onset or args.speed_range is not None:
+        span = (tuple(args.speed_range) if args.speed_range is not None
+                else tuple(f * args.speed_rpm for f in ONSET_RANGE))
+        onset = onset_speed(bearing, rotor, args.load_newton, span, **common)
+        out["onset"] = {k: v for k, v in onset.to_dict().items() if k != "conventions"}
+        out["onset_speed_rpm"] = onset.onset_speed_rpm
+        out["onset_whirl_frequency_hz"] = onset.whirl_frequency_hz
+        out.setdefault("conventions", onset.conventions)
+    success = all(r.success for r in (result, onset) if r is not None)
+    out["success"] = success
+    emit(out, args.json, lambda: _report(out, result, onset, table, args.csv),
+         {"command": "stability", "grid": str(grid), **options.to_dict()})
+    if not success:
+        print("gfbopt: the stability analysis did not complete: "
+              f"{(result and result.message) or (onset and onset.message)}", file=sys.stderr)
+        return 1
+    return 0
+
+
+def _report(out, result, onset, table, csv) -> str:
+    conv = out["conventions"]
+    lines = [f"gfbopt stability — {out['bearing']}, rotor {out['rotor_mass_kg']:.4g} kg per "
+             f"bearing, grid {out['grid']}",
+             f"  conventions: {conv['film_convention']}; {conv['foil']} foil, "
+             f"{conv['deflection_law']} deflection law, loss factor {conv['loss_factor']:g}"]
+    if result is not None:
+        r = result
+        lines += [
+            f"  operating point: {r.speed_rpm:.6g} rpm, load {r.load_newton:.4g} N "
+            f"({r.conventions['load_source']})",
+            f"  equilibrium: ε = {r.eccentricity:.4f}, attitude {r.attitude_angle_deg:.2f}°, "
+            f"minimum film {r.min_film_thickness_um:.2f} µm",
+            f"  Λ = {r.bearing_number:.4g}, W̄0 = {r.load_parameter:.4g}, M̄ = {r.mass_parameter:.4g}"
+            f", M̄c = {r.critical_mass_parameter:.4g}",
+            f"  verdict: {r.verdict.upper()} — critical mass {r.critical_mass_kg:.4g} kg, "
+            f"mass margin {r.mass_margin:+.1%}",
+            f"  least-stable mode: whirl {r.whirl_frequency_hz:.4g} Hz, growth rate "
+            f"{r.growth_rate_per_s:.4g} 1/s, log decrement {r.log_decrement:.4g}",
+            f"  threshold whirl (matched whirl for K, C): "
+            f"{r.threshold_whirl_frequency_hz:.4g} Hz (γ = {r.threshold_whirl_ratio:.3f})"]
+        if r.message:
+            lines.append(f"  note: {r.message}")
+        if csv:
+            lines.append(f"  K [N/m], C [N s/m] against frequency written to {csv} "
+                         f"({len(table.table)} rows; frame: {table.frame})")
+    if onset is not None:
+        lines.append(f"  onset: {onset.answer}")
+    return "\n".join(lines)

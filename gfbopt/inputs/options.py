@@ -1,0 +1,221 @@
+"""Formulation options a user states — film convention, foil law, structural damping — and
+the defaults that fill what is not stated.
+
+A bearing file may state them in an optional ``[model]`` table (:mod:`.bearing_file`); the
+command line and the Python API may override them.  What is not stated anywhere is filled by
+:func:`resolve_model_options`, whose docstring says which default applies and why.
+
+The three film conventions (``docs/PHYSICS.md`` §4):
+
+=====================================  ==========================================  ===========
+convention                             represents                                  options
+=====================================  ==========================================  ===========
+periodic film                          a full 360° film with no seam: the plain    film =
+                                       self-acting gas bearing, or a foil bearing  "periodic"
+                                       idealised as seamless
+seam at a fixed housing angle          a real top foil, welded at one end and      film = "seam",
+                                       free at the other, the ambient gap between  seam_angle_deg
+                                       them at a fixed angle from the load: the    = 0 … 360
+                                       usual hardware
+seam on the maximum-film line          the thesis's convention (Mohan 2010): the   film = "seam",
+                                       seam follows the attitude angle in the      seam_angle_deg
+                                       static solution (frozen for the dynamics)   = "max_film"
+=====================================  ==========================================  ===========
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Optional, Union
+
+from ..errors import ParameterError
+from .checks import check_choice, check_finite, check_loss_factor
+from .model import DEFLECTION_LAWS, FILM_MODELS, FOIL_MODELS, film_convention
+
+#: ``seam_angle`` value of the thesis's convention: the seam on the maximum-film line
+MAX_FILM = "max_film"
+#: default welded-end angle of a bump-foil bearing's top foil, from the load line [rad]
+DEFAULT_SEAM_ANGLE = math.pi
+
+_TABLE_KEYS = ("film", "seam_angle_deg", "foil", "deflection_law", "loss_factor")
+
+
+def check_seam_angle(value, name: str = "seam_angle") -> Union[float, str]:
+    """A welded-end angle [rad] in [0, 2π), or :data:`MAX_FILM`; ParameterError otherwise."""
+    if value == MAX_FILM:
+        return MAX_FILM
+    angle = check_finite(name, value)
+    if not 0.0 <= angle < 2.0 * math.pi:
+        raise ParameterError(name, value, "must lie in [0, 2π) rad, i.e. [0, 360) degrees from "
+                             "the load line in the direction of rotation")
+    return angle
+
+
+@dataclass(frozen=True)
+class ModelOptions:
+    """Formulation options of a bearing model; each is None when not stated.
+
+    Attributes
+    ----------
+    film : 'periodic' (no seam) or 'seam' (the top foil's ends, open to ambient)
+    seam_angle : welded end of the top foil, measured from the load line in the direction of
+        rotation [rad] in [0, 2π); or ``'max_film'`` (:data:`MAX_FILM`), the thesis's seam on
+        the maximum-film line.  (Note: ``None`` here means *not stated*, whereas in
+        :class:`~gfbopt.inputs.model.BearingModel` ``seam_angle=None`` is the max-film seam.)
+    foil : 'rigid', 'simple' or 'beam'
+    deflection_law : 'mean' (W = S(P̄ − 1)) or 'local' (W = S(P − 1))
+    loss_factor : structural loss factor η of the bump foundation [-], 0 ≤ η ≤ 1
+    """
+
+    film: Optional[str] = None
+    seam_angle: Union[float, str, None] = None
+    foil: Optional[str] = None
+    deflection_law: Optional[str] = None
+    loss_factor: Optional[float] = None
+
+    def __post_init__(self) -> None:
+        if self.film is not None:
+            check_choice("film", self.film, FILM_MODELS)
+        if self.foil is not None:
+            check_choice("foil", self.foil, FOIL_MODELS)
+        if self.deflection_law is not None:
+            check_choice("deflection_law", self.deflection_law, DEFLECTION_LAWS)
+        if self.seam_angle is not None:
+            object.__setattr__(self, "seam_angle", check_seam_angle(self.seam_angle))
+        if self.loss_factor is not None:
+            object.__setattr__(self, "loss_factor", check_loss_factor(self.loss_factor))
+
+    @classmethod
+    def from_table(cls, table: dict, where: str = "model") -> "ModelOptions":
+        """Options from a ``[model]`` TOML table: keys film, seam_angle_deg (degrees in
+        [0, 360), or "max_film"), foil, deflection_law, loss_factor."""
+        if not isinstance(table, dict):
+            raise ParameterError(where, table, "must be a table of model options")
+        unknown = sorted(set(table) - set(_TABLE_KEYS))
+        if unknown:
+            raise ParameterError(f"{where}.{unknown[0]}", table[unknown[0]],
+                                 f"is not a model option (known: {', '.join(_TABLE_KEYS)})")
+        angle = table.get("seam_angle_deg")
+        if angle is not None and angle != MAX_FILM:
+            if isinstance(angle, bool) or not isinstance(angle, (int, float)):
+                raise ParameterError(f"{where}.seam_angle_deg", angle,
+                                     'must be a number of degrees or "max_film"')
+            if not 0.0 <= angle < 360.0:
+                raise ParameterError(f"{where}.seam_angle_deg", angle,
+                                     "must lie in [0, 360) degrees")
+            angle = math.radians(angle)
+        for key in ("film", "foil", "deflection_law"):
+            if key in table and not isinstance(table[key], str):
+                raise ParameterError(f"{where}.{key}", table[key], "must be a string")
+        return cls(film=table.get("film"), seam_angle=angle, foil=table.get("foil"),
+                   deflection_law=table.get("deflection_law"),
+                   loss_factor=table.get("loss_factor"))
+
+    def over(self, base: "ModelOptions") -> "ModelOptions":
+        """These options where stated, else ``base``'s (e.g. command line over file)."""
+        pick = {k: (getattr(self, k) if getattr(self, k) is not None else getattr(base, k))
+                for k in ("film", "seam_angle", "foil", "deflection_law", "loss_factor")}
+        return ModelOptions(**pick)
+
+    @property
+    def complete(self) -> bool:
+        """True when every option that the film and foil need is stated."""
+        needs_seam = self.film == "seam" or self.foil == "beam"
+        return (None not in (self.film, self.foil, self.deflection_law, self.loss_factor)
+                and (self.seam_angle is not None or not needs_seam))
+
+    def model_kwargs(self) -> dict:
+        """Keyword arguments of :meth:`BearingGeometry.model` (options must be complete)."""
+        if not self.complete:
+            raise ParameterError("options", self, "are not complete: apply "
+                                 "resolve_model_options first")
+        seam = None if self.seam_angle in (None, MAX_FILM) else self.seam_angle
+        return dict(foil=self.foil, film=self.film, seam_angle=seam,
+                    deflection_law=self.deflection_law, loss_factor=self.loss_factor)
+
+    def convention(self) -> str:
+        """One line naming the film convention, for every output."""
+        if self.film is None or (self.film == "seam" and self.seam_angle is None):
+            return "film convention not stated"
+        return film_convention(self.film, None if self.seam_angle == MAX_FILM
+                               else self.seam_angle, self.foil or "simple")
+
+    def to_dict(self) -> dict:
+        """The options as outputs state them (angles in degrees)."""
+        angle = self.seam_angle
+        return {"film": self.film, "seam_angle_deg": (angle if angle in (None, MAX_FILM)
+                                                      else math.degrees(angle)),
+                "foil": self.foil, "deflection_law": self.deflection_law,
+                "loss_factor": self.loss_factor, "film_convention": self.convention()}
+
+
+def merge_options(stated: ModelOptions, base: ModelOptions) -> ModelOptions:
+    """``stated`` options (e.g. the command line or function arguments) over ``base`` (e.g. a
+    bearing file's ``[model]`` table), then the defaults: complete options.
+
+    An option stated wins; ``base`` fills what is not stated, except that a stated film other
+    than the base's drops the base's seam angle too (it belonged to the base's convention),
+    and a stated ``foil='rigid'`` drops ``base`` altogether (its film seam, deflection law and
+    structural damping describe a bump foil, which a rigid comparison has not).
+    """
+    if stated.foil == "rigid":
+        return resolve_model_options(stated)
+    if stated.film is not None and stated.film != base.film:
+        base = ModelOptions(foil=base.foil, deflection_law=base.deflection_law,
+                            loss_factor=base.loss_factor)
+    return resolve_model_options(stated.over(base))
+
+
+def resolve_model_options(stated: Optional[ModelOptions] = None) -> ModelOptions:
+    """Fill the options nobody stated with gfbopt's defaults for a bump-foil bearing.
+
+    Defaults: foil 'simple' (the bump foundation), deflection law 'mean' (Heshmat's strip
+    model, the thesis's), loss factor 0 (no structural damping: the conservative choice),
+    and the film convention below.  A stated option is never changed; contradictory ones
+    (a seam angle with a periodic film and no beam) are refused.
+
+    **Film default: a seam at a fixed housing angle, the top foil's welded end 180° from the
+    load line (opposite the static load).**  A rigid bearing (foil='rigid') has no top foil
+    and gets the periodic film of a plain 360° gas bearing.  Why this default:
+
+    * *A seam, not a periodic film.*  A bump-foil bearing has one top foil, welded at one end
+      and free at the other; the gap between the ends is open to ambient pressure.  The
+      periodic film ignores it, and that is not a detail: for the Ruscitto bearing at
+      45,000 rpm and 20 N it puts the critical mass parameter at 0.63 against 3.3 with a
+      seam (issue #9).
+    * *Fixed in the housing.*  The foil is welded to the sleeve, so the seam does not follow
+      the journal when the load or speed changes.  The thesis's seam on the maximum-film line
+      moves with the attitude angle in the static solution, which no installed foil does; it
+      stays available as ``seam_angle='max_film'`` for the thesis's results.
+    * *180° from the load.*  It puts the ambient gap in the unloaded arc, where the film is
+      thickest (θ ≈ π + φ) and the gauge pressure small, so it cuts least into the
+      load-carrying film; keeping the weld away from the load is what designers aim for and
+      the installation docs/PHYSICS.md §4 calls common.  For small attitude angles it is the
+      fixed-housing counterpart of the maximum-film seam and gives nearly its thresholds
+      (Ruscitto, 20 N, 45,000 rpm, 72 × 20 grid: M̄c = 3.31 at 180° against 3.32).  And it
+      sits in the middle of a broad optimum: for that bearing and load, with the welded end
+      swept in 15° steps at 10,000, 20,000 and 45,000 rpm, 180° is within about 2 % of the
+      highest critical mass (the best is 165°–195°), 270° gives a half to a third of it, and a
+      welded end in or near the loaded arc (0°–90° at every speed, 300°–345° at the higher
+      speeds) makes the massless journal's half-frequency mode grow, so the rotor whirls at
+      every mass.  90° and 270° were considered and rejected for those reasons: a default on
+      a steep slope, or past a cliff, would surprise a user.
+
+    Users whose foil sits elsewhere must state ``seam_angle_deg``: the answer depends on it as
+    strongly as on the physics, and every output prints the convention used.
+    """
+    s = stated or ModelOptions()
+    foil = s.foil or "simple"
+    film = s.film or ("periodic" if foil == "rigid" else "seam")
+    seam = s.seam_angle
+    if film == "periodic" and seam == MAX_FILM:
+        raise ParameterError("seam_angle", seam, "'max_film' needs film = 'seam'")
+    if film == "periodic" and seam is not None and foil != "beam":
+        raise ParameterError("seam_angle_deg", round(math.degrees(seam), 10), "is not used "
+                             "with a periodic film (no seam) unless the beam foil needs its "
+                             "welded end; state film = 'seam'")
+    if seam is None and (film == "seam" or foil == "beam"):
+        seam = DEFAULT_SEAM_ANGLE
+    return ModelOptions(film=film, seam_angle=seam, foil=foil,
+                        deflection_law=s.deflection_law or "mean",
+                        loss_factor=0.0 if s.loss_factor is None else s.loss_factor)
