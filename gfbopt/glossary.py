@@ -1,0 +1,185 @@
+"""The one vocabulary of gfbopt's tables: every column name, its unit and its meaning.
+
+Study files (``problems/*.toml``), Python keyword arguments and output columns use the same
+names: ``bearing_number`` is Λ in a study file, in :class:`gfbopt.inputs.BearingModel` and in
+``results/*/*.csv``.  The study reports document their columns from this table
+(:func:`describe`), and a test checks that every column a study writes is described here.
+
+Published values sit beside ours under the quantity's name followed by the reference's name
+(``load_yang``, ``attitude_angle_deg_thesis``, ``crossover_thesis``); their deviation is
+``<quantity>_error_<reference>``: relative (ours / published − 1) for every quantity except
+angles (``*_deg``), whose deviation is ours − published in degrees (:func:`deviation`).
+Conventions (frames, signs, non-dimensional groups): docs/PHYSICS.md.
+"""
+from __future__ import annotations
+
+import math
+import re
+
+#: column → (unit, meaning).  "-" is non-dimensional; "text"/"flag" are not numbers.
+GLOSSARY: dict[str, tuple[str, str]] = {
+    # ---------------------------------------------------------------- labels
+    "variant": ("text", "label of the model variant (formulation) within the study"),
+    "label": ("text", "label of the operating point or case within the study"),
+    "against": ("text", "the variant whose curve is crossed"),
+    "variable": ("text", "the swept input (a column name of this glossary)"),
+    "where": ("text", "table or figure of the published source the value is read from"),
+    "reference": ("text", "the published source a value comes from"),
+    "masses": ("text", "'thesis': the thesis's rotor masses; 'scaled': the same fractions of "
+               "our linear threshold"),
+    "grid": ("text", "finite-difference grid, n_theta x n_z intervals"),
+    # ---------------------------------------------------------------- model inputs
+    "bearing_number": ("-", "bearing number Λ = 6 μ ω R² / (p_a c²)"),
+    "compliance": ("-", "bump compliance coefficient S = p_a α / c (0: rigid bearing)"),
+    "length_ratio": ("-", "bearing length over diameter L/D"),
+    "top_foil_coefficient": ("-", "top-foil bending coefficient C = E_t t_t³ c / (12 R⁴ p_a) "
+                             "(beam foil only)"),
+    "foil": ("text", "foil model: rigid, simple (elastic foundation) or beam (top foil on "
+             "the bumps)"),
+    "film": ("text", "periodic (no seam) or seam (P = 1 at the top-foil ends)"),
+    "seam_angle_deg": ("deg", "welded end of the top foil from the load line, in the "
+                       "direction of rotation ('max_film': on the maximum-film line)"),
+    "deflection_law": ("text", "mean: W = S (P̄ − 1); local: W = S (P − 1)"),
+    "subambient": ("text", "full: whole film pressure in the force; gumbel: gauge pressure "
+                   "below ambient dropped"),
+    "compression_only": ("flag", "the bumps cannot pull the top foil towards the journal"),
+    # ---------------------------------------------------------------- operating point
+    "eccentricity": ("-", "eccentricity ratio ε = e/c of the journal centre"),
+    "load": ("-", "static load W̄ = W / (p_a R²)"),
+    "load_newton": ("N", "static load W on the bearing"),
+    "speed_rpm": ("rpm", "shaft speed"),
+    # ---------------------------------------------------------------- static outputs
+    "attitude_angle_deg": ("deg", "attitude angle φ: from the load line to the line of "
+                           "centres, in the direction of rotation"),
+    "min_film": ("-", "minimum film thickness H_min = h_min / c"),
+    "min_film_thickness_um": ("µm", "minimum film thickness h_min"),
+    "min_film_angle_from_seam_deg": ("deg", "angle of the minimum film from the welded end of "
+                                     "the top foil, in the direction of rotation"),
+    "max_mean_pressure": ("-", "largest axially averaged pressure P̄ = p̄ / p_a"),
+    "max_mean_pressure_angle_from_seam_deg": ("deg", "angle of the largest P̄ from the "
+                                              "welded end"),
+    "max_deflection": ("-", "largest top-foil deflection W = w / c"),
+    "max_deflection_angle_from_seam_deg": ("deg", "angle of the largest deflection from the "
+                                           "welded end"),
+    # ---------------------------------------------------------------- profiles
+    "angle_from_seam_deg": ("deg", "angle from the welded end of the top foil, in the "
+                            "direction of rotation"),
+    "theta_deg": ("deg", "angle from the load line, in the direction of rotation"),
+    "mean_pressure": ("-", "axially averaged pressure P̄ = p̄ / p_a"),
+    "deflection": ("-", "top-foil deflection W = w / c (positive away from the journal)"),
+    "film_thickness": ("-", "film thickness H = h / c, smallest over the bearing length"),
+    "midplane_pressure": ("-", "pressure P = p / p_a on the axial mid-plane"),
+    # ---------------------------------------------------------------- grid convergence
+    "case": ("text", "label of the case"),
+    "n_theta": ("-", "grid intervals round the bearing"),
+    "n_z": ("-", "grid intervals along the bearing"),
+    "grid_spacing": ("-", "1 / n_theta"),
+    "observed_order_load": ("-", "observed order of convergence of the load (three finest "
+                            "grids)"),
+    "observed_order_attitude": ("-", "observed order of convergence of the attitude angle"),
+    "load_extrapolated": ("-", "Richardson-extrapolated load W̄ (formal order 2)"),
+    "attitude_angle_deg_extrapolated": ("deg", "Richardson-extrapolated attitude angle"),
+    "default_grid": ("text", "the grid whose error is reported"),
+    "default_grid_load_error": ("-", "relative load error of the default grid against the "
+                                "extrapolated value"),
+    "default_grid_attitude_error_deg": ("deg", "attitude error of the default grid against "
+                                        "the extrapolated value"),
+    # ---------------------------------------------------------------- stability
+    "critical_mass": ("-", "critical rotor mass M̄ = M c ω² / W0 (M and W0 per bearing): "
+                      "stable below, whirling above"),
+    "whirl_ratio": ("-", "whirl frequency over shaft speed (at the threshold, or of the "
+                    "excitation for coefficients)"),
+    "stable_for_all_masses": ("flag", "no linear threshold: stable for every rotor mass"),
+    "linear_critical_mass": ("-", "linear (small-motion) critical mass M̄"),
+    "linear_whirl_ratio": ("-", "whirl ratio at the linear threshold"),
+    "threshold_whirl_ratio": ("-", "whirl ratio at the linear threshold"),
+    "critical_rotor_mass_kg": ("kg", "critical rotor mass per bearing M = M̄ W0 / (c ω²)"),
+    "bracket_low": ("-", "largest rotor mass M̄ found stable by the transients"),
+    "bracket_high": ("-", "smallest rotor mass M̄ found unstable by the transients"),
+    "transients": ("-", "number of transient runs of the critical-mass search"),
+    "rotor_revolutions": ("-", "shaft revolutions integrated in total by the search"),
+    "nonlinear_over_linear": ("-", "transient critical mass over the linear one"),
+    "static_success": ("flag", "the static equilibrium converged"),
+    "crossover": ("-", "value of the swept variable where the critical-mass curves of "
+                  "'variant' and 'against' cross (empty: they do not cross in the range)"),
+    "critical_mass_published_over_ours": ("-", "published critical mass over our linear one"),
+    # ---------------------------------------------------------------- orbits
+    "tau": ("rad", "shaft rotation τ = ω t since the start of the run"),
+    "x": ("-", "journal centre X/c, along the static load"),
+    "y": ("-", "journal centre Y/c, 90° ahead of the load in the direction of rotation"),
+    "mass": ("-", "rotor mass parameter M̄ = M c ω² / W0"),
+    "mass_ratio": ("-", "rotor mass over the linear critical mass"),
+    "mass_thesis": ("-", "the thesis's rotor mass this run corresponds to"),
+    "verdict": ("text", "stable, unstable, limit cycle or contact (film below 0.02 c)"),
+    "growth_rate": ("1/rad", "growth rate of the whirl per radian of shaft rotation "
+                    "(> 0: unstable; inf: contact)"),
+    "final_amplitude": ("-", "final orbit radius about the equilibrium, in clearances"),
+    "contact_tau": ("rad", "shaft rotation τ = ω t at contact (empty: none)"),
+    "amplitude_from_inside": ("-", "final orbit amplitude from a small initial displacement "
+                              "[clearances]"),
+    "amplitude_from_outside": ("-", "final orbit amplitude from a large initial displacement "
+                               "[clearances]"),
+    "verdict_from_inside": ("text", "verdict of the run from the small displacement"),
+    "verdict_from_outside": ("text", "verdict of the run from the large displacement"),
+    # ---------------------------------------------------------------- coefficients
+    "frequency_hz": ("Hz", "excitation (whirl) frequency"),
+    "impedance_error": ("-", "max |Z − Z_Ausman| / max |Z_Ausman| over the four entries"),
+    # ---------------------------------------------------------------- diagnostics
+    "success": ("flag", "the computation of this row converged"),
+    "message": ("text", "why a computation did not converge (empty when it did)"),
+    "status": ("text", "IPOPT's return status of the static solve"),
+    "iterations": ("-", "IPOPT iterations of the static solve"),
+    "residual": ("-", "largest residual of the discrete Reynolds equations, recomputed "
+                 "after the solve"),
+    "wall_time_s": ("s", "wall time of this row's computation"),
+}
+
+# Families of columns: (regular expression, unit, meaning with {groups}).
+_PATTERNS: tuple = (
+    (r"k([xy])([xy])_N_per_m", "N/m", "stiffness K_{0}{1} (load frame: x along the load)"),
+    (r"c([xy])([xy])_Ns_per_m", "N s/m", "damping C_{0}{1} (load frame)"),
+    (r"k([xy])([xy])", "-", "stiffness K̄_{0}{1} = K c / (p_a R²) (load frame)"),
+    (r"c([xy])([xy])", "-", "damping C̄_{0}{1} = C c ω / (p_a R²) (load frame)"),
+    (r"z([xy])([xy])_(re|im)", "-", "impedance Z_{0}{1} ({2} part), gfbopt"),
+    (r"z([xy])([xy])_ausman_(re|im)", "-", "impedance Z_{0}{1} ({2} part), Ausman's closed "
+     "form"),
+    (r"load_error_grid_(\d+x\d+)", "-", "relative load error of grid {0} against the "
+     "extrapolated value"),
+)
+
+_PART = {"re": "real", "im": "imaginary"}
+
+
+def deviation(quantity: str, ours: float, published: float) -> float:
+    """Deviation of ``ours`` from ``published``: ours − published for an angle (``*_deg``),
+    ours / published − 1 otherwise (the rule behind every ``<quantity>_error_<reference>``
+    column and every tolerance on a published comparison)."""
+    if quantity.endswith("_deg"):
+        return ours - published
+    if published == 0 or not math.isfinite(published):
+        return math.nan
+    return ours / published - 1.0
+
+
+def describe(column: str, references: tuple = ()) -> tuple[str, str]:
+    """(unit, meaning) of ``column``; ``references`` are the names of published sources,
+    so that ``load_yang`` reads "load W̄ … published by yang".  KeyError if unknown."""
+    if column in GLOSSARY:
+        return GLOSSARY[column]
+    for ref in references:
+        for quantity in GLOSSARY:
+            if column == f"{quantity}_{ref}":
+                unit, meaning = GLOSSARY[quantity]
+                return unit, f"{meaning} — published ({ref})"
+            if column == f"{quantity}_error_{ref}":
+                unit = "deg" if quantity.endswith("_deg") else "-"
+                kind = "ours − published" if unit == "deg" else "ours / published − 1"
+                return unit, f"deviation of {quantity} from {ref}: {kind}"
+        if column == f"verdicts_{ref}":
+            return "text", f"verdicts published ({ref})"
+    for pattern, unit, meaning in _PATTERNS:
+        match = re.fullmatch(pattern, column)
+        if match:
+            groups = [_PART.get(g, g.upper() if len(g) == 1 else g) for g in match.groups()]
+            return unit, meaning.format(*groups)
+    raise KeyError(f"column {column!r} is not in the glossary (gfbopt/glossary.py)")

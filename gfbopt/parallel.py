@@ -1,0 +1,159 @@
+"""Executors: evaluate many independent points, serially or on a pool of processes.
+
+``run_points(function, points, workers=...)`` calls ``function(**point)`` for every point
+and returns the rows in the order of ``points``, whichever executor ran them:
+
+* ``workers <= 1`` (or a single point): in this process, one :class:`SolverCache` for the
+  call (or the ``cache`` given);
+* ``workers > 1``: a pool of ``spawn`` processes.  IPOPT/MUMPS is not thread-safe and a CasADi
+  solver cannot be pickled, so only the points travel; every worker builds its solvers
+  itself, once per (grid, film, structure), in its **per-worker solver cache** — the one
+  piece of module-level state in gfbopt, created by the worker initialiser
+  (:func:`_start_worker`) and living as long as the worker process.  The initialiser also
+  pins BLAS to one thread (:func:`limit_blas_threads`) and makes the worker ignore Ctrl-C,
+  which the parent handles: on Ctrl-C the pending points are cancelled, the workers are
+  terminated and ``KeyboardInterrupt`` is raised again.
+
+Workers are started with ``spawn``: a script that runs points on workers must guard its
+top level with ``if __name__ == "__main__":`` (as any multiprocessing program).
+
+A function that accepts a ``cache`` keyword receives the solver cache.  It returns one row
+(a dict) or a list of rows; a point that raises becomes one row with ``success = False``
+and ``message`` = the error, so a sweep never loses what it computed.  ``tags`` add label
+columns (not arguments of ``function``) in front of each point's rows; a tag wins over a
+column of the same name that the function returns.
+"""
+from __future__ import annotations
+
+import inspect
+import multiprocessing
+import signal
+import time
+from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
+from concurrent.futures.process import BrokenProcessPool
+from typing import Callable, Optional, Sequence
+
+from .static import SolverCache
+
+#: The per-worker solver cache (set in each pool worker by :func:`_start_worker`).
+_WORKER_CACHE: Optional[SolverCache] = None
+
+
+def limit_blas_threads() -> None:
+    """One BLAS/OpenMP thread in this process (threadpoolctl): gfbopt's linear algebra is
+    many small sparse factorisations, which multi-threaded BLAS slows down, and the
+    workers of a pool would otherwise compete for the same cores."""
+    from threadpoolctl import threadpool_limits
+
+    threadpool_limits(1)
+
+
+def _start_worker() -> None:
+    """Initialiser of a pool worker: BLAS pinned, Ctrl-C left to the parent, empty cache."""
+    global _WORKER_CACHE
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    limit_blas_threads()
+    _WORKER_CACHE = SolverCache()
+
+
+def _takes_cache(function: Callable) -> bool:
+    try:
+        return "cache" in inspect.signature(function).parameters
+    except (TypeError, ValueError):
+        return False
+
+
+def _evaluate(function: Callable, point: dict, cache: Optional[SolverCache]) -> list[dict]:
+    """``function(**point)`` as a list of rows; an exception becomes one failed row."""
+    t0 = time.perf_counter()
+    try:
+        kwargs = dict(point)
+        if _takes_cache(function):
+            kwargs["cache"] = cache if cache is not None else _WORKER_CACHE
+        out = function(**kwargs)
+        rows = [dict(r) for r in (out if isinstance(out, list) else [out])]
+        for row in rows:
+            row.setdefault("success", True)
+    except Exception as exc:  # a failed point is data, not a crash of the sweep
+        rows = [{"success": False, "message": f"{type(exc).__name__}: {exc}"}]
+    for row in rows:
+        row.setdefault("wall_time_s", time.perf_counter() - t0)
+    return rows
+
+
+def _in_worker(function: Callable, point: dict) -> list[dict]:
+    return _evaluate(function, point, None)
+
+
+def run_points(function: Callable, points: Sequence[dict], *, workers: int = 1,
+               tags: Optional[Sequence[dict]] = None,
+               progress: Optional[Callable[[float], None]] = None,
+               cache: Optional[SolverCache] = None) -> list[dict]:
+    """Evaluate ``function(**point)`` for every point; rows in the order of ``points``.
+
+    Parameters
+    ----------
+    function : a module-level function (it is pickled to the workers) returning a dict or a
+        list of dicts; it receives the solver cache as ``cache=`` if it accepts that keyword
+    points : keyword arguments of each call (picklable: numbers, strings, frozen inputs)
+    workers : number of processes; 1 runs in this process
+    tags : per point, columns put in front of its rows (labels such as the variant)
+    progress : called with the fraction of points done, e.g. a terminal progress bar
+    cache : solver cache for the serial executor (a new one when None); ignored by the pool
+
+    Returns
+    -------
+    list of rows (dicts): each with ``success``, ``wall_time_s`` and, on failure,
+    ``message``.
+    """
+    points = list(points)
+    tags = [{} for _ in points] if tags is None else list(tags)
+    if len(tags) != len(points):
+        raise ValueError("tags must have one entry per point")
+    if workers <= 1 or len(points) <= 1:
+        cache = cache if cache is not None else SolverCache()
+        results = []
+        for k, point in enumerate(points):
+            results.append(_evaluate(function, point, cache))
+            if progress is not None:
+                progress((k + 1) / len(points))
+    else:
+        results = _run_pool(function, points, workers, progress)
+    return [{**tag, **row, **tag} for tag, rows in zip(tags, results) for row in rows]
+
+
+def _run_pool(function: Callable, points: list, workers: int, progress) -> list[list[dict]]:
+    context = multiprocessing.get_context("spawn")
+    pool = ProcessPoolExecutor(max_workers=min(workers, len(points)), mp_context=context,
+                               initializer=_start_worker)
+    results: list = [None] * len(points)
+    try:
+        futures = {pool.submit(_in_worker, function, p): k for k, p in enumerate(points)}
+        pending = set(futures)
+        while pending:
+            done, pending = wait(pending, return_when=FIRST_COMPLETED)
+            for future in done:
+                k = futures[future]
+                try:
+                    results[k] = future.result()
+                except BrokenProcessPool as exc:
+                    results[k] = [{"success": False, "message": "the worker process died "
+                                   f"(BrokenProcessPool: {exc})"}]
+            if progress is not None:
+                progress(sum(r is not None for r in results) / len(points))
+    except BaseException:                 # Ctrl-C or an error in the parent: stop the workers
+        _terminate(pool)
+        raise
+    pool.shutdown(wait=True)
+    return results
+
+
+def _terminate(pool: ProcessPoolExecutor) -> None:
+    """Cancel the pending points and end the workers now (they ignore SIGINT)."""
+    processes = list(getattr(pool, "_processes", {}).values())  # no public API before 3.14
+    pool.shutdown(wait=False, cancel_futures=True)
+    for process in processes:
+        if process.is_alive():
+            process.terminate()
+    for process in processes:
+        process.join(timeout=5)

@@ -1,0 +1,28 @@
+"""Named, runnable studies: ``gfbopt run problems/NAME.toml`` → ``results/NAME/``.
+
+A study file gives its source (full citation, table or figure), its inputs, the published
+values where there are any and a tolerance per compared quantity.  It is validated against
+the schema of its kind before anything is solved (:mod:`.spec`).
+
+=====================  ===================================================================
+module                 responsibility
+=====================  ===================================================================
+:mod:`.spec`           the schema of every study kind, one vocabulary (glossary names)
+:mod:`.base`           validated study, result of a run, model building, labels for people
+:mod:`.tables`         static_table, profile, grid_convergence, concentric_impedance
+:mod:`.sweeps`         load_sweep, linear_coefficients (a bearing file in SI)
+:mod:`.maps`           linear_map, transient_map, transient_points (stability)
+:mod:`.transients`     orbits, bifurcation
+:mod:`.checks`         internal checks and comparisons with published values
+:mod:`.report`         CSV, figures, summary.json, README per study, results/index.md
+:mod:`.runner`         load_study, study_from_dict, compute, run_study
+=====================  ===================================================================
+"""
+from .base import Study, StudyResult
+from .report import summary_line, write_index, write_result
+from .runner import KINDS, LoadedStudy, compute, load_study, run_study, study_from_dict
+from .spec import SCHEMAS, validate
+
+__all__ = ["KINDS", "LoadedStudy", "SCHEMAS", "Study", "StudyResult", "compute", "load_study",
+           "run_study", "study_from_dict", "summary_line", "validate", "write_index",
+           "write_result"]

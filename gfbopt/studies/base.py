@@ -1,0 +1,206 @@
+"""The pieces every study kind shares: the validated study, what a run produced, and the
+construction of bearing models from a study's tables (with errors naming the file)."""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Callable, Optional
+
+import pandas as pd
+
+from ..errors import ParameterError
+from ..inputs import BearingGeometry, BearingModel, Grid, load_bearing
+from .spec import Where
+
+
+@dataclass(frozen=True)
+class Study:
+    """A validated study: its file (as given), name, kind, the checked specification with
+    defaults filled in (:func:`gfbopt.studies.spec.validate`), and the folder that paths in
+    it are relative to."""
+
+    file: str
+    name: str
+    kind: str
+    spec: dict
+    directory: Path
+
+    @property
+    def grid(self) -> Optional[Grid]:
+        return Grid.parse(self.spec["grid"]) if "grid" in self.spec else None
+
+    def where(self, *path) -> Where:
+        """A :class:`Where` for errors about ``path`` (keys and list indices)."""
+        w = Where(self.file)
+        for p in path:
+            w = w / p
+        return w
+
+
+@dataclass(frozen=True)
+class RunContext:
+    """How to run: number of worker processes and an optional progress callback."""
+
+    workers: int = 1
+    progress: Optional[Callable[[float], None]] = None
+
+
+@dataclass(frozen=True, eq=False)
+class StudyResult:
+    """What a study computed, before anything is written.
+
+    tables : file name → DataFrame (written as CSV); figures : file name → matplotlib
+    Figure; checks : internal-consistency checks; comparisons : deviations from published
+    values; options : the physics options of every variant; notes : computed remarks.
+    """
+
+    study: Study
+    tables: dict = field(default_factory=dict)
+    figures: dict = field(default_factory=dict)
+    checks: list = field(default_factory=list)
+    comparisons: list = field(default_factory=list)
+    options: dict = field(default_factory=dict)
+    notes: list = field(default_factory=list)
+    wall_time_s: float = 0.0
+
+    @property
+    def passed(self) -> bool:
+        """True when every internal check passed."""
+        return all(c["passed"] for c in self.checks)
+
+    @property
+    def agreement(self) -> str:
+        """'yes', 'no' or 'not compared' with the published reference."""
+        if not self.comparisons:
+            return "not compared"
+        return "yes" if all(c["agrees"] for c in self.comparisons) else "no"
+
+
+# ------------------------------------------------------------------ model building
+def seam_angle(value) -> Optional[float]:
+    """``seam_angle_deg`` of a study file → BearingModel's ``seam_angle`` [rad] or None."""
+    return None if value in (None, "max_film") else math.radians(value)
+
+
+def _model_kwargs(options: dict) -> dict:
+    kwargs = {k: v for k, v in options.items() if k not in ("label", "seam_angle_deg")}
+    if "seam_angle_deg" in options:
+        kwargs["seam_angle"] = seam_angle(options["seam_angle_deg"])
+    return kwargs
+
+
+def build_model(options: dict, where: Where, *, rigid_when_no_compliance: bool = False
+                ) -> BearingModel:
+    """A BearingModel from merged model keys of a study file; an inconsistent combination
+    (e.g. ``foil = "rigid"`` with S > 0) names the file and the table it came from.
+
+    ``rigid_when_no_compliance``: a point with S = 0 is the rigid bearing whatever the
+    variant's foil (used by tables that mix plain and compliant rows).
+    """
+    kwargs = _model_kwargs(options)
+    if rigid_when_no_compliance and float(kwargs.get("compliance", 0.0)) == 0.0:
+        kwargs["foil"] = "rigid"
+    try:
+        return BearingModel(**kwargs)
+    except ParameterError as exc:
+        raise (where / exc.name).error(exc.value, exc.rule) from None
+    except TypeError as exc:
+        raise where.error(kwargs, f"is not a valid model ({exc})") from None
+
+
+def build_dimensional_model(geometry: BearingGeometry, speed_rpm: float, options: dict,
+                            where: Where) -> BearingModel:
+    """The model of a bearing file at ``speed_rpm`` with a variant's formulation."""
+    kwargs = _model_kwargs(options)
+    foil = kwargs.pop("foil", "simple")
+    try:
+        return geometry.model(speed_rpm, foil=foil, **kwargs)
+    except ParameterError as exc:
+        raise (where / exc.name).error(exc.value, exc.rule) from None
+
+
+def load_geometry(study: Study) -> BearingGeometry:
+    """The bearing file named by the study (relative to the study file)."""
+    path = study.directory / study.spec["bearing"]
+    try:
+        return load_bearing(path)
+    except ParameterError as exc:
+        raise study.where("bearing").error(str(study.spec["bearing"]),
+                                           f"{exc.name}: {exc.rule}") from None
+
+
+def merged(*tables: dict) -> dict:
+    """Later tables override earlier ones (study ``[model]`` → variant → point)."""
+    out: dict = {}
+    for t in tables:
+        out.update(t)
+    return out
+
+
+# ------------------------------------------------------------------ labels for people
+def _foil_text(model: BearingModel) -> str:
+    if model.is_rigid:
+        return "rigid bearing"
+    if model.foil == "beam":
+        return (f"beam top foil, S = {model.compliance:.3g}, "
+                f"C = {model.top_foil_coefficient:.3g}")
+    return f"simple foil, S = {model.compliance:.3g}"
+
+
+def _parts(model: BearingModel) -> dict:
+    law = "" if model.is_rigid else ("local deflection law" if model.deflection_law == "local"
+                                     else "axial-mean deflection law")
+    if model.film == "periodic":
+        film = "periodic film"
+    elif model.seam_angle is None:
+        film = "seam on the max-film line"
+    else:
+        film = f"seam {math.degrees(model.seam_angle):g}° from the load"
+    return {"foil": _foil_text(model), "film": film,
+            "force": "Gümbel force" if model.subambient == "gumbel" else "full-film force",
+            "law": law, "co": "compression-only bumps" if model.compression_only
+            and not model.is_rigid else ""}
+
+
+def variant_titles(models: dict) -> dict:
+    """label → a description for people ("simple foil, S = 1"), naming only what differs
+    between the variants of the study (``models``: label → a representative model)."""
+    parts = {label: _parts(m) for label, m in models.items()}
+    keys = ("foil", "film", "force", "law", "co")
+    # the foil law and compression-only apply to foil bearings only: a rigid bearing's
+    # blank does not make them vary
+    compliant = [parts[label] for label, m in models.items() if not m.is_rigid]
+    varying = [k for k in keys
+               if len({p[k] for p in (compliant if k in ("law", "co") else parts.values())})
+               > 1] or ["foil"]
+    return {label: ", ".join(p[k] for k in varying if p[k]) or label
+            for label, p in parts.items()}
+
+
+def options_of(models_by_label: dict, grid: Optional[Grid], **extra) -> dict:
+    """The physics options of every variant (foil, film, seam, force, law, compression) for
+    the provenance block; variants whose points differ (e.g. rigid rows) list each."""
+    variants = {}
+    for label, models in models_by_label.items():
+        distinct = []
+        for m in models:
+            o = {**m.options(), "top_foil_coefficient": m.top_foil_coefficient}
+            if o not in distinct:
+                distinct.append(o)
+        variants[label] = distinct[0] if len(distinct) == 1 else distinct
+    out = {"variants": variants, **extra}
+    if grid is not None:
+        out["grid"] = str(grid)
+    return out
+
+
+def frame(rows: list, columns_first: tuple = (), ensure: tuple = ()) -> pd.DataFrame:
+    """Rows as a DataFrame with ``columns_first`` in front (those present); the columns
+    ``ensure`` are added as NaN when no row has them (every point failed)."""
+    table = pd.DataFrame.from_records(rows)
+    for column in ensure:
+        if column not in table.columns:
+            table[column] = math.nan
+    first = [c for c in columns_first if c in table.columns]
+    return table[first + [c for c in table.columns if c not in first]]

@@ -1,0 +1,106 @@
+"""Loading, validating and running studies.
+
+    from gfbopt.studies import load_study, run_study, study_from_dict, compute
+    run_study("problems/thesis_table_3_1.toml")          # writes results/thesis_table_3_1/
+    study = study_from_dict({...}, name="mine")          # a study built in Python
+    result = compute(study, workers=2)                   # StudyResult: tables, checks, …
+
+:func:`load_study` validates the file and builds every model and operating point (no
+solving), so every mistake in a study file is found before any solve starts.
+"""
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass, replace
+from pathlib import Path
+from typing import Callable, Optional, Union
+
+from ..inputs import read_toml
+from . import maps, sweeps, tables, transients
+from .base import RunContext, Study, StudyResult
+from .report import write_result
+from .spec import KINDS as SCHEMA_KINDS
+from .spec import validate
+
+
+@dataclass(frozen=True)
+class Kind:
+    """A study kind: ``plan(study)`` builds its points (no solving), ``run(study, plan,
+    context)`` computes; ``parallel`` kinds use the process pool."""
+
+    plan: Callable
+    run: Callable
+    parallel: bool = False
+
+
+KINDS: dict[str, Kind] = {
+    "static_table": Kind(tables.plan_static_table, tables.run_static_table),
+    "profile": Kind(tables.plan_profile, tables.run_profile),
+    "grid_convergence": Kind(tables.plan_grid_convergence, tables.run_grid_convergence),
+    "concentric_impedance": Kind(tables.plan_concentric_impedance,
+                                 tables.run_concentric_impedance),
+    "load_sweep": Kind(sweeps.plan_load_sweep, sweeps.run_load_sweep),
+    "linear_coefficients": Kind(sweeps.plan_linear_coefficients,
+                                sweeps.run_linear_coefficients),
+    "linear_map": Kind(maps.plan_map, maps.run_linear_map, parallel=True),
+    "transient_map": Kind(maps.plan_map, maps.run_transient_map, parallel=True),
+    "transient_points": Kind(maps.plan_transient_points, maps.run_transient_points,
+                             parallel=True),
+    "orbits": Kind(transients.plan_orbits, transients.run_orbits),
+    "bifurcation": Kind(transients.plan_bifurcation, transients.run_bifurcation),
+}
+assert set(KINDS) == set(SCHEMA_KINDS), "every schema has a runner and vice versa"
+
+
+@dataclass(frozen=True)
+class LoadedStudy:
+    """A validated study and its plan (models and points, built without solving)."""
+
+    study: Study
+    plan: object
+
+
+def study_from_dict(data: dict, *, name: Optional[str] = None, file: str = "<dict>",
+                    directory: Union[str, Path] = ".") -> LoadedStudy:
+    """Validate a study given as a dict (the same keys as a study file) and plan it.
+
+    ``file`` names it in error messages; ``directory`` is where relative paths (a
+    ``bearing`` file) are looked up.
+    """
+    spec = validate(data, file)
+    name = spec["name"] or name or Path(file).stem
+    spec = {**spec, "name": name}
+    study = Study(file=file, name=name, kind=spec["kind"], spec=spec,
+                  directory=Path(directory))
+    return LoadedStudy(study, KINDS[study.kind].plan(study))
+
+
+def load_study(path: Union[str, Path]) -> LoadedStudy:
+    """Read, validate and plan the study file ``path``; any mistake raises one
+    ParameterError naming the file and the key, before anything is solved."""
+    path = Path(path)
+    return study_from_dict(read_toml(path), name=path.stem, file=str(path),
+                           directory=path.parent)
+
+
+def compute(loaded: LoadedStudy, *, workers: int = 1,
+            progress: Optional[Callable[[float], None]] = None) -> StudyResult:
+    """Run a loaded study and return its results (nothing is written)."""
+    kind = KINDS[loaded.study.kind]
+    context = RunContext(workers=workers if kind.parallel else 1, progress=progress)
+    t0 = time.perf_counter()
+    result = kind.run(loaded.study, loaded.plan, context)
+    return replace(result, wall_time_s=time.perf_counter() - t0)
+
+
+def run_study(path: Union[str, Path, LoadedStudy], results_root: Union[str, Path] = "results",
+              *, workers: int = 1,
+              progress: Optional[Callable[[float], None]] = None) -> StudyResult:
+    """Run a study file (or a loaded study) and write ``results_root/NAME/`` and the index.
+
+    Returns the :class:`StudyResult` (``passed``, ``agreement``, tables, checks).
+    """
+    loaded = path if isinstance(path, LoadedStudy) else load_study(path)
+    result = compute(loaded, workers=workers, progress=progress)
+    write_result(result, Path(results_root))
+    return result

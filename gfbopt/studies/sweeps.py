@@ -1,0 +1,125 @@
+"""Study kinds on a dimensional bearing (a bearing file in SI units) swept over speed and load.
+
+* ``load_sweep`` — minimum film [µm] and attitude angle against static load [N] at several
+  speeds and foil models (Ruscitto bearing, thesis Figs 3.2–3.5, 4.2–4.5);
+* ``linear_coefficients`` — stiffness [N/m] and damping [N s/m] against excitation frequency,
+  with the linear threshold, per speed and load, and a table per operating point in the
+  layout rotordynamics codes read.
+"""
+from __future__ import annotations
+
+from .. import analyses
+from ..parallel import run_points
+from ..static import SolverCache
+from . import checks
+from .base import (
+    RunContext,
+    Study,
+    StudyResult,
+    build_dimensional_model,
+    frame,
+    load_geometry,
+    merged,
+    options_of,
+    variant_titles,
+)
+
+#: trend name → (column, rising with load?)
+LOAD_TRENDS = {"min_film_thickness_decreases_with_load": ("min_film_thickness_um", False),
+               "eccentricity_increases_with_load": ("eccentricity", True)}
+
+
+def _plan(study: Study) -> tuple:
+    """(geometry, [(variant label, speed, model)]) — models of every variant and speed."""
+    spec = study.spec
+    geometry = load_geometry(study)
+    for key in ("speeds_rpm", "loads_newton"):
+        for k, v in enumerate(spec[key]):
+            if v <= 0:
+                raise study.where(key, k).error(v, "must be > 0")
+    models = []
+    for k, variant in enumerate(spec["variants"]):
+        for speed in spec["speeds_rpm"]:
+            opts = merged(spec["model"], variant)
+            models.append((variant["label"], speed,
+                           build_dimensional_model(geometry, speed, opts,
+                                                   study.where("variants", k))))
+    return geometry, models
+
+
+plan_load_sweep = _plan
+plan_linear_coefficients = _plan
+
+
+def _options(study: Study, models: list) -> dict:
+    by_label: dict = {}
+    for label, _, model in models:
+        by_label.setdefault(label, []).append(model)
+    return options_of(by_label, study.grid, bearing=study.spec["bearing"])
+
+
+def run_load_sweep(study: Study, plan: tuple, ctx: RunContext) -> StudyResult:
+    """Each (variant, speed) is a load curve warm-started from load to load."""
+    from ..plotting import plot_load_sweep
+
+    spec = study.spec
+    geometry, models = plan
+    loads = [geometry.nondimensional_load(w) for w in spec["loads_newton"]]
+    rows = run_points(analyses.load_curve,
+                      [{"model": m, "loads": loads, "grid": study.grid, "geometry": geometry}
+                       for _, _, m in models],
+                      tags=[{"variant": label, "foil": m.foil, "speed_rpm": speed}
+                            for label, speed, m in models], progress=ctx.progress)
+    table = frame(rows, ("variant", "foil", "speed_rpm", "load_newton"))
+    found = [checks.all_converged(table)]
+    for name in spec["trends"]:
+        column, rising = LOAD_TRENDS[name]
+        found += checks.monotone(table, column, "load_newton", rising, ["variant", "speed_rpm"],
+                                 f"largest {'fall' if rising else 'rise'} of {column} between "
+                                 "load steps")
+    titles = variant_titles({label: m for label, _, m in models})
+    figures = {}
+    for quantity, name, what in (
+            ("min_film_thickness_um", "min_film_vs_load.png", "Minimum film thickness"),
+            ("attitude_angle_deg", "attitude_vs_load.png", "Attitude angle")):
+        ax = plot_load_sweep(table, quantity, labels=titles,
+                             title=f"{what} against static load: {geometry.name} bearing")
+        figures[name] = ax.figure
+    return StudyResult(study, tables={"table.csv": table}, figures=figures, checks=found,
+                       options=_options(study, models))
+
+
+def run_linear_coefficients(study: Study, plan: tuple, ctx: RunContext) -> StudyResult:
+    from ..plotting import new_axes, plot_coefficients
+
+    spec = study.spec
+    geometry, models = plan
+    points, tags = [], []
+    for label, speed, model in models:
+        for load_newton in spec["loads_newton"]:
+            points.append({"model": model, "load": geometry.nondimensional_load(load_newton),
+                           "whirl_ratios": spec["whirl_ratios"], "grid": study.grid,
+                           "geometry": geometry, "speed_rpm": speed})
+            tags.append({"variant": label, "load_newton": load_newton})
+    rows = run_points(analyses.coefficients_point, points, tags=tags, cache=SolverCache(),
+                      progress=ctx.progress)
+    table = frame(rows, ("variant", "load_newton", "speed_rpm", "whirl_ratio", "frequency_hz"))
+    tables = {"coefficients.csv": table}
+    figures = {}
+    titles = variant_titles({label: m for label, _, m in models})
+    ok = table[table["success"].astype(bool)]
+    for (label, speed, load_newton), sub in ok.groupby(["variant", "speed_rpm", "load_newton"],
+                                                       sort=False):
+        stem = f"{label}_{int(speed)}rpm_{int(load_newton)}N"
+        columns = ["frequency_hz"] + [c for c in sub.columns
+                                      if c.endswith(("_N_per_m", "_Ns_per_m"))]
+        tables[f"rotordynamics_{stem}.csv"] = sub[columns]
+        left, right = new_axes(figsize=(10.0, 4.4), ncols=2)
+        where = f"{titles[label]}, {speed:,.0f} rpm, {load_newton:g} N"
+        plot_coefficients(sub, "stiffness", ax=left, title=f"Stiffness: {where}")
+        plot_coefficients(sub, "damping", ax=right, title=f"Damping: {where}")
+        figures[f"coefficients_{stem}.png"] = left.figure
+    found = [checks.check("all static solves and thresholds converged (count of failures)",
+                          float((~table["success"].astype(bool)).sum()), 0)]
+    return StudyResult(study, tables=tables, figures=figures, checks=found,
+                       options=_options(study, models))
