@@ -2,7 +2,8 @@
 cost of one revolution against grid size — in one run, on one core.
 
 Run:  PYTHONPATH=. python benchmarks/bench_critical_mass.py [--out FILE.json]
-(default results/benchmarks/critical_mass.json; --skip-previous, --skip-scaling)
+(default results/benchmarks/critical_mass.json; --skip-previous, --skip-scaling;
+--damped-only runs section 4 alone, default out results/benchmarks/critical_mass_damped.json)
 
 Operating point (issue #8): ε = 0.4, Λ = 2, S = 1, L/D = 1, simple foundation (axial-mean
 law), periodic film, 144 × 36.  Times are split: the CasADi/IPOPT build, the static solve +
@@ -19,6 +20,12 @@ or orbit alone (what this work changes).
 3. One revolution of one rotor (M̄ = 2.5, kick 1e-3) at 72 × 20, 108 × 28, 144 × 36 and
    216 × 54 with rk4 and rkc: time, evaluations; exponents of time ∝ nodes^p fitted by least
    squares on log–log (RK4: step ∝ Δ², so p ≈ 2; RKC: stages ∝ √ρ ∝ 1/Δ, so p ≈ 1.5).
+
+4. Structural damping (issue #9): the critical mass with η = 0.3 at 144 × 36, rkc, from the
+   damped linear mode, with the Kelvin–Voigt foil state (ν_ref = the linear threshold whirl
+   ratio): the axial-mean law at the point above, and the local law with a seam 180° from the
+   load.  Seconds of the search and its deviation from the damped linear critical mass
+   (target: 1 %), beside the same search without damping (the cost of the foil state).
 
 Targets (issue #8): critical mass ≤ 10 s within 0.5 % of the linear threshold; the orbit
 example ≤ 10 s.  Wall and CPU seconds are both recorded: on a shared machine the wall time
@@ -148,6 +155,50 @@ def scaling() -> dict:
     return out
 
 
+DAMPED_CASES = {
+    "axial-mean law, periodic film": MODEL.replace(loss_factor=0.3),
+    "local law, seam 180° from the load": MODEL.replace(loss_factor=0.3, deflection_law="local",
+                                                         film="seam", seam_angle=math.pi),
+}
+
+
+def damped(grid: Grid) -> list:
+    """Section 4: the damped critical mass against the damped linear one, and the cost of
+    the foil state (the same search undamped)."""
+    rows = []
+    for label, model in DAMPED_CASES.items():
+        row = {"case": label, "loss_factor": model.loss_factor, **model.options()}
+        for eta in (model.loss_factor, 0.0):
+            m = model.replace(loss_factor=eta)
+            build_s, solver = timed(lambda: solver_for(m, grid))
+            sol = solve_static(m, eccentricity=ECCENTRICITY, solver=solver)
+            lin_s, (lin, thr) = timed(lambda: (lambda lin: (lin, linear_threshold(lin)))(
+                linearise(sol, solver)))
+            tm_s, tm = timed(lambda: transient_model(sol, threshold=thr if eta else None))
+            mode = linear_mode(lin, thr.critical_mass, 1j * thr.whirl_ratio)
+            wall, res = timed(lambda: find_critical_mass(
+                tm, tolerance=TOLERANCE, linear_estimate=thr.critical_mass, initial_mode=mode))
+            entry = {"build_s": build_s, "linear_threshold_s": lin_s, "transient_model_s": tm_s,
+                     "search_wall_s": wall, "search_cpu_s": LAST_CPU[0],
+                     "linear_critical_mass": thr.critical_mass,
+                     "linear_whirl_ratio": thr.whirl_ratio,
+                     "critical_mass": res.critical_mass, "whirl_ratio": res.whirl_ratio,
+                     "rel_to_linear": res.critical_mass / thr.critical_mass - 1,
+                     "transients": res.transients, "evaluations": res.evaluations,
+                     "success": res.success, "message": res.message, **res.damping}
+            row["damped" if eta else "undamped"] = entry
+            print(f"  {label}, η = {eta:g}: search {wall:.2f} s (cpu {LAST_CPU[0]:.2f} s), "
+                  f"M̄c = {res.critical_mass:.6f} against linear {thr.critical_mass:.6f} "
+                  f"({100 * entry['rel_to_linear']:+.4f} %), {res.evaluations} evaluations",
+                  flush=True)
+        row["damping_raises_critical_mass_by"] = (row["damped"]["linear_critical_mass"]
+                                                  / row["undamped"]["linear_critical_mass"] - 1)
+        row["evaluation_ratio_damped_over_undamped"] = (row["damped"]["evaluations"]
+                                                        / row["undamped"]["evaluations"])
+        rows.append(row)
+    return rows
+
+
 def main(argv=None) -> dict:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--out", default=str(REPO / "results" / "benchmarks" /
@@ -155,8 +206,20 @@ def main(argv=None) -> dict:
     parser.add_argument("--skip-previous", action="store_true",
                         help="skip the previous search (rk4, batch of 8, ≈ 100 s)")
     parser.add_argument("--skip-scaling", action="store_true")
+    parser.add_argument("--damped-only", action="store_true",
+                        help="run section 4 (η > 0) alone")
     args = parser.parse_args(argv)
     grid = Grid()
+    if args.damped_only:
+        print(f"critical mass with structural damping at {grid}", flush=True)
+        out = {"machine": machine_info(grid=str(grid)), "eccentricity": ECCENTRICITY,
+               "tolerance": TOLERANCE, "target_rel_to_linear": 0.01, "damped": damped(grid)}
+        out["targets_met"] = all(abs(r["damped"]["rel_to_linear"]) <= 0.01 and
+                                 r["damped"]["success"] for r in out["damped"])
+        out["load_average_at_end"] = os.getloadavg()
+        default = REPO / "results" / "benchmarks" / "critical_mass_damped.json"
+        write_report(out, default if args.out == parser.get_default("out") else args.out)
+        return out
     out = {"machine": machine_info(grid=str(grid)),
            "operating_point": {"eccentricity": ECCENTRICITY, **MODEL.groups(),
                                **MODEL.options()},
@@ -185,6 +248,8 @@ def main(argv=None) -> dict:
     for row in searches[1:]:
         row["time_ratio_over_rkc_mode"] = row["wall_s"] / best["wall_s"]
     out["orbit_example"] = orbit_example(case)
+    print("critical mass with structural damping (η = 0.3)", flush=True)
+    out["damped"] = damped(grid)
     if not args.skip_scaling:
         print("cost of one revolution against grid size", flush=True)
         out["scaling"] = scaling()

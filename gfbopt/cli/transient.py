@@ -8,6 +8,13 @@ grid (ε = 0.4, Λ = 2, S = 1, one core) the same two-transient critical-mass se
 1.9 s with rkc, 26 s with rk4 and 29 s with bdf, all within 0.06 % of the linear threshold,
 and the README's 20-revolution orbit 7 s with rkc, where rk4 needs 15× more evaluations.
 ``critical-mass`` starts from the least-stable linear mode shape by default (``--start``).
+
+Structural damping (``--loss-factor η``, or a bearing file's ``loss_factor``): the foil
+deflection becomes a Kelvin–Voigt state, τ_f dW/dτ + W = S q with τ_f = η/ν_ref
+(:mod:`gfbopt.transient.foil_state`); ν_ref is the linear threshold whirl ratio of the damped
+bearing unless ``--reference-whirl-ratio`` gives it, and both are printed.  Supported by rkc
+and rk4 for both deflection laws, by bdf for the axial-mean law; refused for the beam foil
+and for a foil without bumps (rigid, S = 0), in one line before anything is solved.
 """
 from __future__ import annotations
 
@@ -21,8 +28,22 @@ METHOD_EVIDENCE = ("At the default 144×36 grid (ε = 0.4, Λ = 2, S = 1, one co
                    "bdf, all within 0.06 %% of the linear threshold; the 20-revolution orbit "
                    "7 s with rkc (rk4 needs 15× more evaluations)")
 METHOD_HELP = ("integration method: rkc (default; damped Runge–Kutta–Chebyshev), rk4 (the "
-               "reference), bdf (implicit; rigid and simple foil only). " + METHOD_EVIDENCE)
+               "reference), bdf (implicit; rigid and simple foil only, axial-mean law). "
+               + METHOD_EVIDENCE)
 METHODS = ("rkc", "rk4", "bdf")
+
+
+DAMPING_HELP = ("structural loss factor η of the bump foundation, 0–1 (default 0, or the "
+                "bearing file's): the foil becomes a Kelvin–Voigt state with τ_f = η/ν_ref")
+REFERENCE_HELP = ("ν_ref [-], the whirl ratio at which the Kelvin–Voigt foil matches the "
+                  "hysteretic loss factor (default: the linear threshold whirl ratio)")
+
+
+def _add_damping(sub) -> None:
+    sub.add_argument("--loss-factor", type=number("loss-factor"), default=None,
+                     help=DAMPING_HELP)
+    sub.add_argument("--reference-whirl-ratio", type=number("reference-whirl-ratio"),
+                     default=None, help=REFERENCE_HELP)
 
 
 def register(subparsers) -> None:
@@ -43,6 +64,7 @@ def register(subparsers) -> None:
     orb.add_argument("--plot", default=None, help="write the polar orbit plot to this PNG")
     orb.add_argument("--method", default="rkc", choices=METHODS, help=METHOD_HELP)
     orb.add_argument("--csv", default=None, help="write the orbit table to this CSV")
+    _add_damping(orb)
     orb.set_defaults(handler=run_orbit)
 
     crit = subparsers.add_parser("critical-mass", help="nonlinear critical mass from "
@@ -61,6 +83,7 @@ def register(subparsers) -> None:
                       "(default with the linear start) or from a kick of the journal")
     crit.add_argument("--no-linear-start", action="store_true",
                       help="do not centre the search on the linear threshold")
+    _add_damping(crit)
     crit.set_defaults(handler=run_critical_mass)
 
 
@@ -81,21 +104,58 @@ def _refuse_method_options(args) -> None:
         raise ParameterError("--stages", args.stages, "must be an integer >= 2")
 
 
-def _setup(args):
-    from ..static import solve_static, solver_for
-    from ..transient import transient_model
+def _check_damping(args, op) -> None:
+    """Refuse structural-damping options the run would not use, and a method or foil law
+    the damped transient does not support (before anything is solved)."""
+    from ..errors import ParameterError
+    from ..physics.foil_laws import foil_law
 
+    eta = op.model.loss_factor
+    ref = args.reference_whirl_ratio
+    if ref is not None and eta <= 0.0:
+        raise ParameterError("--reference-whirl-ratio", ref, "is used only with structural "
+                             "damping: add --loss-factor η > 0")
+    if ref is not None and not ref > 0:
+        raise ParameterError("--reference-whirl-ratio", ref, "must be > 0")
+    foil_law(op.model, engine="transient").check_engine(args.method, damped=eta > 0.0)
+
+
+def _operating_point(args):
+    from ..errors import ParameterError
+
+    if args.loss_factor is not None and args.loss_factor < 0:
+        raise ParameterError("--loss-factor", args.loss_factor, "must be >= 0 (a negative "
+                             "loss factor would feed energy into the rotor)")
     op = operating_point(args)
+    _check_damping(args, op)
+    return op
+
+
+def _solve(op):
+    from ..static import solve_static, solver_for
+
     solver = solver_for(op.model, op.grid)
     sol = solve_static(op.model, eccentricity=op.eccentricity, load=op.load, solver=solver)
-    return op, solver, sol, transient_model(sol)
+    return solver, sol
+
+
+def _damping_text(result) -> str:
+    """'; η = …, ν_ref = … (source)' for a damped run, else ''."""
+    d = result.damping
+    if not d:
+        return ""
+    return (f"; η = {d['loss_factor']:g}, Kelvin–Voigt foil τ_f = "
+            f"{d['foil_relaxation_time']:.4g} (ν_ref = {d['reference_whirl_ratio']:.4g}, "
+            f"{d['reference_whirl_source']})")
 
 
 def run_orbit(args) -> int:
-    from ..transient import integrate_orbits
+    from ..transient import integrate_orbits, transient_model
 
     _refuse_method_options(args)
-    op, _, sol, tm = _setup(args)
+    op = _operating_point(args)
+    solver, sol = _solve(op)
+    tm = transient_model(sol, args.reference_whirl_ratio, solver)
     options = {"time_step": args.time_step,
                "stages": None if args.stages is None else int(args.stages)}
     orbit = integrate_orbits(tm, [args.mass], args.revolutions, kick=args.kick,
@@ -121,6 +181,7 @@ def run_orbit(args) -> int:
         f"{out['growth_rate']:.3g} per rad, whirl ratio {out['whirl_ratio']:.4g}, "
         f"min film {out['min_film']:.4g}, {out['revolutions']:.1f} revolutions "
         f"({args.method}, Δτ = {orbit.time_step:.3g}) in {orbit.wall_time_s:.1f} s"
+        + _damping_text(orbit)
         + ("" if orbit.success else f"  ** FAILED: {orbit.message}")), settings)
     return 0 if orbit.success else 1
 
@@ -128,16 +189,18 @@ def run_orbit(args) -> int:
 def run_critical_mass(args) -> int:
     from ..errors import ParameterError
     from ..linear import linear_threshold, linearise
-    from ..transient import find_critical_mass, linear_mode
+    from ..transient import find_critical_mass, linear_mode, transient_model
 
     if args.start == "mode" and args.no_linear_start:
         raise ParameterError("--start", "mode", "needs the linear threshold; drop "
                              "--no-linear-start")
     if args.batch is not None and args.batch < 1:
         raise ParameterError("--batch", args.batch, "must be an integer >= 1")
-    op, solver, sol, tm = _setup(args)
+    op = _operating_point(args)
+    solver, sol = _solve(op)
     lin = linearise(sol, solver)
     linear = linear_threshold(lin)
+    tm = transient_model(sol, args.reference_whirl_ratio, solver, threshold=linear)
     usable = math.isfinite(linear.critical_mass)
     estimate = None if args.no_linear_start or not usable else linear.critical_mass
     start = args.start or ("mode" if estimate is not None else "kick")
@@ -163,5 +226,6 @@ def run_critical_mass(args) -> int:
         f"{linear.whirl_ratio:.4g}; {result.transients} transients × "
         f"{result.rotor_revolutions / max(result.transients, 1):.3g} revolutions "
         f"({args.method}, start: {result.start}), {result.wall_time_s:.1f} s"
+        + _damping_text(result)
         + ("" if result.success else f"  ** FAILED: {result.message}")), settings)
     return 0 if result.success else 1

@@ -13,7 +13,9 @@ models").  Each law is one object that owns everything the engines need from it:
   foundation compliance S, so that the linear analysis can make the foundation stiffness
   complex, k → k (1 + iη sign γ), for the structural loss factor η: :class:`ComplianceTerms`);
 * its transient recovery of P and H from Φ = P H and the journal position:
-  :meth:`FoilLaw.transient_data`, :meth:`FoilLaw.recover`;
+  :meth:`FoilLaw.transient_data`, :meth:`FoilLaw.recover`; with damping (η > 0) W is a state
+  (:mod:`gfbopt.transient.foil_state`): :meth:`FoilLaw.recover_deflected`,
+  :meth:`FoilLaw.deflection_target`, :attr:`FoilLaw.damped_state`;
 * and which engines support it (:attr:`FoilLaw.engines`).
 
 =========  =====================================================  ===========================
@@ -52,6 +54,8 @@ from .compliance import ComplianceTerms, PerturbationContext, active, embed
 #: Engines a law may support: the CasADi/IPOPT equilibrium, the linearisation, and the
 #: transient integrators.
 ENGINES = ("static", "linear", "rk4", "rkc", "bdf")
+#: The transient integrators among them.
+TRANSIENT_ENGINES = ("rk4", "rkc", "bdf")
 
 
 @dataclass(frozen=True)
@@ -124,10 +128,13 @@ class FoilLaw:
     #: True when the lifted film variable of the static model is the whole film H (> 0
     #: bound); False when it is only the rigid part (the local law adds W per node)
     lifted_film_is_total: bool = True
-    #: engines that model the structural loss factor η of the foundation (a damped model is
-    #: refused by the others: :func:`foil_law`).  The transient engines join when their
-    #: Kelvin–Voigt foil state τ_f dW/dτ + W = S q, τ_f = η/γ_ref, lands (PHYSICS.md §7).
+    #: engines that model the structural loss factor η (others are refused a damped model,
+    #: :func:`foil_law`): linear (hysteretic), transient (Kelvin–Voigt state, PHYSICS.md §7)
     loss_factor_engines: tuple = ()
+    #: the transient's Kelvin–Voigt state: one W per θ 'rows', per 'nodes', or None
+    damped_state: Optional[str] = None
+    #: why the transient engines do not model η for this law, if they do not
+    damped_transient_refusal: str = ""
 
     # ------------------------------------------------------------------ static model
     def extra_unknowns(self, grid) -> int:
@@ -186,12 +193,26 @@ class FoilLaw:
         """
         raise NotImplementedError(f"foil law {self.name!r} has no transient model")
 
-    def check_engine(self, engine: str) -> None:
-        """Refuse an engine the law does not support (one line naming both)."""
+    def recover_deflected(self, phi: np.ndarray, hr: np.ndarray, w: np.ndarray, tm) -> tuple:
+        """(P, H) from Φ (B, m, n_z + 1), H_r (B, m) and the damped transient's state W:
+        H = H_r + W, P = Φ/H (no foil equation to solve)."""
+        raise NotImplementedError(f"foil law {self.name!r} has no damped transient model")
+
+    def deflection_target(self, p: np.ndarray, tm) -> np.ndarray:
+        """S q, or S max(q, 0) (compression only), in the :attr:`damped_state` layout [-]."""
+        raise NotImplementedError(f"foil law {self.name!r} has no damped transient model")
+
+    def check_engine(self, engine: str, damped: bool = False) -> None:
+        """Refuse an engine the law does not support, or does not support with structural
+        damping when ``damped`` (one line naming both)."""
+        name = "method" if engine in TRANSIENT_ENGINES else "engine"
         if engine not in self.engines:
-            raise ParameterError("method" if engine in ("rk4", "rkc", "bdf") else "engine",
-                                 engine, f"does not support the {self.name} foil law "
+            raise ParameterError(name, engine, f"does not support the {self.name} foil law "
                                  f"({self.description}); supported: {', '.join(self.engines)}")
+        if damped and engine not in self.loss_factor_engines:
+            raise ParameterError(name, engine, "does not model structural damping (η > 0) of "
+                                 f"the {self.name} foil law; supported: "
+                                 f"{', '.join(self.loss_factor_engines)}")
 
 
 class SimpleLaw(FoilLaw):
@@ -201,7 +222,8 @@ class SimpleLaw(FoilLaw):
     description = "simple elastic foundation, W = S (P̄ − 1)"
     static_structure = "simple"
     engines = ("static", "linear", "rk4", "rkc", "bdf")
-    loss_factor_engines = ("linear",)
+    loss_factor_engines = ("linear", "rk4", "rkc", "bdf")
+    damped_state = "rows"
 
     def static_film(self, h_rigid, lifted, mean_gauge, p_full, u, foil, st, data):
         w_rows = simple_deflection(mean_gauge, foil.compliance, foil.compression_only)
@@ -236,6 +258,16 @@ class SimpleLaw(FoilLaw):
         p = _set_boundary(phi / a[:, :, None], tm.periodic)
         return p, a[:, :, None]
 
+    def recover_deflected(self, phi, hr, w, tm):
+        a = hr + w                                        # W (B, m): one per θ row
+        return _set_boundary(phi / a[:, :, None], tm.periodic), a[:, :, None]
+
+    def deflection_target(self, p, tm):
+        q = (p @ tm.z_weight) / tm.z_weight.sum() - 1.0   # P̄ − 1 per row (B, m)
+        if not tm.periodic:
+            q[:, [0, -1]] = 0.0                           # seam rows: P = 1
+        return tm.compliance * (np.maximum(q, 0.0) if tm.compression_only else q)
+
 
 class RigidLaw(SimpleLaw):
     """Rigid bearing surface, W = 0 (a plain self-acting gas bearing, or S = 0)."""
@@ -244,6 +276,7 @@ class RigidLaw(SimpleLaw):
     description = "rigid bearing surface, W = 0"
     static_structure = "simple"
     loss_factor_engines = ()
+    damped_state = None
 
     def compliance_terms(self, ctx):
         return None
@@ -260,7 +293,8 @@ class LocalLaw(FoilLaw):
     description = "simple elastic foundation, local law W = S (P − 1)"
     static_structure = "local"
     engines = ("static", "linear", "rk4", "rkc")
-    loss_factor_engines = ("linear",)
+    loss_factor_engines = ("linear", "rk4", "rkc")
+    damped_state = "nodes"
     lifted_film_is_total = False
 
     def static_film(self, h_rigid, lifted, mean_gauge, p_full, u, foil, st, data):
@@ -300,6 +334,14 @@ class LocalLaw(FoilLaw):
         h = hr3 + (s * (p - 1.0) if not tm.compression_only else s * np.maximum(p - 1.0, 0))
         return p, h
 
+    def recover_deflected(self, phi, hr, w, tm):
+        h = hr[:, :, None] + w                            # W (B, m, n_z + 1): one per node
+        return _set_boundary(phi / h, tm.periodic), h
+
+    def deflection_target(self, p, tm):
+        q = p - 1.0                                       # 0 on boundary nodes (P = 1)
+        return tm.compliance * (np.maximum(q, 0.0) if tm.compression_only else q)
+
 
 class BeamLaw(FoilLaw):
     """Euler–Bernoulli top foil on the bump foundation (:mod:`gfbopt.physics.beam`)."""
@@ -309,6 +351,9 @@ class BeamLaw(FoilLaw):
     static_structure = "beam"
     engines = ("static", "linear", "rk4", "rkc")
     loss_factor_engines = ("linear",)
+    damped_transient_refusal = (      # ≈ 1.6e9 per radian at 144 × 36, S = C = 1, τ_f = 0.6
+        "a Kelvin–Voigt foundation under the massless beam is stiff, rates S C λ/τ_f with "
+        "λ ≈ 3585/Δθ⁴ the largest bending eigenvalue, against ≈ 1.6e3 for the film")
 
     def extra_unknowns(self, grid) -> int:
         return 2 * grid.n_theta
@@ -417,17 +462,27 @@ FOIL_LAWS: dict[str, FoilLaw] = {law.name: law for law in (RigidLaw(), SimpleLaw
 def foil_law(model, engine: Optional[str] = None) -> FoilLaw:
     """The foil law of a :class:`~gfbopt.inputs.model.BearingModel` (``model.foil_law``).
 
-    A model with structural damping (``loss_factor`` η > 0) is handed only to an engine that
-    names itself and models η (:attr:`FoilLaw.loss_factor_engines`; today the linear
-    analysis, ``engine='linear'``), so that no engine ignores the damping silently.
+    A model with structural damping (η > 0) is handed only to an engine that names itself
+    and models η (:attr:`FoilLaw.loss_factor_engines`): no engine ignores it silently.
+    ``engine='transient'``: the model all integrators share (each checks its own name again,
+    :meth:`FoilLaw.check_engine`), handed on when one of them models η for the law.
     """
     law = FOIL_LAWS[model.foil_law]
     eta = getattr(model, "loss_factor", 0.0)
-    if eta > 0.0 and engine not in law.loss_factor_engines:
-        who = f"the {engine} engine" if engine else "the transient engines"
+    if eta <= 0.0:
+        return law
+    if engine == "transient":
+        if set(TRANSIENT_ENGINES) & set(law.loss_factor_engines):
+            return law
+        raise ParameterError("loss_factor", eta, "structural damping of the bumps is not "
+                             f"modelled by the transient engines for the {law.name} foil law "
+                             f"({law.damped_transient_refusal or 'no Kelvin–Voigt state'}); "
+                             "the linear analysis models it, or use loss_factor = 0")
+    if engine not in law.loss_factor_engines:
+        who = f"the {engine} engine" if engine else "an unnamed engine"
         raise ParameterError("loss_factor", eta, "structural damping of the bumps is modelled "
-                             f"by the linear analysis only, not by {who} yet: use "
-                             "loss_factor = 0 for orbits and nonlinear critical masses")
+                             f"for the {law.name} foil law by "
+                             f"{', '.join(law.loss_factor_engines)} only, not by {who}")
     return law
 
 

@@ -5,6 +5,9 @@ module                      responsibility
 ==========================  ========================================================================
 :mod:`.system`              the method-of-lines system: state Φ = P H and the journal, right-hand
                             side, recovery of P and H through the foil law, stiffness bound
+:mod:`.foil_state`          structural damping (η > 0): the Kelvin–Voigt foil state W,
+                            τ_f W' + W = S q, τ_f = η/ν_ref, and why it matches the linear
+                            analysis's loss factor at the threshold
 :mod:`.rk4`                 classic Runge–Kutta, batched (the reference method)
 :mod:`.rkc`                 damped Runge–Kutta–Chebyshev (RKC2), batched: stages from the
                             stiffness bound, step from accuracy (the default of the searches)
@@ -16,11 +19,14 @@ module                      responsibility
 :mod:`.critical_mass`       the critical-mass search and limit-cycle amplitudes
 ==========================  ========================================================================
 
-Imports point one way: system → methods → orbit → critical_mass (no cycle); :mod:`.mode`
-uses only :mod:`gfbopt.linear`'s Linearisation and the stencil.
+Imports point one way: foil_state → system → methods → orbit → critical_mass (no cycle);
+:mod:`.mode` uses only :mod:`gfbopt.linear`'s Linearisation, the stencil and
+:mod:`.foil_state`; :mod:`.foil_state` calls :mod:`gfbopt.linear` (inside a function) for the
+default ν_ref.
 """
 from .critical_mass import (DEFAULT_METHOD, CriticalMass, find_critical_mass,
                             limit_cycle_amplitudes)
+from .foil_state import KelvinVoigtFoil
 from .fits import VERDICTS, classify, fit_growth_rate
 from .orbit import METHODS, integrate_orbits
 from .mode import LinearMode, linear_mode
@@ -30,7 +36,8 @@ from .rkc import accuracy_step, rkc_coefficients, rkc_stability_interval, rkc_st
 from .system import (RightHandSide, State, TransientModel, equilibrium_state, film_force,
                      flux_residual, pressure_and_film, stiffness_bound, transient_model)
 
-__all__ = ["CriticalMass", "DEFAULT_METHOD", "LinearMode", "METHODS", "OrbitBatch",
+__all__ = ["CriticalMass", "DEFAULT_METHOD", "KelvinVoigtFoil", "LinearMode", "METHODS",
+           "OrbitBatch",
            "RK4_STABILITY_RADIUS", "RightHandSide", "accuracy_step", "linear_mode",
            "rkc_coefficients", "rkc_stability_interval", "rkc_step", "stages_for",
            "STEP_SAFETY", "State", "TransientModel", "VERDICTS", "classify",

@@ -10,7 +10,10 @@ When it wins (benchmarks/bench_transient.py, 72 × 20): the rigid bearing, whose
 five-point stencil (12 colour groups) — BDF takes far larger steps than RK4's stability limit.
 With the simple foil the axial-mean coupling widens the pattern to three whole θ rows (~75
 groups) and the batched RK4 engine is as fast or faster; the beam couples every row to every
-row, so it is RK4 only.  Supported here: rigid and simple (axial-mean law, full-film force).
+row, so it is RK4 only.  Supported here: rigid and simple (axial-mean law, full-film force),
+and the simple foil with structural damping (η > 0): then the foil deflection W is a state, one
+per θ row (:mod:`.foil_state`), H = H_r + W no longer depends on Φ, and the pattern is the
+five-point stencil plus each node's three W rows (the W rows see their own row of Φ).
 """
 from __future__ import annotations
 
@@ -53,7 +56,7 @@ class FlatRotor:
     """One rotor of mass M̄ as y' = f(y), y = (Φ.ravel(), X, Y, U, V), with its Jacobian."""
 
     def __init__(self, tm: TransientModel, mass: float):
-        tm.law.check_engine("bdf")
+        tm.law.check_engine("bdf", damped=tm.foil_state is not None)
         if tm.gumbel:
             raise ParameterError("method", "bdf", "supports the full-film force only "
                                  "(subambient='full'); use method='rk4' with the Gümbel force")
@@ -61,18 +64,23 @@ class FlatRotor:
         self.rhs = RightHandSide(tm, np.array([float(mass)]))
         self.m, self.nzn = tm.shape
         self.n_phi = self.m * self.nzn
-        self.n = self.n_phi + 4
-        self.ix, self.iy, self.iu, self.iv = range(self.n_phi, self.n_phi + 4)
+        self.damped = tm.foil_state is not None       # W per θ row after Φ (module doc)
+        self.n_w = self.m if self.damped else 0
+        self.n = self.n_phi + self.n_w + 4
+        start = self.n_phi + self.n_w
+        self.ix, self.iy, self.iu, self.iv = range(start, start + 4)
         self.evaluations = 0
         self._build_pattern()
 
     def unpack(self, y: np.ndarray) -> State:
+        w = y[self.n_phi:self.ix].reshape(1, self.m).copy() if self.damped else None
         return State(y[:self.n_phi].reshape(1, self.m, self.nzn).copy(), y[self.ix:self.ix + 1],
-                     y[self.iy:self.iy + 1], y[self.iu:self.iu + 1], y[self.iv:self.iv + 1])
+                     y[self.iy:self.iy + 1], y[self.iu:self.iu + 1], y[self.iv:self.iv + 1], w)
 
     @staticmethod
     def pack(s: State) -> np.ndarray:
-        return np.concatenate([s.phi.ravel(), s.x, s.y, s.u, s.v])
+        foil = [] if s.w is None else [s.w.ravel()]
+        return np.concatenate([s.phi.ravel()] + foil + [s.x, s.y, s.u, s.v])
 
     def __call__(self, t, y):
         self.evaluations += 1
@@ -94,12 +102,20 @@ class FlatRotor:
                 neighbour_rows = [r for r in (i - 1, i, i + 1) if 0 <= r < m]
             for j in jj:
                 r = node[i, j]
-                if tm.foil == "rigid":
+                if tm.foil == "rigid" or self.damped:
                     nb = [node[a, j] for a in neighbour_rows] + [node[i, j - 1], node[i, j + 1]]
+                    if self.damped:                       # the film of the three rows
+                        nb += [self.n_phi + a for a in neighbour_rows]
                 else:                                     # P on a row depends on its mean
                     nb = [node[a, k] for a in neighbour_rows for k in jj]
                 rows += [r] * (len(nb) + 2)
                 cols += nb + [self.ix, self.iy]
+        if self.damped:               # W' of row i: its own Φ, W and (through H_r) X, Y
+            for i in range(m):
+                nb = [node[i, k] for k in jj] + [self.ix, self.iy] \
+                    if i in self._live_rows() else []
+                rows += [self.n_phi + i] * (len(nb) + 1)
+                cols += nb + [self.n_phi + i]
         rows += [self.ix, self.iy, self.iu, self.iu, self.iv, self.iv]
         cols += [self.iu, self.iv, self.ix, self.iy, self.ix, self.iy]
         pattern = sp.csc_matrix((np.ones(len(rows)), (rows, cols)), shape=(self.n, self.n))
@@ -112,15 +128,23 @@ class FlatRotor:
         inner = np.zeros((m, nzn), dtype=bool)
         inner[self._live_rows(), 1:-1] = True
         self._inner = np.flatnonzero(inner.ravel())
+        # columns of the analytic force rows: Φ at the live interior nodes (then W)
+        self._dense_cols = np.concatenate([self._inner, self.n_phi + self._live_rows()]) \
+            if self.damped else self._inner
 
     def force_rows(self, y: np.ndarray) -> np.ndarray:
-        """∂(U', V')/∂Φ at the live interior nodes (2, n), analytically (module doc)."""
+        """∂(U', V')/∂Φ at the live interior nodes, then (damped) ∂(U', V')/∂W on the live
+        rows: (2, len(self._dense_cols)), analytically (module doc)."""
         tm = self.tm
         s = self.unpack(y)
         hr = 1.0 - s.x[0] * tm.cos - s.y[0] * tm.sin
         zw = tm.z_weight
         total = zw.sum()
-        if tm.foil == "rigid":
+        if self.damped:               # P = Φ/H, H = H_r + W: ∂P/∂W = −Φ/H²
+            h = hr + s.w[0]
+            g = zw[None, 1:-1] / h[:, None]
+            g_w = -(s.phi[0][:, 1:-1] @ zw[1:-1]) / (h * h)
+        elif tm.foil == "rigid":
             g = zw[None, 1:-1] / hr[:, None]
         else:
             sc = tm.compliance
@@ -139,7 +163,11 @@ class FlatRotor:
         rows = self._live_rows()
         fx = (-(tm.cos[:, None] * w) * g)[rows]
         fy = (-(tm.sin[:, None] * w) * g)[rows]
-        return np.vstack([fx.ravel(), fy.ravel()])
+        if not self.damped:
+            return np.vstack([fx.ravel(), fy.ravel()])
+        fx_w = (-(tm.cos * w[:, 0]) * g_w)[rows]
+        fy_w = (-(tm.sin * w[:, 0]) * g_w)[rows]
+        return np.vstack([np.concatenate([fx.ravel(), fx_w]), np.concatenate([fy.ravel(), fy_w])])
 
     def jacobian(self, t, y) -> sp.csc_matrix:
         """Grouped finite differences on the pattern + the analytic force rows."""
@@ -155,13 +183,14 @@ class FlatRotor:
         vals = df[self.groups[self._fd_cols], self._fd_rows] / steps[self._fd_cols]
         jac = sp.coo_matrix((vals, (self._fd_rows, self._fd_cols)), shape=(self.n, self.n))
         fr = self.force_rows(y)
-        dense = sp.coo_matrix((fr.ravel(), (np.repeat([self.iu, self.iv], self._inner.size),
-                                            np.tile(self._inner, 2))), shape=(self.n, self.n))
+        cols = self._dense_cols
+        dense = sp.coo_matrix((fr.ravel(), (np.repeat([self.iu, self.iv], cols.size),
+                                            np.tile(cols, 2))), shape=(self.n, self.n))
         return (jac + dense).tocsc()
 
     def min_film(self, y: np.ndarray) -> float:
         s = self.unpack(y)
-        _, h = pressure_and_film(s.phi, s.x, s.y, self.tm)
+        _, h = pressure_and_film(s.phi, s.x, s.y, self.tm, deflection=s.w)
         return float(h.min())
 
 
@@ -189,8 +218,7 @@ def integrate_bdf(tm: TransientModel, mass: np.ndarray, revolutions: float, *,
     failure = ""
     for b, mm in enumerate(mass):
         rotor = FlatRotor(tm, mm)
-        y0 = rotor.pack(State(start.phi[b:b + 1], start.x[b:b + 1], start.y[b:b + 1],
-                              start.u[b:b + 1], start.v[b:b + 1]))
+        y0 = rotor.pack(start.take(slice(b, b + 1)))
 
         def touch(t, yy, rotor=rotor):
             return rotor.min_film(yy) - contact_film

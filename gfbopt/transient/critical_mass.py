@@ -20,7 +20,11 @@ The search (:func:`find_critical_mass`)
 * Start: from the least-stable linear mode shape when ``initial_mode`` is given
   (:mod:`.mode`; then the orbit is the whirling mode alone and one whirl period suffices
   for the fit), else from a kick of the journal's velocity (then 5 revolutions, the first
-  skipped).
+  skipped).  A damped model (η > 0) starts its Kelvin–Voigt foil state on the mode's foil
+  part too (:meth:`.mode.LinearMode.foil`).
+* Structural damping: with the default ν_ref (the linear threshold whirl ratio) the
+  Kelvin–Voigt foil has the hysteretic foundation's impedance at the threshold, so the
+  nonlinear critical mass equals the damped linear one (:mod:`.foil_state`).
 
 Default method: ``rkc`` (:mod:`.rkc`).  Evidence (benchmarks/bench_critical_mass.py,
 results/benchmarks/critical_mass.json; ε = 0.4, Λ = 2, S = 1, simple foundation, periodic
@@ -46,14 +50,14 @@ from __future__ import annotations
 
 import math
 import time
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Optional
 
 import numpy as np
 
 from ..errors import ParameterError
 from .orbit import integrate_orbits
-from .result import check_positive
+from .result import check_positive, damping_fields
 from .system import State, TransientModel, equilibrium_state
 
 #: The integration method of the search and the bifurcation diagram (module docstring).
@@ -78,6 +82,7 @@ class CriticalMass:
     wall_time_s : time of the search alone [s] (not the static or linear solution)
     success, message : a run-time failure is reported here, not raised
     method : integration method; start : 'linear mode' or 'kick'
+    damping : {} without structural damping, else η, ν_ref, its source and τ_f
     """
 
     critical_mass: float
@@ -94,6 +99,7 @@ class CriticalMass:
     method: str = DEFAULT_METHOD
     rounds: int = 0
     start: str = "kick"
+    damping: dict = field(default_factory=dict)
 
     def to_dict(self) -> dict:
         return {"critical_mass": self.critical_mass, "bracket": list(self.bracket),
@@ -103,7 +109,8 @@ class CriticalMass:
                 "rotor_revolutions": self.rotor_revolutions,
                 "evaluations": self.evaluations, "method": self.method,
                 "start": self.start, "wall_time_s": self.wall_time_s,
-                "success": self.success, "message": self.message}
+                "success": self.success, "message": self.message,
+                **damping_fields(self.damping)}
 
 
 def _threshold_from_history(history: list) -> tuple:
@@ -145,16 +152,19 @@ def _threshold_from_history(history: list) -> tuple:
 
 
 def _mode_arrays(initial_mode, tm: TransientModel, mass: float) -> tuple:
-    """(δΦ, (δX, δY, δU, δV)) of ``initial_mode`` at ``mass``, scaled to unit journal speed
-    (unit displacement if it has no speed)."""
+    """(δΦ, (δX, δY, δU, δV), δW or None) of ``initial_mode`` at ``mass``, scaled to unit
+    journal speed (unit displacement if it has no speed).  δW, the damped foil state's part
+    (η > 0), comes from a :class:`.mode.LinearMode` or as a third array; without it the
+    foil starts at its equilibrium deflection."""
     raw = initial_mode(mass) if callable(initial_mode) else initial_mode
     try:
-        dphi, journal = raw
+        dphi, journal, *foil = raw
         dphi = np.asarray(dphi, dtype=float)
         journal = np.asarray(journal, dtype=float).ravel()
+        foil = np.asarray(foil[0], dtype=float) if foil else None
     except (TypeError, ValueError):
         raise ParameterError("initial_mode", type(raw).__name__, "must give (δΦ, (δX, δY, "
-                             "δU, δV)) as real arrays") from None
+                             "δU, δV)[, δW]) as real arrays") from None
     if dphi.shape != tm.shape or journal.shape != (4,):
         raise ParameterError("initial_mode", f"shapes {dphi.shape}, {journal.shape}",
                              f"must be δΦ of shape {tm.shape} and (δX, δY, δU, δV)")
@@ -162,15 +172,25 @@ def _mode_arrays(initial_mode, tm: TransientModel, mass: float) -> tuple:
     if not (math.isfinite(scale) and scale > 0 and np.all(np.isfinite(dphi))):
         raise ParameterError("initial_mode", "journal part 0 or not finite",
                              "must move the journal (finite, non-zero)")
-    return dphi / scale, journal / scale
+    if tm.foil_state is None:
+        return dphi / scale, journal / scale, None
+    if foil is None and hasattr(initial_mode, "foil"):   # a LinearMode: δW on the scale of
+        foil = initial_mode.foil(tm.foil_state.layout)   # the (δΦ, journal) it returned
+    shape = tm.foil_state.equilibrium.shape
+    if foil is not None and foil.shape != shape:
+        raise ParameterError("initial_mode", f"foil part of shape {foil.shape}",
+                             f"must be δW of shape {shape} (the damped foil state)")
+    return dphi / scale, journal / scale, None if foil is None else foil / scale
 
 
 def _start_state(tm: TransientModel, masses: np.ndarray, initial_mode, kick: float) -> State:
     """The equilibrium plus ``kick`` × the unit mode shape, one rotor per mass."""
     state = equilibrium_state(tm, masses.size)
     for b, mm in enumerate(masses):
-        dphi, journal = _mode_arrays(initial_mode, tm, float(mm))
+        dphi, journal, foil = _mode_arrays(initial_mode, tm, float(mm))
         state.phi[b] += kick * dphi
+        if foil is not None:
+            state.w[b] += kick * foil
         state.x[b] += kick * journal[0]
         state.y[b] += kick * journal[1]
         state.u[b] += kick * journal[2]
@@ -311,7 +331,8 @@ def find_critical_mass(tm: TransientModel, *, tolerance: float = 0.005,
     return CriticalMass(mc if ok else math.nan, (lo, hi), whirl,
                         float(linear_estimate) if estimate else math.nan,
                         tuple(history), len(history), rotor_revs, evaluations, wall, ok,
-                        message, method, rounds, start)
+                        message, method, rounds, start,
+                        {} if tm.foil_state is None else tm.foil_state.describe())
 
 
 def limit_cycle_amplitudes(tm: TransientModel, masses, revolutions: float = 60.0,

@@ -40,11 +40,14 @@ def integrate_orbits(tm: TransientModel, mass, revolutions: float = 10.0, *,
 
     Parameters
     ----------
-    tm : the transient model (:func:`gfbopt.transient.system.transient_model`)
+    tm : the transient model (:func:`gfbopt.transient.system.transient_model`); with
+        structural damping (η > 0) its foil is a Kelvin–Voigt state (:mod:`.foil_state`),
+        supported by rk4 and rkc for both deflection laws and by bdf for the axial-mean law
     mass : M̄ of each rotor [-], > 0
     revolutions : length of the run in shaft revolutions [-]
     kick : initial journal velocity dX/dτ = dY/dτ = kick/√2 from the equilibrium [-]
-    initial : a batch state to start from instead of the kicked equilibrium
+    initial : a batch state to start from instead of the kicked equilibrium (with the foil
+        state W of a damped model)
     sample_every : Δτ between stored samples [rad]
     contact_film : minimum film H at which a rotor is in contact; its run stops there [-]
     settle : revolutions skipped before fitting the growth rate [-]
@@ -73,7 +76,7 @@ def integrate_orbits(tm: TransientModel, mass, revolutions: float = 10.0, *,
             raise ParameterError(key, value, f"applies to method={'/'.join(users) or '?'} "
                                  f"only, not to method='{method}'")
     options = {k: v for k, v in method_options.items() if v is not None}
-    tm.law.check_engine(method)
+    tm.law.check_engine(method, damped=tm.foil_state is not None)
     mass = check_masses(mass)
     revolutions = check_positive("revolutions", revolutions)
     return integrate(tm, mass, revolutions, kick=kick, initial=initial,

@@ -3,7 +3,7 @@ from __future__ import annotations
 
 import math
 import time
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -22,7 +22,9 @@ class OrbitBatch:
     the equilibrium [clearances]; contact (B,) bool; contact_tau (B,) [rad]; verdict (B,)
     strings; time_step Δτ [rad] (nan for variable-step methods); evaluations of the
     right-hand side; wall_time_s [s]; revolutions integrated; method; success and message
-    (a run-time failure — a blown-up or failed integration — is reported here, not raised).
+    (a run-time failure — a blown-up or failed integration — is reported here, not raised);
+    damping : the structural damping of the foil, {} without it, else η, ν_ref, its source
+    and τ_f = η/ν_ref (:meth:`gfbopt.transient.foil_state.KelvinVoigtFoil.describe`).
     """
 
     tau: np.ndarray
@@ -44,6 +46,7 @@ class OrbitBatch:
     method: str = "rk4"
     success: bool = True
     message: str = ""
+    damping: dict = field(default_factory=dict)
 
     def to_frame(self, rotor: int = 0):
         """The orbit of one rotor as a table: τ, X, Y, ε, φ [deg], minimum film."""
@@ -66,7 +69,12 @@ class OrbitBatch:
                 "revolutions": float(self.revolutions), "time_step": float(self.time_step),
                 "method": self.method, "evaluations": int(self.evaluations),
                 "wall_time_s": self.wall_time_s, "success": self.success,
-                "message": self.message}
+                "message": self.message, **damping_fields(self.damping)}
+
+
+def damping_fields(damping: dict) -> dict:
+    """η and ν_ref for a result's flat dict: loss_factor 0 and no ν_ref without damping."""
+    return {"loss_factor": 0.0, "reference_whirl_ratio": math.nan, **damping}
 
 
 def check_positive(name: str, value) -> float:
@@ -102,6 +110,8 @@ def finish_orbits(tm: TransientModel, tau: np.ndarray, x: np.ndarray, y: np.ndar
     x0 = sol.eccentricity * math.cos(sol.attitude_angle)
     y0 = sol.eccentricity * math.sin(sol.attitude_angle)
     growth, whirl, amp, verdicts = classify(tau, x - x0, y - y0, contact, settle, kick)
+    damping = {} if tm.foil_state is None else tm.foil_state.describe()
     return OrbitBatch(tau, x, y, hmin, (x0, y0), mass, growth, whirl, amp, contact,
                       contact_tau, tuple(verdicts), time_step, evaluations,
-                      time.perf_counter() - started, revolutions, method, success, message)
+                      time.perf_counter() - started, revolutions, method, success, message,
+                      damping)

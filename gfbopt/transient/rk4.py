@@ -38,11 +38,15 @@ def _rk4_sum(a, b, c, d):
 def _rk4_update(y: State, w, k1: State, k2: State, k3: State, k4: State) -> State:
     """y + w (k1 + 2 k2 + 2 k3 + k4) in one pass, ``w`` scalar or per rotor."""
     wp = w[:, None, None] if np.ndim(w) else w
+    foil = None
+    if y.w is not None:                 # the damped foil's state
+        wf = w.reshape(w.shape + (1,) * (y.w.ndim - 1)) if np.ndim(w) else w
+        foil = y.w + wf * _rk4_sum(k1.w, k2.w, k3.w, k4.w)
     return State(y.phi + wp * _rk4_sum(k1.phi, k2.phi, k3.phi, k4.phi),
                  y.x + w * _rk4_sum(k1.x, k2.x, k3.x, k4.x),
                  y.y + w * _rk4_sum(k1.y, k2.y, k3.y, k4.y),
                  y.u + w * _rk4_sum(k1.u, k2.u, k3.u, k4.u),
-                 y.v + w * _rk4_sum(k1.v, k2.v, k3.v, k4.v))
+                 y.v + w * _rk4_sum(k1.v, k2.v, k3.v, k4.v), foil)
 
 
 def rk4_step(f, y, dt, weight=1.0):
@@ -98,7 +102,7 @@ def integrate_rk4(tm: TransientModel, mass: np.ndarray, revolutions: float, *,
     tau = 0.0
 
     def record(s):
-        p, h = pressure_and_film(s.phi, s.x, s.y, tm, rhs._guess)
+        p, h = pressure_and_film(s.phi, s.x, s.y, tm, rhs._guess, deflection=s.w)
         hmin = h.min(axis=(1, 2))
         taus.append(tau)
         xs.append(s.x.copy())
@@ -127,9 +131,7 @@ def integrate_rk4(tm: TransientModel, mass: np.ndarray, revolutions: float, *,
             if not active.any():
                 break
         if step % check_every == 0:
-            live = State(state.phi[active], state.x[active], state.y[active],
-                         state.u[active], state.v[active])
-            new_limit = RK4_STABILITY_RADIUS / stiffness_bound(live, tm)
+            new_limit = RK4_STABILITY_RADIUS / stiffness_bound(state.take(active), tm)
             if dt > new_limit:
                 if time_step is not None:
                     raise ParameterError("time_step", time_step,

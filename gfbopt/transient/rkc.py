@@ -33,6 +33,10 @@ Stages and step.  The step is chosen for accuracy, not stability (:func:`accurac
 oscillation the film allows and T_film the relaxation time of the slowest film mode.  The
 stage count is then the smallest s with Δτ·ρ ≤ 0.9 β(s), ρ the Gershgorin bound of
 :func:`gfbopt.transient.system.stiffness_bound` (1–12 % above the true spectral radius).
+With structural damping the bound includes the Kelvin–Voigt foil rows
+(:mod:`.foil_state`): real relaxation rates ≈ (1 + S P/H)/τ_f, a few per radian at η = 0.3,
+so the stage count is the undamped one; only a very small η makes them the stiffest part
+(the bound then stays within 2× the true radius: tests/verification/test_kelvin_voigt.py).
 The bound is re-checked every ``check_every`` steps on the rotors still running; when it has
 grown, automatic stages are raised (or, with a stage count given, the automatic step shrunk).
 A step or stage count given by the user outside the stability region is refused with the
@@ -170,8 +174,8 @@ def _combine(terms):
     """Σ c·v over (c, v) pairs of arrays (or of States, field by field)."""
     (c0, v0), rest = terms[0], terms[1:]
     if isinstance(v0, State):
-        return State(*(_combine([(c, getattr(v, name)) for c, v in terms])
-                       for name in ("phi", "x", "y", "u", "v")))
+        names = ("phi", "x", "y", "u", "v") + (("w",) if v0.w is not None else ())
+        return State(*(_combine([(c, getattr(v, name)) for c, v in terms]) for name in names))
     out = np.multiply(v0, c0)
     tmp = np.empty_like(out)
     for c, v in rest:
@@ -200,16 +204,30 @@ def rkc_step(f, y, dt: float, stages: int):
 
 
 def pack(s: State) -> np.ndarray:
-    """A batch state as one array (B, m (n_z + 1) + 4): Φ, then X, Y, U, V."""
-    return np.concatenate([s.phi.reshape(s.phi.shape[0], -1), s.x[:, None], s.y[:, None],
-                           s.u[:, None], s.v[:, None]], axis=1)
+    """A batch state as one array (B, m (n_z + 1) [+ foil] + 4): Φ, the damped foil's W
+    when there is one, then X, Y, U, V (always last)."""
+    foil = [] if s.w is None else [s.w.reshape(s.w.shape[0], -1)]
+    return np.concatenate([s.phi.reshape(s.phi.shape[0], -1)] + foil +
+                          [s.x[:, None], s.y[:, None], s.u[:, None], s.v[:, None]], axis=1)
 
 
-def unpack(z: np.ndarray, shape: tuple) -> State:
-    """The :class:`State` (views) of a packed batch ``z``; ``shape`` = (m, n_z + 1)."""
+def unpack(z: np.ndarray, shape: tuple, foil_shape: Optional[tuple] = None) -> State:
+    """The :class:`State` (views) of a packed batch ``z``; ``shape`` = (m, n_z + 1);
+    ``foil_shape`` the shape of one rotor's foil state W (None without damping)."""
     n = shape[0] * shape[1]
-    return State(z[:, :n].reshape((z.shape[0],) + tuple(shape)), z[:, n], z[:, n + 1],
-                 z[:, n + 2], z[:, n + 3])
+    w = None
+    if foil_shape is not None:
+        size = int(np.prod(foil_shape))
+        w = z[:, n:n + size].reshape((z.shape[0],) + tuple(foil_shape))
+        n += size
+    return State(z[:, :shape[0] * shape[1]].reshape((z.shape[0],) + tuple(shape)), z[:, n],
+                 z[:, n + 1], z[:, n + 2], z[:, n + 3], w)
+
+
+def _unpack(z: np.ndarray, tm: TransientModel) -> State:
+    """:func:`unpack` with the shapes of ``tm``."""
+    foil = None if tm.foil_state is None else tm.foil_state.equilibrium.shape
+    return unpack(z, tm.shape, foil)
 
 
 # ------------------------------------------------------------------ default step
@@ -235,13 +253,13 @@ def rotor_period(tm: TransientModel, state: State, mass: np.ndarray) -> float:
     it has), by central differences; the period 2π √(M̄ W̄0/K∞) of the lightest rotor, or
     the synchronous period 2π when the rotor's is longer (a heavy rotor still whirls).
     """
-    one = State(state.phi[:1], state.x[:1], state.y[:1], state.u[:1], state.v[:1])
+    one = state.take(slice(0, 1))
     rhs = RightHandSide(tm, np.ones(1))
     h = 1e-6
     cols = []
     for dx, dy in ((h, 0.0), (0.0, h)):
-        plus = rhs(State(one.phi, one.x + dx, one.y + dy, one.u, one.v))
-        minus = rhs(State(one.phi, one.x - dx, one.y - dy, one.u, one.v))
+        plus = rhs(State(one.phi, one.x + dx, one.y + dy, one.u, one.v, one.w))
+        minus = rhs(State(one.phi, one.x - dx, one.y - dy, one.u, one.v, one.w))
         cols.append([(plus.u[0] - minus.u[0]) / (2 * h), (plus.v[0] - minus.v[0]) / (2 * h)])
     k_inf = float(np.linalg.norm(np.array(cols), 2)) * tm.load      # (per M̄ = 1) × W̄0
     omega = math.sqrt(k_inf / (float(np.min(mass)) * tm.load)) if k_inf > 0 else 0.0
@@ -307,10 +325,10 @@ class _Packed:
 
     def __init__(self, tm: TransientModel, mass: np.ndarray):
         self.rhs = RightHandSide(tm, mass)
-        self.shape = tm.shape
+        self.tm = tm
 
     def __call__(self, z: np.ndarray) -> np.ndarray:
-        return pack(self.rhs(unpack(z, self.shape)))
+        return pack(self.rhs(_unpack(z, self.tm)))
 
 
 def integrate_rkc(tm: TransientModel, mass: np.ndarray, revolutions: float, *,
@@ -354,9 +372,9 @@ def integrate_rkc(tm: TransientModel, mass: np.ndarray, revolutions: float, *,
     stage_counts = {stages}
 
     def record() -> None:
-        s = unpack(z, tm.shape)
+        s = _unpack(z, tm)
         x_now[live], y_now[live] = s.x, s.y
-        _, h = pressure_and_film(s.phi, s.x, s.y, tm, f.rhs._guess)
+        _, h = pressure_and_film(s.phi, s.x, s.y, tm, f.rhs._guess, deflection=s.w)
         h_now[live] = h.min(axis=(1, 2))
         taus.append(tau)
         xs.append(x_now.copy())
@@ -398,7 +416,7 @@ def integrate_rkc(tm: TransientModel, mass: np.ndarray, revolutions: float, *,
                 f = _Packed(tm, mass[live])
                 f.rhs._guess = guess
             if step % check_every == 0:          # re-check the stiffness bound
-                rho = stiffness_bound(unpack(z, tm.shape), tm)
+                rho = stiffness_bound(_unpack(z, tm), tm)
                 if dt * rho > STAGE_SAFETY * rkc_stability_interval(stages):
                     if not fixed_stages:
                         stages = stages_for(dt * rho)

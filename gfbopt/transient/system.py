@@ -5,10 +5,12 @@ State of each rotor (a batch of B rotors advances together, one array per quanti
 * Φ = P H at every grid node, shape (B, m, n_z + 1) — the conserved quantity of the
   time-dependent Reynolds equation 2Λ ∂(PH)/∂τ = R(P, H) (docs/PHYSICS.md), so
   ∂Φ/∂τ = R(P, H)/(2Λ) with R the steady residual of :mod:`gfbopt.discretisation`;
-* the journal centre (X, Y) and its velocity (U, V) = (X', Y'), τ = ω t.
+* the journal centre (X, Y) and its velocity (U, V) = (X', Y'), τ = ω t;
+* with structural damping (loss factor η > 0) the foil deflection W, one per θ row or per
+  node, relaxing as τ_f W' + W = S q (:mod:`.foil_state`); then H = H_r + W and P = Φ/H.
 
-The foil is massless and follows the pressure at every instant (as in the static model), so P
-and H are recovered from Φ and (X, Y) algebraically:
+Without damping the foil is massless and follows the pressure at every instant (as in the
+static model), so P and H are recovered from Φ and (X, Y) algebraically:
 
 * rigid: H = H_r = 1 − X cos θ − Y sin θ, P = Φ/H;
 * simple, axial-mean law: on each θ row H = a with a = H_r + S(P̄ − 1) and P = Φ/a, so
@@ -38,6 +40,7 @@ from ..physics.film import force_gauge
 from ..physics.film import rigid_film_tabulated
 from ..physics.foil_laws import FoilLaw, foil_law
 from ..static import StaticSolution
+from .foil_state import KelvinVoigtFoil, foil_bound, kelvin_voigt_foil
 
 
 
@@ -63,6 +66,7 @@ class TransientModel:
     compression_only: bool
     gumbel: bool
     foil_data: Optional[np.ndarray]  # the law's precomputed data (beam: W per unit P̄ − 1)
+    foil_state: Optional[KelvinVoigtFoil] = None   # the damped foil's state (η > 0), or None
 
     @property
     def foil(self) -> str:
@@ -74,11 +78,17 @@ class TransientModel:
         return self.static.pressure.shape
 
 
-def transient_model(solution: StaticSolution) -> TransientModel:
+def transient_model(solution: StaticSolution, reference_whirl_ratio: Optional[float] = None,
+                    solver=None, threshold=None) -> TransientModel:
     """The transient model around a converged static equilibrium ``solution``.
 
     A seam on the maximum-film line is frozen where the static solution put it (the top foil
-    is fixed in the housing).
+    is fixed in the housing).  With structural damping (``solution.model.loss_factor`` η > 0)
+    the foil is a Kelvin–Voigt state with τ_f = η/ν_ref (:mod:`.foil_state`):
+    ``reference_whirl_ratio`` ν_ref [-] defaults to the linear threshold whirl ratio, taken
+    from ``threshold`` (the :class:`gfbopt.linear.LinearThreshold` of ``solution``, when the
+    caller has it) or computed (one linearisation, reusing ``solver``); it is refused
+    without damping.
     """
     if not solution.success:
         raise ParameterError("solution", f"status {solution.status}",
@@ -93,14 +103,19 @@ def transient_model(solution: StaticSolution) -> TransientModel:
     dz = 2 * model.length_ratio / solution.grid.n_z
     tw = dtheta * (np.ones(m) if periodic else trapezoid_weights(m))
     zw = dz * trapezoid_weights(nzn)
-    law = foil_law(model)
+    law = foil_law(model, engine="transient")
     foil_data = law.transient_data(model, solution.grid, periodic, dtheta)
+    cos, sin = np.cos(solution.theta), np.sin(solution.theta)
+    x0 = solution.eccentricity * math.cos(solution.attitude_angle)
+    y0 = solution.eccentricity * math.sin(solution.attitude_angle)
+    foil_state = kelvin_voigt_foil(solution, law, 1.0 - x0 * cos - y0 * sin,
+                                   reference_whirl_ratio, solver, threshold)
     return TransientModel(
         static=solution, bearing_number=model.bearing_number, compliance=model.compliance,
-        load=solution.load, periodic=periodic, cos=np.cos(solution.theta),
-        sin=np.sin(solution.theta), theta_weight=tw, z_weight=zw, dtheta=dtheta, dz=dz,
-        law=law, compression_only=bool(model.compression_only),
-        gumbel=model.subambient == "gumbel", foil_data=foil_data)
+        load=solution.load, periodic=periodic, cos=cos, sin=sin, theta_weight=tw,
+        z_weight=zw, dtheta=dtheta, dz=dz, law=law,
+        compression_only=bool(model.compression_only), gumbel=model.subambient == "gumbel",
+        foil_data=foil_data, foil_state=foil_state)
 
 
 # ----------------------------------------------------------------------- kernel
@@ -169,14 +184,21 @@ def rigid_film(x: np.ndarray, y: np.ndarray, tm: TransientModel) -> np.ndarray:
 
 
 def pressure_and_film(phi: np.ndarray, x: np.ndarray, y: np.ndarray, tm: TransientModel,
-                      guess: Optional[np.ndarray] = None,
-                      cache: Optional[dict] = None) -> tuple[np.ndarray, np.ndarray]:
+                      guess: Optional[np.ndarray] = None, cache: Optional[dict] = None,
+                      deflection: Optional[np.ndarray] = None) -> tuple[np.ndarray, np.ndarray]:
     """Recover P (B, m, n_z + 1) and H from Φ = P H and the journal position.
 
     The foil law does it (:meth:`gfbopt.physics.foil_laws.FoilLaw.recover`).  H has shape
     (B, m, n_z + 1) for the local law and (B, m, 1) — uniform along each θ row — otherwise.
     Boundary nodes carry P = 1.  ``guess`` (B, m) is a starting film for the beam's Newton.
+    A damped model (``tm.foil_state``) needs the foil state W, ``deflection``: then
+    H = H_r + W and P = Φ/H (:meth:`~gfbopt.physics.foil_laws.FoilLaw.recover_deflected`).
     """
+    if tm.foil_state is not None:
+        if deflection is None:
+            raise ParameterError("deflection", None, "the damped transient model (η > 0) "
+                                 "needs the foil state W to recover P and H")
+        return tm.law.recover_deflected(phi, rigid_film(x, y, tm), deflection, tm)
     return tm.law.recover(phi, rigid_film(x, y, tm), tm, guess, cache)
 
 
@@ -189,20 +211,33 @@ def film_force(p: np.ndarray, tm: TransientModel) -> tuple[np.ndarray, np.ndarra
 
 @dataclass
 class State:
-    """A batch of rotor states: Φ (B, m, n_z+1), X, Y, U, V (B,)."""
+    """A batch of rotor states: Φ (B, m, n_z+1), X, Y, U, V (B,), and the foil state W of a
+    damped model ((B, m) per θ row or (B, m, n_z+1) per node; None without damping)."""
 
     phi: np.ndarray
     x: np.ndarray
     y: np.ndarray
     u: np.ndarray
     v: np.ndarray
+    w: Optional[np.ndarray] = None
 
     def axpy(self, alpha, d: "State") -> "State":
         """self + alpha·d; ``alpha`` a scalar or one value per rotor (B,)."""
         a = np.asarray(alpha, dtype=float)
         ap = a[:, None, None] if a.ndim else a
+        w = None if self.w is None else self.w + _per_rotor(a, self.w) * d.w
         return State(self.phi + ap * d.phi, self.x + a * d.x, self.y + a * d.y,
-                     self.u + a * d.u, self.v + a * d.v)
+                     self.u + a * d.u, self.v + a * d.v, w)
+
+    def take(self, rotors) -> "State":
+        """The rotors selected by ``rotors`` (index or boolean mask), as a new batch."""
+        return State(self.phi[rotors], self.x[rotors], self.y[rotors], self.u[rotors],
+                     self.v[rotors], None if self.w is None else self.w[rotors])
+
+
+def _per_rotor(a: np.ndarray, like: np.ndarray) -> np.ndarray:
+    """A scalar, or one value per rotor shaped to broadcast against ``like`` (B, ...)."""
+    return a.reshape(a.shape + (1,) * (like.ndim - 1)) if a.ndim else a
 
 
 
@@ -224,14 +259,15 @@ class RightHandSide:
     def __call__(self, s: State) -> State:
         tm = self.tm
         self.evaluations += 1
-        p, h = pressure_and_film(s.phi, s.x, s.y, tm, self._guess, self._cache)
+        p, h = pressure_and_film(s.phi, s.x, s.y, tm, self._guess, self._cache, s.w)
         np.minimum(self.min_film, h.min(axis=(1, 2)), out=self.min_film)
         if tm.law.name == "beam":
             self._guess = h[..., 0]
         dphi = flux_residual(p, h, tm)
         dphi /= 2 * tm.bearing_number
         fx, fy = film_force(p, tm)
-        return State(dphi, s.u, s.v, (fx + tm.load) / self.mass_load, fy / self.mass_load)
+        dw = None if tm.foil_state is None else tm.foil_state.rate(p, s.w, tm)
+        return State(dphi, s.u, s.v, (fx + tm.load) / self.mass_load, fy / self.mass_load, dw)
 
 
 def equilibrium_state(tm: TransientModel, batch: int) -> State:
@@ -241,7 +277,11 @@ def equilibrium_state(tm: TransientModel, batch: int) -> State:
     x0 = sol.eccentricity * math.cos(sol.attitude_angle)
     y0 = sol.eccentricity * math.sin(sol.attitude_angle)
     full = lambda v: np.full(batch, v)  # noqa: E731
-    return State(phi, full(x0), full(y0), full(0.0), full(0.0))
+    w = None
+    if tm.foil_state is not None:
+        w0 = tm.foil_state.equilibrium
+        w = np.broadcast_to(w0, (batch,) + w0.shape).copy()
+    return State(phi, full(x0), full(y0), full(0.0), full(0.0), w)
 
 
 # -------------------------------------------------------------- stability bound
@@ -250,8 +290,10 @@ def stiffness_bound(s: State, tm: TransientModel) -> float:
 
     With P = Φ/H (foil coupling neglected: it is non-local and non-stiff), row sums of
     |∂R/∂P_k|/H_k over the five-point stencil, over 2Λ.  RK4 is stable for Δτ·λ ≤ 2.78.
+    A damped model's foil rows (:func:`.foil_state.foil_bound`) are included: the bound is
+    the larger of the two.
     """
-    p, h = pressure_and_film(s.phi, s.x, s.y, tm)
+    p, h = pressure_and_film(s.phi, s.x, s.y, tm, deflection=s.w)
     lam, dth, dz = tm.bearing_number, tm.dtheta, tm.dz
     h3 = h ** 3
     roll = (lambda a, k: np.roll(a, k, axis=-2)) if tm.periodic else _shift
@@ -273,7 +315,8 @@ def stiffness_bound(s: State, tm: TransientModel) -> float:
     bound = (diag + off)[..., :, 1:-1]
     if not tm.periodic:
         bound = bound[..., 1:-1, :]
-    return float(bound.max() / (2 * lam))
+    film = float(bound.max() / (2 * lam))
+    return film if tm.foil_state is None else max(film, foil_bound(p, h, tm))
 
 
 def _shift(a: np.ndarray, k: int) -> np.ndarray:

@@ -101,14 +101,18 @@ def test_linear_loss_factor():
         assert row == pytest.approx(expected, rel=1e-10)
 
 
-def test_a_damped_bearing_file_is_refused_by_the_transient(tmp_path):
+def test_a_damped_bearing_file_reaches_the_transient_with_its_loss_factor(tmp_path):
+    """η from a bearing file acts in the transient too (Kelvin–Voigt foil state) and the
+    output states it with the reference whirl ratio it used."""
     damped = tmp_path / "damped.toml"
     damped.write_text((REPO / RUSCITTO).read_text().replace("loss_factor = 0.0",
                                                             "loss_factor = 0.2"))
     out = gfbopt("orbit", "--bearing", str(damped), "--speed-rpm", "20000", "--load-newton",
-                 "20", "--mass", "1", "--revolutions", "1", "--grid", "24x8")
-    assert out.returncode == 2 and "Traceback" not in out.stderr
-    assert "structural damping of the bumps is modelled by the linear analysis only" in out.stderr
+                 "20", "--mass", "1", "--revolutions", "1", "--grid", "24x8", "--json")
+    assert out.returncode == 0, out.stderr
+    data = json.loads(out.stdout)
+    assert data["loss_factor"] == pytest.approx(0.2)
+    assert 0.0 < data["reference_whirl_ratio"] < 1.0
 
 
 @pytest.mark.parametrize("args, message", [
