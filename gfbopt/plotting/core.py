@@ -1,4 +1,5 @@
-"""Figures: pure functions from results (DataFrames, dicts of tables) to matplotlib Axes.
+"""Figures of the analyses: static sweeps, profiles, maps, coefficients, orbits (see the
+package docstring for the conventions every figure follows).
 
 The only module of gfbopt that imports matplotlib; solvers never plot, studies call these
 functions.  Every ``plot_*(data, ax=None, ...)`` draws on ``ax`` when given and otherwise on

@@ -1,0 +1,23 @@
+"""Figures: pure functions from results (DataFrames, dicts of tables) to matplotlib Axes.
+
+The only package of gfbopt that imports matplotlib; solvers never plot, studies call these
+functions.  Every ``plot_*(data, ax=None, ...)`` draws on ``ax`` when given and otherwise on
+a new :class:`matplotlib.figure.Figure` (no pyplot, no backend, no global state), and returns
+the Axes; :func:`save_figure` writes a figure to a file.
+
+=====================  ==============================================================
+module                 figures
+=====================  ==============================================================
+:mod:`.core`           static sweeps, profiles, grid convergence, stability maps,
+                       coefficients, orbits, bifurcation; the shared helpers
+:mod:`.design`         stability-driven bump design (onset speed against S and pitch)
+:mod:`.stability`      onset speed against seam angle and loss factor
+=====================  ==============================================================
+"""
+from .core import (new_axes, plot_bifurcation, plot_coefficients, plot_grid_convergence,
+                   plot_load_sweep, plot_orbits, plot_pressure_field, plot_profiles,
+                   plot_stability_map, save_figure, set_title)
+
+__all__ = ["new_axes", "plot_bifurcation", "plot_coefficients", "plot_grid_convergence",
+           "plot_load_sweep", "plot_orbits", "plot_pressure_field", "plot_profiles",
+           "plot_stability_map", "save_figure", "set_title"]
