@@ -204,3 +204,13 @@ def frame(rows: list, columns_first: tuple = (), ensure: tuple = ()) -> pd.DataF
             table[column] = math.nan
     first = [c for c in columns_first if c in table.columns]
     return table[first + [c for c in table.columns if c not in first]]
+
+
+@dataclass(frozen=True)
+class Kind:
+    """A study kind: ``plan(study)`` builds its points (no solving), ``run(study, plan,
+    context)`` computes; ``parallel`` kinds use the process pool."""
+
+    plan: Callable
+    run: Callable
+    parallel: bool = False

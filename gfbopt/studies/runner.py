@@ -17,20 +17,9 @@ from typing import Callable, Optional, Union
 
 from ..inputs import read_toml
 from . import maps, sweeps, tables, transients
-from .base import RunContext, Study, StudyResult
+from .base import Kind, RunContext, Study, StudyResult
 from .report import write_result
-from .spec import KINDS as SCHEMA_KINDS
-from .spec import validate
-
-
-@dataclass(frozen=True)
-class Kind:
-    """A study kind: ``plan(study)`` builds its points (no solving), ``run(study, plan,
-    context)`` computes; ``parallel`` kinds use the process pool."""
-
-    plan: Callable
-    run: Callable
-    parallel: bool = False
+from .spec import SCHEMAS, validate
 
 
 KINDS: dict[str, Kind] = {
@@ -49,7 +38,22 @@ KINDS: dict[str, Kind] = {
     "orbits": Kind(transients.plan_orbits, transients.run_orbits),
     "bifurcation": Kind(transients.plan_bifurcation, transients.run_bifurcation),
 }
-assert set(KINDS) == set(SCHEMA_KINDS), "every schema has a runner and vice versa"
+
+
+def register(family) -> None:
+    """Add a family of study kinds defined in its own module: ``family.SCHEMAS`` (kind →
+    schema, in the vocabulary of :mod:`.spec`) and ``family.KINDS`` (kind → :class:`Kind`)."""
+    clash = set(family.KINDS) & set(KINDS)
+    if clash or set(family.KINDS) != set(family.SCHEMAS):
+        raise ValueError(f"study kinds of {family.__name__}: clash {sorted(clash)} or "
+                         "schemas without runners")
+    SCHEMAS.update(family.SCHEMAS)
+    KINDS.update(family.KINDS)
+
+
+for _family in ():
+    register(_family)
+assert set(KINDS) == set(SCHEMAS), "every schema has a runner and vice versa"
 
 
 @dataclass(frozen=True)

@@ -238,6 +238,8 @@ SCHEMAS: dict[str, dict] = {
                                      "cycle or contact", minimum=0),
         "model": req("table", "the bearing", keys=_point(required=("bearing_number",)))},
 }
+#: the kinds of this module; families of kinds in their own modules (e.g. :mod:`.design`)
+#: add their schemas to SCHEMAS through :func:`gfbopt.studies.runner.register`
 KINDS = tuple(SCHEMAS)
 
 #: a file of published stability results (problems/published/*.toml): one copy of the
@@ -424,8 +426,8 @@ def validate(data: dict, file: str) -> dict:
     top = Where(file)
     kind = data.get("kind")
     if kind not in SCHEMAS:
-        raise (top / "kind").error(kind, f"must be one of {', '.join(KINDS)}"
-                                   + _hint(kind, KINDS))
+        raise (top / "kind").error(kind, f"must be one of {', '.join(SCHEMAS)}"
+                                   + _hint(kind, tuple(SCHEMAS)))
     return check_table(data, {**COMMON, **SCHEMAS[kind]}, top)
 
 
