@@ -153,7 +153,8 @@ def linear_threshold_point(model: BearingModel, *, eccentricity: Optional[float]
 def critical_mass_point(model: BearingModel, *, eccentricity: Optional[float] = None,
                         load: Optional[float] = None, grid: Optional[Grid] = None,
                         cache: Optional[SolverCache] = None, tolerance: float = 0.005,
-                        revolutions: float = 5.0, method: str = "rk4") -> dict:
+                        revolutions: Optional[float] = None, method: str = "rkc",
+                        start: str = "mode") -> dict:
     """Nonlinear (transient) critical mass beside the linear threshold at one point.
 
     The search (:func:`gfbopt.transient.find_critical_mass`) is centred on the linear
@@ -162,8 +163,12 @@ def critical_mass_point(model: BearingModel, *, eccentricity: Optional[float] = 
     Parameters
     ----------
     tolerance : relative half-width of the final bracket on M̄ [-]
-    revolutions : shaft revolutions per transient [-]
-    method : integration method, a key of :data:`gfbopt.transient.METHODS`
+    revolutions : shaft revolutions per transient [-] (None: the search's default, one whirl
+        period when starting from the linear mode)
+    method : integration method, a key of :data:`gfbopt.transient.METHODS` (default 'rkc':
+        the same growth rates as 'rk4' at ~13× less cost at the default grid)
+    start : 'mode' — each transient starts from the least-stable linear mode shape (a clean
+        growth-rate fit after about one whirl period); 'kick' — from a small journal kick
 
     Returns
     -------
@@ -173,6 +178,7 @@ def critical_mass_point(model: BearingModel, *, eccentricity: Optional[float] = 
     ``wall_time_s``.
     """
     from .transient import find_critical_mass, transient_model
+    from .transient.mode import linear_mode
 
     t0 = time.perf_counter()
     solver = _solver(model, grid, cache)
@@ -183,10 +189,17 @@ def critical_mass_point(model: BearingModel, *, eccentricity: Optional[float] = 
            "rotor_revolutions": 0.0, "nonlinear_over_linear": math.nan,
            "success": False, "message": sol.message}
     if sol.success:
-        lin = _linear_threshold(sol, solver)
-        result = find_critical_mass(transient_model(sol), tolerance=tolerance,
+        from .linear import linear_threshold, linearise
+
+        linearisation = linearise(sol, solver)
+        lin = linear_threshold(linearisation)
+        mode = None
+        if start == "mode" and math.isfinite(lin.critical_mass) and lin.critical_mass > 0:
+            mode = linear_mode(linearisation, lin.critical_mass, 1j * lin.whirl_ratio)
+        result = find_critical_mass(transient_model(sol, threshold=lin), tolerance=tolerance,
                                     linear_estimate=lin.critical_mass,
-                                    revolutions=revolutions, method=method)
+                                    revolutions=revolutions, method=method,
+                                    initial_mode=mode)
         row.update(linear_critical_mass=lin.critical_mass, linear_whirl_ratio=lin.whirl_ratio,
                    critical_mass=result.critical_mass, whirl_ratio=result.whirl_ratio,
                    bracket_low=result.bracket[0], bracket_high=result.bracket[1],

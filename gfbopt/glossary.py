@@ -183,3 +183,107 @@ def describe(column: str, references: tuple = ()) -> tuple[str, str]:
             groups = [_PART.get(g, g.upper() if len(g) == 1 else g) for g in match.groups()]
             return unit, meaning.format(*groups)
     raise KeyError(f"column {column!r} is not in the glossary (gfbopt/glossary.py)")
+
+
+# ---------------------------------------------------------------- design of experiments
+# Columns of sampled studies (gfbopt.studies.doe); added without overriding an entry that
+# another family of studies defines.
+for _name, _entry in {
+    "point": ("-", "index of the point in the study's sample plan (the key of a row)"),
+    "worker": ("text", "host:pid of the process that computed the row"),
+    "bump_pitch": ("m", "bump pitch s"),
+    "bump_thickness": ("m", "bump foil thickness t_b"),
+    "bump_half_length": ("m", "half bump length l0"),
+    "radial_clearance": ("m", "radial clearance c"),
+    "bump_youngs_modulus": ("Pa", "Young's modulus of the bump foil E_b"),
+    "top_foil_thickness": ("m", "top foil thickness t_t"),
+    "length": ("m", "bearing length L"),
+    "radius": ("m", "journal radius R"),
+    "loss_factor": ("-", "structural loss factor η of the bump foundation"),
+    "rotor_mass_kg": ("kg", "rotor mass per bearing M"),
+    "speed_low_rpm": ("rpm", "low end of the speed range searched for the onset"),
+    "speed_high_rpm": ("rpm", "high end of the speed range searched for the onset"),
+    "onset_speed_rpm": ("rpm", "onset speed of whirl: lowest speed in the range at which the "
+                        "rotor is linearly unstable (empty: none in the range)"),
+    "whirl_frequency_hz": ("Hz", "whirl frequency at the onset of instability"),
+    "stable_over_range": ("flag", "stable at every speed of the range searched"),
+    "unstable_at_lower_end": ("flag", "already unstable at the lowest speed searched"),
+    "smallest_margin": ("-", "smallest M_crit/M − 1 over the speeds evaluated"),
+    "evaluations": ("-", "linear-threshold computations of the onset search"),
+    "output": ("text", "the study output whose sensitivity is given"),
+    "input": ("text", "the sampled input"),
+    "S1": ("-", "first-order Sobol index (share of the output variance due to this input "
+           "alone)"),
+    "S1_conf": ("-", "95 % bootstrap half-width of S1"),
+    "ST": ("-", "total Sobol index (share of the variance involving this input)"),
+    "ST_conf": ("-", "95 % bootstrap half-width of ST"),
+}.items():
+    GLOSSARY.setdefault(_name, _entry)
+
+
+# ---------------------------------------------------------------- stability studies
+# Columns of gfbopt.studies.stability (onset_conventions, loss_factor_map); added without
+# overriding an entry that another family of studies defines.
+for _name, _entry in {
+    "convention": ("text", "film convention: periodic (no seam), max_film (seam on the "
+                   "maximum-film line) or seam_<deg> (welded end at that housing angle from "
+                   "the load line)"),
+    "onset_status": ("text", "how the onset search ended: onset (found in the range), "
+                     "unstable at every mass (M̄c = 0 at the lowest speed), unstable at the "
+                     "lowest speed, stable over the range, load exceeds capacity, failed"),
+    "smallest_mass_margin": ("-", "smallest M_crit/M − 1 over the speeds evaluated by the "
+                             "onset search"),
+    "critical_mass_kg_at_low_speed": ("kg", "critical rotor mass per bearing at the lowest "
+                                      "speed of the range (0: unstable at every mass)"),
+    "loss_factor": ("-", "structural loss factor η of the bump foundation"),
+    "onset_speed_rpm": ("rpm", "onset speed of whirl: lowest speed in the range at which the "
+                        "rotor is linearly unstable (empty: none in the range)"),
+    "whirl_frequency_hz": ("Hz", "whirl frequency at the onset of instability"),
+    "evaluations": ("-", "linear-threshold computations of the onset search"),
+    "load_exceeds_capacity": ("flag", "the static load continuation stopped short of the "
+                              "load with the film closing: the bearing cannot carry it"),
+}.items():
+    GLOSSARY.setdefault(_name, _entry)
+
+
+# ---------------------------------------------------------------- bump design for stability
+# Columns of gfbopt.studies.design (pitch_design); added without overriding other families.
+for _name, _entry in {
+    "loss_factor": ("-", "structural loss factor η of the bump foundation"),
+    "onset_speed_rpm": ("rpm", "onset speed of whirl on the rotor's mass–speed line (the high "
+                        "end of the range when stable over it, the low end when unstable there)"),
+    "stable_over_range": ("flag", "stable at every speed of the range searched"),
+    "unstable_at_lower_end": ("flag", "already unstable at the lowest speed searched"),
+    "best_compliance": ("-", "compliance S with the latest onset of whirl for this law and η"),
+    "best_onset_speed_rpm": ("rpm", "onset speed of whirl at the best S"),
+    "band_low": ("-", "lowest S whose onset speed is within 2 % of the best"),
+    "band_high": ("-", "highest S whose onset speed is within 2 % of the best"),
+    "decided_by_bound": ("text", "'low'/'high' when the best S sits on the stiffest/softest "
+                         "bump foil the limits allow (the limit decides), empty otherwise"),
+    "baseline_compliance": ("-", "S of the bearing's original bump foil"),
+    "baseline_onset_speed_rpm": ("rpm", "onset speed of whirl with the original bump foil"),
+    "feasible": ("flag", "the minimum film meets the limit at the film-check speed"),
+    "onset_whirl_frequency_hz": ("Hz", "whirl frequency at the onset of instability"),
+    "mass_margin_at_check_speed": ("-", "M_crit/M − 1 at the film-check speed"),
+    "bump_pitch_mm": ("mm", "bump pitch s of the least-stress bump foil realising S"),
+    "half_bump_length_mm": ("mm", "half bump length l0 of that foil"),
+    "bump_thickness_mm": ("mm", "bump foil thickness t_b of that foil"),
+    "bump_stress_mpa": ("MPa", "bump bending stress σ_b = 3 Δp s l0 / t_b² at the design "
+                        "pressure"),
+    "number_of_bumps": ("-", "whole number of bumps round the bearing, 2πR/s"),
+    "binding_limits": ("text", "limits that bind at the least-stress geometry"),
+    "geometry_message": ("text", "why no bump foil realises this S (empty when one does)"),
+    "objective": ("text", "quantity the geometric program minimised"),
+    "pitch": ("m", "bump pitch s"),
+    "half_length": ("m", "half bump length l0"),
+    "thickness": ("m", "bump foil thickness t_b"),
+    "top_foil_thickness": ("m", "top foil thickness t_t"),
+    "bump_compliance": ("m³/N", "bump compliance per unit area α = 2 s l0³ (1 − ν²)/(E t_b³)"),
+    "bump_stress": ("Pa", "bump bending stress σ_b at the design pressure"),
+    "bump_deflection": ("m", "bump deflection Δp α at the design pressure"),
+    "top_foil_sag": ("m", "top-foil sag between bumps at the design pressure"),
+    "top_foil_stress": ("Pa", "top-foil bending stress between bumps"),
+    "solver": ("text", "conic solver cvxpy used for the geometric program"),
+    "solves": ("-", "geometric programs solved"),
+}.items():
+    GLOSSARY.setdefault(_name, _entry)

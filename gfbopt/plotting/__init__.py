@@ -14,10 +14,11 @@ module                 figures
 :mod:`.stability`      onset speed against seam angle and loss factor
 =====================  ==============================================================
 """
+from .design import plot_design_against_compliance, plot_design_against_pitch
 from .core import (new_axes, plot_bifurcation, plot_coefficients, plot_grid_convergence,
                    plot_load_sweep, plot_orbits, plot_pressure_field, plot_profiles,
                    plot_stability_map, save_figure, set_title)
 
-__all__ = ["new_axes", "plot_bifurcation", "plot_coefficients", "plot_grid_convergence",
+__all__ = ["plot_design_against_compliance", "plot_design_against_pitch", "new_axes", "plot_bifurcation", "plot_coefficients", "plot_grid_convergence",
            "plot_load_sweep", "plot_orbits", "plot_pressure_field", "plot_profiles",
            "plot_stability_map", "save_figure", "set_title"]

@@ -151,12 +151,13 @@ def run_linear_map(study: Study, plan: dict, ctx: RunContext) -> StudyResult:
 def _search(spec: dict) -> dict:
     """Arguments of :func:`gfbopt.analyses.critical_mass_point` from the study's keys."""
     return {"tolerance": spec["critical_mass_tolerance"], "revolutions": spec["revolutions"],
-            "method": spec["method"]}
+            "method": spec["method"], "start": spec["start"]}
 
 
 def _search_options(spec: dict) -> dict:
     """The transient-search settings as the study file names them (for the provenance)."""
-    return {k: spec[k] for k in ("critical_mass_tolerance", "revolutions", "method")}
+    return {k: spec[k] for k in ("critical_mass_tolerance", "revolutions", "method",
+                                 "start")}
 
 
 def run_transient_map(study: Study, plan: dict, ctx: RunContext) -> StudyResult:

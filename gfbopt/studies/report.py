@@ -156,7 +156,10 @@ def readme(result: StudyResult, summary: dict) -> str:
         described |= set(columns)
         lines += ["", f"Columns of {name}:", "", "| column | unit | meaning |", "|---|---|---|"]
         for c in columns:
-            unit, meaning = describe(c, refs)
+            try:
+                unit, meaning = describe(c, refs)
+            except KeyError:         # never lose a computed study over a missing description
+                unit, meaning = "?", "not yet described in gfbopt/glossary.py"
             lines.append(f"| `{c}` | {unit} | {_cell(meaning)} |")
     lines += ["", "## Study file keys", "", "| key | | meaning |", "|---|---|---|"]
     lines += [f"| `{k}` | {state} | {_cell(doc)} |"

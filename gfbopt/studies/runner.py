@@ -16,7 +16,7 @@ from pathlib import Path
 from typing import Callable, Optional, Union
 
 from ..inputs import read_toml
-from . import maps, sweeps, tables, transients
+from . import design, maps, sweeps, tables, transients
 from .base import Kind, RunContext, Study, StudyResult
 from .report import write_result
 from .spec import SCHEMAS, validate
@@ -51,7 +51,7 @@ def register(family) -> None:
     KINDS.update(family.KINDS)
 
 
-for _family in ():
+for _family in (design,):
     register(_family)
 assert set(KINDS) == set(SCHEMAS), "every schema has a runner and vice versa"
 

@@ -149,10 +149,15 @@ STABILITY = {
 TRANSIENT_SEARCH = {
     "critical_mass_tolerance": opt("number", 0.005, "relative bracket of the transient "
                                    "critical-mass search", positive=True),
-    "revolutions": opt("number", 5.0, "shaft revolutions per transient", positive=True),
+    "revolutions": opt("number", None, "shaft revolutions per transient (default: one "
+                       "whirl period from the least-stable linear mode)", positive=True),
+    "start": opt("string", "mode", "start of each transient: the least-stable linear mode "
+                 "shape, or a small kick", choices=("mode", "kick")),
     "nonlinear_linear_tolerance": opt("number", 0.01, "largest |nonlinear/linear − 1| of "
                                       "the critical mass", minimum=0.0),
-    **METHOD,
+    "method": opt("string", "rkc", "transient integration method (rkc: stabilised "
+                  "Runge-Kutta-Chebyshev, ~13x faster than rk4 at equal accuracy)",
+                  choices=_transient_methods),
 }
 
 SCHEMAS: dict[str, dict] = {
