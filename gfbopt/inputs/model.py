@@ -132,8 +132,9 @@ class BearingModel:
 
     def options(self) -> dict:
         """The formulation options, as every output states them (angles in degrees)."""
+        no_seam = self.film == "periodic" and self.foil != "beam"   # nothing to place
         return {"foil": self.foil, "foil_law": self.foil_law, "film": self.film,
-                "seam_angle_deg": ("max_film" if self.seam_angle is None
+                "seam_angle_deg": (None if no_seam else "max_film" if self.seam_angle is None
                                    else math.degrees(self.seam_angle)),
                 "deflection_law": self.deflection_law,
                 "compression_only": self.compression_only, "subambient": self.subambient,
