@@ -29,14 +29,14 @@ import inspect
 import multiprocessing
 import signal
 import time
+from collections.abc import Callable, Sequence
 from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
 from concurrent.futures.process import BrokenProcessPool
-from typing import Callable, Optional, Sequence
 
 from .static import SolverCache
 
 #: The per-worker solver cache (set in each pool worker by :func:`_start_worker`).
-_WORKER_CACHE: Optional[SolverCache] = None
+_WORKER_CACHE: SolverCache | None = None
 
 
 def limit_blas_threads() -> None:
@@ -54,6 +54,25 @@ def _start_worker() -> None:
     signal.signal(signal.SIGINT, signal.SIG_IGN)
     limit_blas_threads()
     _WORKER_CACHE = SolverCache()
+    _exit_with_parent()
+
+
+def _exit_with_parent(period: float = 1.0) -> None:
+    """End this worker within ``period`` seconds of its parent's death (``kill -9`` of the
+    driver): a daemon thread polls the parent pid (the worker is re-parented when the
+    driver dies), so no orphaned worker keeps computing points nobody will store."""
+    import os
+    import threading
+
+    parent = os.getppid()
+
+    def watch() -> None:
+        while True:
+            time.sleep(period)
+            if os.getppid() != parent:
+                os._exit(1)
+
+    threading.Thread(target=watch, name="gfbopt-parent-watch", daemon=True).start()
 
 
 def _takes_cache(function: Callable) -> bool:
@@ -63,7 +82,7 @@ def _takes_cache(function: Callable) -> bool:
         return False
 
 
-def _evaluate(function: Callable, point: dict, cache: Optional[SolverCache]) -> list[dict]:
+def _evaluate(function: Callable, point: dict, cache: SolverCache | None) -> list[dict]:
     """``function(**point)`` as a list of rows; an exception becomes one failed row."""
     t0 = time.perf_counter()
     try:
@@ -86,9 +105,9 @@ def _in_worker(function: Callable, point: dict) -> list[dict]:
 
 
 def run_points(function: Callable, points: Sequence[dict], *, workers: int = 1,
-               tags: Optional[Sequence[dict]] = None,
-               progress: Optional[Callable[[float], None]] = None,
-               cache: Optional[SolverCache] = None) -> list[dict]:
+               tags: Sequence[dict] | None = None,
+               progress: Callable[[float], None] | None = None,
+               cache: SolverCache | None = None) -> list[dict]:
     """Evaluate ``function(**point)`` for every point; rows in the order of ``points``.
 
     Parameters
@@ -157,3 +176,113 @@ def _terminate(pool: ProcessPoolExecutor) -> None:
             process.terminate()
     for process in processes:
         process.join(timeout=5)
+
+
+# ====================================================================== streaming executors
+# Design-of-experiments studies (gfbopt.studies.doe) send *tasks* — a function and a chunk of
+# neighbouring points — and want the rows as each task finishes, to write them to the results
+# store in batches.  :func:`stream_tasks` yields ``(index, result)`` in completion order from
+# this process, a local pool of spawn processes, or a Dask distributed cluster.
+
+def worker_cache() -> SolverCache:
+    """The solver cache of this process: the per-worker cache of a pool worker or of a Dask
+    worker process (created on first use, with BLAS pinned to one thread), one build per
+    (grid, film, structure) for the life of the process."""
+    global _WORKER_CACHE
+    if _WORKER_CACHE is None:
+        limit_blas_threads()
+        _WORKER_CACHE = SolverCache()
+    return _WORKER_CACHE
+
+
+def worker_name() -> str:
+    """host:pid of this process (the ``worker`` column of a study table)."""
+    import os
+    import socket
+
+    return f"{socket.gethostname()}:{os.getpid()}"
+
+
+def connect_scheduler(address: str, timeout: float = 10.0):
+    """A ``distributed.Client`` on the Dask scheduler at ``address``; ParameterError naming
+    the address when it cannot be reached (or dask.distributed is not installed)."""
+    from .errors import ParameterError
+
+    try:
+        from distributed import Client
+    except ImportError:  # pragma: no cover - optional extra
+        raise ParameterError("--scheduler", address, "needs dask[distributed] "
+                             "(pip install 'gfbopt[dask]')") from None
+    try:
+        return Client(address, timeout=timeout, set_as_default=False)
+    except (OSError, TimeoutError, ValueError) as exc:
+        raise ParameterError("--scheduler", address, f"cannot be reached "
+                             f"({type(exc).__name__}: {str(exc).splitlines()[0][:120]})"
+                             ) from None
+
+
+def _call_task(function: Callable, argument):
+    """Run one task in a worker; an exception is returned (as data), never raised."""
+    try:
+        return function(argument)
+    except Exception as exc:  # noqa: BLE001 - a failed task is rows with its error
+        return exc
+
+
+def stream_tasks(function: Callable, arguments: Sequence, *, workers: int = 1,
+                 client=None):
+    """Yield ``(k, function(arguments[k]))`` as each task finishes (completion order).
+
+    ``client``: a ``distributed.Client`` — the tasks run on its cluster (only the
+    arguments travel; a worker's solvers live in its process, :func:`worker_cache`).
+    Otherwise ``workers > 1`` runs a pool of spawn processes (BLAS pinned, Ctrl-C left to
+    the parent, terminated on Ctrl-C or error) and ``workers <= 1`` runs here.  A task that
+    raised yields the exception object; a worker that died yields a BrokenProcessPool error.
+    Closing the generator early (Ctrl-C in the consumer) cancels the pending tasks.
+    """
+    arguments = list(arguments)
+    if client is not None:
+        yield from _stream_dask(function, arguments, client)
+    elif workers <= 1 or len(arguments) <= 1:
+        for k, argument in enumerate(arguments):
+            yield k, _call_task(function, argument)
+    else:
+        yield from _stream_pool(function, arguments, workers)
+
+
+def _stream_pool(function: Callable, arguments: list, workers: int):
+    context = multiprocessing.get_context("spawn")
+    pool = ProcessPoolExecutor(max_workers=min(workers, len(arguments)), mp_context=context,
+                               initializer=_start_worker)
+    try:
+        futures = {pool.submit(_call_task, function, a): k for k, a in enumerate(arguments)}
+        pending = set(futures)
+        while pending:
+            done, pending = wait(pending, return_when=FIRST_COMPLETED)
+            for future in done:
+                try:
+                    result = future.result()
+                except BrokenProcessPool as exc:
+                    result = BrokenProcessPool(f"the worker process died ({exc})")
+                yield futures[future], result
+    except BaseException:                 # Ctrl-C, error, or the consumer closed us
+        _terminate(pool)
+        raise
+    pool.shutdown(wait=True)
+
+
+def _stream_dask(function: Callable, arguments: list, client):
+    from distributed import as_completed
+
+    futures = client.map(_call_task, [function] * len(arguments), arguments, pure=False)
+    index = {f.key: k for k, f in enumerate(futures)}
+    try:
+        for future in as_completed(futures, loop=client.loop):
+            try:
+                result = future.result()
+            except Exception as exc:  # noqa: BLE001 - a lost worker, a killed task
+                result = exc
+            yield index[future.key], result
+    except BaseException:
+        client.cancel(futures)
+        raise

@@ -4,6 +4,11 @@ Every file given is validated (schema, values, models) before the first study st
 mistake in the tenth file costs no solving of the first nine.  One line per study as it
 finishes; a progress bar on a terminal (nothing when stderr is not a TTY).  Exit status 0
 when every internal check passed, 1 when one failed, 2 for a mistake in a study file.
+
+Sampled studies (``kind = "sweep"``, :mod:`gfbopt.studies.doe`) also take ``--resume``
+(compute only the points not yet in ``RESULTS/NAME/store/``) and ``--scheduler ADDRESS`` (run
+on a Dask distributed cluster; an unreachable address is one line and exit 2, nothing
+written).  Other kinds run on the local executor whatever these options say.
 """
 from __future__ import annotations
 
@@ -36,19 +41,43 @@ def register(subparsers) -> None:
     run.add_argument("--workers", type=_workers, default=None,
                      help="worker processes for the studies whose points are independent "
                      "(stability maps); default: the number of available cores")
+    run.add_argument("--resume", action="store_true",
+                     help="sampled studies: keep the points already stored in "
+                     "RESULTS/NAME/store/ and compute only the others (refused when the store "
+                     "belongs to another study file)")
+    run.add_argument("--scheduler", metavar="ADDRESS", default=None,
+                     help="sampled studies: run on the Dask distributed scheduler at ADDRESS "
+                     "(e.g. tcp://10.0.0.5:8786) instead of the local process pool")
     run.set_defaults(handler=run_studies)
 
 
 def run_studies(args) -> int:
     from ..studies import load_study, run_study, summary_line
+    from ..studies.doe import KINDS as SAMPLED
+    from ..studies.doe import run_sampled
     from .common import progress_bar
 
     loaded = [load_study(path) for path in args.problems]      # all validated first
     workers = args.workers or _default_workers()
+    client = None
+    if args.scheduler and any(s.study.kind in SAMPLED for s in loaded):
+        from ..parallel import connect_scheduler
+
+        client = connect_scheduler(args.scheduler)             # before anything is written
     failed = 0
-    for study in loaded:
-        result = run_study(study, results_root=args.results, workers=workers,
-                           progress=progress_bar(study.study.name))
-        print(summary_line(result, f"{args.results}/{study.study.name}/"), flush=True)
-        failed += not result.passed
+    try:
+        for study in loaded:
+            if study.study.kind in SAMPLED:
+                result = run_sampled(study, args.results, workers=workers, client=client,
+                                     scheduler=args.scheduler, resume=args.resume,
+                                     progress=progress_bar(study.study.name))
+            else:
+                result = run_study(study, results_root=args.results, workers=workers,
+                                   progress=progress_bar(study.study.name))
+            print(summary_line(result, f"{args.results}/{study.study.name}/"), flush=True)
+            failed += not result.passed
+    finally:
+        if client is not None:
+            client.close()
     return 1 if failed else 0
+

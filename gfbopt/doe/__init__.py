@@ -7,6 +7,7 @@ module                   what it holds
 :mod:`.sampling`         factorial, Latin hypercube, Sobol, explicit lists, Saltelli designs
 :mod:`.store`            one tidy table per study as atomic Parquet parts, fixed schema, resume
 :mod:`.sensitivity`      first-order and total Sobol indices with confidence intervals
+:mod:`.points`           the analyses of a sampled study, run on chunks of neighbouring points
 =======================  ==================================================================
 """
 from .sampling import METHODS, SamplePlan, Variable, sample

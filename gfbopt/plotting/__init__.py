@@ -22,3 +22,6 @@ from .core import (new_axes, plot_bifurcation, plot_coefficients, plot_grid_conv
 __all__ = ["plot_design_against_compliance", "plot_design_against_pitch", "new_axes", "plot_bifurcation", "plot_coefficients", "plot_grid_convergence",
            "plot_load_sweep", "plot_orbits", "plot_pressure_field", "plot_profiles",
            "plot_stability_map", "save_figure", "set_title"]
+from .doe import plot_sobol_indices  # noqa: E402  (design of experiments)
+
+__all__ += ["plot_sobol_indices"]

@@ -214,3 +214,11 @@ class Kind:
     plan: Callable
     run: Callable
     parallel: bool = False
+
+
+@dataclass(frozen=True)
+class LoadedStudy:
+    """A validated study and its plan (models and points, built without solving)."""
+
+    study: Study
+    plan: object

@@ -17,7 +17,8 @@ from typing import Callable, Optional, Union
 
 from ..inputs import read_toml
 from . import design, maps, sweeps, tables, transients
-from .base import Kind, RunContext, Study, StudyResult
+from . import doe
+from .base import Kind, LoadedStudy, RunContext, Study, StudyResult
 from .report import write_result
 from .spec import SCHEMAS, validate
 
@@ -51,17 +52,9 @@ def register(family) -> None:
     KINDS.update(family.KINDS)
 
 
-for _family in (design,):
+for _family in (design, doe):
     register(_family)
 assert set(KINDS) == set(SCHEMAS), "every schema has a runner and vice versa"
-
-
-@dataclass(frozen=True)
-class LoadedStudy:
-    """A validated study and its plan (models and points, built without solving)."""
-
-    study: Study
-    plan: object
 
 
 def study_from_dict(data: dict, *, name: Optional[str] = None, file: str = "<dict>",

@@ -142,9 +142,10 @@ def test_transient_study_mistakes(tmp_path, no_solver, old, new, match):
         load_study(_write(tmp_path, TRANSIENT.replace(old, new, 1)))
 
 
-def test_the_transient_method_defaults_to_rk4(tmp_path, no_solver):
+def test_the_transient_search_defaults_to_rkc_from_the_linear_mode(tmp_path, no_solver):
     spec = load_study(_write(tmp_path, TRANSIENT)).study.spec
-    assert spec["method"] == "rk4" and spec["nonlinear_linear_tolerance"] == 0.01
+    assert spec["method"] == "rkc" and spec["start"] == "mode"
+    assert spec["nonlinear_linear_tolerance"] == 0.01
 
 
 def test_cli_validates_every_file_before_running_any(tmp_path, no_solver, capsys):
