@@ -25,3 +25,8 @@ __all__ = ["plot_design_against_compliance", "plot_design_against_pitch", "new_a
 from .doe import plot_sobol_indices  # noqa: E402  (design of experiments)
 
 __all__ += ["plot_sobol_indices"]
+from .stability import (plot_critical_mass_against_compliance,  # noqa: E402  (stability)
+                        plot_onset_against_compliance, plot_onset_against_seam)
+
+__all__ += ["plot_critical_mass_against_compliance", "plot_onset_against_compliance",
+            "plot_onset_against_seam"]

@@ -13,6 +13,10 @@ module                 responsibility
 :mod:`.sweeps`         load_sweep, linear_coefficients (a bearing file in SI)
 :mod:`.maps`           linear_map, transient_map, transient_points (stability)
 :mod:`.transients`     orbits, bifurcation
+:mod:`.design`         pitch_design (bump foil chosen for rotor stability)
+:mod:`.stability`      onset_conventions (onset speed against the film convention)
+:mod:`.damping`        loss_factor_map (loss factor η against compliance S)
+:mod:`.doe`            sweep (sampled studies into a Parquet store; resume, Dask)
 :mod:`.checks`         internal checks and comparisons with published values
 :mod:`.report`         CSV, figures, summary.json, README per study, results/index.md
 :mod:`.runner`         load_study, study_from_dict, compute, run_study

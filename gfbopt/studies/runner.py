@@ -11,13 +11,14 @@ solving), so every mistake in a study file is found before any solve starts.
 from __future__ import annotations
 
 import time
-from dataclasses import dataclass, replace
+from dataclasses import replace
 from pathlib import Path
 from typing import Callable, Optional, Union
 
 from ..inputs import read_toml
 from . import design, maps, sweeps, tables, transients
 from . import doe
+from . import damping, stability
 from .base import Kind, LoadedStudy, RunContext, Study, StudyResult
 from .report import write_result
 from .spec import SCHEMAS, validate
@@ -52,7 +53,7 @@ def register(family) -> None:
     KINDS.update(family.KINDS)
 
 
-for _family in (design, doe):
+for _family in (design, doe, stability, damping):
     register(_family)
 assert set(KINDS) == set(SCHEMAS), "every schema has a runner and vice versa"
 

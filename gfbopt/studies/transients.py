@@ -22,7 +22,6 @@ from .base import (
     StudyResult,
     build_model,
     frame,
-    merged,
     options_of,
     variant_titles,
 )
