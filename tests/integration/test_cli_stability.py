@@ -87,7 +87,7 @@ def test_text_report_states_the_default_convention(tmp_path):
     periodic = json.loads(gfbopt("static", "--bearing", RUSCITTO, "--speed-rpm", "10000",
                                  "--load-newton", "20", "--grid", "36x10", "--film",
                                  "periodic", "--json").stdout)
-    assert periodic["film"] == "periodic" and periodic["seam_angle_deg"] == "max_film"
+    assert periodic["film"] == "periodic" and periodic["seam_angle_deg"] is None   # no seam
 
 
 def test_linear_loss_factor():
