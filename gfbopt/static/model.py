@@ -3,7 +3,7 @@
 Unknowns (``x``): P at interior nodes; lifted per-θ-row H (or its rigid part for the local
 law), Q_i = ∫(P − 1) dZ and the force integrand Q^F_i; the beam's free Hermite dofs; force
 partial sums; ε and φ.  Lifting the axial integrals and the film geometry keeps the Jacobian
-sparse (PHYSICS.md).  Equations (``g``), in this order: Reynolds at the unknown nodes, the
+sparse (docs/PHYSICS.md).  Equations (``g``), in this order: Reynolds at the unknown nodes, the
 lifting definitions, the beam equations, the partial sums and two closing equations
 ``mode·(F_X + W̄) + (1 − mode)(ε − ε_given) = 0`` and ``F_Y = 0``.  The equation that defines
 a lifted variable sits at that variable's index (the linearisation relies on it).
@@ -117,7 +117,7 @@ def _lifted_equations(st: disc.Stencil, law: FoilLaw, law_data) -> _Lifted:
     qf = ca.SX.sym("QF", m)
     u = ca.SX.sym("U", n_beam)
     # Force integrals in the grid's own frame, lifted into block partial sums so that no
-    # Jacobian row is dense (dense rows defeat CasADi's colouring: PHYSICS.md).
+    # Jacobian row is dense (dense rows defeat CasADi's colouring: docs/PHYSICS.md).
     blocks = np.array_split(np.arange(m), max(1, int(round(math.sqrt(m)))))
     nb = len(blocks)
     sums = ca.SX.sym("FS", 2 * nb)

@@ -18,7 +18,7 @@ foundation stiffness is k (1 + iη sign γ), the compliance S/(1 + iη).  Consta
 has no causal time-domain form; Kelvin–Voigt is the causal model that matches it at one
 frequency: for motion e^{iγτ} it gives W = S q/(1 + iτ_f γ) = S q/(1 + iη γ/ν_ref), which is
 S q/(1 + iη) exactly at γ = ν_ref.  The stability threshold is a single-frequency condition
-(s = iγ_c on the imaginary axis, PHYSICS.md §8): with ν_ref = γ_c, the linear threshold whirl
+(s = iγ_c on the imaginary axis, docs/PHYSICS.md §8): with ν_ref = γ_c, the linear threshold whirl
 ratio, both foundations have the same impedance there, so the same critical mass and whirl
 ratio.  That is the default ν_ref (a user may give another, which moves the nonlinear
 threshold away from the linear one).  Away from the threshold the two differ: Kelvin–Voigt
@@ -55,7 +55,7 @@ import numpy as np
 from ..errors import ParameterError
 
 #: ν_ref when the linear analysis finds no whirl ratio (stable for every mass): half-frequency
-#: whirl, the limit of these bearings' threshold whirl (PHYSICS.md §8).
+#: whirl, the limit of these bearings' threshold whirl (docs/PHYSICS.md §8).
 FALLBACK_WHIRL = 0.5
 
 

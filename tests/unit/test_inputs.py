@@ -24,11 +24,11 @@ def test_ruscitto_groups_match_hand_calculation():
     alpha = 2 * 4.572e-3 * 1.778e-3**3 * (1 - 0.29**2) / (214e9 * 101.6e-6**3)
     assert b.bump_compliance == pytest.approx(alpha, rel=1e-12)
     assert b.compliance == pytest.approx(1e5 * alpha / 20e-6, rel=1e-12)
-    assert b.compliance == pytest.approx(1.05, abs=0.005)          # PHYSICS.md: S ≈ 1.05
+    assert b.compliance == pytest.approx(1.05, abs=0.005)          # docs/PHYSICS.md: S ≈ 1.05
     omega = 45000 * 2 * math.pi / 60
     assert b.bearing_number(45000) == pytest.approx(
         6 * 2.98e-5 * omega * 19.05e-3**2 / (1e5 * 20e-6**2), rel=1e-12)
-    assert b.bearing_number(45000) == pytest.approx(7.6, abs=0.05)  # PHYSICS.md: Λ ≈ 7.6
+    assert b.bearing_number(45000) == pytest.approx(7.6, abs=0.05)  # docs/PHYSICS.md: Λ ≈ 7.6
     assert b.bearing_number(30000) == pytest.approx(5.1, abs=0.05)
     # C = E_t I_t c/(R⁴ L p_a), I_t = L t³/12 → C = E t³ c/(12 R⁴ p_a)
     assert b.top_foil_coefficient == pytest.approx(

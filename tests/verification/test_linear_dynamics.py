@@ -53,7 +53,7 @@ def test_stiffness_equals_finite_differences_of_static_forces(name):
 
 @pytest.mark.parametrize("gamma", [0.1, 0.3, 0.45])
 def test_forward_circular_whirl_equals_static_bearing_at_reduced_bearing_number(gamma):
-    """PHYSICS.md: a centred circular whirl at ratio ν sees the steady film of Λ(1 − 2ν).
+    """docs/PHYSICS.md: a centred circular whirl at ratio ν sees the steady film of Λ(1 − 2ν).
     At ε → 0 the linear forward-whirl force −Re[Z(iν)(1, −i)]ε equals the static force of a
     bearing with Λ(1 − 2ν) at (X, Y) = (ε, 0).  Discretely the identity holds to O(Δθ²) (the
     squeeze term is not a shifted Couette difference), so the discrepancy must fall 4× per
@@ -180,7 +180,7 @@ def test_critical_mass_converges_with_the_grid():
 
 
 def test_concentric_limit_threshold_goes_to_zero_mass_and_half_whirl():
-    """PHYSICS.md: as ε → 0, M̄c → 0 and the whirl ratio → 1/2."""
+    """docs/PHYSICS.md: as ε → 0, M̄c → 0 and the whirl ratio → 1/2."""
     results = [linear_threshold(_linearised("rigid", eps=e)[3]) for e in (0.05, 0.02)]
     assert results[1].critical_mass < results[0].critical_mass < 0.5
     assert results[1].whirl_ratio == pytest.approx(0.5, abs=0.01)

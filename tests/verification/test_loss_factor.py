@@ -171,7 +171,7 @@ def test_concentric_impedance_with_loss_factor_matches_closed_form(law, gamma):
 
 
 def test_forward_whirl_force_vanishes_at_half_frequency_with_loss_factor():
-    """PHYSICS.md §9 with η > 0: at γ = 1/2 the whirling frame sees Λ(1 − 2γ) = 0, so P = 1
+    """docs/PHYSICS.md §9 with η > 0: at γ = 1/2 the whirling frame sees Λ(1 − 2γ) = 0, so P = 1
     and the foil does not move, whatever its damping.  Discretely O(Δθ²): the forward-whirl
     force falls ~4× per refinement and is < 0.3 % of |Z| at 72 × 20 (as for η = 0)."""
     gaps = []
@@ -184,7 +184,7 @@ def test_forward_whirl_force_vanishes_at_half_frequency_with_loss_factor():
 
 
 def test_concentric_limit_with_loss_factor():
-    """M̄c → 0 and γc → 1/2 as ε → 0 with η = 0.3 (PHYSICS.md §9, a trend, not a value)."""
+    """M̄c → 0 and γc → 1/2 as ε → 0 with η = 0.3 (docs/PHYSICS.md §9, a trend, not a value)."""
     results = [linear_threshold(_linearised("simple", eps=e, eta=0.3)[2]) for e in (0.05, 0.02)]
     assert results[1].critical_mass < results[0].critical_mass < 0.5
     assert results[1].whirl_ratio == pytest.approx(0.5, abs=0.01)

@@ -55,7 +55,7 @@ def onsets(cache):
 
 @pytest.mark.parametrize("name", list(CONVENTIONS))
 def test_verdict_and_margin_at_45000_rpm(cache, name):
-    """M̄ = 2 kg × 20 µm × ω²/20 N = 44.41 at 45,000 rpm (PHYSICS.md §2), far above every
+    """M̄ = 2 kg × 20 µm × ω²/20 N = 44.41 at 45,000 rpm (docs/PHYSICS.md §2), far above every
     convention's threshold: unstable, with the margin and critical mass following from M̄c by
     the conversions, worked here by hand; the least-stable mode grows (δ < 0)."""
     r = _run(cache, name, 45000)

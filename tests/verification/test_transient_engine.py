@@ -217,7 +217,7 @@ def test_heavy_rotor_ends_in_contact_not_nan():
 
 
 def test_large_kick_above_threshold_is_a_limit_cycle_not_stable():
-    """PHYSICS.md trap: just above threshold a large orbit shrinks onto the limit cycle; its
+    """docs/PHYSICS.md trap: just above threshold a large orbit shrinks onto the limit cycle; its
     envelope falls, yet it must not be called stable."""
     model = MODELS["simple"]
     solver = solver_for(model, GRID)
