@@ -129,7 +129,7 @@ class FoilLaw:
     #: bound); False when it is only the rigid part (the local law adds W per node)
     lifted_film_is_total: bool = True
     #: engines that model the structural loss factor η (others are refused a damped model,
-    #: :func:`foil_law`): linear (hysteretic), transient (Kelvin–Voigt state, PHYSICS.md §7)
+    #: :func:`foil_law`): linear (hysteretic), transient (Kelvin–Voigt state, docs/PHYSICS.md §7)
     loss_factor_engines: tuple = ()
     #: the transient's Kelvin–Voigt state: one W per θ 'rows', per 'nodes', or None
     damped_state: Optional[str] = None

@@ -17,7 +17,7 @@ OMEGA_45K = 45000 * 2 * math.pi / 60
 
 
 def test_mass_parameter_worked_example_and_round_trip():
-    """PHYSICS.md §2: 2 kg per bearing, c = 20 µm, 20 N, 45,000 rpm gives M̄ = 44.4 (and 2.19
+    """docs/PHYSICS.md §2: 2 kg per bearing, c = 20 µm, 20 N, 45,000 rpm gives M̄ = 44.4 (and 2.19
     at 10,000 rpm); kg → M̄ → kg is the identity to round-off."""
     mbar = cv.mass_parameter(2.0, 20e-6, OMEGA_45K, 20.0)
     assert mbar == pytest.approx(2 * 20e-6 * OMEGA_45K**2 / 20, rel=1e-15)
@@ -28,7 +28,7 @@ def test_mass_parameter_worked_example_and_round_trip():
 
 
 def test_dynamic_scales_and_mode_quantities():
-    """PHYSICS.md §2: p_a R²/(c ω) = 385 N s/m at 45,000 rpm for the Ruscitto bearing; the
+    """docs/PHYSICS.md §2: p_a R²/(c ω) = 385 N s/m at 45,000 rpm for the Ruscitto bearing; the
     whirl ratio ↔ frequency, growth rate and log decrement conversions."""
     assert cv.damping_scale(1e5, 19.05e-3, 20e-6, OMEGA_45K) == pytest.approx(385, abs=0.5)
     assert cv.damping_scale(1e5, 19.05e-3, 20e-6, OMEGA_45K) * OMEGA_45K == pytest.approx(
