@@ -42,6 +42,10 @@ module                 contents
                        :func:`coefficients` (K̄, C̄ against γ), :func:`dimensional_coefficients`
 :mod:`.threshold`      :func:`linear_threshold`, :func:`characteristic_root`,
                        :func:`semi_discrete_eigenvalues`, :func:`least_stable_mode`
+:mod:`.crossings`      the threshold's search for real roots u(γ): the reference scan and the
+                       fast search on the Krylov model, checked on the exact impedance
+:mod:`.krylov`         :class:`~.krylov.ShiftedImpedance`: Z(iγ) on a whirl-ratio interval
+                       from one sparse LU (shift-invariant block Krylov space)
 =====================  ====================================================================
 """
 from .model import (Coefficients, Linearisation, coefficients, dimensional_coefficients,
