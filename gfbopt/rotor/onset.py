@@ -14,7 +14,8 @@ scans whirl ratios 0.02–1.2 and keeps the smallest critical mass, including th
 crossings, and 0 when the massless journal is already unstable), so the least-stable root
 wins.  Inside the bracket, when both ends whirl at nearly the same ratio (within
 :data:`SAME_BRANCH`), the refinement scans only a window of ±0.1 around it (8 whirl ratios
-instead of 24: half the cost); otherwise it scans the full range.  An unstable window narrower than
+instead of 24; with the one-LU Krylov scan of :mod:`gfbopt.linear.krylov` the saving is
+small); otherwise it scans the full range.  An unstable window narrower than
 one scan interval can be missed; give a narrower range to look closer.  One static build
 serves the whole line (Λ is a parameter of the CasADi model), and each speed warm-starts from
 the previous equilibrium.
