@@ -68,8 +68,13 @@ def test_provenance_is_the_gfbopt_source_not_the_working_directory(tmp_path):
     out = subprocess.run([sys.executable, "-m", "gfbopt", "static", "--eccentricity", "0.3",
                           "--bearing-number", "1", "--grid", "24x8", "--json"],
                          capture_output=True, text=True, cwd=tmp_path, timeout=300)
-    head = subprocess.run(["git", "-C", str(REPO), "rev-parse", "HEAD"], capture_output=True,
-                          text=True).stdout.strip()
+    # the gfbopt package that subprocess imports (an editable install may point elsewhere
+    # than this test file's checkout): its own repository's commit must be recorded
+    package = subprocess.run([sys.executable, "-c", "import gfbopt; print(gfbopt.__file__)"],
+                             capture_output=True, text=True, cwd=tmp_path).stdout.strip()
+    head = subprocess.run(["git", "-C", str(Path(package).parent), "rev-parse", "HEAD"],
+                          capture_output=True, text=True).stdout.strip()
+    assert len(head) == 40
     assert json.loads(out.stdout)["provenance"]["source_commit"] == head
 
 
