@@ -51,7 +51,13 @@ def limit_blas_threads() -> None:
 def _start_worker() -> None:
     """Initialiser of a pool worker: BLAS pinned, Ctrl-C left to the parent, empty cache."""
     global _WORKER_CACHE
+    import os
+
     signal.signal(signal.SIGINT, signal.SIG_IGN)
+    # libraries loaded later in the worker (IPOPT/MUMPS and their OpenMP runtime, when the
+    # first solver is built) read these at load time; threadpoolctl covers those already loaded
+    for var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
+        os.environ[var] = "1"
     limit_blas_threads()
     _WORKER_CACHE = SolverCache()
     _exit_with_parent()
