@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import datetime as _dt
 import functools
+import math
 import platform
 import subprocess
 from pathlib import Path
@@ -47,6 +48,22 @@ def source_state() -> dict:
     except (OSError, subprocess.SubprocessError):
         return {"commit": None, "dirty": None,
                 "source": f"installed package {_PACKAGE_DIR} (not a git checkout)"}
+
+
+def jsonable(value):
+    """``value`` made JSON-safe for every output: numpy scalars → Python numbers, non-finite
+    floats → null, keys → strings, tuples → lists (recursively)."""
+    import numpy as np
+
+    if isinstance(value, dict):
+        return {str(k): jsonable(v) for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [jsonable(v) for v in value]
+    if isinstance(value, np.generic):
+        value = value.item()
+    if isinstance(value, float) and not math.isfinite(value):
+        return None
+    return value
 
 
 def provenance(**options) -> dict:

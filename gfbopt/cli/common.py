@@ -9,11 +9,10 @@ import sys
 from dataclasses import dataclass
 from typing import Callable, Optional
 
-import numpy as np
 
 from ..errors import ParameterError
 from ..inputs import DEFAULT_GRID, BearingGeometry, BearingModel, Grid
-from ..provenance import provenance
+from ..provenance import jsonable as _jsonable, provenance
 from .si import fill_model_options, seam_angle_text
 
 
@@ -189,18 +188,6 @@ def emit(out: dict, as_json: bool, report: Callable[[], str], options: dict) -> 
         print(json.dumps(_jsonable(payload)))
     else:
         print(report())
-
-
-def _jsonable(value):
-    if isinstance(value, dict):
-        return {k: _jsonable(v) for k, v in value.items()}
-    if isinstance(value, (list, tuple)):
-        return [_jsonable(v) for v in value]
-    if isinstance(value, np.generic):
-        value = value.item()
-    if isinstance(value, float) and not math.isfinite(value):
-        return None
-    return value
 
 
 def progress_bar(label: str, enabled: bool = True):

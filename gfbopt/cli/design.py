@@ -10,10 +10,11 @@ from __future__ import annotations
 
 import argparse
 import json
-import math
 
 from ..design.materials import MATERIALS, get_material
 from ..errors import ParameterError
+from ..provenance import jsonable as _jsonable
+from .common import number
 
 __all__ = ["register", "run"]
 
@@ -38,18 +39,6 @@ _FORMULAS = {
 }
 
 
-def _number(name: str):
-    def parse(text: str) -> float:
-        try:
-            value = float(text)
-        except ValueError:
-            raise argparse.ArgumentTypeError(f"{name} = {text!r}: must be a number") from None
-        if not math.isfinite(value):
-            raise argparse.ArgumentTypeError(f"{name} = {text!r}: must be finite (not NaN)")
-        return value
-    return parse
-
-
 def register(subparsers) -> argparse.ArgumentParser:
     """Add the ``design`` sub-command to ``subparsers``; its handler is :func:`run`."""
     x750 = get_material(_DEFAULT_MATERIAL)
@@ -58,54 +47,54 @@ def register(subparsers) -> argparse.ArgumentParser:
         description=("Find the bump pitch s, half bump length l0 and bump thickness t_b that "
                      "give the compliance coefficient S = p_a alpha / c at the least bump "
                      "bending stress, within the given ranges and limits. SI units (m, Pa)."))
-    p.add_argument("--target-compliance", type=_number("target-compliance"), nargs="+",
+    p.add_argument("--target-compliance", type=number("target-compliance"), nargs="+",
                    required=True, metavar="S",
                    help="target compliance coefficient S [-]; two values give a band LOW HIGH")
-    p.add_argument("--radial-clearance", type=_number("radial-clearance"), required=True,
+    p.add_argument("--radial-clearance", type=number("radial-clearance"), required=True,
                    metavar="C_M", help="radial clearance c [m]")
-    p.add_argument("--radius", type=_number("radius"), default=None, metavar="R_M",
+    p.add_argument("--radius", type=number("radius"), default=None, metavar="R_M",
                    help="bearing radius R [m]: the number of bumps 2 pi R/s is made whole "
                         "(default: not rounded)")
-    p.add_argument("--ambient-pressure", type=_number("ambient-pressure"), default=101325.0,
+    p.add_argument("--ambient-pressure", type=number("ambient-pressure"), default=101325.0,
                    metavar="PA", help="ambient pressure p_a [Pa] (default 101325, 1 atm)")
     p.add_argument("--material", default=_DEFAULT_MATERIAL, choices=tuple(MATERIALS),
                    help=f"foil material (default {_DEFAULT_MATERIAL}: E = "
                         f"{x750.youngs_modulus / 1e9:g} GPa, nu = {x750.poisson_ratio:g}, "
                         "Inconel X-750 at 20 C)")
-    p.add_argument("--youngs-modulus", type=_number("youngs-modulus"), default=None,
+    p.add_argument("--youngs-modulus", type=number("youngs-modulus"), default=None,
                    metavar="E", help="override the material's Young's modulus E [Pa]")
-    p.add_argument("--poisson-ratio", type=_number("poisson-ratio"), default=None,
+    p.add_argument("--poisson-ratio", type=number("poisson-ratio"), default=None,
                    metavar="NU", help="override the material's Poisson's ratio [-]")
-    p.add_argument("--allowable-stress", type=_number("allowable-stress"), default=None,
+    p.add_argument("--allowable-stress", type=number("allowable-stress"), default=None,
                    metavar="SIGMA",
                    help=f"bump allowable bending stress [Pa] (default: the material's; "
                         f"{_DEFAULT_MATERIAL}: {x750.allowable_stress / 1e6:g} MPa = 0.5 x the "
                         "620 MPa minimum yield strength of ASTM B637 UNS N07750 Type 1, a "
                         "design choice)")
-    p.add_argument("--design-pressure", type=_number("design-pressure"), default=1e5,
+    p.add_argument("--design-pressure", type=number("design-pressure"), default=1e5,
                    metavar="DP", help="film pressure above ambient on the foil dp [Pa] "
                                       "(default 1e5, 1 bar)")
-    p.add_argument("--pitch-range", type=_number("pitch-range"), nargs=2, default=[2e-3, 6e-3],
+    p.add_argument("--pitch-range", type=number("pitch-range"), nargs=2, default=[2e-3, 6e-3],
                    metavar=("A", "B"), help="bump pitch s range [m] (default 2e-3 6e-3)")
-    p.add_argument("--half-length-range", type=_number("half-length-range"), nargs=2,
+    p.add_argument("--half-length-range", type=number("half-length-range"), nargs=2,
                    default=[0.5e-3, 3e-3], metavar=("A", "B"),
                    help="half bump length l0 range [m] (default 5e-4 3e-3)")
-    p.add_argument("--thickness-range", type=_number("thickness-range"), nargs=2,
+    p.add_argument("--thickness-range", type=number("thickness-range"), nargs=2,
                    default=[50e-6, 200e-6], metavar=("A", "B"),
                    help="bump foil thickness t_b range [m] (default 5e-5 2e-4)")
-    p.add_argument("--gap", type=_number("gap"), default=0.2e-3, metavar="G",
+    p.add_argument("--gap", type=number("gap"), default=0.2e-3, metavar="G",
                    help="flat length between bumps, 2 l0 + gap <= s [m] (default 2e-4)")
-    p.add_argument("--top-foil-thickness-range", type=_number("top-foil-thickness-range"),
+    p.add_argument("--top-foil-thickness-range", type=number("top-foil-thickness-range"),
                    nargs=2, default=None, metavar=("A", "B"),
                    help="design the top foil too, thickness range [m] (default: not designed)")
-    p.add_argument("--sag-limit", type=_number("sag-limit"), default=None, metavar="KAPPA_C",
+    p.add_argument("--sag-limit", type=number("sag-limit"), default=None, metavar="KAPPA_C",
                    help="top-foil sag <= KAPPA_C x c (needs --top-foil-thickness-range)")
-    p.add_argument("--top-foil-allowable-stress", type=_number("top-foil-allowable-stress"),
+    p.add_argument("--top-foil-allowable-stress", type=number("top-foil-allowable-stress"),
                    default=None, metavar="SIGMA",
                    help="top-foil allowable stress [Pa] (default: the bump allowable stress)")
-    p.add_argument("--flattening-limit", type=_number("flattening-limit"), default=None,
+    p.add_argument("--flattening-limit", type=number("flattening-limit"), default=None,
                    metavar="KAPPA", help="no flattening: dp alpha <= KAPPA x bump height")
-    p.add_argument("--bump-height", type=_number("bump-height"), default=None, metavar="H_M",
+    p.add_argument("--bump-height", type=number("bump-height"), default=None, metavar="H_M",
                    help="free bump height h_b [m] (with --flattening-limit)")
     p.add_argument("--objective", default="stress", choices=_OBJECTIVES,
                    help="quantity to minimise (default stress; ties go to the least stress)")
@@ -120,16 +109,6 @@ def _target(values):
     if len(values) == 2:
         return tuple(values)
     raise ParameterError("target-compliance", values, "give one value S or a band LOW HIGH")
-
-
-def _jsonable(value):
-    if isinstance(value, float) and not math.isfinite(value):
-        return None
-    if isinstance(value, (list, tuple)):
-        return [_jsonable(v) for v in value]
-    if isinstance(value, dict):
-        return {k: _jsonable(v) for k, v in value.items()}
-    return value
 
 
 def _output(design, spec) -> dict:

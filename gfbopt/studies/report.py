@@ -7,24 +7,12 @@ import json
 import math
 from pathlib import Path
 
-import numpy as np
 
 from ..glossary import describe
 from ..provenance import provenance
 from .base import StudyResult
+from ..provenance import jsonable as _jsonable
 from .spec import describe_schema
-
-
-def _jsonable(value):
-    if isinstance(value, dict):
-        return {str(k): _jsonable(v) for k, v in value.items()}
-    if isinstance(value, (list, tuple)):
-        return [_jsonable(v) for v in value]
-    if isinstance(value, np.generic):
-        value = value.item()
-    if isinstance(value, float) and not math.isfinite(value):
-        return None
-    return value
 
 
 def largest_deviation(result: StudyResult) -> str:
