@@ -7,31 +7,15 @@ import math
 import numpy as np
 import pytest
 
-from gfbopt import BearingModel, Grid, ParameterError, solve_static, solver_for
+from gfbopt import Grid, ParameterError, solve_static, solver_for
 from gfbopt.linear import least_stable_mode, linear_threshold, linearise
 from gfbopt.transient import (RightHandSide, equilibrium_state, integrate_orbits,
                               rkc_coefficients, rkc_stability_interval, rkc_step, stages_for,
                               stiffness_bound, transient_model)
 from gfbopt.transient.rkc import pack, unpack
 
-GRID = Grid(36, 10)
-MODELS = {
-    "rigid": BearingModel(bearing_number=2.0, foil="rigid"),
-    "simple": BearingModel(bearing_number=2.0, compliance=1.0),
-    "simple_seam_co": BearingModel(bearing_number=2.0, compliance=1.0, film="seam",
-                                   compression_only=True),
-    "local": BearingModel(bearing_number=2.0, compliance=1.0, deflection_law="local"),
-    "beam_seam": BearingModel(bearing_number=5.0, compliance=1.0, foil="beam",
-                              top_foil_coefficient=1.0, film="seam"),
-    "beam_periodic": BearingModel(bearing_number=5.0, compliance=1.0, foil="beam",
-                                  top_foil_coefficient=1.0),
-}
-
-
-def _model(name, eps=0.4, grid=GRID):
-    sol = solve_static(MODELS[name], eccentricity=eps, grid=grid)
-    assert sol.success
-    return sol, transient_model(sol)
+# the same operating points as the RK4 engine's tests, so the two methods are compared on one set
+from test_transient_engine import GRID, MODELS, _model  # noqa: E402  (tests/verification)
 
 
 @pytest.fixture(scope="module")
