@@ -27,17 +27,17 @@ local      W = S (P − 1) at every node                            e.g. Peng & 
 beam       C d⁴W/dθ⁴ + W/S = q, Hermite elements                  thesis eq. (4.2), App. B
 =========  =====================================================  ===========================
 
-``compression_only`` (bumps cannot pull the foil towards the journal) is a property of the
-simple, local and beam laws: W = S max(q, 0), S max(P − 1, 0), and a bump reaction
-max(W, 0)/S respectively.  Adding a law is one subclass here plus its tests.
+``compression_only`` (bumps cannot pull the foil inward): W = S max(q, 0), S max(P − 1, 0), or
+a bump reaction max(W, 0)/S.  Adding a law is one subclass here plus its tests.
 
 References: H. Heshmat, J. A. Walowit, O. Pinkus, "Analysis of gas-lubricated foil journal
-bearings", J. Lubr. Technol. 105(4) (1983) 647–655; J.-P. Peng,
-M. Carpino, "Calculation of stiffness and damping coefficients for elastically supported gas
-foil bearings", J. Tribol. 115(1) (1993) 20–27.
+bearings", J. Lubr. Technol. 105(4) (1983) 647–655; J.-P. Peng, M. Carpino, "Calculation of
+stiffness and damping coefficients for elastically supported gas foil bearings", J. Tribol.
+115(1) (1993) 20–27.
 """
 from __future__ import annotations
 
+import abc
 import math
 from dataclasses import dataclass
 from typing import Optional
@@ -113,7 +113,7 @@ def _row_mean_phi(phi: np.ndarray, hr: np.ndarray, tm) -> tuple[np.ndarray, floa
     return phit, c
 
 
-class FoilLaw:
+class FoilLaw(abc.ABC):
     """Base class: one foil law (see the module docstring for the contract)."""
 
     #: registry name
@@ -145,6 +145,7 @@ class FoilLaw:
         """Grid-dependent data the law needs (e.g. beam matrices), or None."""
         return None
 
+    @abc.abstractmethod
     def static_film(self, h_rigid, lifted, mean_gauge, p_full, u, foil: FoilParameters, st,
                     data) -> tuple:
         """(H at every node, lifted-film equations per row, extra foil equations or None).
@@ -153,15 +154,14 @@ class FoilLaw:
         p_full : P at every node (flat); u : extra unknowns; st : the grid's Stencil.
         Numbers or CasADi symbols.
         """
-        raise NotImplementedError(f"foil law {self.name!r} has no static model")
 
+    @abc.abstractmethod
     def deflection(self, p_full, mean_gauge, u, foil: FoilParameters, st, data) -> tuple:
         """(W at every node (flat), max |foil equation residual|) from a solved state (numpy)."""
-        raise NotImplementedError(f"foil law {self.name!r} has no static model")
 
+    @abc.abstractmethod
     def start(self, h_rigid, mean_gauge, foil: FoilParameters, st, data) -> tuple:
         """(lifted film per row, extra unknowns) consistent with a guessed pressure (numpy)."""
-        raise NotImplementedError(f"foil law {self.name!r} has no static model")
 
     # ------------------------------------------------------------------ linear model
     def squeeze_film_slope(self, pressure: np.ndarray, compliance: float,
@@ -186,21 +186,21 @@ class FoilLaw:
         """Precomputed data of the transient recovery (e.g. the beam's compliance map)."""
         return None
 
+    @abc.abstractmethod
     def recover(self, phi: np.ndarray, hr: np.ndarray, tm, guess=None, cache=None) -> tuple:
         """(P, H) of a batch from Φ = P H (B, m, n_z + 1) and the rigid film H_r (B, m).
 
         H has shape (B, m, n_z + 1) when it varies along Z, else (B, m, 1).
         """
-        raise NotImplementedError(f"foil law {self.name!r} has no transient model")
 
     def recover_deflected(self, phi: np.ndarray, hr: np.ndarray, w: np.ndarray, tm) -> tuple:
         """(P, H) from Φ (B, m, n_z + 1), H_r (B, m) and the damped transient's state W:
         H = H_r + W, P = Φ/H (no foil equation to solve)."""
-        raise NotImplementedError(f"foil law {self.name!r} has no damped transient model")
+        raise ParameterError("loss_factor", self.name, "this foil law has no damped transient")
 
     def deflection_target(self, p: np.ndarray, tm) -> np.ndarray:
         """S q, or S max(q, 0) (compression only), in the :attr:`damped_state` layout [-]."""
-        raise NotImplementedError(f"foil law {self.name!r} has no damped transient model")
+        raise ParameterError("loss_factor", self.name, "this foil law has no damped transient")
 
     def check_engine(self, engine: str, damped: bool = False) -> None:
         """Refuse an engine the law does not support, or does not support with structural
