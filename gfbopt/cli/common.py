@@ -139,7 +139,7 @@ def operating_point(args) -> OperatingPoint:
     _refuse_ignored_options(args)
     common = dict(film=args.film, deflection_law=args.deflection_law,
                   subambient=args.subambient, compression_only=args.compression_only,
-                  seam_angle=None if args.seam_angle is None else math.radians(args.seam_angle),
+                  seam_angle_deg=args.seam_angle,
                   loss_factor=args.loss_factor)
     grid = Grid.parse(args.grid)
     extra: dict = {}

@@ -69,13 +69,20 @@ class Case:
 
 
 def resolve_case(bearing: BearingGeometry, rotor: Rotor, load_newton: Optional[float], *,
-                 film: Optional[str] = None, seam_angle: Union[float, str, None] = None,
+                 film: Optional[str] = None, seam_angle_deg: Union[float, str, None] = None,
                  foil: Optional[str] = None, deflection_law: Optional[str] = None,
                  loss_factor: Optional[float] = None, options: Optional[ModelOptions] = None,
-                 grid: Grid = DEFAULT_GRID, cache: Optional[SolverCache] = None) -> Case:
-    """Check every input and fill the options: stated here, else ``options`` (e.g. a bearing
-    file's ``[model]`` table), else the defaults (:func:`~gfbopt.inputs.options.merge_options`).
-    Raises ParameterError before any solver is built."""
+                 grid: Grid = DEFAULT_GRID, cache: Optional[SolverCache] = None,
+                 seam_angle=None) -> Case:
+    """Check every input and fill the options: stated here, else ``options``, else the
+    bearing's own (``bearing.options``: its file's ``[model]`` table), else the defaults
+    (:func:`~gfbopt.inputs.options.merge_options`) — the one resolution every route uses.
+    ``seam_angle`` (radians in gfbopt <= 0.2) is refused with the conversion to
+    ``seam_angle_deg``.  Raises ParameterError before any solver is built."""
+    if seam_angle is not None:
+        from ..inputs.checks import seam_angle_migration
+
+        raise ParameterError("seam_angle", seam_angle, seam_angle_migration(seam_angle))
     if not isinstance(bearing, BearingGeometry):
         raise ParameterError("bearing", bearing, "must be a BearingGeometry (SI)")
     if not isinstance(rotor, Rotor):
@@ -83,9 +90,11 @@ def resolve_case(bearing: BearingGeometry, rotor: Rotor, load_newton: Optional[f
     if not isinstance(grid, Grid):
         raise ParameterError("grid", grid, "must be a Grid")
     point = OperatingPoint(1.0, load_newton)          # validates the load
-    stated = ModelOptions(film=film, seam_angle=seam_angle, foil=foil,
+    if options is not None and not isinstance(options, ModelOptions):
+        raise ParameterError("options", options, "must be ModelOptions")
+    stated = ModelOptions(film=film, seam_angle_deg=seam_angle_deg, foil=foil,
                           deflection_law=deflection_law, loss_factor=loss_factor)
-    resolved = merge_options(stated, options or ModelOptions())
+    resolved = merge_options(stated, bearing.options if options is None else options)
     case = Case(bearing, rotor, point.load_on(rotor), point.load_source(), resolved, grid,
                 cache if cache is not None else SolverCache(grid))
     case.model(1000.0)                                 # validates the combination (e.g. η, foil)
@@ -210,11 +219,11 @@ class StabilityResult:
 
 
 def stability(bearing: BearingGeometry, rotor: Rotor, operating_point: OperatingPoint, *,
-              film: Optional[str] = None, seam_angle: Union[float, str, None] = None,
+              film: Optional[str] = None, seam_angle_deg: Union[float, str, None] = None,
               foil: Optional[str] = None, deflection_law: Optional[str] = None,
               loss_factor: Optional[float] = None, options: Optional[ModelOptions] = None,
               grid: Grid = DEFAULT_GRID, cache: Optional[SolverCache] = None,
-              initial: Optional[StaticSolution] = None) -> StabilityResult:
+              initial: Optional[StaticSolution] = None, seam_angle=None) -> StabilityResult:
     """Is the rotor stable at this operating point, and with what margin?
 
     Parameters
@@ -222,10 +231,12 @@ def stability(bearing: BearingGeometry, rotor: Rotor, operating_point: Operating
     bearing : the bearing in SI (:class:`~gfbopt.inputs.bearing.BearingGeometry`)
     rotor : the rotor mass per bearing (:class:`~gfbopt.inputs.rotor.Rotor`) [kg]
     operating_point : speed [rpm] and static load per bearing [N] (None: W0 = M g)
-    film, seam_angle, foil, deflection_law, loss_factor : formulation options; None means not
-        stated, and then ``options`` (e.g. a bearing file's ``[model]`` table) or the default
+    film, seam_angle_deg, foil, deflection_law, loss_factor : formulation options; None means
+        not stated, and then ``options``, else ``bearing.options`` (the bearing file's
+        ``[model]`` table, as ``gfbopt stability --bearing FILE`` uses it), else the default
         of :func:`~gfbopt.inputs.options.resolve_model_options` applies (a seam with the
-        welded end 180° from the load).  seam_angle [rad] in [0, 2π), or 'max_film'.
+        welded end 180° from the load).  seam_angle_deg [deg] in [0, 360), or 'max_film'
+        (the old radian keyword ``seam_angle`` is refused).
     grid : the finite-difference grid; cache : a :class:`~gfbopt.static.SolverCache` to reuse
         builds across calls; initial : a previous equilibrium to warm-start from
 
@@ -240,7 +251,7 @@ def stability(bearing: BearingGeometry, rotor: Rotor, operating_point: Operating
         raise ParameterError("operating_point", operating_point,
                              "must be an OperatingPoint (speed in rpm, load in N)")
     case = resolve_case(bearing, rotor, operating_point.load_newton, film=film,
-                        seam_angle=seam_angle, foil=foil, deflection_law=deflection_law,
+                        seam_angle_deg=seam_angle_deg, seam_angle=seam_angle, foil=foil, deflection_law=deflection_law,
                         loss_factor=loss_factor, options=options, grid=grid, cache=cache)
     return assess(case, operating_point.speed_rpm, initial, t0)
 

@@ -12,7 +12,6 @@ confirmation and a figure of onset speed against S and against pitch with the li
 from __future__ import annotations
 
 import functools
-import math
 import time
 
 from ..design.spec import BumpDesignSpec
@@ -77,7 +76,7 @@ def plan_pitch_design(study: Study) -> StabilityDesignSpec:
             half_length_range=tuple(v * 1e-3 for v in s["half_length_range_mm"]),
             thickness_range=tuple(v * 1e-6 for v in s["thickness_range_um"]),
             gap=s["gap_mm"] * 1e-3)
-        seam = None if s["film"] == "periodic" else math.radians(s["seam_angle_deg"])
+        seam = None if s["film"] == "periodic" else s["seam_angle_deg"]
         return StabilityDesignSpec(
             bearing=bearing, rotor=Rotor(s["rotor_mass_kg"]), load_newton=s["load_newton"],
             speed_range_rpm=tuple(s["speed_range_rpm"]),
@@ -85,7 +84,7 @@ def plan_pitch_design(study: Study) -> StabilityDesignSpec:
             film_check_speed_rpm=s["film_check_speed_rpm"],
             loss_factors=tuple(s["loss_factors"]),
             deflection_laws=tuple(s["deflection_laws"]),
-            options=ModelOptions(film=s["film"], seam_angle=seam, foil="simple"),
+            options=ModelOptions(film=s["film"], seam_angle_deg=seam, foil="simple"),
             grid=Grid.parse(s["grid"]), n_scan=s["scan_points"])
     except Exception as exc:          # ParameterError from any input: name the file
         name = getattr(exc, "name", "design")

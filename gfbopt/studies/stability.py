@@ -93,7 +93,7 @@ def onset_point(bearing, rotor_mass_kg: float, load_newton: float, speed_range, 
            "critical_mass_kg_at_low_speed": math.nan}
     try:
         res = onset_speed(bearing, Rotor(rotor_mass_kg), load_newton, speed_range, film=film,
-                          seam_angle=seam_angle, foil=foil, deflection_law=deflection_law,
+                          seam_angle_deg=seam_angle, foil=foil, deflection_law=deflection_law,
                           loss_factor=loss_factor, grid=grid, cache=cache)
     except ParameterError as exc:
         overload = "load capacity" in str(exc)
@@ -176,8 +176,8 @@ def confirmation_point(model: BearingModel, load: float, grid: Grid, method: str
 
 # ------------------------------------------------------------------ helpers
 def _seam(value):
-    """seam_angle_deg of a study file → the rotor API's seam_angle (rad or 'max_film')."""
-    return "max_film" if value == "max_film" else math.radians(value)
+    """seam_angle_deg of a study file → the rotor API's seam_angle_deg (deg or 'max_film')."""
+    return "max_film" if value == "max_film" else float(value)
 
 
 def _convention_label(film: str, seam) -> str:
