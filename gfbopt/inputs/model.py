@@ -13,6 +13,8 @@ FOIL_MODELS = ("rigid", "simple", "beam")
 FILM_MODELS = ("periodic", "seam")
 DEFLECTION_LAWS = ("mean", "local")
 SUBAMBIENT_TREATMENTS = ("full", "gumbel")
+#: largest top-foil coefficient C [-] accepted (BearingModel)
+MAX_TOP_FOIL_COEFFICIENT = 1e4
 
 
 def film_convention(film: str, seam_angle_deg: Optional[float], foil: str = "simple") -> str:
@@ -93,6 +95,11 @@ class BearingModel:
         object.__setattr__(self, "length_ratio", check_positive("length_ratio", self.length_ratio))
         object.__setattr__(self, "top_foil_coefficient",
                            check_nonnegative("top_foil_coefficient", self.top_foil_coefficient))
+        if self.top_foil_coefficient > MAX_TOP_FOIL_COEFFICIENT:
+            raise ParameterError("top_foil_coefficient", self.top_foil_coefficient,
+                                 f"must be <= {MAX_TOP_FOIL_COEFFICIENT:g} (10^4 times the "
+                                 "thesis's C = 1; beyond it the beam's stiffness matrix is "
+                                 "singular in double precision)")
         check_choice("foil", self.foil, FOIL_MODELS)
         check_choice("film", self.film, FILM_MODELS)
         check_choice("deflection_law", self.deflection_law, DEFLECTION_LAWS)

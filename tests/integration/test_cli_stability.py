@@ -9,6 +9,8 @@ from pathlib import Path
 
 import pytest
 
+from gfbopt.glossary import describe
+
 REPO = Path(__file__).resolve().parents[2]
 RUSCITTO = "problems/bearings/ruscitto.toml"
 POINT = ["--bearing", RUSCITTO, "--load-newton", "20", "--speed-rpm", "45000", "--grid",
@@ -41,7 +43,12 @@ def test_stability_json_and_csv_contract(tmp_path):
     assert "welded end 180°" in conventions["film_convention"]
     assert data["provenance"]["options"]["film_convention"] == conventions["film_convention"]
     lines = csv.read_text().splitlines()
-    assert lines[0] == "frequency_hz,kxx,kxy,kyx,kyy,cxx,cxy,cyx,cyy"
+    # the glossary's names with their units, as in the shipped results/*/coefficients CSVs
+    assert lines[0] == ("frequency_hz,kxx_N_per_m,kxy_N_per_m,kyx_N_per_m,kyy_N_per_m,"
+                        "cxx_Ns_per_m,cxy_Ns_per_m,cyx_Ns_per_m,cyy_Ns_per_m")
+    assert [describe(c)[0] for c in lines[0].split(",")] == ["Hz", *["N/m"] * 4,
+                                                              *["N s/m"] * 4]
+    assert data["coefficients"]["units"]["kxy_N_per_m"] == "N/m"
     assert len(lines) == 1 + len(data["coefficients"]["frequency_hz"]) == 12   # 10 + matched
     assert "matched whirl" in data["coefficients"]["frame"]
 

@@ -167,8 +167,8 @@ def test_coefficients_in_si(cache):
     row = table.table.iloc[(table.table.whirl_ratio - 0.5).abs().argmin()]
     nd = coefficients(r.linearisation, [row.whirl_ratio])
     scale = 1e5 * 19.05e-3**2 / C
-    assert row.kxy == pytest.approx(nd.stiffness[0, 0, 1] * scale, rel=1e-12)
-    assert row.cyx == pytest.approx(nd.damping[0, 1, 0] * scale / omega, rel=1e-12)
+    assert row.kxy_N_per_m == pytest.approx(nd.stiffness[0, 0, 1] * scale, rel=1e-12)
+    assert row.cyx_Ns_per_m == pytest.approx(nd.damping[0, 1, 0] * scale / omega, rel=1e-12)
     assert row.frequency_hz == pytest.approx(row.whirl_ratio * omega / (2 * math.pi))
     assert table.matched_whirl_hz == pytest.approx(r.threshold_whirl_frequency_hz)
     assert (table.table.frequency_hz - table.matched_whirl_hz).abs().min() < 1e-9
