@@ -181,6 +181,16 @@ def geometry_columns(geometry: BumpDesignSpec, compliance: float) -> dict:
             "geometry_message": "" if d.success else d.message}
 
 
+def feasible(row: dict, limit_um: float) -> bool:
+    """A design value is feasible when it meets every limit: the minimum film at the
+    film-check speed is at least ``limit_um`` [µm] AND a bump foil with a whole number of
+    bumps realises its S within the geometric limits (no ``geometry_message``).  (0.2.0 marked
+    rows feasible on the film alone, also where no bump foil realises S.)"""
+    film_ok = bool(row.get("min_film_thickness_um", -1.0) >= limit_um)
+    return film_ok and not row.get("geometry_message") and math.isfinite(
+        row.get("bump_pitch_mm", math.nan))
+
+
 def _serial(function: Callable, points: Sequence[dict]) -> list[dict]:
     return [function(**p) for p in points]
 
@@ -212,8 +222,8 @@ def search_compliance(spec: StabilityDesignSpec, bounds: tuple, law: str, eta: f
                           [{"spec": spec, "compliance": float(v), "law": law, "eta": eta}
                            for v in values])
         return [Evaluation(float(v), float(r.get("onset_speed_rpm", math.nan)),
-                           bool(r.get("min_film_thickness_um", -1.0) >= limit_um),
-                           bool(r.get("success", False)), r) for v, r in zip(values, rows)]
+                           feasible(r, limit_um), bool(r.get("success", False)), r)
+                for v, r in zip(values, rows)]
 
     result = maximise_on_interval(batch, bounds, n_scan=spec.n_scan, log=True, band=BAND)
     return LawOptimum(law, eta, result.best, result.merit, result.band, result.on_bound,

@@ -92,6 +92,17 @@ def plan_pitch_design(study: Study) -> StabilityDesignSpec:
                                       getattr(exc, "rule", str(exc))) from None
 
 
+def load_in_g(mass_kg: float, load_newton: float) -> str:
+    """The static load per bearing as a multiple of the rotor's weight (computed, so that a
+    note cannot misstate it): 20 N on 2 kg is 1.02 g."""
+    from ..inputs.conversions import STANDARD_GRAVITY, rotor_weight_newton
+
+    weight = rotor_weight_newton(mass_kg)
+    return (f"Load: W0 = {load_newton:g} N per bearing on {mass_kg:g} kg per bearing, i.e. "
+            f"{load_newton / weight:.2f} g (the rotor's weight is {weight:.3g} N at g = "
+            f"{STANDARD_GRAVITY} m/s²).")
+
+
 def _summary(spec: StabilityDesignSpec, result) -> list:
     """Plain-language recommendation, for the top of the README."""
     rec = result.recommended
@@ -144,6 +155,7 @@ def _summary(spec: StabilityDesignSpec, result) -> list:
                  + (", ".join(inside) if inside else "none of the other cases")
                  + ": the honest answer to 'which pitch is best' depends on the foundation "
                  "law and the damping one believes in, as the table shows.")
+    lines.append(load_in_g(spec.rotor.mass_kg, spec.load_newton))
     conf = result.confirmation
     if conf.get("success"):
         lines.append(f"Nonlinear check at {conf['speed_rpm']:,.0f} rpm: transient critical "

@@ -1,0 +1,33 @@
+"""The bump-design study's rows and notes say what they mean (issue 14, item 12)."""
+from __future__ import annotations
+
+import math
+import tomllib
+from pathlib import Path
+
+from gfbopt.design.stability_design import feasible
+from gfbopt.studies.design import load_in_g
+
+ROOT = Path(__file__).resolve().parents[2]
+
+#: the first row of results/ruscitto_pitch_design/tradeoff.csv as 0.2.0 wrote it: the film
+#: meets its 5 µm limit but no whole number of bumps realises S = 0.038
+INFEASIBLE_GEOMETRY = {"compliance": 0.03804365, "min_film_thickness_um": 10.82522,
+                       "bump_pitch_mm": math.nan, "geometry_message":
+                       "infeasible: no whole number of bumps meets the limits"}
+
+
+def test_a_row_without_a_bump_foil_is_not_feasible():
+    assert not feasible(INFEASIBLE_GEOMETRY, 5.0)                  # 0.2.0: True
+    realised = {**INFEASIBLE_GEOMETRY, "bump_pitch_mm": 3.069, "geometry_message": ""}
+    assert feasible(realised, 5.0)
+    assert not feasible({**realised, "min_film_thickness_um": 4.9}, 5.0)
+
+
+def test_the_load_is_stated_in_g_from_the_numbers():
+    """20 N on a 2 kg rotor is its weight, 1 g (20 / (2 × 9.80665) = 1.0197); the study's
+    note said "2 g side load"."""
+    assert "i.e. 1.02 g" in load_in_g(2.0, 20.0)
+    notes = " ".join(tomllib.loads((ROOT / "problems" / "ruscitto_pitch_design.toml")
+                                   .read_text())["notes"])
+    assert "2 g side load" not in notes and "(1 g:" in notes
