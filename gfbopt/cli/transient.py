@@ -145,8 +145,8 @@ def _check_run_length(args) -> None:
     if kick is not None and not 0 < kick < 1:
         raise ParameterError("--kick", kick, "must lie in (0, 1) (a journal speed in "
                              "clearances per radian)")
-    limit = getattr(args, "max_steps", None)
-    if limit is None or revolutions is None:
+    limit = getattr(args, "max_steps", None) or MAX_STEPS
+    if revolutions is None:
         return
     if not limit >= 1:
         raise ParameterError("--max-steps", limit, "must be >= 1")
@@ -155,7 +155,8 @@ def _check_run_length(args) -> None:
         option, value = (("--time-step", step) if step else ("--revolutions", revolutions))
         raise ParameterError(option, value, f"{revolutions:.6g} revolutions would take at least "
                              f"{steps:.3g} time steps, above the limit of {limit:.3g}: "
-                             "shorten the run, or raise --max-steps")
+                             "shorten the run" + (", or raise --max-steps"
+                                                  if hasattr(args, "max_steps") else ""))
 
 
 def _check_damping(args, op) -> None:

@@ -72,8 +72,8 @@ class BearingGeometry:
             ("radial_clearance", self.radial_clearance, self.radial_clearance <= 0.01 * r,
              f"must be small against the radius (c/R <= 0.01; R = {r!r} m) for the "
              "thin-film Reynolds equation to hold"),
-            ("length", self.length, self.length / (2 * r) <= 10.0,
-             f"must give L/D <= 10 (D = {2 * r!r} m)"),
+            ("length", self.length, 0.05 <= self.length / (2 * r) <= 10.0,
+             f"must give 0.05 <= L/D <= 10 (D = {2 * r!r} m)"),
             ("bump_half_length", l0, 2 * l0 <= s, f"must satisfy 2 l0 <= s (a bump spans 2 l0 "
              f"and must fit in its pitch s = {s!r} m)"),
             ("bump_thickness", tb, tb < l0, f"must be < the half bump length l0 = {l0!r} m "
@@ -85,6 +85,17 @@ class BearingGeometry:
         for name, value, holds, rule in rules:
             if not holds:
                 raise ParameterError(name, value, rule)
+        from .model import MAX_COMPLIANCE, MAX_TOP_FOIL_COEFFICIENT
+
+        if not self.compliance <= MAX_COMPLIANCE:
+            raise ParameterError("bump_thickness", tb, f"gives a bump compliance S = "
+                                 f"{self.compliance:.3g} above {MAX_COMPLIANCE:g} (a foundation "
+                                 "1000 times softer than the thesis's S = 1): a thicker or "
+                                 "shorter bump")
+        if not self.top_foil_coefficient <= MAX_TOP_FOIL_COEFFICIENT:
+            raise ParameterError("top_foil_thickness", self.top_foil_thickness, f"gives a "
+                                 f"top-foil coefficient C = {self.top_foil_coefficient:.3g} "
+                                 f"above {MAX_TOP_FOIL_COEFFICIENT:g}")
 
     # Derived non-dimensional groups --------------------------------------------
     @property

@@ -94,7 +94,14 @@ def load_bearing(path: str | Path) -> BearingGeometry:
     name = Path(path).name
     tables = read_bearing_file(path)
     options = _options(tables.get("model"), name)
-    return bearing_from_dict(tables["bearing"], where=f"{name}: bearing", options=options)
+    bearing = bearing_from_dict(tables["bearing"], where=f"{name}: bearing", options=options)
+    try:                              # the combination, on a model of this bearing
+        from .options import resolve_model_options
+
+        bearing.model(1000.0, **resolve_model_options(options).model_kwargs())
+    except ParameterError as exc:
+        raise ParameterError(f"{name}: model.{exc.name}", exc.value, exc.rule) from None
+    return bearing
 
 
 def load_bearing_file(path: str | Path) -> tuple[BearingGeometry, ModelOptions]:

@@ -229,15 +229,15 @@ BEARING = Table("bearing", "the bearing's dimensions and materials, SI units", r
     Field("name", "string", "text", "label used in reports", default="bearing"),
     Field("radius", "number", "m", "journal (bearing) radius R", low=1e-3, high=1.0,
           why=_WHY_SIZE),
-    Field("length", "number", "m", "axial length L", positive=True,
-          why="L/D in (0, 10] is checked with the radius"),
+    Field("length", "number", "m", "axial length L", low=1e-4,
+          why="0.05 <= L/D <= 10 is checked with the radius"),
     Field("radial_clearance", "number", "m", "radial clearance c", low=1e-6,
           why="below 1 µm the gas film is no longer a continuum; c/R <= 0.01 is checked with "
               "the radius"),
-    Field("bump_pitch", "number", "m", "bump pitch s", positive=True,
+    Field("bump_pitch", "number", "m", "bump pitch s", low=1e-5,
           why="2 l0 <= s and s <= π R are checked with the other dimensions"),
-    Field("bump_half_length", "number", "m", "half bump length l0", positive=True),
-    Field("bump_thickness", "number", "m", "bump foil thickness t_b", positive=True,
+    Field("bump_half_length", "number", "m", "half bump length l0", low=1e-6),
+    Field("bump_thickness", "number", "m", "bump foil thickness t_b", low=1e-6,
           why="t_b < l0 is checked with the half length"),
     Field("bump_youngs_modulus", "number", "Pa", "Young's modulus of the bump foil E_b",
           low=1e6, high=1e13, why=_WHY_MODULUS),
@@ -245,7 +245,7 @@ BEARING = Table("bearing", "the bearing's dimensions and materials, SI units", r
           low=1e6, high=1e13, why=_WHY_MODULUS),
     Field("poisson_ratio", "number", "-", "Poisson's ratio ν of the bump foil", low=-0.999,
           high=0.499, why="an isotropic solid has -1 < ν < 0.5"),
-    Field("top_foil_thickness", "number", "m", "top foil thickness t_t", positive=True,
+    Field("top_foil_thickness", "number", "m", "top foil thickness t_t", low=1e-6,
           why="t_t <= R/10 is checked with the radius"),
     Field("viscosity", "number", "Pa s", "gas dynamic viscosity μ", low=1e-7, high=1.0,
           why="gases: about 1e-6 to 1e-4 Pa s"),
@@ -253,11 +253,13 @@ BEARING = Table("bearing", "the bearing's dimensions and materials, SI units", r
           low=100.0, high=1e8, why="100 Pa to 1000 bar"),
 ), rules=(
     "c/R <= 0.01 (the thin-film Reynolds equation needs a clearance small against the radius)",
-    "0 < L/D <= 10",
+    "0.05 <= L/D <= 10",
     "2 l0 <= s (a bump spans 2 l0 and must fit in its pitch)",
     "t_b < l0 (each half bump is a slender beam in Heshmat's compliance formula)",
     "s <= π R (at least two bumps round the bearing)",
     "t_t <= R/10 (a thin top foil)",
+    "the compliance S = p_a α/c <= 1000 and the top-foil coefficient C <= 10^4 (the "
+    "non-dimensional model's bounds)",
 ))
 
 #: the optional ``[model]`` table: the formulation the bearing is analysed with

@@ -15,6 +15,11 @@ DEFLECTION_LAWS = ("mean", "local")
 SUBAMBIENT_TREATMENTS = ("full", "gumbel")
 #: largest top-foil coefficient C [-] accepted (BearingModel)
 MAX_TOP_FOIL_COEFFICIENT = 1e4
+#: largest bearing number Λ [-] accepted: real gas bearings run below Λ ≈ 100, and the
+#: solver's scaling is checked up to Λ = 40 in the test suite
+MAX_BEARING_NUMBER = 1e4
+#: largest compliance S [-] accepted: a foundation 1000 times softer than the thesis's S = 1
+MAX_COMPLIANCE = 1e3
 
 
 def film_convention(film: str, seam_angle_deg: Optional[float], foil: str = "simple") -> str:
@@ -92,6 +97,12 @@ class BearingModel:
         object.__setattr__(self, "bearing_number",
                            check_positive("bearing_number", self.bearing_number))
         object.__setattr__(self, "compliance", check_nonnegative("compliance", self.compliance))
+        for key, top, why in (("bearing_number", MAX_BEARING_NUMBER, "real gas bearings run "
+                               "below Λ ≈ 100"),
+                              ("compliance", MAX_COMPLIANCE, "a foundation 1000 times softer "
+                               "than the thesis's S = 1")):
+            if getattr(self, key) > top:
+                raise ParameterError(key, getattr(self, key), f"must be <= {top:g} ({why})")
         object.__setattr__(self, "length_ratio", check_positive("length_ratio", self.length_ratio))
         object.__setattr__(self, "top_foil_coefficient",
                            check_nonnegative("top_foil_coefficient", self.top_foil_coefficient))

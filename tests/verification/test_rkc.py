@@ -283,7 +283,7 @@ OP = ["--eccentricity", "0.4", "--bearing-number", "2", "--compliance", "1", "--
      "--stages = 3.0: applies to --method rkc only, not to --method rk4"),
     (["orbit", *OP, "--mass", "2", "--method", "bdf", "--time-step", "0.1"],
      "--time-step = 0.1: applies to --method rk4/rkc only, not to --method bdf"),
-    (["orbit", *OP, "--mass", "2", "--stages", "1"], "--stages = 1.0: must be an integer >= 2"),
+    (["orbit", *OP, "--mass", "2", "--stages", "1"], "--stages = 1.0: must be an integer in [2, 1000]"),
     (["orbit", *OP, "--mass", "2", "--time-step", "0.5", "--stages", "2"],
      "exceeds the RKC stability interval β(2)"),
     (["orbit", *OP, "--mass", "2", "--method", "rk4", "--time-step", "0.5"],
