@@ -147,3 +147,12 @@ def test_readme_python_route_uses_the_file(tmp_path):
     """The README's ``load_bearing(FILE)`` carries the file's [model] table."""
     bearing = load_bearing(RUSCITTO)
     assert bearing.options.film == "seam" and bearing.options.seam_angle_deg == 180.0
+
+
+def test_a_static_solve_has_a_stated_time_budget(capsys):
+    """--time-limit bounds each IPOPT solve (with its 60-iteration budget): exceeded, the
+    command fails with IPOPT's status and says which budget (exit 1), never hangs."""
+    code, _, err = run(capsys, "static", "--eccentricity", "0.6", "--bearing-number", "3",
+                       "--compliance", "1", "--grid", "24x8", "--time-limit", "1e-4")
+    assert code == 1
+    assert "Maximum_CpuTime_Exceeded" in err and "60 iterations, 0.0001 s CPU (--time-limit)" in err

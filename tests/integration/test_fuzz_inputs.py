@@ -139,7 +139,7 @@ FLAGS = {
 }
 NUMERIC = {
     "static": ("--eccentricity", "--bearing-number", "--compliance", "--length-ratio",
-               "--seam-angle"),
+               "--seam-angle", "--time-limit"),
     "linear": ("--whirl-ratio", "--loss-factor", "--mass"),
     "orbit": ("--mass", "--revolutions", "--kick", "--time-step", "--stages",
               "--max-steps"),
