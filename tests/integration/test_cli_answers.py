@@ -156,3 +156,11 @@ def test_a_static_solve_has_a_stated_time_budget(capsys):
                        "--compliance", "1", "--grid", "24x8", "--time-limit", "1e-4")
     assert code == 1
     assert "Maximum_CpuTime_Exceeded" in err and "60 iterations, 0.0001 s CPU (--time-limit)" in err
+
+
+def test_long_work_reports_progress_off_a_terminal(capsys):
+    """Off a terminal (here: captured stderr) the stability command writes a status line to
+    stderr (gfbopt.progress), and stdout stays one JSON object."""
+    code, out, err = run(capsys, *STAB, "--speed-rpm", "20000")
+    assert code == 0 and json.loads(out)["verdict"] == "unstable"
+    assert "gfbopt: stability 2/2 step (100 %)" in err
