@@ -115,3 +115,34 @@ def test_the_settings_act(tmp_path):
     default = answers.pop("no [model] table")
     for setting, value in answers.items():
         assert abs(value / default - 1) > 1e-3, (setting, value, default)
+
+
+def test_studies_naming_the_file_inherit_its_model_table(tmp_path):
+    """The study kinds that name a bearing file and do not sweep an option take it from the
+    file's [model] table, as the command line and the Python API do (0.2.0 filled the
+    study's own defaults in: simple foil, mean law, η = 0, seam at 180°)."""
+    path = _bearing_file(tmp_path, 'film = "periodic"\ndeflection_law = "local"\n'
+                                   "loss_factor = 0.2\n")
+    conventions = study_from_dict(
+        {"kind": "onset_conventions", "title": "t", "source": "s", "bearing": path.name,
+         "grid": GRID, "rotor_mass_kg": MASS, "load_newton": LOAD,
+         "speed_range_rpm": list(RANGE), "seam_angles_deg": [120.0]},
+        name="conventions", directory=path.parent)
+    point = conventions.plan["points"][0]
+    assert (point["foil"], point["deflection_law"], point["loss_factor"]) == \
+        ("simple", "local", 0.2)
+    design = study_from_dict(
+        {"kind": "pitch_design", "title": "t", "source": "s", "bearing": path.name,
+         "grid": GRID, "rotor_mass_kg": MASS, "load_newton": LOAD,
+         "speed_range_rpm": list(RANGE), "min_film_thickness_um": 5.0,
+         "pitch_range_mm": [2.0, 6.0], "half_length_range_mm": [0.5, 2.5],
+         "thickness_range_um": [50.0, 200.0]}, name="design", directory=path.parent)
+    assert design.plan.options.film == "periodic"            # the file's film
+    stated = study_from_dict(
+        {"kind": "pitch_design", "title": "t", "source": "s", "bearing": path.name,
+         "grid": GRID, "rotor_mass_kg": MASS, "load_newton": LOAD,
+         "speed_range_rpm": list(RANGE), "min_film_thickness_um": 5.0, "film": "seam",
+         "seam_angle_deg": 150.0, "pitch_range_mm": [2.0, 6.0],
+         "half_length_range_mm": [0.5, 2.5], "thickness_range_um": [50.0, 200.0]},
+        name="design", directory=path.parent)
+    assert (stated.plan.options.film, stated.plan.options.seam_angle_deg) == ("seam", 150.0)
