@@ -58,80 +58,12 @@ from .bearing_file import load_bearing_file, read_toml
 from .checks import check_finite, check_nonnegative, check_positive
 from .conversions import STANDARD_GRAVITY
 from .options import ModelOptions
+from .rotor_schema import SCHEMA, TABLES as _TABLES, Key, schema_markdown  # noqa: F401
 
 #: the number of bearings a rotor file must give (the rigid-rotor model has two supports)
 BEARING_COUNT = 2
 
 
-@dataclass(frozen=True)
-class Key:
-    """One key of the rotor file, for validation messages and the generated documentation.
-
-    table : where it sits ("rotor", "bearings", …); name; kind : number, string, table;
-    unit; required; default (None: none); rule : the condition it must meet (text)."""
-
-    table: str
-    name: str
-    kind: str
-    unit: str
-    required: bool
-    default: object
-    rule: str
-    doc: str
-
-
-#: every key of a rotor file (the contract; docs/formats/rotor_file.md is generated from it)
-SCHEMA: tuple[Key, ...] = (
-    Key("rotor", "name", "string", "text", False, "rotor", "any text", "label in reports"),
-    Key("rotor", "mass", "number", "kg", True, None, "finite, > 0", "mass of the whole rotor"),
-    Key("rotor", "transverse_inertia", "number", "kg m²", True, None, "finite, > 0",
-        "transverse (diametral) moment of inertia about the centre of gravity"),
-    Key("rotor", "polar_inertia", "number", "kg m²", True, None,
-        "finite, > 0, <= 2 × transverse_inertia (a rigid body's principal moments)",
-        "polar moment of inertia about the rotor axis (gyroscopic coupling I_p ω)"),
-    Key("rotor", "gravity_direction_deg", "number", "deg", False, 0.0, "finite",
-        "direction of gravity in the x–y plane, from +x in the direction of rotation "
-        "(default: along +x, the load line of both bearings)"),
-    Key("rotor", "gravity", "number", "m/s²", False, STANDARD_GRAVITY, "finite, >= 0",
-        "gravitational acceleration (0: the rotor's weight is not a load)"),
-    Key("bearings", "file", "string", "path", True, None,
-        "an existing bearing file (relative to the rotor file)",
-        "the bearing's TOML file ([bearing] in SI, optional [model])"),
-    Key("bearings", "position", "number", "m", True, None,
-        "finite; the two bearings at different positions",
-        "axial position from the centre of gravity (signed)"),
-    Key("bearings", "name", "string", "text", False, "A, B", "unique",
-        "label of the bearing in reports"),
-    Key("bearings", "model", "table", "-", False, None,
-        "keys of a bearing file's [model] table",
-        "overrides of the bearing file's formulation (film, seam_angle_deg, foil, "
-        "deflection_law, loss_factor); seam_angle_deg is measured from the direction of "
-        "gravity (the housing), see the notes"),
-    Key("side_loads", "force", "number", "N", True, None, "finite, > 0",
-        "magnitude of a static force on the rotor"),
-    Key("side_loads", "direction_deg", "number", "deg", True, None, "finite",
-        "direction of the force in the x–y plane, from +x in the direction of rotation"),
-    Key("side_loads", "position", "number", "m", False, 0.0, "finite",
-        "axial position where it acts, from the centre of gravity"),
-    Key("imbalance", "amount_kg_m", "number", "kg m", False, None,
-        "finite, > 0; exactly one of amount_kg_m and amount_g_mm",
-        "imbalance m e of the plane"),
-    Key("imbalance", "amount_g_mm", "number", "g mm", False, None,
-        "finite, > 0; exactly one of amount_kg_m and amount_g_mm",
-        "imbalance m e of the plane (1 g mm = 1e-6 kg m)"),
-    Key("imbalance", "phase_deg", "number", "deg", False, 0.0, "finite",
-        "angular position of the heavy spot on the rotor, from the rotor's reference mark "
-        "(along +x at t = 0) in the direction of rotation"),
-    Key("imbalance", "position", "number", "m", True, None, "finite",
-        "axial position of the imbalance plane, from the centre of gravity"),
-    Key("imbalance", "name", "string", "text", False, "plane 1, 2, …", "any text",
-        "label of the plane"),
-    Key("stations", "name", "string", "text", True, None, "unique, not a bearing's name",
-        "label of an axial station where the imbalance response is reported"),
-    Key("stations", "position", "number", "m", True, None, "finite",
-        "axial position of the station, from the centre of gravity"),
-)
-_TABLES = ("rotor", "bearings", "side_loads", "imbalance", "stations")
 _TOP_LEVEL_OTHER = ("source", "notes")
 
 
@@ -447,74 +379,3 @@ def _plane(row, k: int, where: str) -> ImbalancePlane:
                              "and > 0 [g mm]")
     return _build(ImbalancePlane, here, amount_kg_m=amount, position=table["position"],
                   phase_deg=table["phase_deg"], name=table.get("name", f"plane {k}"))
-
-
-def schema_markdown() -> str:
-    """The rotor-file reference page (docs/formats/rotor_file.md), generated from
-    :data:`SCHEMA` and this module's docstring; a test keeps the page in step."""
-    lines = ["# Rotor file (`gfbopt rotor ROTOR.toml`)", "",
-             "<!-- generated by gfbopt.inputs.rotor_system.schema_markdown(); do not edit: "
-             "run `python -m gfbopt.inputs.rotor_system > docs/formats/rotor_file.md` -->", "",
-             "A rigid rotor on two gas foil bearings, in SI units. Every key is checked "
-             "before anything is solved; a mistake prints one line naming the file, the key, "
-             "the value and the rule, and `gfbopt rotor` exits with status 2.", "",
-             "```toml", *_EXAMPLE.strip().splitlines(), "```", ""]
-    for table in _TABLES:
-        head = "[rotor]" if table == "rotor" else f"[[{table}]]"
-        lines += [f"## `{head}`", "", "| key | unit | required | default | rule | meaning |",
-                  "|---|---|---|---|---|---|"]
-        for k in SCHEMA:
-            if k.table == table:
-                default = "" if k.default is None else f"`{k.default}`"
-                lines.append(f"| `{k.name}` | {k.unit} | {'yes' if k.required else 'no'} | "
-                             f"{default} | {k.rule} | {k.doc} |")
-        lines.append("")
-    lines += ["## Notes", "", *_NOTES.strip().splitlines(), ""]
-    return "\n".join(lines)
-
-
-_EXAMPLE = """
-[rotor]
-mass = 3.2                  # kg, whole rotor
-transverse_inertia = 0.012  # kg m², about the centre of gravity
-polar_inertia = 0.002       # kg m²
-
-[[bearings]]
-file = "../bearings/ruscitto.toml"   # relative to the rotor file
-position = -0.035           # m, axial, from the centre of gravity
-
-[[bearings]]
-file = "../bearings/ruscitto.toml"
-position = 0.065
-
-[[imbalance]]
-amount_g_mm = 5.0
-phase_deg = 0.0
-position = 0.065
-"""
-
-_NOTES = """
-* **Frame.** z along the rotor axis (positions from the centre of gravity, signed); x and y
-  in the bearing plane, the shaft spinning from x towards y. Every angle (gravity, side
-  loads, imbalance phase, a bearing's load direction) is measured from +x in the direction
-  of rotation, in degrees. By default gravity acts along +x: x is "down".
-* **Exactly two bearings** are supported (a rigid rotor on two supports); they must sit at
-  different positions. The centre of gravity may lie outside the span (overhung rotor).
-* **Static loads.** Each bearing's load (magnitude and direction) follows from the rotor's
-  statics: weight at the centre of gravity plus the side loads, shared by force and moment
-  balance. A bearing may be pushed away from gravity (an overhung rotor lifts the far
-  bearing): its frame is rotated to its own load direction. A bearing that carries no load
-  (its share exactly zero) is refused: the linear film model needs a loaded journal.
-* **Seam angle.** A bearing's `seam_angle_deg` (bearing file or `[bearings.model]`) is
-  measured from the direction of gravity: the top foil is fixed in the housing, which is
-  installed with its seam relative to gravity. If the statics turn the bearing's load away
-  from gravity by an angle α, its film sees the welded end at `seam_angle_deg − α` from its
-  own load. `"max_film"` and a periodic film are unaffected.
-* **Model options** not stated in `[bearings.model]` come from the bearing file's
-  `[model]` table, then gfbopt's defaults (a seam 180° from the load, simple foil, axial-mean
-  law, no structural damping).
-"""
-
-
-if __name__ == "__main__":   # pragma: no cover - regenerates the documentation page
-    print(schema_markdown(), end="")
