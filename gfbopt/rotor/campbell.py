@@ -135,7 +135,7 @@ class FullSystem:
         lu = factor((self.j - shift * self.e).astype(complex))
         op = spla.LinearOperator(self.j.shape, matvec=lambda v: lu.solve(self.e @ v),
                                  dtype=complex)
-        mu, vec = spla.eigs(op, k=count, which="LM", tol=1e-12)
+        mu, vec = spla.eigs(op, k=count, which="LM", tol=1e-12, ncv=max(4 * count, 12))
         return shift + 1.0 / mu, vec
 
     def rotor_amplitude(self, vector: np.ndarray) -> np.ndarray:
@@ -294,7 +294,7 @@ def system_modes(rotor: RotorCase, states: SpeedStates, inertia_scale: float = 1
         roots.append(root)
     modes = []
     for root in roots:
-        ev, vec = full.eigen(root, count=2)
+        ev, vec = full.eigen(root + 1e-6 * abs(root), count=2)   # off the root: LU regular
         j = int(np.argmin(np.abs(ev - root)))
         s = complex(ev[j])
         q = full.rotor_amplitude(vec[:, j])
