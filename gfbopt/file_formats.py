@@ -9,6 +9,7 @@ page                       schema
 ``study_file.md``          :data:`gfbopt.studies.spec.COMMON` and the schema of every study
                            kind (:data:`gfbopt.studies.spec.SCHEMAS`, with the families
                            :mod:`gfbopt.studies.runner` registers)
+``rotor_file.md``          :data:`gfbopt.inputs.rotor_schema.SCHEMA` (its own renderer)
 =========================  ============================================================
 
 Regenerate with ``python -m gfbopt.file_formats`` (``--check`` exits 1 when a page is stale;
@@ -173,10 +174,18 @@ def render_study_file() -> str:
     return HEADER + "\n".join(lines)
 
 
+def render_rotor_file() -> str:
+    """The rotor file's page, from its own schema (:mod:`gfbopt.inputs.rotor_schema`)."""
+    from .inputs.rotor_schema import schema_markdown
+
+    return schema_markdown()
+
+
 #: page file name → its renderer (module docstring: one entry per file format)
 PAGES: dict[str, Callable[[], str]] = {
     "bearing_file.md": lambda: render_format(BEARING_FILE),
     "study_file.md": render_study_file,
+    "rotor_file.md": render_rotor_file,
 }
 
 

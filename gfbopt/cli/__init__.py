@@ -9,6 +9,7 @@ module                 commands
 :mod:`.transient`      ``gfbopt orbit``, ``gfbopt critical-mass``
 :mod:`.design`         ``gfbopt design``
 :mod:`.run`            ``gfbopt run``
+:mod:`.rotor`          ``gfbopt rotor`` (two bearings: onset of each mode, Campbell, imbalance)
 :mod:`.formats`        ``gfbopt formats`` (file formats and study kinds, from the schemas)
 :mod:`.common`         operating-point options, refusal of ignored options, JSON output
 :mod:`.si`             a bearing file's [model] options merged with the command line
@@ -29,9 +30,10 @@ from typing import Optional, Sequence
 from ..errors import ConvergenceError, GfboptError, ParameterError
 from ..version import __version__
 from . import design, formats, linear, run, stability, static, transient
+from . import rotor
 from .common import Parser
 
-COMMANDS = (static, linear, stability, transient, design, run, formats)
+COMMANDS = (static, linear, stability, transient, design, run, rotor, formats)
 
 
 def build_parser() -> Parser:
