@@ -213,7 +213,8 @@ class FractionProgress:
     """A ``progress(fraction)`` callback (0 … 1, what the transient engines report) shown by
     :func:`gfbopt.progress.progress`: a tqdm bar with an ETA on a terminal, a status line to
     stderr every 10 s otherwise (stdout, and so ``--json``, is untouched).  Use as a context
-    manager so the last line is written however the work ends."""
+    manager: the last line is written when the work completes (not after an error, which is
+    one line of its own)."""
 
     def __init__(self, label: str):
         from ..progress import progress
@@ -228,8 +229,9 @@ class FractionProgress:
     def __enter__(self) -> "FractionProgress":
         return self
 
-    def __exit__(self, *exc) -> None:
-        self._bar.close()
+    def __exit__(self, kind, *exc) -> None:
+        if kind is None:             # an error is one line of its own: no status after it
+            self._bar.close()
 
 
 def progress_bar(label: str, enabled: bool = True):

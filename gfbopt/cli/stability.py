@@ -116,6 +116,12 @@ SCHEMA = ("bearing", "rotor_mass_kg", "grid", "conventions", *POINT_FIELDS, "coe
           "warnings")
 
 
+def _span(args) -> tuple:
+    """The onset search range [rpm]: --speed-range, or (N/4, 2N) around --speed-rpm."""
+    return (tuple(args.speed_range) if args.speed_range is not None
+            else tuple(f * args.speed_rpm for f in ONSET_RANGE))
+
+
 def run(args) -> int:
     from ..inputs import OperatingPoint, Rotor
     from ..inputs.bearing_file import load_bearing_file
@@ -123,6 +129,8 @@ def run(args) -> int:
     from ..inputs.options import merge_options
     from ..progress import progress
     from ..rotor import coefficient_table, onset_speed, stability
+    from ..rotor.analysis import resolve_case
+    from ..rotor.onset import check_speed_range
     from ..static import SolverCache
     from .common import grid_of
 
@@ -144,34 +152,38 @@ def run(args) -> int:
     result = table = onset = None
     wants_onset = args.onset or args.speed_range is not None
     steps = (2 if args.speed_rpm is not None else 0) + (1 if wants_onset else 0)
-    with progress(total=steps, desc="stability", unit="step") as bar:
-        if args.speed_rpm is not None:
-            bar.set_postfix_str(f"operating point {args.speed_rpm:.6g} rpm")
-            result = stability(bearing, rotor, OperatingPoint(args.speed_rpm,
-                                                              args.load_newton), **common)
-            answer = result.to_dict()
-            out.update({k: answer[k] for k in POINT_FIELDS}, conventions=result.conventions,
-                       warnings=list(result.warnings))
-            bar.update(1)
-            bar.set_postfix_str("K and C against frequency")
-            table = coefficient_table(result.linearisation, bearing, args.speed_rpm,
-                                      args.frequency_hz, result.threshold_whirl_ratio)
-            out["coefficients"] = table.to_dict()
-            if args.csv:
-                table.write_csv(args.csv)
-                out["csv"] = str(args.csv)
-            bar.update(1)
-        if wants_onset:
-            span = (tuple(args.speed_range) if args.speed_range is not None
-                    else tuple(f * args.speed_rpm for f in ONSET_RANGE))
-            bar.set_postfix_str(f"onset speed in {span[0]:.6g}–{span[1]:.6g} rpm")
-            onset = onset_speed(bearing, rotor, args.load_newton, span, **common)
-            out["onset"] = {k: v for k, v in onset.to_dict().items() if k != "conventions"}
-            out["onset_speed_rpm"] = onset.onset_speed_rpm
-            out["onset_whirl_frequency_hz"] = onset.whirl_frequency_hz
-            if result is None:
-                out["conventions"] = onset.conventions
-            bar.update(1)
+    resolve_case(bearing, rotor, args.load_newton, **common)    # bad input: before any solve
+    if wants_onset:
+        check_speed_range(_span(args))
+    bar = progress(total=steps, desc="stability", unit="step")
+    # closed on success only: an error is one line of its own, with no status after it
+    if args.speed_rpm is not None:
+        bar.set_postfix_str(f"operating point {args.speed_rpm:.6g} rpm")
+        result = stability(bearing, rotor, OperatingPoint(args.speed_rpm,
+                                                          args.load_newton), **common)
+        answer = result.to_dict()
+        out.update({k: answer[k] for k in POINT_FIELDS}, conventions=result.conventions,
+                   warnings=list(result.warnings))
+        bar.update(1)
+        bar.set_postfix_str("K and C against frequency")
+        table = coefficient_table(result.linearisation, bearing, args.speed_rpm,
+                                  args.frequency_hz, result.threshold_whirl_ratio)
+        out["coefficients"] = table.to_dict()
+        if args.csv:
+            table.write_csv(args.csv)
+            out["csv"] = str(args.csv)
+        bar.update(1)
+    if wants_onset:
+        span = _span(args)
+        bar.set_postfix_str(f"onset speed in {span[0]:.6g}–{span[1]:.6g} rpm")
+        onset = onset_speed(bearing, rotor, args.load_newton, span, **common)
+        out["onset"] = {k: v for k, v in onset.to_dict().items() if k != "conventions"}
+        out["onset_speed_rpm"] = onset.onset_speed_rpm
+        out["onset_whirl_frequency_hz"] = onset.whirl_frequency_hz
+        if result is None:
+            out["conventions"] = onset.conventions
+        bar.update(1)
+    bar.close()
     done = [r for r in (result, onset) if r is not None]
     success = all(r.success for r in done)
     out["success"] = success

@@ -75,7 +75,7 @@ def test_onset_from_the_command_line():
                  "20", "--speed-range", "5000", "20000", "--grid", "72x20")
     assert data["onset_speed_rpm"] == pytest.approx(13098.5, rel=5e-3)
     assert data["onset"]["answer"].startswith("onset of whirl at 13")
-    assert "critical_mass_kg" not in data          # no --speed-rpm: the onset only
+    assert data["critical_mass_kg"] is None        # no --speed-rpm: the onset only (null)
 
 
 def test_text_report_states_the_default_convention(tmp_path):
@@ -115,7 +115,8 @@ def test_a_damped_bearing_file_reaches_the_transient_with_its_loss_factor(tmp_pa
     damped.write_text((REPO / RUSCITTO).read_text().replace("loss_factor = 0.0",
                                                             "loss_factor = 0.2"))
     out = gfbopt("orbit", "--bearing", str(damped), "--speed-rpm", "20000", "--load-newton",
-                 "20", "--mass", "1", "--revolutions", "1", "--grid", "24x8", "--json")
+                 "20", "--rotor-mass-kg", "0.23", "--revolutions", "1", "--grid", "24x8",  # M̄ ≈ 1
+                 "--json")
     assert out.returncode == 0, out.stderr
     data = json.loads(out.stdout)
     assert data["loss_factor"] == pytest.approx(0.2)
