@@ -31,3 +31,21 @@ def test_the_load_is_stated_in_g_from_the_numbers():
     notes = " ".join(tomllib.loads((ROOT / "problems" / "ruscitto_pitch_design.toml")
                                    .read_text())["notes"])
     assert "2 g side load" not in notes and "(1 g:" in notes
+
+
+def test_the_tradeoff_table_marks_unrealisable_rows():
+    """The table's `feasible` needs both limits; `meets_film_limit` keeps the film alone (what
+    the search ranks S by)."""
+    import pandas as pd
+
+    from gfbopt.design.outer_search import Evaluation, SearchResult
+    from gfbopt.design.stability_design import LawOptimum, tradeoff_frame
+
+    rows = [INFEASIBLE_GEOMETRY, {**INFEASIBLE_GEOMETRY, "compliance": 0.1,
+                                  "bump_pitch_mm": 3.069, "geometry_message": ""}]
+    evals = tuple(Evaluation(r["compliance"], 14000.0, True, True, r) for r in rows)
+    search = SearchResult(0.1, 14000.0, (0.1, 0.1), "", evals, True)
+    frame = tradeoff_frame([LawOptimum("mean", 0.0, 0.1, 14000.0, (0.1, 0.1), "", search)])
+    assert isinstance(frame, pd.DataFrame)
+    assert frame["meets_film_limit"].tolist() == [True, True]
+    assert frame["feasible"].tolist() == [False, True]

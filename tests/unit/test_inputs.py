@@ -49,7 +49,7 @@ def test_rpm_conversion():
 
 @pytest.mark.parametrize("field, value, rule", [
     ("radius", 0.0, "must be >= 0.001 m"),
-    ("length", -1.0, "must be > 0"),
+    ("length", -1.0, "must be >= 0.0001 m"),
     ("radial_clearance", -2e-5, "must be >= 1e-06 m"),
     ("radial_clearance", 1e-300, "must be >= 1e-06 m .below 1 µm"),
     ("bump_thickness", 5e-3, "must be < the half bump length"),
