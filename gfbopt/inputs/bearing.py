@@ -6,7 +6,7 @@ from typing import Optional
 
 from ..errors import ParameterError
 from ..physics.bump import bump_compliance
-from .bore import BearingBuild
+from .bore_si import BearingBuild
 from .checks import check_finite, check_positive
 from .conversions import (bearing_number_from_speed, compliance_from_alpha,
                           load_to_newton, load_to_nondimensional, rpm_to_rad_per_s,

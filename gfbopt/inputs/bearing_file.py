@@ -33,7 +33,7 @@ except ModuleNotFoundError:  # pragma: no cover - Python 3.10
 
 from ..errors import ParameterError
 from .bearing import BearingGeometry
-from .bore import build_from_tables
+from .bore_si import build_from_tables
 from .options import ModelOptions
 
 _FIELDS = {f.name: f for f in dataclasses.fields(BearingGeometry)
