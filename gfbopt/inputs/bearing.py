@@ -67,6 +67,8 @@ class BearingGeometry:
                 "radial_clearance", self.radial_clearance,
                 f"must be small against the radius (c/R <= 0.01; R = {self.radius!r} m) "
                 "for the thin-film Reynolds equation to hold")
+        if self.build is not None:
+            self.build.nondimensional(self)       # bore, pads and zones checked here
 
     # Derived non-dimensional groups --------------------------------------------
     @property
