@@ -224,8 +224,8 @@ def check_zones(zones: tuple) -> tuple:
     total = sum(z.end - z.start for z in out)
     for k, z in enumerate(out):
         nxt = out[(k + 1) % len(out)]
-        step = float(_wrap(nxt.start - z.end + ANGLE_TOLERANCE)) - ANGLE_TOLERANCE
-        if len(out) > 1 and step < -ANGLE_TOLERANCE:
+        ahead = float(_wrap(nxt.start - z.start))
+        if len(out) > 1 and ahead + ANGLE_TOLERANCE < z.span:
             raise ParameterError("zones", f"{math.degrees(z.start):.6g}°–"
                                  f"{math.degrees(z.end):.6g}°", "overlapping zones: the next "
                                  f"zone starts at {math.degrees(nxt.start):.6g}°")
