@@ -299,6 +299,8 @@ for _name, _entry in {
     "drag_torque_nm": ("N m", "drag torque on the journal: the torque the drive supplies per "
                        "bearing"),
     "power_loss_w": ("W", "power lost in the film per bearing, drag torque × ω"),
+    "petroff_power_w": ("W", "Petroff's power loss of the concentric journal, "
+                        "2π μ ω² R³ L / c"),
     "preload_depth_um": ("µm", "mechanical preload depth (shim thickness or lobe depth)"),
     "preload_ratio": ("-", "preload depth over the radial clearance"),
     "bore": ("text", "bore profile: round, shims, lobes or table"),

@@ -63,16 +63,16 @@ def plot_bore_profile(theta_deg, clearance_um, ax=None, title: str = "",
 
 def plot_against_lever(table, x: str, y: str, group: str = "", ax=None, title: str = "",
                        xlabel: str = "", ylabel: str = "", reference: float = math.nan,
-                       reference_label: str = ""):
+                       reference_label: str = "", group_label: str = "{}"):
     """``y`` against ``x`` from a table (DataFrame), one line per value of ``group`` (when
-    given); failed rows (``success`` False) as crosses; a reference value dashed."""
+    given, labelled ``group_label.format(value)``, e.g. "W = {:g} N"); failed rows
+    (``success`` False) as crosses; a reference value dashed."""
     ax = new_axes() if ax is None else ax
     groups = table.groupby(group, sort=True) if group else [(None, table)]
     for key, sub in groups:
         sub = sub.sort_values(x)
         ok = sub[sub["success"].astype(bool)]
-        label = "gfbopt" if key is None else f"{group.replace('_', ' ')} = {key:g}" \
-            if isinstance(key, (int, float, np.floating, np.integer)) else str(key)
+        label = "gfbopt" if key is None else group_label.format(key)
         line, = ax.plot(ok[x], ok[y], "o-", ms=3, label=label)
         bad = sub[~sub["success"].astype(bool)]
         if len(bad):

@@ -19,6 +19,7 @@ from ..inputs import read_toml
 from . import design, maps, sweeps, tables, transients
 from . import doe
 from . import damping, stability
+from . import bearing_as_built
 from .base import Kind, LoadedStudy, RunContext, Study, StudyResult
 from .report import write_result
 from .spec import SCHEMAS, validate
@@ -55,6 +56,7 @@ def register(family) -> None:
 
 for _family in (design, doe, stability, damping):
     register(_family)
+register(bearing_as_built)
 assert set(KINDS) == set(SCHEMAS), "every schema has a runner and vice versa"
 
 
