@@ -21,6 +21,7 @@ from ..inputs.checks import check_finite, check_positive
 from ..inputs.grid import DEFAULT_GRID, Grid
 from ..inputs.model import BearingModel
 from ..physics.closed_forms import first_order_pressure, small_eccentricity_limit
+from ..physics.bore import first_order_bore_pressure
 from ..physics.film import force_gauge, rigid_film_polar
 from .build import StaticSolver, fixed_origin, row_values, solver_for
 from .solution import StaticSolution, foil_parameters
@@ -42,8 +43,13 @@ def _cold_guess(solver: StaticSolver, model: BearingModel, eccentricity: float,
     seam = math.pi + phi0 if origin is None else origin
     theta = seam + st.psi
     shrink = 1.0 / (1.0 + model.compliance)       # a compliant film carries less pressure
-    p = first_order_pressure(model, st.z_nodes(model.length_ratio), theta - phi0 - math.pi,
+    z = st.z_nodes(model.length_ratio)
+    p = first_order_pressure(model, z, theta - phi0 - math.pi,
                              min(eccentricity, 0.8) * shrink).ravel()
+    bore = row_values(model, st, origin)[0]
+    if bore.any():          # a preloaded bore raises pressure of its own (physics/bore.py)
+        p = p + shrink * first_order_bore_pressure(bore, z, model.bearing_number,
+                                                   model.length_ratio, st.periodic).ravel()
     p_full = np.ones(st.n_nodes)
     p_full[st.unknown] = np.maximum(p[st.unknown], 0.05)
     return consistent_state(solver, model, p_full, eccentricity, phi0)
