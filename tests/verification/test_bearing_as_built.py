@@ -234,3 +234,18 @@ def test_zones_damped_local_law_nonlinear_equals_linear():
     row = critical_mass_point(model, load=0.5, grid=GRID, tolerance=0.005)
     assert row["success"], row["message"]
     assert row["nonlinear_over_linear"] == pytest.approx(1.0, abs=0.01)
+
+
+def test_python_api_in_degrees():
+    """The public constructor takes degrees (as files and the command line do) and gives the
+    same bearing as the radian internals; a depth without a clearance is refused."""
+    from gfbopt.errors import ParameterError
+    from gfbopt.inputs.bore_si import BoreSpec, PadSpec, as_built
+
+    built = as_built(BoreSpec("shims", 3, preload_ratio=0.25, width_deg=60.0),
+                     pads=[PadSpec(180.0, 120.0), PadSpec(300.0, 120.0), PadSpec(60.0, 120.0)],
+                     zones=[(0.0, 180.0, 0.5), (180.0, 360.0, 1.5)])
+    assert built.bore == THREE_SHIMS
+    assert built.describe()["pads_leading_end_deg"] == [60.0, 180.0, 300.0]
+    with pytest.raises(ParameterError, match="preload_ratio"):
+        as_built(BoreSpec("lobes", 3, preload_depth=5e-6))
