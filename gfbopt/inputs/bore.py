@@ -362,8 +362,11 @@ def check_as_built(model) -> None:
         raise ParameterError("seam_angle", "max_film", "a bore profile or bump zones are "
                              "fixed in the housing, but the seam on the maximum-film line "
                              "moves with the journal: state a fixed seam angle")
+    if ab.pads and model.film != "seam":
+        raise ParameterError("pads", len(ab.pads), "top-foil pads end in seams at ambient "
+                             "pressure: they need film = 'seam' (a periodic film has none)")
     if ab.pads and not ab.single_pad:
-        if model.film != "seam" or model.seam_angle is None:
+        if model.seam_angle is None:
             raise ParameterError("pads", len(ab.pads), "several pads need film = 'seam' with "
                                  "a fixed seam angle (one pad's leading end)")
         if model.foil == "beam":
