@@ -10,6 +10,7 @@ module                 commands
 :mod:`.design`         ``gfbopt design``
 :mod:`.run`            ``gfbopt run``
 :mod:`.rotor`          ``gfbopt rotor`` (two bearings: onset of each mode, Campbell, imbalance)
+:mod:`.capacity`       ``gfbopt capacity`` (load capacity, lift-off speed)
 :mod:`.formats`        ``gfbopt formats`` (file formats and study kinds, from the schemas)
 :mod:`.common`         operating-point options, refusal of ignored options, JSON output
 :mod:`.si`             a bearing file's [model] options merged with the command line
@@ -31,9 +32,11 @@ from ..errors import ConvergenceError, GfboptError, ParameterError
 from ..version import __version__
 from . import design, formats, linear, run, stability, static, transient
 from . import rotor
+from . import capacity
 from .common import Parser
 
 COMMANDS = (static, linear, stability, transient, design, run, rotor, formats)
+COMMANDS += (capacity,)
 
 
 def build_parser() -> Parser:

@@ -2,10 +2,12 @@
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
+from typing import Optional
 
 from ..errors import ParameterError
 from ..physics.bump import bump_compliance
+from .bore_si import BearingBuild
 from .checks import check_positive
 from .file_schema import BEARING, check_value
 from .conversions import (bearing_number_from_speed, compliance_from_alpha,
@@ -37,6 +39,9 @@ class BearingGeometry:
     options : the formulation the bearing is analysed with (a bearing file's ``[model]``
         table; nothing stated by default), used by :func:`gfbopt.rotor.stability` and
         :func:`gfbopt.rotor.onset_speed` unless told otherwise
+    build : the bearing as built (:class:`gfbopt.inputs.bore.BearingBuild`: bore profile,
+        pads, bump zones, SI and degrees), or None for a round bore, one top foil and a
+        uniform foundation
 
     Every value is checked against the bearing file's schema
     (:data:`gfbopt.inputs.file_schema.BEARING`: bounds and the rules between dimensions), so
@@ -57,6 +62,7 @@ class BearingGeometry:
     ambient_pressure: float = 101325.0
     name: str = "bearing"
     options: ModelOptions = field(default_factory=ModelOptions)
+    build: Optional[BearingBuild] = None
 
     def __post_init__(self) -> None:
         for f in BEARING.fields:
@@ -64,6 +70,8 @@ class BearingGeometry:
         if not isinstance(self.options, ModelOptions):
             raise ParameterError("options", self.options, "must be ModelOptions")
         self._check_rules()
+        if self.build is not None:
+            self.build.nondimensional(self)       # bore, pads and zones checked here
 
     def _check_rules(self) -> None:
         """The rules between dimensions (:data:`gfbopt.inputs.file_schema.BEARING` rules)."""
@@ -143,6 +151,13 @@ class BearingGeometry:
         ``foil='rigid'`` sets S = 0; other keyword arguments go to BearingModel.
         """
         compliance = 0.0 if foil == "rigid" else self.compliance
+        if self.build is not None and "as_built" not in kwargs:
+            built = self.build.nondimensional(self)
+            if foil == "rigid":       # a rigid comparison keeps the bore, not the foils
+                built = replace(built, zones=(), pads=())
+            elif built.zones:
+                compliance = built.mean_compliance()
+            kwargs["as_built"] = built
         return BearingModel(bearing_number=self.bearing_number(speed_rpm),
                             compliance=compliance,
                             length_ratio=self.length_ratio,

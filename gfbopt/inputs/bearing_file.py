@@ -38,6 +38,7 @@ except ModuleNotFoundError:  # pragma: no cover - Python 3.10
 
 from ..errors import ParameterError
 from .bearing import BearingGeometry
+from .bore_si import build_from_tables
 from .file_schema import BEARING, BEARING_FILE, check_file, check_table
 from .options import ModelOptions
 
@@ -90,11 +91,16 @@ def read_bearing_file(path: str | Path) -> dict:
 
 def load_bearing(path: str | Path) -> BearingGeometry:
     """The bearing described in the TOML file ``path`` (``[bearing]``, SI units), carrying
-    the options of its ``[model]`` table (``.options``; nothing stated when there is none)."""
+    the options of its ``[model]`` table (``.options``; nothing stated when there is none)
+    and the bearing as built (``.build``: ``[bore]``, ``[[pads]]``, ``[[zones]]``)."""
     name = Path(path).name
-    tables = read_bearing_file(path)
+    data = read_toml(path)
+    tables = check_file(data, BEARING_FILE, name)              # every table and key checked
     options = _options(tables.get("model"), name)
+    build = build_from_tables(data, where=name)                # [bore], [[pads]], [[zones]]
     bearing = bearing_from_dict(tables["bearing"], where=f"{name}: bearing", options=options)
+    if build is not None:
+        bearing = dataclasses.replace(bearing, build=build)
     try:                              # the combination, on a model of this bearing
         from .options import resolve_model_options
 
@@ -126,4 +132,5 @@ def _options(table, name: str) -> ModelOptions:
 
 
 #: the fields of [bearing] (for callers that list them)
-FIELDS = tuple(f.name for f in dataclasses.fields(BearingGeometry) if f.name != "options")
+FIELDS = tuple(f.name for f in dataclasses.fields(BearingGeometry)
+               if f.name not in ("options", "build"))

@@ -26,13 +26,14 @@ from dataclasses import dataclass
 from typing import Any, Optional
 
 from ..errors import ParameterError
+from .bore import BORE_KINDS
 from .model import DEFLECTION_LAWS, FILM_MODELS, FOIL_MODELS
 
 #: default of a required field
 REQUIRED = object()
 #: field kinds: a finite number, a string, a string out of ``choices``, an angle in
 #: degrees [0, 360) or "max_film", a list of strings
-KINDS = ("number", "string", "choice", "seam_angle", "strings", "text")
+KINDS = ("number", "integer", "numbers", "string", "choice", "seam_angle", "strings", "text")
 
 
 @dataclass(frozen=True)
@@ -70,6 +71,8 @@ class Field:
             return "a string"
         if self.kind == "strings":
             return "a string or a list of strings"
+        if self.kind == "numbers":
+            return "a list of finite numbers"
         parts = []
         if self.positive:
             parts.append("> 0")
@@ -77,7 +80,8 @@ class Field:
             parts.append(f">= {self.low:g}")
         if self.high is not None:
             parts.append(f"<= {self.high:g}")
-        return "a finite number" + (f", {' and '.join(parts)}" if parts else "")
+        noun = "a whole number" if self.kind == "integer" else "a finite number"
+        return noun + (f", {' and '.join(parts)}" if parts else "")
 
 
 @dataclass(frozen=True)
@@ -138,6 +142,13 @@ def check_value(f: Field, value, where: str):
         return value
     if f.kind == "seam_angle" and value == "max_film":
         return value
+    if f.kind == "numbers":
+        if not isinstance(value, list):
+            raise refuse(f"must be {f.rule()} ({f.doc})")
+        item = Field(f.name, "number", f.unit, f.doc)
+        return [check_value(item, v, f"{where}[{k}]") for k, v in enumerate(value)]
+    if f.kind == "integer" and (isinstance(value, bool) or not isinstance(value, int)):
+        raise refuse(f"must be {f.rule()} ({f.doc})")
     if isinstance(value, bool) or not isinstance(value, (int, float)):
         raise refuse(f"must be {f.rule()} ({f.doc}" + (f" [{f.unit}])" if f.unit not in
                                                         ("-", "text") else ")"))
@@ -283,8 +294,45 @@ MODEL = Table("model", "the formulation the bearing is analysed with by every ro
           default=None, low=0.0, high=1.0, why="a fraction: 0.2 means 20 %"),
 ))
 
+#: the bearing as built (helper "bore", :mod:`gfbopt.inputs.bore_si`, which builds them and
+#: checks the rules between their keys): a bore profile, top-foil pads and bump zones
+BORE = Table("bore", "the bore profile (shims, lobes or a measured table) that preloads the "
+             "bearing; a round bore when absent", fields=(
+    Field("kind", "choice", "text", "bore profile", choices=BORE_KINDS),
+    Field("count", "integer", "-", "number of shims or lobes (shims, lobes)", default=None,
+          low=1),
+    Field("preload_depth", "number", "m", "preload: depth of the shims or lobes (or "
+          "preload_ratio)", default=None, positive=True),
+    Field("preload_ratio", "number", "-", "preload over the radial clearance (or "
+          "preload_depth)", default=None),
+    Field("width_deg", "number", "deg", "shim width (shims: required)", default=None),
+    Field("offset_deg", "number", "deg", "centre of the first shim or lobe from the load "
+          "line", default=None),
+    Field("angle_deg", "numbers", "deg", "angles of a measured bore (kind table), in [0, 360)",
+          default=None),
+    Field("clearance_change", "numbers", "m", "change of the radial clearance at those angles "
+          "(kind table)", default=None)),
+    rules=("shims and lobes: count >= 1 and exactly one of preload_depth, preload_ratio",
+           "preload_depth < radial_clearance (the film must stay open with the journal "
+           "concentric)"))
+PADS = Table("pads", "one table per top foil (pad): a segmented bearing; one 360° top foil "
+             "when absent", array=True, fields=(
+    Field("leading_end_deg", "number", "deg", "welded (leading) end from the load line"),
+    Field("arc_deg", "number", "deg", "arc of the pad")),
+    rules=("pads need a seamed film; with a seam stated, it sits on a pad's leading end",))
+ZONES = Table("zones", "bump zones with their own bump geometry, covering 360° once; a "
+              "uniform foundation when absent", array=True, fields=(
+    Field("start_deg", "number", "deg", "start of the zone from the load line"),
+    Field("end_deg", "number", "deg", "end of the zone (> start; above 360 through 0°)"),
+    Field("bump_pitch", "number", "m", "bump pitch s (default: [bearing]'s)", default=None,
+          positive=True),
+    Field("bump_half_length", "number", "m", "half bump length l0 (default: [bearing]'s)",
+          default=None, positive=True),
+    Field("bump_thickness", "number", "m", "bump thickness t_b (default: [bearing]'s)",
+          default=None, positive=True)))
+
 #: the tables of a bearing file; adding a table is one entry here (module docstring)
-BEARING_TABLES = (BEARING, MODEL)
+BEARING_TABLES = (BEARING, MODEL, BORE, PADS, ZONES)
 
 BEARING_EXAMPLE = '''\
 source = "Ruscitto, D., McCormick, J. & Gray, S. (1978), NASA CR-135368"

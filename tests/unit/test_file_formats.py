@@ -47,7 +47,7 @@ def test_adding_a_table_is_one_entry():
                        r"\[pads\] \(did you mean 'arc_deg'\?\)"):
         check_file({**data, "pads": [{"arc": 60}]}, fmt, "x.toml")
     with pytest.raises(ParameterError, match=r"x.toml: pads = .*is not a key of a bearing "
-                       r"file \(known: source, notes, bearing, model\)"):
+                       r"file \(known: source, notes, bearing, model, bore, pads, zones\)"):
         check_file(data, BEARING_FILE, "x.toml")
 
 
