@@ -36,17 +36,18 @@ def test_adding_a_table_is_one_entry():
     it with its keys; the validator of that format accepts and checks it."""
     from gfbopt.inputs.file_schema import check_file
 
-    pads = Table("pads", "tilting pads", fields=(Field("arc_deg", "number", "deg", "pad arc",
+    pads = Table("washers", "thrust washers", fields=(Field("arc_deg", "number", "deg", "pad arc",
                                                         positive=True),), array=True)
     fmt = FileFormat(BEARING_FILE.name, BEARING_FILE.doc, BEARING_FILE.top,
                      (*BEARING_FILE.tables, pads), BEARING_FILE.example)
-    assert "## `[[pads]]` (optional)" in render_format(fmt) and "`arc_deg`" in render_format(fmt)
-    data = {**tomllib.loads(BEARING_FILE.example), "pads": [{"arc_deg": 60}]}
-    assert check_file(data, fmt, "x.toml")["pads"] == [{"arc_deg": 60.0}]
-    with pytest.raises(ParameterError, match=r"x.toml: pads\[0\].arc = 60: is not a key of "
-                       r"\[pads\] \(did you mean 'arc_deg'\?\)"):
-        check_file({**data, "pads": [{"arc": 60}]}, fmt, "x.toml")
-    with pytest.raises(ParameterError, match=r"x.toml: pads = .*is not a key of a bearing "
+    assert "## `[[washers]]` (optional)" in render_format(fmt)
+    assert "`arc_deg`" in render_format(fmt)
+    data = {**tomllib.loads(BEARING_FILE.example), "washers": [{"arc_deg": 60}]}
+    assert check_file(data, fmt, "x.toml")["washers"] == [{"arc_deg": 60.0}]
+    with pytest.raises(ParameterError, match=r"x.toml: washers\[0\].arc = 60: is not a key "
+                       r"of \[washers\] \(did you mean 'arc_deg'\?\)"):
+        check_file({**data, "washers": [{"arc": 60}]}, fmt, "x.toml")
+    with pytest.raises(ParameterError, match=r"x.toml: washers = .*is not a key of a bearing "
                        r"file \(known: source, notes, bearing, model, bore, pads, zones\)"):
         check_file(data, BEARING_FILE, "x.toml")
 
