@@ -1,0 +1,64 @@
+"""What can stop a run that is not a result of its points: a signal, a lost worker, a lost
+cluster.  Shared by the local executors (:mod:`gfbopt.parallel`) and the Dask one
+(:mod:`gfbopt.cluster`)."""
+from __future__ import annotations
+
+import contextlib
+import signal
+import threading
+from collections.abc import Callable
+
+
+class InfrastructureFailure(RuntimeError):
+    """A task that could not be run because its workers kept dying or the cluster was lost:
+    not a result of its points (a resume computes them)."""
+
+
+class InfrastructureError(RuntimeError):
+    """The executor itself is gone (a lost Dask scheduler, no worker left): the run stops;
+    what finished is stored and a resume computes the rest."""
+
+
+class Interrupted(KeyboardInterrupt):
+    """SIGTERM or SIGINT received (``signum``); ``report`` says what was kept."""
+
+    def __init__(self, signum: int, report: str = ""):
+        self.signum = signum
+        self.report = report
+        super().__init__(report or signal.Signals(signum).name)
+
+    @property
+    def exit_status(self) -> int:
+        """128 + the signal number: 143 for SIGTERM, 130 for SIGINT."""
+        return 128 + int(self.signum)
+
+
+@contextlib.contextmanager
+def interrupt_on_signals():
+    """Within the block, SIGTERM (what ``timeout``, systemd, SLURM and Kubernetes send) and
+    SIGINT raise :class:`Interrupted` in the main thread, so ``finally`` blocks run (the
+    results buffer is written) instead of the process dying with unwritten rows.  Outside
+    the main thread it does nothing.  The previous handlers are restored on exit."""
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+
+    def handler(signum, frame):
+        raise Interrupted(signum)
+
+    previous = {s: signal.signal(s, handler) for s in (signal.SIGTERM, signal.SIGINT)}
+    try:
+        yield
+    finally:
+        for s, h in previous.items():
+            signal.signal(s, h)
+
+
+def call_task(function: Callable, argument):
+    """Run one task in a worker; an exception is returned (as data), never raised."""
+    try:
+        return function(argument)
+    except Exception as exc:  # noqa: BLE001 - a failed task is rows with its error
+        return exc
+
+
