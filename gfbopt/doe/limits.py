@@ -93,7 +93,7 @@ def estimate(points: int, columns: int, analysis: str, cells: int, workers: int)
     """'N points, about M MB in memory, about T on W workers' (the estimate, as text)."""
     memory = points * max(1, columns) * BYTES_PER_VALUE / 1e6
     seconds = points * cells * SECONDS_PER_CELL.get(analysis, 0.0) / max(1, workers)
-    text = f"{points:,} points, about {memory:,.0f} MB in memory"
+    text = f"{points:,} points, about {memory:,.3g} MB in memory"
     if seconds > 0:
         text += f", about {_duration(seconds)} on {workers} worker(s)"
     return text
