@@ -54,7 +54,9 @@ from .runtime import (  # noqa: F401 - re-exported: the executors' failures and 
     InfrastructureFailure,
     Interrupted,
     call_task as _call_task,
+    check_interrupted,
     interrupt_on_signals,
+    interrupted,
 )
 from .static import SolverCache
 
@@ -80,8 +82,10 @@ def _start_worker() -> None:
     global _WORKER_CACHE
     import os
 
+    # signals go to the driver, which writes what finished and then ends the workers
+    # (SIGKILL); a SIGTERM sent to the whole process group does not break the pool
     signal.signal(signal.SIGINT, signal.SIG_IGN)
-    signal.signal(signal.SIGTERM, signal.SIG_DFL)
+    signal.signal(signal.SIGTERM, signal.SIG_IGN)
     # libraries loaded later in the worker (IPOPT/MUMPS and their OpenMP runtime, when the
     # first solver is built) read these at load time; threadpoolctl covers those already loaded
     for var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
@@ -152,7 +156,7 @@ class WorkerPool:
         self._executor.shutdown(wait=False, cancel_futures=True)
         for process in processes:
             if process.is_alive():
-                process.terminate()
+                process.kill()            # workers ignore SIGINT and SIGTERM
         for process in processes:
             process.join(timeout=5)
         self._executor = None
@@ -259,12 +263,14 @@ def run_points(function: Callable, points: Sequence[dict], *, workers: int = 1,
         results = []
         for k, point in enumerate(points):
             results.append(_evaluate(function, point, cache))
+            check_interrupted()          # a solver may have swallowed SIGTERM/SIGINT
             if progress is not None:
                 progress((k + 1) / len(points))
     else:
         results = [None] * len(points)
         for k, result in stream_tasks(_call_points, [(function, p) for p in points],
                                       workers=workers):
+            check_interrupted()
             results[k] = result if isinstance(result, list) else [
                 {"success": False, "message": f"{type(result).__name__}: {result}"}]
             if progress is not None:

@@ -100,8 +100,13 @@ def execute(function: Callable, tasks: list, store, *, conform: Callable[[dict],
     Tasks carry their points in ``task["points"]`` (each with its ``point`` key).
     Exceptions (Ctrl-C, SIGTERM, a lost cluster) propagate after the buffer is written.
     """
-    from ..parallel import InfrastructureFailure, active_pool, interrupt_on_signals
-    from ..parallel import stream_tasks
+    from ..parallel import (
+        InfrastructureFailure,
+        active_pool,
+        check_interrupted,
+        interrupt_on_signals,
+        stream_tasks,
+    )
 
     outcome = Outcome()
     buffer = _Buffer(store, conform, batch_rows, flush_s, outcome)
@@ -125,6 +130,10 @@ def execute(function: Callable, tasks: list, store, *, conform: Callable[[dict],
             if serial and iterate is not None:
                 for task in tasks:
                     for row in iterate(task):
+                        # a row computed here while a signal arrived is dropped (its solve
+                        # may have been cut short: CasADi turns the interrupt into a failed
+                        # solve); the point is computed again on resume
+                        check_interrupted()
                         take([row])
             else:
                 stream = stream_tasks(function, tasks, workers=workers, client=client,
@@ -132,6 +141,7 @@ def execute(function: Callable, tasks: list, store, *, conform: Callable[[dict],
                 try:
                     for k, result in stream:
                         if k is None:
+                            check_interrupted()
                             if buffer.error is not None:
                                 raise buffer.error
                             continue
@@ -140,7 +150,8 @@ def execute(function: Callable, tasks: list, store, *, conform: Callable[[dict],
                             continue
                         if not isinstance(result, list):
                             result = failed_rows(tasks[k], result) if failed_rows else []
-                        take(result)
+                        take(result)              # a worker's rows are whole: kept
+                        check_interrupted()
                 finally:
                     stream.close()
     finally:                                # Ctrl-C, SIGTERM, a lost cluster: keep the rows

@@ -41,6 +41,7 @@ import uuid
 from pathlib import Path
 from typing import Iterable, Iterator, Optional
 
+import numpy as np
 import pandas as pd
 
 from ..errors import ParameterError
@@ -340,9 +341,9 @@ class ResultStore:
         infrastructural is not done."""
         frame = self.read()
         if "message" in frame.columns and "success" in frame.columns:
-            infra = (~frame["success"].fillna(False).astype(bool)) & frame["message"].map(
-                is_infrastructure_message)
-            frame = frame[~infra]
+            failed = ~frame["success"].fillna(False).astype(bool).to_numpy()
+            infra = [is_infrastructure_message(m) for m in frame["message"].tolist()]
+            frame = frame[~(failed & np.array(infra, dtype=bool))]
         return set(frame["point"].tolist())
 
 
