@@ -371,7 +371,7 @@ def run_sampled(loaded, results_root="runs", *, workers: int = 1,
     if write:
         from .report import write_result
 
-        write_result(result, Path(results_root), force=force)
+        write_result(result, Path(results_root), force=force, notify=notify)
     return result
 
 

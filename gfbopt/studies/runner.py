@@ -72,7 +72,7 @@ def study_from_dict(data: dict, *, name: Optional[str] = None, file: str = "<dic
     ``bearing`` file) are looked up.
     """
     spec = validate(data, file)
-    name = spec["name"] or name or Path(file).stem
+    name = spec["name"] if spec["name"] is not None else (name or Path(file).stem)
     check_name(name, f"{file}: name")
     spec = {**spec, "name": name}
     study = Study(file=file, name=name, kind=spec["kind"], spec=spec,
