@@ -159,8 +159,10 @@ def run_studies(args) -> int:
     workers = _check_options(args, loaded)
     client = None
     if args.scheduler is not None and any(s.study.kind in SAMPLED for s in loaded):
+        from ..cluster import quiet_logs
         from ..parallel import connect_scheduler
 
+        quiet_logs()
         client = connect_scheduler(args.scheduler)             # before anything is written
     try:
         for study in loaded:                                    # every folder checked first
@@ -199,8 +201,16 @@ def run_studies(args) -> int:
         return 1
     finally:
         if client is not None:
-            client.close()
+            _close(client)
     return 1 if failed else 0
+
+
+def _close(client) -> None:
+    """Close the Dask client without a traceback when its scheduler is already gone."""
+    try:
+        client.close(timeout=5)
+    except Exception:  # noqa: BLE001 - nothing left to close cleanly
+        pass
 
 
 def _signal_name(signum: int) -> str:
