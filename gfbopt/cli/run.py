@@ -82,14 +82,14 @@ def _load(path: str, args):
     from pathlib import Path
 
     from ..errors import ParameterError
-    from ..inputs import read_toml
     from ..studies import SCHEMAS, study_from_dict
+    from ..studies.runner import read_study_file
 
     if args.grid is None and args.max_points is None:
         from ..studies import load_study
 
         return load_study(path)
-    data = read_toml(path)
+    data = read_study_file(path)
     schema = SCHEMAS.get(data.get("kind"), {})
     if args.grid is not None:
         if "grid" not in schema and data.get("kind") in SCHEMAS:
