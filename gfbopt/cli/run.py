@@ -199,6 +199,11 @@ def run_studies(args) -> int:
     except InfrastructureError as exc:
         print(f"gfbopt: error: {exc}", file=sys.stderr, flush=True)
         return 1
+    except OSError as exc:                  # a full disk, a folder removed under the run
+        print(f"gfbopt: error: {current}: cannot write ({exc.strerror or exc}: "
+              f"{exc.filename or '?'}); what was written is kept: free the space and run "
+              "again (--resume for a sampled study)", file=sys.stderr, flush=True)
+        return 1
     finally:
         if client is not None:
             _close(client)

@@ -19,6 +19,7 @@ import pytest
 
 from gfbopt.doe import read_results
 from gfbopt.errors import ParameterError
+from tiny_sweeps import sweep_toml
 
 distributed = pytest.importorskip("distributed", reason="dask[distributed] is an optional "
                                   "extra (pip install 'gfbopt[distributed]')")
@@ -93,40 +94,10 @@ SCHEDULER = textwrap.dedent("""
     time.sleep(3600)
 """)
 
-SWEEP = """\
-kind = "sweep"
-title = "tiny static sweep on Dask"
-source = "test"
-analysis = "static"
-grid = "24x6"
-chunk_size = 1
-batch_rows = 1
-min_success_fraction = 0.9
-
-[model]
-foil = "simple"
-
-[sampling]
-method = "lhs"
-n = 80
-seed = 5
-
-[[sampling.variables]]
-name = "bearing_number"
-low = 0.5
-high = 3.0
-
-[[sampling.variables]]
-name = "eccentricity"
-low = 0.2
-high = 0.7
-"""
-
-
 def test_a_lost_scheduler_stops_the_run_in_one_line_and_resume_finishes(tmp_path):
     (tmp_path / "scheduler.py").write_text(SCHEDULER)
     study = tmp_path / "dasky.toml"
-    study.write_text(SWEEP)
+    study.write_text(sweep_toml(n=80, title="tiny static sweep on Dask", fixed=""))
     results = tmp_path / "results"
     scheduler = subprocess.Popen([sys.executable, str(tmp_path / "scheduler.py")], env=ENV,
                                  stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, text=True)

@@ -19,46 +19,14 @@ from pathlib import Path
 import pytest
 
 from gfbopt.doe import SamplePlan, Variable, read_results, run_doe
+from tiny_sweeps import sweep_toml
 
 ROOT = Path(__file__).resolve().parents[2]
 ENV = {**os.environ, "PYTHONPATH": str(ROOT)}
 
-SWEEP = """\
-kind = "sweep"
-title = "tiny static sweep"
-source = "test"
-analysis = "static"
-grid = "24x6"
-chunk_size = 1
-batch_rows = {batch}
-min_success_fraction = 0.9
-
-[model]
-foil = "simple"
-
-[fixed]
-length_ratio = 1.0
-
-[sampling]
-method = "lhs"
-n = {n}
-seed = 5
-
-[[sampling.variables]]
-name = "bearing_number"
-low = 0.5
-high = 3.0
-
-[[sampling.variables]]
-name = "eccentricity"
-low = 0.2
-high = 0.7
-"""
-
-
 def _study(tmp_path, n=40, batch=1, name="tiny") -> Path:
     path = tmp_path / f"{name}.toml"
-    path.write_text(SWEEP.format(n=n, batch=batch))
+    path.write_text(sweep_toml(n=n, batch=batch))
     return path
 
 
