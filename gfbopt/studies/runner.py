@@ -20,6 +20,8 @@ from ..inputs import read_toml
 from . import design, maps, sweeps, tables, transients
 from . import doe
 from . import damping, stability
+from . import rotor
+from . import bearing_as_built
 from .base import DEFAULT_RESULTS, Kind, LoadedStudy, RunContext, Study, StudyResult
 from .output import check_name
 from .report import prepare_output, write_result
@@ -60,8 +62,9 @@ def register(family) -> None:
     KINDS.update(family.KINDS)
 
 
-for _family in (design, doe, stability, damping):
+for _family in (design, doe, stability, damping, rotor):
     register(_family)
+register(bearing_as_built)
 assert set(KINDS) == set(SCHEMAS), "every schema has a runner and vice versa"
 
 
