@@ -94,6 +94,7 @@ SCHEDULER = textwrap.dedent("""
     time.sleep(3600)
 """)
 
+@pytest.mark.slow  # a scheduler process and two runs (about 20 s idle)
 def test_a_lost_scheduler_stops_the_run_in_one_line_and_resume_finishes(tmp_path):
     (tmp_path / "scheduler.py").write_text(SCHEDULER)
     study = tmp_path / "dasky.toml"

@@ -30,6 +30,7 @@ def _stored(store: Path) -> int:
         return 0
 
 
+@pytest.mark.slow  # 20 onset searches and two interpreters (about 15 s idle)
 def test_the_worked_example_killed_at_half_resumes_with_every_point_once(tmp_path):
     store = tmp_path / "doe_onset"
     args = [sys.executable, str(SCRIPT), str(store), "--grid", "12x4"]

@@ -281,15 +281,18 @@ def test_invalid_fixed_onset_inputs_are_refused_before_any_solve(tmp_path, fixed
         _onset(tmp_path, fixed={**base, **fixed})
 
 
-def test_too_many_workers_and_an_empty_scheduler_are_refused(tmp_path):
+def test_too_many_workers_and_an_empty_scheduler_are_refused(tmp_path, capsys):
+    from gfbopt.cli import main
+
     study = tmp_path / "tiny.toml"
     study.write_text(_text())
     for args, text in ((("--workers", "100000"), "--max-workers"),
                        (("--scheduler", ""), "must be a scheduler address"),
                        (("--scheduler", "ucx://127.0.0.1:8786"), "ucx:// is not supported")):
-        out = _run_cli(study, *args, "--results", tmp_path / "r", cwd=tmp_path)
-        assert out.returncode == 2 and text in out.stderr, out.stderr
-        assert len(out.stderr.strip().splitlines()) == 1
+        status = main(["run", str(study), *args, "--results", str(tmp_path / "r")])
+        err = capsys.readouterr().err
+        assert status == 2 and text in err, err
+        assert len(err.strip().splitlines()) == 1
     assert not (tmp_path / "r").exists()
 
 
