@@ -13,7 +13,7 @@ configuration (``--grid 36x10`` and ``--grid 72x20``), alternating the worker co
   idle times, and the ratio between paired runs is what to read);
 * the ratio wall(2 workers) / wall(1 worker) per round and its median.
 
-    python benchmarks/bench_main_job.py [--grids 36x10 72x20] [--repeats 1]
+    python benchmarks/bench_main_job.py [--grids 36x10 72x20] [--repeats 1] [--start-with 1]
                                         [--out results/benchmarks/main_job.json]
 """
 from __future__ import annotations
@@ -60,13 +60,16 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--grids", nargs="+", default=["36x10", "72x20"])
     parser.add_argument("--repeats", type=int, default=1)
+    parser.add_argument("--start-with", type=int, choices=(1, 2), default=1,
+                        help="worker count of the first run of each pair")
     parser.add_argument("--out", default="results/benchmarks/main_job.json")
     args = parser.parse_args()
     runs, ratios = [], {}
     for grid in args.grids:
         ratios[grid] = []
         for k in range(args.repeats):
-            order = (1, 2) if k % 2 == 0 else (2, 1)       # paired, alternating order
+            first = args.start_with if k % 2 == 0 else 3 - args.start_with
+            order = (first, 3 - first)                     # paired, alternating order
             pair = {w: _run(grid, w) for w in order}
             runs += list(pair.values())
             ratios[grid].append(pair[2]["wall_s"] / pair[1]["wall_s"])
