@@ -27,6 +27,7 @@ tests/verification/test_static_newton.py checks ≤ 1e-10.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Optional
 import numpy as np
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
@@ -119,8 +120,10 @@ def _bound(function, *arrays):
 
 
 def solve(system: NewtonSystem, x0: np.ndarray, p: np.ndarray,
-          max_steps: int = MAX_STEPS) -> NewtonOutcome:
-    """Newton's method on g(x, p) = 0 from ``x0`` (module docstring)."""
+          max_steps: Optional[int] = None) -> NewtonOutcome:
+    """Newton's method on g(x, p) = 0 from ``x0`` (module docstring); at most
+    ``max_steps`` steps (default :data:`MAX_STEPS`)."""
+    max_steps = MAX_STEPS if max_steps is None else max_steps
     x = np.array(x0, dtype=float)
     g = system.residual(x, p)
     lu, last_step, steps, factorisations = None, np.inf, 0, 0
