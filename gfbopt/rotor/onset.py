@@ -20,25 +20,29 @@ g = ln(M̄c/M̄) against ln N (nearly linear: M̄ ∝ N², M̄c varies slowly), 
 bisection, to :data:`SECANT_TOLERANCE`; each step's threshold is local — Newton's method on
 the whirl ratio from the previous crossing (:func:`gfbopt.linear.crossings.local_crossing`,
 ~2 sparse LUs) — and each static solve starts from the nearest speed with the Newton fast
-path (:mod:`gfbopt.static.newton`).  The answer is confirmed by a full threshold at the onset
-(its critical mass must equal the local one to :data:`CONFIRM_TOLERANCE`; otherwise another
-branch took over and Brent's method on full thresholds refines the bracket).
+path (:mod:`gfbopt.static.newton`).  The answer is confirmed by a full threshold at the
+secant's converged point: it must put the root within :data:`CONFIRM_TOLERANCE` of it
+(otherwise another branch took over, and Brent's method on full thresholds refines the
+bracket, as the reference does).
 
 Coarse guide (``coarse_grid``; "auto" uses :data:`COARSE_GRID` on grids with at least
 :data:`GUIDE_FACTOR` times its cells).  The scan runs on the coarse grid (thresholds there
-are ~15× cheaper at 144 × 36), except the lowest speed, which is always solved on the fine
-grid (it is the result's first row and decides "unstable at the lower end").  The coarse
-onset then starts the fine secant (its static from the coarse equilibrium interpolated onto
-the fine grid, a Newton step with the coarse slope).  Risk and check: the fine and coarse
-thresholds differ by the grid error, so a coarse scan speed could have the wrong sign; every
-scan speed below the fine onset (or every one, when the coarse scan finds none) whose coarse
-mass margin is below :data:`COARSE_MARGIN` is recomputed on the fine grid, and a fine sign
-change there restarts the refinement in that interval on the fine grid.  The margin bounds the
-largest coarse/fine difference of M̄c measured (module constant's comment); a grid error
-larger than that at a scan speed whose coarse margin exceeds it would go unseen.  When the
-coarse scan finds no onset, the smallest margin is taken on the fine grid at the coarse scan's
-smallest-margin speed.  The result says the guide was used (``coarse_grid``; each scan row
-names its grid and threshold).
+are ~15× cheaper at 144 × 36); the lowest speed is always solved on the fine grid too (it is
+the result's first row and decides "unstable at the lower end").  The coarse onset starts the
+fine secant (its static from the coarse equilibrium interpolated onto the fine grid, a first
+Newton step with the coarse slope).  The first scan speed above the fine onset is then solved
+on the fine grid: it must be unstable there, as the end of the fine scan's bracket would be
+(otherwise the search goes on as a fine scan); it is also where the scan method finds its
+smallest margin.  Risk and check: the fine and coarse thresholds differ by the grid error, so
+a coarse scan speed could have the wrong sign.  Every scan speed below the fine onset (every
+one, when the coarse scan finds no onset) whose coarse mass margin is below
+:data:`COARSE_MARGIN` is recomputed on the fine grid, and a fine sign change there restarts the
+refinement in that interval on the fine grid.  What is not checked: a scan speed whose coarse
+margin exceeds :data:`COARSE_MARGIN` but whose fine threshold is unstable — a grid error of
+M̄c larger than that margin, several times the largest difference measured (the constant's
+comment).  When the coarse scan finds no onset, the smallest margin is taken on the fine grid
+at the coarse scan's smallest-margin speed.  The result says the guide was used
+(``coarse_grid``, the answer's text; every scan row names its grid and threshold).
 
 ``method="scan"``: the reference search of gfbopt 0.2 — IPOPT warm starts, full thresholds,
 Brent's method on f = (M̄c − M̄)/(M̄c + M̄) to :data:`SPEED_TOLERANCE` (relative), the whirl
@@ -83,7 +87,8 @@ METHODS = ("secant", "scan")
 SECANT_TOLERANCE = 1e-6
 #: secant steps before the refinement falls back to Brent's method on full thresholds
 SECANT_STEPS = 16
-#: a full threshold confirms a local one when their critical masses agree to this [-]
+#: the full threshold at the secant's onset must put the root within this of it, in ln N
+#: (relative speed; one Newton step on g) [-]
 CONFIRM_TOLERANCE = 1e-7
 #: tolerance of the coarse guide's secant (its onset only starts the fine one) [-]
 COARSE_TOLERANCE = 1e-5
@@ -244,6 +249,8 @@ def onset_speed(bearing: BearingGeometry, rotor: Rotor, load_newton: Optional[fl
             kind, onset = _scan_search(line, speeds, bar)
         else:
             kind, onset = _secant_search(line, speeds, guide, bar)
+        bar.set_postfix_str("done")
+        bar.update(max(0, count - bar.n))
     return _result(line, guide, kind, onset, method, t0, speed_range_rpm=(low, high),
                    rotor_mass_kg=rotor.mass_kg, load_newton=case.load_newton,
                    conventions=case.conventions())
@@ -312,6 +319,9 @@ def _secant_search(line: SpeedLine, speeds: list, guide: Optional[SpeedLine], ba
         worst = min(guide.rows, key=lambda r: r["mass_margin"])["speed_rpm"]
         line.f(worst)                        # the smallest margin, on the fine grid
         return "stable", math.nan
+    above = [s for s in speeds if s > onset]
+    if above and line.f(above[0]) > 0:       # the fine scan would not bracket it: scan on
+        return _secant_search(line, speeds, None, bar)
     return "onset", onset
 
 
@@ -362,16 +372,17 @@ def _refine(line: SpeedLine, low: float, high: float) -> float:
 
 
 def _confirmed(line: SpeedLine, found) -> Optional[float]:
-    """The converged speed if a full threshold there equals the local one, else None."""
+    """The converged speed if the full threshold there puts the root within
+    :data:`CONFIRM_TOLERANCE` of it (one Newton step on g with the secant's slope), else None
+    (another branch took over, or the secant failed)."""
     if found is None:
         return None
-    speed = math.exp(found[0])
-    local = line.local(speed)
-    full = line.full(speed)
-    same = (local is full or math.isclose(full["critical_mass_parameter"],
-                                          local["critical_mass_parameter"],
-                                          rel_tol=CONFIRM_TOLERANCE))
-    return speed if same and math.isfinite(full["g"]) else None
+    u, slope = found
+    speed = math.exp(u)
+    full = line.full(speed)["g"]
+    if not (math.isfinite(full) and math.isfinite(slope) and slope != 0):
+        return None
+    return speed if abs(full / slope) <= CONFIRM_TOLERANCE else None
 
 
 def _secant(line: SpeedLine, low: float, high: float, tol: float, start=None,
@@ -381,9 +392,10 @@ def _secant(line: SpeedLine, low: float, high: float, tol: float, start=None,
     [lo, hi] = [ln ``low``, ln ``high``].  Without ``start``, it is a bracket whose ends are evaluated with full thresholds
     (g(lo) > 0 ≥ g(hi)); with ``start`` = [(u0, g0)] and a ``first`` point, the secant starts
     there and [lo, hi] only bounds it until a sign change brackets the root.  Interior points
-    use local thresholds.  Converged when a step is at most ``tol``: the secant converges
-    superlinearly, so the error of the last point is of the order of the product of the last
-    two steps.  None when it leaves the bounds without a bracket or does not converge in
+    use local thresholds.  Converged when the next secant step is at most ``tol``: that next
+    point is returned without evaluating it (the caller evaluates it in full); the secant
+    converges superlinearly, so its error is of the order of the product of the last two
+    steps.  None when it leaves the bounds without a bracket or does not converge in
     :data:`SECANT_STEPS` steps."""
     lo, hi = math.log(low), math.log(high)
     ends = {lo: low, hi: high} if start is None else {}
@@ -403,13 +415,16 @@ def _secant(line: SpeedLine, low: float, high: float, tol: float, start=None,
     for step in range(SECANT_STEPS):
         (u0, g0), (u1, g1) = (points[-2], points[-1]) if len(points) > 1 else (
             (None, None), points[-1])
-        if u is None:
-            finite = g0 is not None and math.isfinite(g0) and math.isfinite(g1) and g1 != g0
-            u = u1 - g1 * (u1 - u0) / (g1 - g0) if finite else None
+        predicted = u is not None or (g0 is not None and math.isfinite(g0)
+                                      and math.isfinite(g1) and g1 != g0)
+        if u is None and predicted:
+            u = u1 - g1 * (u1 - u0) / (g1 - g0)
         if a is not None and (u is None or not a < u < b):
-            u = 0.5 * (a + b)                     # bisection inside the bracket
+            u, predicted = 0.5 * (a + b), False   # bisection inside the bracket
         if u is None or not lo <= u <= hi:
             return None
+        if predicted and (step > 0 or start is not None) and abs(u - u1) <= tol:
+            return u, _slope(points)              # converged: u is the next secant point
         gu = g(u)
         if not math.isfinite(gu) and a is None:
             return None
@@ -423,14 +438,20 @@ def _secant(line: SpeedLine, low: float, high: float, tol: float, start=None,
             a = u
         else:
             b = u
-        converged = gu == 0 or (step > 0 or start is not None) and abs(u - u1) <= tol
         points.append((u, gu))
-        if converged:
-            (v0, h0), (v1, h1) = points[-2], points[-1]
-            slope = (h1 - h0) / (v1 - v0) if v1 != v0 and math.isfinite(h0) else math.nan
-            return u, slope
+        if gu == 0:
+            return u, _slope(points)
         u = None
     return None
+
+
+def _slope(points: list) -> float:
+    """dg/du from the last two points (nan when one is not finite)."""
+    if len(points) < 2:
+        return math.nan
+    (v0, h0), (v1, h1) = points[-2], points[-1]
+    finite = math.isfinite(h0) and math.isfinite(h1) and v1 != v0
+    return (h1 - h0) / (v1 - v0) if finite else math.nan
 
 
 # --------------------------------------------------------------------- the result
