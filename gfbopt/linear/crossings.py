@@ -249,9 +249,10 @@ def _crossing_here(lin: Linearisation, direct: DirectImpedance) -> Optional[Cros
     return Crossing(u.real / (g**2 * lin.load), g, (lu, x, z))
 
 
-#: a Newton step on the whirl ratio below this ends the local search: the step's own
-#: correction is then exact to its square (~1e-12 ≪ :data:`WHIRL_TOLERANCE` × 100) [-]
-LOCAL_STEP = 1e-6
+#: a Newton step on the whirl ratio below this ends the local search: γ and u corrected by
+#: it are exact to its square times the curvature (~1e-8).  A local crossing only steers the
+#: onset search's secant: its answer is confirmed on a full threshold [-]
+LOCAL_STEP = 1e-4
 #: Newton steps (one sparse LU each) the local search may take
 LOCAL_STEPS = 6
 

@@ -143,7 +143,7 @@ class OnsetResult:
         smallest_margin_speed_rpm where it occurs [rpm]
     speed_range_rpm : the range searched; scan : one row per speed evaluated on the grid
         (speed_rpm, mass_parameter, critical_mass_parameter, mass_margin, whirl_ratio,
-        bearing_number, eccentricity, grid, threshold "full" | "local", static_solver
+        bearing_number, eccentricity, min_film_thickness_um [µm], grid, threshold "full" | "local", static_solver
         "ipopt" | "newton", message), lowest speed first; coarse_scan : the same for the
         coarse guide's evaluations (empty without one)
     method : "secant" or "scan"; coarse_grid : the guide's grid ("" when none was used)

@@ -28,6 +28,7 @@ from typing import Optional
 import numpy as np
 from scipy.interpolate import RegularGridInterpolator
 
+from ..inputs.conversions import film_thickness_um
 from ..linear import linear_threshold, linearise
 from ..linear.crossings import local_crossing
 from ..static import StaticSolution, consistent_state, solve_static
@@ -142,6 +143,8 @@ class SpeedLine:
         row = {"speed_rpm": speed, "mass_parameter": mbar, "critical_mass_parameter": mcrit,
                "mass_margin": mcrit / mbar - 1.0, "whirl_ratio": whirl,
                "bearing_number": sol.model.bearing_number, "eccentricity": sol.eccentricity,
+               "min_film_thickness_um": film_thickness_um(
+                   sol.min_film, self.case.bearing.radial_clearance),
                "grid": str(self.case.grid), "threshold": kind, "static_solver": sol.solver,
                "message": message, "f": f, "g": g, "root": root}
         if speed in self._rows:

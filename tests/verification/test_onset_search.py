@@ -172,6 +172,27 @@ def test_progress_is_reported_only_when_asked(capsys, cache):
     assert err.startswith("gfbopt: onset speed") and "speed" in err
 
 
+def test_the_command_line_onset_search_shows_progress_and_its_search():
+    """``gfbopt stability --speed-range`` (stderr not a terminal): the status line on stderr,
+    the JSON on stdout untouched and stating the search."""
+    import json
+    import os
+    import subprocess
+    import sys
+
+    env = {**os.environ, "PYTHONPATH": str(REPO)}
+    out = subprocess.run([sys.executable, "-m", "gfbopt", "stability", "--bearing",
+                          "problems/bearings/ruscitto.toml", "--rotor-mass-kg", "2",
+                          "--load-newton", "20", "--speed-range", "20000", "40000",
+                          "--grid", "36x10", "--json"], capture_output=True, text=True,
+                         cwd=REPO, env=env, timeout=600)
+    assert out.returncode == 0, out.stderr
+    assert out.stderr.startswith("gfbopt: onset speed")
+    onset = json.loads(out.stdout)["onset"]
+    assert onset["method"] == "secant" and onset["coarse_grid"] == ""
+    assert onset["unstable_at_lower_end"] and onset["message"] == ""
+
+
 @pytest.mark.parametrize("kwargs, match", [
     (dict(method="brent"), r"^method = 'brent': must be one of: secant, scan"),
     (dict(coarse_grid="72x20"), r"^coarse_grid = '72x20': must be coarser than the grid 36x10"),
