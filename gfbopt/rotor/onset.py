@@ -116,8 +116,9 @@ def check_speed_range(speed_range) -> tuple[float, float]:
 
 
 def check_coarse_grid(coarse_grid, grid: Grid) -> Optional[Grid]:
-    """The guide's grid: None, "auto" (:data:`COARSE_GRID` when ``grid`` has at least
-    :data:`GUIDE_FACTOR` times its cells), a Grid or 'NTHETAxNZ' coarser than ``grid``."""
+    """The guide's grid: None or "none" (no guide), "auto" (:data:`COARSE_GRID` when ``grid``
+    has at least :data:`GUIDE_FACTOR` times its cells), a Grid or 'NTHETAxNZ' coarser than
+    ``grid``; ParameterError otherwise."""
     if coarse_grid is None or coarse_grid == "none":
         return None
     if coarse_grid == "auto":
