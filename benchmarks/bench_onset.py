@@ -60,7 +60,7 @@ IPOPT_VARIANTS = {
     "mumps_pivot_order=0 (AMD)": {"ipopt.mumps_pivot_order": 0},
     "mumps_pivot_order=2 (AMF)": {"ipopt.mumps_pivot_order": 2},
     "hessian_constant=yes": {"ipopt.hessian_constant": "yes"},
-    "jac_c_constant=no, warm_start_init_point=yes": {"ipopt.warm_start_init_point": "yes"},
+    "warm_start_init_point=yes": {"ipopt.warm_start_init_point": "yes"},
     "linear_system_scaling=none": {"ipopt.linear_system_scaling": "none"},
     "mu_strategy=adaptive": {"ipopt.mu_strategy": "adaptive"},
 }
