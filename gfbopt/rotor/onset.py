@@ -316,6 +316,8 @@ def _secant_search(line: SpeedLine, speeds: list, guide: Optional[SpeedLine], ba
     unstable = _confirm(line, guide, speeds, onset if onset is not None else math.inf)
     if unstable is not None:                 # the fine grid disagrees with the coarse sign
         below = max(s for s in speeds if s < unstable)
+        if line.f(below) <= 0:               # and below it too: the plain fine scan
+            return _secant_search(line, speeds, None, bar)
         return "onset", _refine(line, below, unstable)
     if onset is None and bracket is not None:    # the guided refinement did not converge
         return _secant_search(line, speeds, None, bar)
