@@ -42,7 +42,9 @@ margin exceeds :data:`COARSE_MARGIN` but whose fine threshold is unstable — a 
 M̄c larger than that margin, several times the largest difference measured (the constant's
 comment).  When the coarse scan finds no onset, the smallest margin is taken on the fine grid
 at the coarse scan's smallest-margin speed.  The result says the guide was used
-(``coarse_grid``, the answer's text; every scan row names its grid and threshold).
+(``coarse_grid``, the answer's text; every scan row names its grid and threshold).  When the
+guide itself fails (e.g. the coarse grid cannot carry a load the fine grid carries, its
+capacity differing by the grid error), the search goes on without it and ``notes`` says so.
 
 ``method="scan"``: the reference search of gfbopt 0.2 — IPOPT warm starts, full thresholds,
 Brent's method on f = (M̄c − M̄)/(M̄c + M̄) to :data:`SPEED_TOLERANCE` (relative), the whirl
@@ -70,7 +72,7 @@ from ..inputs.rotor import Rotor
 from ..progress import progress as progress_bar
 from ..static import SolverCache
 from .analysis import resolve_case
-from .speed_line import SpeedLine
+from .speed_line import Guide, GuideFailed, SpeedLine, secant_root
 
 #: largest ratio between successive scan speeds [-]
 SCAN_RATIO = 1.25
@@ -85,8 +87,6 @@ METHODS = ("secant", "scan")
 #: measured ≤ 1e-9 against the reference at a tight tolerance).  Steps much smaller would
 #: only resolve the noise of g (~1e-10: the static and threshold tolerances)
 SECANT_TOLERANCE = 1e-6
-#: secant steps before the refinement falls back to Brent's method on full thresholds
-SECANT_STEPS = 16
 #: the full threshold at the secant's onset must put the root within this of it, in ln N
 #: (relative speed; one Newton step on g) [-]
 CONFIRM_TOLERANCE = 1e-7
@@ -243,19 +243,24 @@ def onset_speed(bearing: BearingGeometry, rotor: Rotor, load_newton: Optional[fl
     count = max(2, math.ceil(math.log(high / low) / math.log(SCAN_RATIO) - 1e-9) + 1)
     speeds = [low * (high / low) ** (k / (count - 1)) for k in range(count)]
     line = SpeedLine(case, fast_path=(method == "secant"))
-    guide = None
+    guide, note = None, ""
     if guide_grid is not None:
-        guide = SpeedLine(dataclasses.replace(case, grid=guide_grid))
+        guide = Guide(dataclasses.replace(case, grid=guide_grid))
         line.guide = guide
     with progress_bar(total=count, desc="onset speed", unit="speed",
                       enabled=progress) as bar:
         if method == "scan":
             kind, onset = _scan_search(line, speeds, bar)
         else:
-            kind, onset = _secant_search(line, speeds, guide, bar)
+            try:
+                kind, onset = _secant_search(line, speeds, guide, bar)
+            except GuideFailed as exc:          # e.g. the coarse grid cannot carry the load
+                note = f"the {guide_grid} guide failed ({exc}): searched on {grid} alone"
+                guide = line.guide = None
+                kind, onset = _secant_search(line, speeds, None, bar)
         bar.set_postfix_str("done")
         bar.update(max(0, count - bar.n))
-    return _result(line, guide, kind, onset, method, t0, speed_range_rpm=(low, high),
+    return _result(line, guide, kind, onset, method, t0, note, speed_range_rpm=(low, high),
                    rotor_mass_kg=rotor.mass_kg, load_newton=case.load_newton,
                    conventions=case.conventions())
 
@@ -350,7 +355,7 @@ def _guided(line: SpeedLine, guide: SpeedLine, low: float, high: float, lowest: 
             highest: float) -> Optional[float]:
     """The fine onset from the coarse one: the coarse secant in [low, high], then the fine
     secant from there with a first Newton step on the coarse slope; None if it fails."""
-    coarse = _secant(guide, low, high, COARSE_TOLERANCE)
+    coarse = secant_root(guide, low, high, COARSE_TOLERANCE)
     if coarse is None:
         return None
     u0, slope = coarse
@@ -358,14 +363,14 @@ def _guided(line: SpeedLine, guide: SpeedLine, low: float, high: float, lowest: 
     if not (math.isfinite(row["g"]) and slope < 0):
         return None
     u1 = u0 - row["g"] / slope
-    found = _secant(line, lowest, highest, SECANT_TOLERANCE, start=[(u0, row["g"])],
+    found = secant_root(line, lowest, highest, SECANT_TOLERANCE, start=[(u0, row["g"])],
                     first=u1)
     return _confirmed(line, found)
 
 
 def _refine(line: SpeedLine, low: float, high: float) -> float:
     """The onset in the fine bracket [low, high] (f(low) > 0 ≥ f(high), full thresholds)."""
-    found = _confirmed(line, _secant(line, low, high, SECANT_TOLERANCE))
+    found = _confirmed(line, secant_root(line, low, high, SECANT_TOLERANCE))
     if found is not None:
         return found
     # another branch took over, or the secant did not converge: the reference refinement
@@ -391,75 +396,6 @@ def _confirmed(line: SpeedLine, found) -> Optional[float]:
     return speed if abs(full / slope) <= CONFIRM_TOLERANCE else None
 
 
-def _secant(line: SpeedLine, low: float, high: float, tol: float, start=None,
-            first: Optional[float] = None) -> Optional[tuple]:
-    """(u*, dg/du) with g(u*) = 0, u = ln N [rpm], by secant steps safeguarded by bisection.
-
-    [lo, hi] = [ln ``low``, ln ``high``].  Without ``start``, it is a bracket whose ends are evaluated with full thresholds
-    (g(lo) > 0 ≥ g(hi)); with ``start`` = [(u0, g0)] and a ``first`` point, the secant starts
-    there and [lo, hi] only bounds it until a sign change brackets the root.  Interior points
-    use local thresholds.  Converged when the next secant step is at most ``tol``: that next
-    point is returned without evaluating it (the caller evaluates it in full); the secant
-    converges superlinearly, so its error is of the order of the product of the last two
-    steps.  None when it leaves the bounds without a bracket or does not converge in
-    :data:`SECANT_STEPS` steps."""
-    lo, hi = math.log(low), math.log(high)
-    ends = {lo: low, hi: high} if start is None else {}
-
-    def g(u, full=False):
-        speed = ends.get(u, math.exp(u))
-        return (line.full(speed) if full else line.local(speed))["g"]
-
-    if start is None:
-        points = [(lo, g(lo, True)), (hi, g(hi, True))]
-        a, b = lo, hi
-        u = None
-    else:
-        points = list(start)
-        a = b = None
-        u = first
-    for step in range(SECANT_STEPS):
-        (u0, g0), (u1, g1) = (points[-2], points[-1]) if len(points) > 1 else (
-            (None, None), points[-1])
-        predicted = u is not None or (g0 is not None and math.isfinite(g0)
-                                      and math.isfinite(g1) and g1 != g0)
-        if u is None and predicted:
-            u = u1 - g1 * (u1 - u0) / (g1 - g0)
-        if a is not None and (u is None or not a < u < b):
-            u, predicted = 0.5 * (a + b), False   # bisection inside the bracket
-        if u is None or not lo <= u <= hi:
-            return None
-        if predicted and (step > 0 or start is not None) and abs(u - u1) <= tol:
-            return u, _slope(points)              # converged: u is the next secant point
-        gu = g(u)
-        if not math.isfinite(gu) and a is None:
-            return None
-        if a is None:
-            signs = [p for p in points + [(u, gu)] if math.isfinite(p[1])]
-            pos = [p[0] for p in signs if p[1] > 0]
-            neg = [p[0] for p in signs if p[1] <= 0]
-            if pos and neg and max(pos) < min(neg):
-                a, b = max(pos), min(neg)
-        elif gu > 0:
-            a = u
-        else:
-            b = u
-        points.append((u, gu))
-        if gu == 0:
-            return u, _slope(points)
-        u = None
-    return None
-
-
-def _slope(points: list) -> float:
-    """dg/du from the last two points (nan when one is not finite)."""
-    if len(points) < 2:
-        return math.nan
-    (v0, h0), (v1, h1) = points[-2], points[-1]
-    finite = math.isfinite(h0) and math.isfinite(h1) and v1 != v0
-    return (h1 - h0) / (v1 - v0) if finite else math.nan
-
-
 # --------------------------------------------------------------------- the result
 #: scan-row keys kept for the search only
 _INTERNAL = ("f", "g", "root")
@@ -473,7 +409,7 @@ def _rows(line: Optional[SpeedLine]) -> list:
 
 
 def _result(line: SpeedLine, guide: Optional[SpeedLine], kind: str, onset: float,
-            method: str, t0: float, **common) -> OnsetResult:
+            method: str, t0: float, note: str = "", **common) -> OnsetResult:
     rows = _rows(line)
     worst = min(rows, key=lambda r: r["mass_margin"])
     gamma = frequency = math.nan
@@ -482,6 +418,7 @@ def _result(line: SpeedLine, guide: Optional[SpeedLine], kind: str, onset: float
         gamma = row["whirl_ratio"]
         frequency = whirl_frequency_hz(gamma, rpm_to_rad_per_s(onset))
     notes = sorted({r["message"] for r in rows + _rows(guide) if r["message"]})
+    notes += [note] if note else []
     return OnsetResult(onset_speed_rpm=onset, whirl_frequency_hz=frequency, whirl_ratio=gamma,
                        stable_over_range=kind == "stable",
                        unstable_at_lower_end=kind == "unstable",

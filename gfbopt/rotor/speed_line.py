@@ -17,7 +17,8 @@ grows as N², M̄c slowly, so g is nearly linear in ln N).  Each evaluation
   follows one branch; the search confirms its answer with a full one.
 
 Every evaluation is a row of the result's scan, with the grid it was made on and whether its
-threshold was full or local.
+threshold was full or local.  :class:`Guide` is the line of a coarse guide (its failures are
+:class:`GuideFailed`); :func:`secant_root` is the safeguarded secant on g.
 """
 from __future__ import annotations
 
@@ -28,6 +29,7 @@ from typing import Optional
 import numpy as np
 from scipy.interpolate import RegularGridInterpolator
 
+from ..errors import ConvergenceError, ParameterError
 from ..inputs.conversions import film_thickness_um
 from ..linear import linear_threshold, linearise
 from ..linear.crossings import local_crossing
@@ -38,6 +40,9 @@ from .analysis import Case, equilibrium
 #: another speed when it is nearer by more than this, in |ln(speed ratio)| [-]: the grid
 #: error of the guide (~1 %) is worth a few per cent of speed
 GUIDE_DISTANCE = 0.05
+#: secant steps before :func:`secant_root` gives up (the onset search then falls back to
+#: Brent's method on full thresholds)
+SECANT_STEPS = 16
 
 
 class SpeedLine:
@@ -174,3 +179,93 @@ def transferred_start(coarse: StaticSolution, solver, model) -> StaticSolution:
     x = consistent_state(solver, model, np.maximum(p_full, 1e-3), coarse.eccentricity,
                          coarse.attitude_angle)
     return dataclasses.replace(coarse, state=x, grid=solver.grid)
+
+
+class GuideFailed(Exception):
+    """An evaluation on the coarse guide failed (a load its grid cannot carry, a solver
+    failure): the search goes on without the guide."""
+
+
+class Guide(SpeedLine):
+    """The coarse guide's line: its failures are :class:`GuideFailed`, never the answer."""
+
+    def full(self, speed: float) -> dict:
+        try:
+            return super().full(speed)
+        except (ParameterError, ConvergenceError) as exc:
+            raise GuideFailed(str(exc)) from exc
+
+    def local(self, speed: float, near: Optional[dict] = None) -> dict:
+        try:
+            return super().local(speed, near)
+        except (ParameterError, ConvergenceError) as exc:
+            raise GuideFailed(str(exc)) from exc
+
+
+def secant_root(line: SpeedLine, low: float, high: float, tol: float, start=None,
+            first: Optional[float] = None) -> Optional[tuple]:
+    """(u*, dg/du) with g(u*) = 0, u = ln N [rpm], by secant steps safeguarded by bisection.
+
+    [lo, hi] = [ln ``low``, ln ``high``].  Without ``start``, it is a bracket whose ends are evaluated with full thresholds
+    (g(lo) > 0 ≥ g(hi)); with ``start`` = [(u0, g0)] and a ``first`` point, the secant starts
+    there and [lo, hi] only bounds it until a sign change brackets the root.  Interior points
+    use local thresholds.  Converged when the next secant step is at most ``tol``: that next
+    point is returned without evaluating it (the caller evaluates it in full); the secant
+    converges superlinearly, so its error is of the order of the product of the last two
+    steps.  None when it leaves the bounds without a bracket or does not converge in
+    :data:`SECANT_STEPS` steps."""
+    lo, hi = math.log(low), math.log(high)
+    ends = {lo: low, hi: high} if start is None else {}
+
+    def g(u, full=False):
+        speed = ends.get(u, math.exp(u))
+        return (line.full(speed) if full else line.local(speed))["g"]
+
+    if start is None:
+        points = [(lo, g(lo, True)), (hi, g(hi, True))]
+        a, b = lo, hi
+        u = None
+    else:
+        points = list(start)
+        a = b = None
+        u = first
+    for step in range(SECANT_STEPS):
+        (u0, g0), (u1, g1) = (points[-2], points[-1]) if len(points) > 1 else (
+            (None, None), points[-1])
+        predicted = u is not None or (g0 is not None and math.isfinite(g0)
+                                      and math.isfinite(g1) and g1 != g0)
+        if u is None and predicted:
+            u = u1 - g1 * (u1 - u0) / (g1 - g0)
+        if a is not None and (u is None or not a < u < b):
+            u, predicted = 0.5 * (a + b), False   # bisection inside the bracket
+        if u is None or not lo <= u <= hi:
+            return None
+        if predicted and (step > 0 or start is not None) and abs(u - u1) <= tol:
+            return u, slope(points)              # converged: u is the next secant point
+        gu = g(u)
+        if not math.isfinite(gu) and a is None:
+            return None
+        if a is None:
+            signs = [p for p in points + [(u, gu)] if math.isfinite(p[1])]
+            pos = [p[0] for p in signs if p[1] > 0]
+            neg = [p[0] for p in signs if p[1] <= 0]
+            if pos and neg and max(pos) < min(neg):
+                a, b = max(pos), min(neg)
+        elif gu > 0:
+            a = u
+        else:
+            b = u
+        points.append((u, gu))
+        if gu == 0:
+            return u, slope(points)
+        u = None
+    return None
+
+
+def slope(points: list) -> float:
+    """dg/du from the last two points (nan when one is not finite)."""
+    if len(points) < 2:
+        return math.nan
+    (v0, h0), (v1, h1) = points[-2], points[-1]
+    finite = math.isfinite(h0) and math.isfinite(h1) and v1 != v0
+    return (h1 - h0) / (v1 - v0) if finite else math.nan

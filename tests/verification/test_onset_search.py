@@ -120,19 +120,37 @@ def test_a_wrong_guide_does_not_change_the_answer(monkeypatch, plain_48x12, fact
     grid, guide_grid, span = Grid(48, 12), Grid(24, 8), (9000.0, 16000.0)
     cache, plain = plain_48x12
     common = dict(options=OPTIONS, grid=grid, cache=cache)
-    original = onset_module.SpeedLine
+    original = onset_module.Guide
 
     def wrong_guide(case, *args, **kwargs):
-        if case.grid == guide_grid:
-            case = dataclasses.replace(case, rotor=Rotor(case.rotor.mass_kg * factor))
+        case = dataclasses.replace(case, rotor=Rotor(case.rotor.mass_kg * factor))
         return original(case, *args, **kwargs)
 
-    monkeypatch.setattr(onset_module, "SpeedLine", wrong_guide)
+    monkeypatch.setattr(onset_module, "Guide", wrong_guide)
     guided = onset_speed(BEARING, Rotor(2.0), 20.0, span, coarse_grid=guide_grid, **common)
     assert kind(guided) == kind(plain) == "onset"
     assert guided.onset_speed_rpm == pytest.approx(plain.onset_speed_rpm, rel=SAME)
     assert guided.scan[0]["critical_mass_parameter"] == pytest.approx(
         plain.scan[0]["critical_mass_parameter"], rel=1e-8)
+
+
+def test_a_guide_that_cannot_carry_the_load_is_dropped(monkeypatch, plain_48x12):
+    """The coarse grid's load capacity differs from the fine grid's by its grid error (found
+    on a random case: 35.1 N at 2,808 rpm, 33.5 N carried at 36 × 10, carried at 72 × 20):
+    a guide that fails is dropped, the search goes on on the fine grid and says so."""
+    cache, plain = plain_48x12
+    original = onset_module.Guide
+
+    def overloaded_guide(case, *args, **kwargs):
+        return original(dataclasses.replace(case, load_newton=1e4), *args, **kwargs)
+
+    monkeypatch.setattr(onset_module, "Guide", overloaded_guide)
+    result = onset_speed(BEARING, Rotor(2.0), 20.0, (9000.0, 16000.0), coarse_grid="24x8",
+                         options=OPTIONS, grid=Grid(48, 12), cache=cache)
+    assert result.onset_speed_rpm == pytest.approx(plain.onset_speed_rpm, rel=SAME)
+    assert result.coarse_grid == "" and result.coarse_scan == []
+    assert "the 24x8 guide failed (load_newton = 10000.0: load exceeds" in result.notes
+    assert "searched on 48x12 alone" in result.notes and result.message == ""
 
 
 def test_stable_and_unstable_answers_equal_the_reference(monkeypatch, cache):
