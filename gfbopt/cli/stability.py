@@ -151,13 +151,14 @@ def run(args) -> int:
                conventions=options.to_dict(), warnings=[])
     result = table = onset = None
     wants_onset = args.onset or args.speed_range is not None
-    steps = (2 if args.speed_rpm is not None else 0) + (1 if wants_onset else 0)
     resolve_case(bearing, rotor, args.load_newton, **common)    # bad input: before any solve
     if wants_onset:
         check_speed_range(_span(args))
-    bar = progress(total=steps, desc="stability", unit="step")
-    # closed on success only: an error is one line of its own, with no status after it
+    # the operating point's two steps have a status of their own; the onset search reports its
+    # own progress (one line per speed when stderr is not a terminal).  A bar is closed on
+    # success only: an error is one line of its own, with no status after it
     if args.speed_rpm is not None:
+        bar = progress(total=2, desc="stability", unit="step")
         bar.set_postfix_str(f"operating point {args.speed_rpm:.6g} rpm")
         result = stability(bearing, rotor, OperatingPoint(args.speed_rpm,
                                                           args.load_newton), **common)
@@ -173,17 +174,15 @@ def run(args) -> int:
             table.write_csv(args.csv)
             out["csv"] = str(args.csv)
         bar.update(1)
+        bar.close()
     if wants_onset:
         span = _span(args)
-        bar.set_postfix_str(f"onset speed in {span[0]:.6g}–{span[1]:.6g} rpm")
-        onset = onset_speed(bearing, rotor, args.load_newton, span, **common)
+        onset = onset_speed(bearing, rotor, args.load_newton, span, **common, progress=True)
         out["onset"] = {k: v for k, v in onset.to_dict().items() if k != "conventions"}
         out["onset_speed_rpm"] = onset.onset_speed_rpm
         out["onset_whirl_frequency_hz"] = onset.whirl_frequency_hz
         if result is None:
             out["conventions"] = onset.conventions
-        bar.update(1)
-    bar.close()
     done = [r for r in (result, onset) if r is not None]
     success = all(r.success for r in done)
     out["success"] = success
