@@ -287,3 +287,33 @@ for _name, _entry in {
     "solves": ("-", "geometric programs solved"),
 }.items():
     GLOSSARY.setdefault(_name, _entry)
+
+
+# ---------------------------------------------------------------- rotor transients
+# Columns of rotor transients (gfbopt.transient.rotor_result, study kind rotor_run_up);
+# per-bearing columns carry the bearing's name (x_A_um, min_film_B_um, …).
+for _name, _entry in {
+    "time_s": ("s", "time since the start of the run"),
+    "shaft_angle_deg": ("deg", "shaft angle since the start of the run (the imbalance phase "
+                        "origin)"),
+    "sync_amplitude_x_um": ("µm", "order-tracked 1× amplitude of the journal's x (along "
+                            "gravity), zero to peak"),
+    "sync_phase_x_deg": ("deg", "phase of that 1× component: x peaks when the shaft angle is "
+                         "minus this"),
+    "sync_amplitude_y_um": ("µm", "order-tracked 1× amplitude of the journal's y, zero to "
+                            "peak"),
+    "sync_phase_y_deg": ("deg", "phase of the 1× component of y"),
+    "sub_amplitude_um": ("µm", "largest subsynchronous spectral peak (0.05–0.95 × shaft "
+                         "speed), 1× removed, zero to peak"),
+    "sub_frequency_hz": ("Hz", "frequency of that peak (positive: forward whirl)"),
+    "sub_whirl_ratio": ("-", "that frequency over the shaft frequency"),
+    "quantity": ("text", "what the row reports"),
+    "value": ("-", "its value, in the unit named by the quantity"),
+}.items():
+    GLOSSARY.setdefault(_name, _entry)
+_PATTERNS += (
+    (r"x_(\w+)_um", "µm", "journal centre x at bearing {0} (global frame, along gravity, "
+     "from the bearing centre)"),
+    (r"y_(\w+)_um", "µm", "journal centre y at bearing {0} (90° ahead of gravity)"),
+    (r"min_film_(\w+)_um", "µm", "smallest film at bearing {0} since the previous sample"),
+)

@@ -102,3 +102,8 @@ def run_study(path: Union[str, Path, LoadedStudy], results_root: Union[str, Path
     result = compute(loaded, workers=workers, progress=progress)
     write_result(result, Path(results_root))
     return result
+
+
+from . import rotor_transient  # noqa: E402  (rotor transients, issue 18)
+
+register(rotor_transient)

@@ -207,22 +207,27 @@ class Layout:
     phi: tuple          # per bearing: shape of Φ
     foil: tuple         # per bearing: shape of W, or None
     width: int          # L
+    phi_size: tuple = ()    # per bearing: entries of Φ
+    foil_size: tuple = ()   # per bearing: entries of W (0 without a foil state)
 
     @property
     def rotor(self) -> int:
         """Start of q̃ in slot 0 (then q̃' at +4, τ at +8)."""
         return self.width - 9
 
+    @property
+    def filled(self) -> int:
+        """Entries every slot's film and foil state fill (the rest of a slot is padding)."""
+        return min(p + f for p, f in zip(self.phi_size, self.foil_size))
+
     def phi_of(self, z: np.ndarray, k: int) -> np.ndarray:
-        shape = self.phi[k]
-        return z[:, k, :int(np.prod(shape))].reshape((z.shape[0],) + shape)
+        return z[:, k, :self.phi_size[k]].reshape((z.shape[0],) + self.phi[k])
 
     def foil_of(self, z: np.ndarray, k: int) -> Optional[np.ndarray]:
         if self.foil[k] is None:
             return None
-        n = int(np.prod(self.phi[k]))
-        shape = self.foil[k]
-        return z[:, k, n:n + int(np.prod(shape))].reshape((z.shape[0],) + shape)
+        n = self.phi_size[k]
+        return z[:, k, n:n + self.foil_size[k]].reshape((z.shape[0],) + self.foil[k])
 
     def rotor_of(self, z: np.ndarray) -> np.ndarray:
         """q̃, q̃' and τ of every run, (B, 9) (a view)."""
@@ -237,7 +242,9 @@ def layout(model: RotorTransientModel) -> Layout:
         foils.append(None if fs is None else tuple(fs.equilibrium.shape))
         width = max(width, int(np.prod(b.tm.shape)) +
                     (0 if fs is None else int(np.prod(fs.equilibrium.shape))))
-    return Layout(tuple(phis), tuple(foils), width + 9)
+    sizes = tuple(int(np.prod(p)) for p in phis)
+    foil_sizes = tuple(0 if f is None else int(np.prod(f)) for f in foils)
+    return Layout(tuple(phis), tuple(foils), width + 9, sizes, foil_sizes)
 
 
 def empty_states(model: RotorTransientModel, batch: int) -> np.ndarray:
@@ -340,8 +347,8 @@ class RotorRightHandSide:
         self.accel_each = minv[None] / scale[:, None, None]                # (B, 4, 4)
         self.gyro = (np.linalg.inv(model.mass_matrix) @ model.gyroscopic).T.copy()
         self.static = model.static_force
-        self.planes = np.array([station_matrix(p.position).T * p.amount * w * w
-                                for p in model.imbalance]).reshape(-1, 4, 2)
+        self.amounts = np.array([p.amount * w * w for p in model.imbalance])  # u ω_ref² [N]
+        self.moments = self.amounts * np.array([p.position for p in model.imbalance])
         self.phases = np.array([p.phase for p in model.imbalance])
         self.film_divisor = [2.0 * b.tm.bearing_number * (w / b.model_speed)
                              for b in model.bearings]
@@ -349,6 +356,7 @@ class RotorRightHandSide:
         self.base_lambda = [b.tm.bearing_number * (w / b.model_speed) for b in model.bearings]
         self.same_speed = bool(np.all(batch.speed == batch.speed[0])
                                and np.all(batch.ramp == batch.ramp[0])) if batch.size else True
+        self._kernels = [_AtSpeed(b.tm) for b in model.bearings]
         self.evaluations = 0
         self.min_film = np.full((batch.size, k), np.inf)
         self.max_deflection = np.full((batch.size, k), -np.inf)
@@ -382,11 +390,11 @@ class RotorRightHandSide:
         if self.stack:
             flat = z.reshape((-1, lay.width))
             tm = bearings[0].tm
-            n = int(np.prod(lay.phi[0]))
+            n = lay.phi_size[0]
             phi = flat[:, :n].reshape((flat.shape[0],) + lay.phi[0])
             w = None
             if lay.foil[0] is not None:
-                w = flat[:, n:n + int(np.prod(lay.foil[0]))].reshape(
+                w = flat[:, n:n + lay.foil_size[0]].reshape(
                     (flat.shape[0],) + lay.foil[0])
             return [(slice(None), tm, phi, xy[..., 0].ravel(), xy[..., 1].ravel(), w)]
         return [(k, b.tm, lay.phi_of(z, k), xy[:, k, 0], xy[:, k, 1], lay.foil_of(z, k))
@@ -411,23 +419,22 @@ class RotorRightHandSide:
         tau = rotor[:, 8]
         xy = self.journals(z)
         speed = self._speed(tau)
-        out = np.zeros_like(z)
+        out = np.empty_like(z)
+        out[:, :, lay.filled:] = 0.0                   # padding (the rotor's tail is set below)
         forces = np.empty((nb, k, 2))
         for j, tm, phi, x, y, w in self._films(z, xy):
             jj = 0 if self.stack else j
             p, h = pressure_and_film(phi, x, y, tm, deflection=w)
-            if isinstance(speed, float):
-                lam = self.base_lambda[jj] * speed
-                kernel = tm if lam == tm.bearing_number else replace(tm, bearing_number=lam)
-            else:
-                lam = self.base_lambda[jj] * speed
+            lam = self.base_lambda[jj] * speed
+            if not isinstance(speed, float):
                 lam = (np.repeat(lam, k) if self.stack else lam)[:, None, None]
-                kernel = replace(tm, bearing_number=lam)
+            kernel = self._kernels[jj]
+            kernel.bearing_number = lam
             dphi = flux_residual(p, h, kernel)
             dphi /= self.film_divisor[jj]
             fx, fy = film_force(p, tm)
             hmin = h.min(axis=(1, 2))
-            n = int(np.prod(tm.shape))
+            n = lay.phi_size[jj]
             if self.stack:
                 view = out.reshape((-1, lay.width))
                 view[:, :n] = dphi.reshape(view.shape[0], n)
@@ -472,10 +479,14 @@ class RotorRightHandSide:
         angle = self.runs.angle_at(tau)[:, None] + self.phases[None, :]       # (B, J)
         c, s = np.cos(angle), np.sin(angle)
         a = self.runs.ramp[:, None]
-        fx = r[:, None] ** 2 * c + a * s
-        fy = r[:, None] ** 2 * s - a * c
-        f = np.stack([fx, fy], axis=-1)                                        # (B, J, 2)
-        return np.einsum("jik,bjk->bi", self.planes, f) * self.runs.imbalance_scale[:, None]
+        r2 = (r * r)[:, None]
+        fx = r2 * c + a * s
+        fy = r2 * s - a * c
+        out = np.empty((tau.size, 4))
+        out[:, 0], out[:, 1] = fx @ self.amounts, fy @ self.amounts
+        out[:, 2], out[:, 3] = fx @ self.moments, fy @ self.moments
+        out *= self.runs.imbalance_scale[:, None]
+        return out
 
     # ---------------------------------------------------------------- stiffness
     def stiffness(self, z: np.ndarray) -> float:
@@ -495,6 +506,19 @@ class RotorRightHandSide:
                 p, h = pressure_and_film(s.phi, s.x, s.y, tm, deflection=s.w)
                 rho = max(rho, foil_bound(p, h, tm) * self.foil_factor[k])
         return rho
+
+
+class _AtSpeed:
+    """The one-bearing model seen by the flux kernel at the current bearing number: Λ is
+    set per evaluation (a run-up changes it continuously, without rebuilding anything);
+    every other attribute is the model's own."""
+
+    def __init__(self, tm: TransientModel):
+        self._tm = tm
+        self.bearing_number = tm.bearing_number
+
+    def __getattr__(self, name):
+        return getattr(self._tm, name)
 
 
 def _deflection(h: np.ndarray, x: np.ndarray, y: np.ndarray, tm: TransientModel):
