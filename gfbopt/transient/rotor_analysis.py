@@ -39,6 +39,11 @@ from .rotor_system import runs
 #: most shaft revolutions a run may take without ``force`` (a run-up 5,000 → 60,000 rpm at
 #: 5,000 rpm/s is ≈ 6,000)
 MAX_REVOLUTIONS = 20_000
+#: rkc's accuracy limit of a ramp [rad of rotation at the top speed]: 30 steps per top-speed
+#: revolution.  At Δτ = 0.2 the one-bearing accuracy study (gfbopt.transient.rkc) finds the
+#: whirl ratio within 3e-4 and the growth rate within 2e-5 per rad of RK4's — ample for a
+#: waterfall and the 1× response — at ≈ 0.7× the cost of Δτ = 0.1, the orbits' default.
+RAMP_MAX_STEP = 0.2
 #: starting perturbations: none (the equilibrium), a cylindrical or conical kick of the
 #: journal velocities (both bearings moving together, or opposite)
 PERTURBATIONS = ("none", "cylindrical", "conical")
@@ -172,12 +177,14 @@ def run_profile(rotor: Union[RotorSystem, RotorInput], profile: SpeedProfile, *,
     duration = profile.duration_s * omega
     run = integrate_rotor(model, batch, duration, z, method=method, time_step=time_step,
                           stages=stages, sample_every=sample_every, contact_film=contact_film,
-                          foil_travel=travel, progress=progress)
+                          foil_travel=travel, progress=progress,
+                          max_step=RAMP_MAX_STEP if profile.kind != "orbit" else 0.1)
     settings = {"grid": str(grid), "method": method, "perturbation": perturbation,
                 "kick": kick if perturbation != "none" else 0.0,
                 "reference_whirl_ratio": reference_whirl_ratio,
                 "contact_film": contact_film, "foil_travel_m": foil_travel_m,
-                "sample_every_rad": sample_every}
+                "sample_every_rad": sample_every,
+                "max_step_rad": RAMP_MAX_STEP if profile.kind != "orbit" else 0.1}
     return summarise(run, profile, inp, solutions, settings, system=system,
                      linear_onset=linear_onset, **post)
 

@@ -140,11 +140,13 @@ def rotor_period(rhs: RotorRightHandSide, z: np.ndarray, h: float = 1e-6) -> flo
     return 2 * math.pi / max(fastest, float(np.max(rate)))
 
 
-def accuracy_step(rhs: RotorRightHandSide, z: np.ndarray, top_speed: float) -> float:
-    """The default RKC step Δτ (module docstring); ``top_speed`` = max ω/ω_ref of the run."""
+def accuracy_step(rhs: RotorRightHandSide, z: np.ndarray, top_speed: float,
+                  max_step: float = MAX_STEP) -> float:
+    """The default RKC step Δτ (module docstring); ``top_speed`` = max ω/ω_ref of the run;
+    ``max_step`` [rad of shaft rotation at the top speed]."""
     films = min(film_time(b.tm) * rhs.model.reference_speed / b.model_speed
                 for b in rhs.model.bearings)
-    return min(MAX_STEP / top_speed, rotor_period(rhs, z) / STEPS_PER_ROTOR_PERIOD,
+    return min(max_step / top_speed, rotor_period(rhs, z) / STEPS_PER_ROTOR_PERIOD,
                films / STEPS_PER_FILM_TIME)
 
 
@@ -163,7 +165,7 @@ def integrate_rotor(model: RotorTransientModel, batch: Runs, duration: float,
                     time_step: Optional[float] = None, stages: Optional[int] = None,
                     sample_every: float = 0.2, contact_film: float = CONTACT_FILM,
                     foil_travel: Optional[float] = None, check_every: int = 5,
-                    progress=None) -> RotorRun:
+                    max_step: float = MAX_STEP, progress=None) -> RotorRun:
     """Advance a batch of rotor runs over ``duration`` rad of τ from the packed ``initial``
     rows (:func:`.rotor_setup.equilibrium_states`).
 
@@ -171,8 +173,9 @@ def integrate_rotor(model: RotorTransientModel, batch: Runs, duration: float,
     accuracy and the stiffness bound (module docstring), refused when outside the stability
     region; sample_every : Δτ between stored samples; contact_film : H at contact [-];
     foil_travel : largest foil deflection W [clearances] before the bumps are exhausted
-    (None: not checked); progress : a :func:`gfbopt.progress.progress` reporter, advanced
-    in shaft revolutions of run 0.
+    (None: not checked); max_step : rkc's accuracy limit [rad of shaft rotation at the top
+    speed] (default 0.1, the one-bearing engine's); progress : a
+    :func:`gfbopt.progress.progress` reporter, advanced in shaft revolutions of run 0.
     """
     t0 = time.perf_counter()
     if method not in METHODS:
@@ -195,7 +198,7 @@ def integrate_rotor(model: RotorTransientModel, batch: Runs, duration: float,
     rhs = RotorRightHandSide(model, batch, track_deflection=foil_travel is not None)
     top = float(np.max(np.maximum(batch.speed, batch.speed_at(duration))))
     rho = rhs.stiffness(z)
-    dt, stages = _first_step(rhs, z, rho, top, method, time_step, stages)
+    dt, stages = _first_step(rhs, z, rho, top, method, time_step, stages, max_step)
     fixed = time_step is not None
     n_steps = int(math.ceil(duration / dt - 1e-9))
     per_sample = max(1, int(round(sample_every / dt)))
@@ -318,7 +321,7 @@ def integrate_rotor(model: RotorTransientModel, batch: Runs, duration: float,
 
 
 def _first_step(rhs: RotorRightHandSide, z: np.ndarray, rho: float, top: float, method: str,
-                time_step, stages) -> tuple:
+                time_step, stages, max_step: float = MAX_STEP) -> tuple:
     """(Δτ, stages) at the start; a given step or stage count outside the stability region
     is refused with the bound it violates."""
     if method == "rk4":
@@ -336,7 +339,7 @@ def _first_step(rhs: RotorRightHandSide, z: np.ndarray, rho: float, top: float, 
             raise ParameterError("stages", stages, f"must be an integer in [2, {MAX_STAGES}]")
         stages = int(stages)
     dt = (_check_positive("time_step", time_step) if time_step is not None
-          else accuracy_step(rhs, z, top))
+          else accuracy_step(rhs, z, top, max_step))
     if stages is None:
         stages = stages_for(dt * rho)
         if stages > MAX_STAGES:
