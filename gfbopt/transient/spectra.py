@@ -17,6 +17,8 @@ negative one backward.  Conventions:
   the window's mean shaft frequency; its amplitude [µm] and signed frequency [Hz].
 * **Appearance speed**: the first window from which the subsynchronous amplitude stays above
   a threshold to the end of the record (a line that appears and persists, not a blip).
+* **Separation in short windows**: the 1× and the subsynchronous peak's sinusoid are fitted
+  together (least squares), so neither leaks into the other's amplitude.
 * **Limit cycle** at constant speed: the subsynchronous orbit (tracked 1× and mean removed);
   its amplitude is the largest distance from the orbit's centre (zero to peak) over the
   last window of ``periods`` whirl periods, its frequency the spectral peak.  **Settled**
@@ -37,13 +39,36 @@ SUB_BAND = (0.05, 0.95)
 PADDING = 4
 
 
-def synchronous_fit(t: np.ndarray, signal: np.ndarray, angle: np.ndarray) -> tuple:
-    """(complex 1× amplitude X̂, fitted 1× part) of a real ``signal`` over its samples."""
+def synchronous_fit(t: np.ndarray, signal: np.ndarray, angle: np.ndarray,
+                    also_hz: float = math.nan) -> tuple:
+    """(complex 1× amplitude X̂, fitted 1× part) of a real ``signal`` over its samples.
+
+    With ``also_hz`` (a subsynchronous frequency found in the window) that sinusoid is fitted
+    jointly, so that it does not leak into the 1× estimate over a short window."""
     tc = t - t.mean()
-    basis = np.column_stack([np.ones_like(t), tc, np.cos(angle), np.sin(angle)])
+    columns = [np.ones_like(t), tc, np.cos(angle), np.sin(angle)]
+    if math.isfinite(also_hz) and also_hz != 0:
+        columns += [np.cos(2 * math.pi * also_hz * tc), np.sin(2 * math.pi * also_hz * tc)]
+    basis = np.column_stack(columns)
     coef, *_ = np.linalg.lstsq(basis, signal, rcond=None)
     amp = complex(coef[2], -coef[3])
-    return amp, basis[:, 2:] @ coef[2:]
+    return amp, basis[:, 2:4] @ coef[2:4]
+
+
+def components(t: np.ndarray, x: np.ndarray, y: np.ndarray, angle: np.ndarray,
+               shaft_hz: float) -> tuple:
+    """(X̂, Ŷ 1× amplitudes, subsynchronous frequency [Hz], its amplitude, the orbit with
+    the mean and 1× removed) of one window: 1× tracked, the subsynchronous peak found in the
+    rest, then both fitted together and the peak re-read."""
+    sx, px = synchronous_fit(t, x, angle)
+    sy, py = synchronous_fit(t, y, angle)
+    fs, _ = subsynchronous_peak(t, (x - px) + 1j * (y - py), shaft_hz)
+    if math.isfinite(fs):
+        sx, px = synchronous_fit(t, x, angle, abs(fs))
+        sy, py = synchronous_fit(t, y, angle, abs(fs))
+    rest = (x - px) + 1j * (y - py)
+    fs, amp = subsynchronous_peak(t, rest, shaft_hz)
+    return sx, sy, fs, amp, rest
 
 
 def amplitude_spectrum(t: np.ndarray, z: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -113,14 +138,12 @@ def waterfall(t: np.ndarray, x: np.ndarray, y: np.ndarray, angle: np.ndarray,
     for s in starts:
         sl = slice(s, s + n)
         tt, aa = t[sl], angle[sl]
-        sx, px = synchronous_fit(tt, x[sl], aa)
-        sy, py = synchronous_fit(tt, y[sl], aa)
         f, amp = amplitude_spectrum(tt, x[sl] + 1j * y[sl])
         keep = np.abs(f) <= fmax
         freq = f[keep]
         rows.append(amp[keep])
         shaft = float(np.mean(speed_rpm[sl])) / 60.0
-        fs, asub = subsynchronous_peak(tt, (x[sl] - px) + 1j * (y[sl] - py), shaft)
+        sx, sy, fs, asub, _ = components(tt, x[sl], y[sl], aa, shaft)
         times.append(float(tt.mean()))
         speeds.append(shaft * 60.0)
         syncs.append((sx, sy))
@@ -131,13 +154,25 @@ def waterfall(t: np.ndarray, x: np.ndarray, y: np.ndarray, angle: np.ndarray,
 
 
 def subsynchronous_peak(t: np.ndarray, z: np.ndarray, shaft_hz: float) -> tuple:
-    """(signed frequency [Hz], amplitude) of the largest peak in the subsynchronous band."""
+    """(signed frequency [Hz], amplitude) of the largest peak in the subsynchronous band,
+    the frequency refined to the maximum of the windowed transform (a parabola through a
+    fine scan of ± one padded bin: the single-tone estimate, well below the bin width)."""
     f, amp = amplitude_spectrum(t, z)
     band = (np.abs(f) >= SUB_BAND[0] * shaft_hz) & (np.abs(f) <= SUB_BAND[1] * shaft_hz)
     if not band.any():
         return math.nan, math.nan
     k = np.flatnonzero(band)[np.argmax(amp[band])]
-    return float(f[k]), float(amp[k])
+    bin_hz = f[1] - f[0]
+    trial = f[k] + bin_hz * np.linspace(-1.0, 1.0, 21)
+    w = np.hanning(t.size)
+    zc = (z - z.mean()) * w
+    tc = t - t[0]
+    values = np.abs(np.exp(-2j * math.pi * np.outer(trial, tc)) @ zc) / w.sum()
+    j = int(np.clip(np.argmax(values), 1, trial.size - 2))
+    a, b, c = values[j - 1], values[j], values[j + 1]
+    shift = 0.5 * (a - c) / (a - 2 * b + c) if (a - 2 * b + c) != 0 else 0.0
+    step = trial[1] - trial[0]
+    return float(trial[j] + shift * step), float(b - 0.25 * (a - c) * shift)
 
 
 def appearance(speed_rpm: np.ndarray, amplitude: np.ndarray, threshold: float) -> tuple:
@@ -196,12 +231,10 @@ def limit_cycle(t: np.ndarray, x: np.ndarray, y: np.ndarray, angle: np.ndarray,
     amps, freq, sync = [], math.nan, math.nan
     for k in (1, 0):
         sel = (t >= t[-1] - (k + 1) * window) & (t <= t[-1] - k * window)
-        sx, px = synchronous_fit(t[sel], x[sel], angle[sel])
-        sy, py = synchronous_fit(t[sel], y[sel], angle[sel])
-        zs = (x[sel] - px) + 1j * (y[sel] - py)
+        sx, sy, fs, _, zs = components(t[sel], x[sel], y[sel], angle[sel], shaft_hz)
         amps.append(float(np.abs(zs - zs.mean()).max()))
         if k == 0:
-            freq, _ = subsynchronous_peak(t[sel], zs, shaft_hz)
+            freq = fs
             sync = math.sqrt((abs(sx) ** 2 + abs(sy) ** 2) / 2)
     change = amps[1] / amps[0] - 1.0 if amps[0] > 0 else math.nan
     return LimitCycle(amps[1], amps[0], freq, abs(freq) / shaft_hz if math.isfinite(freq)

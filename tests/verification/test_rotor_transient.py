@@ -32,10 +32,12 @@ GRID = Grid.parse("36x10")
 G = 9.80665
 
 
-def symmetric_rotor(mass=3.2, inertia=0.012, polar=0.0, half_span=0.05, imbalance=()):
+def symmetric_rotor(mass=3.2, inertia=0.012, polar=0.0, half_span=0.05, imbalance=(),
+                    loss_factor=0.0):
     m, g = rigid_rotor_matrices(mass, inertia, polar)
-    bearings = (RotorBearing(BEARING, -half_span, OPTIONS, "A"),
-                RotorBearing(BEARING, half_span, OPTIONS, "B"))
+    options = {**OPTIONS, "loss_factor": loss_factor}
+    bearings = (RotorBearing(BEARING, -half_span, options, "A"),
+                RotorBearing(BEARING, half_span, options, "B"))
     return RotorInput(m, g, bearings, static_force_of([(mass * G, 0.0, 0.0)]), imbalance)
 
 
@@ -44,12 +46,16 @@ def cache():
     return SolverCache(GRID)
 
 
-@pytest.mark.parametrize("method", ["rkc", "rk4"])
-def test_symmetric_rotor_is_the_one_bearing_engine_in_cylindrical_whirl(method, cache):
+@pytest.mark.parametrize("method, loss_factor", [("rkc", 0.0), ("rk4", 0.0), ("rkc", 0.2)])
+def test_symmetric_rotor_is_the_one_bearing_engine_in_cylindrical_whirl(method, loss_factor,
+                                                                       cache):
+    """Also with a loss factor: both films then carry their Kelvin–Voigt foil states, the
+    same states as the one-bearing engine's (its ν_ref, the bearing's threshold whirl)."""
     speed = 30_000.0
-    rotor = symmetric_rotor()
+    rotor = symmetric_rotor(loss_factor=loss_factor)
     model, sols = build_model(rotor, speed, GRID, cache=cache)
     tm = model.bearings[0].tm
+    assert (tm.foil_state is not None) == (loss_factor > 0)
     assert sols[0].load == sols[1].load
     omega = speed * math.pi / 30
     mbar = (3.2 / 2) * BEARING.radial_clearance * omega ** 2 / (3.2 * G / 2)
