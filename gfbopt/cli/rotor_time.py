@@ -168,7 +168,7 @@ def handle(args) -> int:
     from ..inputs import Grid
     from ..inputs.rotor_system import load_rotor
     from ..progress import progress
-    from ..transient.rotor_analysis import run_profile
+    from ..transient.rotor_analysis import progress_units, run_profile
 
     profile = _check(args)
     if args.stages is not None and args.method != "rkc":
@@ -180,8 +180,8 @@ def handle(args) -> int:
         system = replace(system, imbalance=planes)
     perturbation = args.perturbation or ("cylindrical" if profile.kind == "orbit" else "none")
     scale = 1.0 if system.imbalance else 0.0
-    with progress(total=int(math.ceil(profile.revolutions)), desc=f"rotor {profile.kind}",
-                  unit="rev") as bar:
+    total, unit = progress_units(profile)
+    with progress(total=total, desc=f"rotor {profile.kind}", unit=unit) as bar:
         result = run_profile(
             system, profile, grid=grid, method=args.method, perturbation=perturbation,
             kick=args.kick, imbalance_scale=scale, time_step=args.time_step,

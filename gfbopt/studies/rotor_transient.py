@@ -93,21 +93,21 @@ def run_rotor_run_up(study: Study, plan: dict, ctx: RunContext) -> StudyResult:
     from ..inputs import Grid
     from ..plotting.waterfall import plot_components, plot_journal_orbits, plot_waterfall
     from ..progress import progress
-    from ..transient.rotor_analysis import run_profile
+    from ..transient.rotor_analysis import progress_units, run_profile
 
     spec, system = study.spec, plan["system"]
     grid = Grid.parse(spec["grid"])
     common = dict(grid=grid, method=spec["method"], time_step=spec["time_step"],
                   system=system)
     ramp = plan["ramp"]
-    with progress(total=int(math.ceil(ramp.revolutions)), desc="rotor run-up",
-                  unit="rev") as bar:
+    total, unit = progress_units(ramp)
+    with progress(total=total, desc="rotor run-up", unit=unit) as bar:
         up = run_profile(system, ramp, perturbation="none", progress=bar,
                          window_revolutions=spec["window_revolutions"],
                          subsync_threshold_um=spec["subsync_threshold_um"], **common)
     top = plan["top"]
-    with progress(total=int(math.ceil(top.revolutions)), desc="orbit at the top speed",
-                  unit="rev") as bar:
+    total, unit = progress_units(top)
+    with progress(total=total, desc="orbit at the top speed", unit=unit) as bar:
         orbit = run_profile(system, top, perturbation="cylindrical", kick=spec["kick"],
                             progress=bar, settle_tolerance=spec["settle_tolerance"], **common)
     names = up.names

@@ -114,6 +114,14 @@ def ramp_profile(start_rpm, end_rpm, rate_rpm_per_s, kind: str = "run-up",
     return SpeedProfile(kind, start, end, rate, duration, revs)
 
 
+def progress_units(profile: SpeedProfile) -> tuple:
+    """(total, unit) of a run's progress: revolutions of an orbit (uniform in time), the
+    simulated milliseconds of a ramp (its revolutions are not: the ETA would mislead)."""
+    if profile.kind == "orbit":
+        return max(1, int(math.ceil(profile.revolutions))), "rev"
+    return max(1, int(math.ceil(profile.duration_s * 1e3))), "ms simulated"
+
+
 def _rotor(rotor: Union[RotorSystem, RotorInput]) -> RotorInput:
     return rotor if isinstance(rotor, RotorInput) else rotor_input(rotor)
 
@@ -178,6 +186,7 @@ def run_profile(rotor: Union[RotorSystem, RotorInput], profile: SpeedProfile, *,
     run = integrate_rotor(model, batch, duration, z, method=method, time_step=time_step,
                           stages=stages, sample_every=sample_every, contact_film=contact_film,
                           foil_travel=travel, progress=progress,
+                          progress_total=progress_units(profile)[0],
                           max_step=RAMP_MAX_STEP if profile.kind != "orbit" else 0.1)
     settings = {"grid": str(grid), "method": method, "perturbation": perturbation,
                 "kick": kick if perturbation != "none" else 0.0,

@@ -165,7 +165,8 @@ def integrate_rotor(model: RotorTransientModel, batch: Runs, duration: float,
                     time_step: Optional[float] = None, stages: Optional[int] = None,
                     sample_every: float = 0.2, contact_film: float = CONTACT_FILM,
                     foil_travel: Optional[float] = None, check_every: int = 5,
-                    max_step: float = MAX_STEP, progress=None) -> RotorRun:
+                    max_step: float = MAX_STEP, progress=None,
+                    progress_total: int = 100) -> RotorRun:
     """Advance a batch of rotor runs over ``duration`` rad of τ from the packed ``initial``
     rows (:func:`.rotor_setup.equilibrium_states`).
 
@@ -175,7 +176,8 @@ def integrate_rotor(model: RotorTransientModel, batch: Runs, duration: float,
     foil_travel : largest foil deflection W [clearances] before the bumps are exhausted
     (None: not checked); max_step : rkc's accuracy limit [rad of shaft rotation at the top
     speed] (default 0.1, the one-bearing engine's); progress : a
-    :func:`gfbopt.progress.progress` reporter, advanced in shaft revolutions of run 0.
+    :func:`gfbopt.progress.progress` reporter, advanced in proportion to τ up to
+    ``progress_total`` (its total: revolutions of an orbit, milliseconds of a ramp).
     """
     t0 = time.perf_counter()
     if method not in METHODS:
@@ -299,7 +301,7 @@ def integrate_rotor(model: RotorTransientModel, batch: Runs, duration: float,
                         break
                     used.add(stages)
             if progress is not None:
-                revs = int(batch.angle_at(tau)[0] / (2 * math.pi))
+                revs = int(progress_total * min(tau / duration, 1.0))
                 if revs > done_revs:
                     progress.update(revs - done_revs)
                     done_revs = revs
