@@ -103,10 +103,23 @@ def _rotor_path(args) -> str:
     raise ParameterError("ROTOR.toml", None, "a rotor file is required")
 
 
+#: the rotor command's options that a transient does not use (refused, not ignored)
+NOT_USED = {"speed_range": "--speed-range", "campbell": "--campbell",
+            "imbalance_response": "--imbalance-response", "half_mass": "--half-mass"}
+
+
 def _check(args):
     """The speed profile from the options (ParameterError before anything is solved)."""
     from ..errors import ParameterError
     from ..transient.rotor_analysis import orbit_profile, ramp_profile
+
+    for key, option in NOT_USED.items():
+        value = getattr(args, key, None)
+        if value:
+            raise ParameterError(option, value, "is not used by --orbit/--run-up/--coast-down "
+                                 "(a transient); run it separately")
+    if getattr(args, "campbell_speeds", 20) != 20:
+        raise ParameterError("--campbell-speeds", args.campbell_speeds, "needs --campbell")
 
     if args.orbit:
         if args.speed_rpm is None:
