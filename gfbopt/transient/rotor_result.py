@@ -136,7 +136,10 @@ def summarise(run: RotorRun, profile, rotor, solutions, settings: dict, *, syste
     loads = [float(np.hypot(*l)) for l in _loads(rotor)]
     equilibria = [_equilibrium(s, b, w) for s, b, w in zip(solutions, model.bearings, loads)]
     mean_speed = 0.5 * (profile.start_rpm + profile.end_rpm)
+    # at least 8 windows over a ramp, whatever its length
     window_s = window_revolutions * 60.0 / mean_speed
+    if profile.kind != "orbit":
+        window_s = min(window_s, profile.duration_s / 8.0)
     films, contacts, falls, cycles = [], [], [], []
     t = run.time_s
     for b in range(run.runs.size):
@@ -169,8 +172,9 @@ def summarise(run: RotorRun, profile, rotor, solutions, settings: dict, *, syste
                      f"{spectra.SUB_BAND[0]:g}× and {spectra.SUB_BAND[1]:g}× of the shaft "
                      f"speed after the tracked 1× component is removed; it 'appears' at the "
                      f"first window from which its amplitude stays ≥ {threshold:.3g} µm to "
-                     f"the end of the record; windows of {window_revolutions:g} revolutions "
-                     f"at the mean speed ({window_s * 1e3:.1f} ms), 50 % overlap, Hann.")
+                     f"the end of the record; windows of {window_s * 1e3:.3g} ms "
+                     f"({window_revolutions:g} revolutions at the mean speed, at most 1/8 "
+                     f"of the run), 50 % overlap, Hann.")
     else:
         notes.append(f"Limit cycle: subsynchronous orbit (tracked 1× removed), largest "
                      f"distance from its centre over the last {settle_periods:g} whirl "

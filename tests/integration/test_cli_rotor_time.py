@@ -67,7 +67,8 @@ def test_contact_is_a_result_with_time_speed_and_bearing_and_the_record_is_kept(
 
     system = load_rotor(ROTOR)
     # 30,000 rpm is far above this rotor's onset: the kicked whirl grows into the film
-    result = rotor_orbit(system, 30_000, 20, grid=Grid.parse("36x10"), imbalance_scale=0.0)
+    result = rotor_orbit(system, 30_000, 20, grid=Grid.parse("36x10"), imbalance_scale=0.0,
+                         kick=0.02)
     d = result.to_dict()
     assert result.success and d["contact"] and d["contact_kind"] == "film"
     assert d["contact_bearing"] in ("A", "B") and d["contact_speed_rpm"] == 30_000
@@ -84,12 +85,12 @@ def test_contact_is_a_result_with_time_speed_and_bearing_and_the_record_is_kept(
 
 def test_run_up_json_and_csv(tmp_path, capsys):
     out = tmp_path / "csv"
-    code = main(["rotor", ROTOR, "--run-up", "5000", "9000", "--rate", "200000", "--grid",
-                 "36x10", "--imbalance-grade", "2.5", "--json", "--csv", str(out)])
+    code = main(["rotor", ROTOR, "--run-up", "5000", "9000", "--rate", "100000", "--grid",
+                 "24x8", "--imbalance-grade", "2.5", "--json", "--csv", str(out)])
     assert code == 0
     d = json.loads(capsys.readouterr().out)
-    assert d["run"] == "run-up" and d["rate_rpm_per_s"] == 200_000
-    assert d["revolutions"] == pytest.approx(7000 / 60 * 0.02)
+    assert d["run"] == "run-up" and d["rate_rpm_per_s"] == 100_000
+    assert d["revolutions"] == pytest.approx(7000 / 60 * 0.04)
     assert "linear_onset_speed_rpm" in d and "subsync_appearance_rpm" in d
     assert d["provenance"]["gfbopt_version"] and d["provenance"]["options"]["method"] == "rkc"
     assert [b["bearing"] for b in d["bearings"]] == ["A", "B"]

@@ -46,7 +46,9 @@ def cache():
     return SolverCache(GRID)
 
 
-@pytest.mark.parametrize("method, loss_factor", [("rkc", 0.0), ("rk4", 0.0), ("rkc", 0.2)])
+@pytest.mark.parametrize("method, loss_factor", [
+    ("rkc", 0.0), pytest.param("rk4", 0.0, marks=pytest.mark.slow),
+    pytest.param("rkc", 0.2, marks=pytest.mark.slow)])
 def test_symmetric_rotor_is_the_one_bearing_engine_in_cylindrical_whirl(method, loss_factor,
                                                                        cache):
     """Also with a loss factor: both films then carry their Kelvin–Voigt foil states, the
