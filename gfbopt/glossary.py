@@ -356,3 +356,19 @@ _PATTERNS += (
     (r"y_(\w+)_um", "µm", "journal centre y at bearing {0} (90° ahead of gravity)"),
     (r"min_film_(\w+)_um", "µm", "smallest film at bearing {0} since the previous sample"),
 )
+for _name, _entry in {
+    "speed_over_linear_onset": ("-", "shaft speed over the rotor's linear onset speed"),
+    "contact": ("flag", "the run ended in contact (film ≤ 0.02 c or foil travel exhausted)"),
+    "contact_time_s": ("s", "time of contact since the start of the run (empty: none)"),
+    "limit_cycle_amplitude_um": ("µm", "subsynchronous whirl at a constant speed: largest "
+                                 "distance of the orbit (1× removed) from its centre over "
+                                 "the last window"),
+    "limit_cycle_frequency_hz": ("Hz", "frequency of that whirl (positive: forward)"),
+    "limit_cycle_settled": ("flag", "the whirl amplitude changed by ≤ the settle tolerance "
+                            "between the last two windows"),
+    "limit_cycle_change": ("-", "relative change of the whirl amplitude between the last two "
+                           "windows"),
+    "min_film_um": ("µm", "smallest film thickness over the run (0: the film closed)"),
+    "revolutions": ("-", "shaft revolutions integrated"),
+}.items():
+    GLOSSARY.setdefault(_name, _entry)

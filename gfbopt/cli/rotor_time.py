@@ -68,8 +68,9 @@ def add_arguments(parser) -> None:
     g.add_argument("--foil-travel-um", type=number("foil-travel-um"), default=None,
                    help="bump travel [µm] before the foil is exhausted (contact); default: "
                    "not checked")
-    g.add_argument("--window-revolutions", type=number("window-revolutions"), default=40.0,
-                   help="waterfall window [revolutions at the mean speed] (default 40)")
+    g.add_argument("--window-revolutions", type=number("window-revolutions"), default=20.0,
+                   help="waterfall window [revolutions at the mean speed; at most 1/10 of "
+                   "the record] (default 20)")
     g.add_argument("--subsync-threshold-um", type=number("subsync-threshold-um"), default=None,
                    help="amplitude [µm] from which the subsynchronous line counts as present "
                    "(default 2 %% of the clearance)")

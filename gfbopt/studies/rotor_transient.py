@@ -37,7 +37,7 @@ SCHEMAS: dict = {
                                      "speed (limit cycle)", positive=True),
         "kick": opt("number", 1e-3, "journal speed of the top-speed orbit's kick [-]",
                     positive=True),
-        "window_revolutions": opt("number", 40.0, "waterfall window [revolutions at the "
+        "window_revolutions": opt("number", 20.0, "waterfall window [revolutions at the "
                                   "mean speed]", positive=True),
         "subsync_threshold_um": opt("number", None, "amplitude from which the "
                                     "subsynchronous line counts as present [µm]",
@@ -45,6 +45,11 @@ SCHEMAS: dict = {
         "settle_tolerance": opt("number", 0.01, "largest relative change of the limit cycle "
                                 "between its last two windows to call it settled",
                                 positive=True),
+        "cycle_speed_ratios": opt("numbers", [1.02, 1.05], "orbits just above the linear "
+                                  "onset, at these multiples of it (the limit cycle past "
+                                  "the onset)"),
+        "cycle_revolutions": opt("number", 300.0, "revolutions of each of those orbits",
+                                 positive=True),
         "force": opt("flag", False, "allow more than the revolution limit"),
     },
 }
@@ -111,7 +116,20 @@ def run_rotor_run_up(study: Study, plan: dict, ctx: RunContext) -> StudyResult:
         orbit = run_profile(system, top, perturbation="cylindrical", kick=spec["kick"],
                             progress=bar, settle_tolerance=spec["settle_tolerance"], **common)
     names = up.names
+    cycles = _cycles_past_onset(system, spec, up.onset.get("linear_onset_speed_rpm",
+                                                           math.nan), common)
     tables, figures, found, notes = {}, {}, [], list(up.notes)
+    if cycles is not None:
+        tables["limit_cycles_past_onset.csv"] = cycles
+        for _, r in cycles.iterrows():
+            notes.append(f"{r['speed_rpm']:,.0f} rpm ({r['speed_over_linear_onset']:.3g} × the "
+                         f"linear onset), bearing {r['bearing']}: " + (
+                             f"contact after {r['contact_time_s']:.4g} s" if r["contact"] else
+                             f"whirl {r['limit_cycle_amplitude_um']:.3g} µm at "
+                             f"{r['limit_cycle_frequency_hz']:.4g} Hz, "
+                             + ("settled" if r["limit_cycle_settled"] else
+                                f"not settled ({100 * r['limit_cycle_change']:+.2g} % over "
+                                "the last window)")))
     what = (f"run-up {ramp.start_rpm:,.0f} → {ramp.end_rpm:,.0f} rpm at "
             f"{ramp.rate_rpm_per_s:,.0f} rpm/s, {grid}")
     lin = up.onset.get("linear_onset_speed_rpm", math.nan)
@@ -174,6 +192,38 @@ def run_rotor_run_up(study: Study, plan: dict, ctx: RunContext) -> StudyResult:
                "bearings": up.description.get("bearings")}
     return StudyResult(study, tables=tables, figures=figures, checks=found, options=options,
                        notes=notes)
+
+
+def _cycles_past_onset(system, spec, onset: float, common: dict):
+    """Orbits at multiples of the linear onset from a small kick: the limit cycle (or
+    contact) past the onset, per bearing; None without a linear onset."""
+    from ..progress import progress
+    from ..transient.rotor_analysis import orbit_profile, progress_units, run_profile
+
+    if not (math.isfinite(onset) and spec["cycle_speed_ratios"]):
+        return None
+    rows = []
+    for ratio in spec["cycle_speed_ratios"]:
+        profile = orbit_profile(ratio * onset, spec["cycle_revolutions"], spec["force"])
+        total, unit = progress_units(profile)
+        with progress(total=total, desc=f"orbit at {ratio:g} × onset", unit=unit) as bar:
+            result = run_profile(system, profile, perturbation="cylindrical",
+                                 kick=spec["kick"], progress=bar,
+                                 settle_tolerance=spec["settle_tolerance"], **common)
+        d = result.to_dict()
+        for b in d["bearings"]:
+            rows.append({"speed_rpm": profile.start_rpm, "speed_over_linear_onset": ratio,
+                         "bearing": b["bearing"], "contact": d["contact"],
+                         "contact_time_s": d["contact_time_s"],
+                         "limit_cycle_amplitude_um": b.get("limit_cycle_amplitude_um",
+                                                           math.nan),
+                         "limit_cycle_frequency_hz": b.get("limit_cycle_frequency_hz",
+                                                           math.nan),
+                         "limit_cycle_settled": b.get("limit_cycle_settled", False),
+                         "limit_cycle_change": b.get("limit_cycle_change", math.nan),
+                         "min_film_um": b["min_film_um"],
+                         "revolutions": result.run.revolutions})
+    return pd.DataFrame(rows)
 
 
 KINDS: dict = {"rotor_run_up": Kind(plan_rotor_run_up, run_rotor_run_up)}

@@ -21,7 +21,7 @@ from . import spectra
 from .rotor_run import RotorRun
 
 #: default window of the waterfall [shaft revolutions at the run's mean speed]
-WINDOW_REVOLUTIONS = 40.0
+WINDOW_REVOLUTIONS = 20.0
 #: default threshold of the subsynchronous line's appearance [fraction of the clearance]
 SUBSYNC_THRESHOLD = 0.02
 
@@ -135,11 +135,14 @@ def summarise(run: RotorRun, profile, rotor, solutions, settings: dict, *, syste
                  else float(subsync_threshold_um))
     loads = [float(np.hypot(*l)) for l in _loads(rotor)]
     equilibria = [_equilibrium(s, b, w) for s, b, w in zip(solutions, model.bearings, loads)]
-    mean_speed = 0.5 * (profile.start_rpm + profile.end_rpm)
-    # at least 8 windows over a ramp, whatever its length
+    # windows of ``window_revolutions`` at the record's mean speed, at least 10 per record
+    # (a ramp cut short by contact keeps its resolution)
+    span = float(run.time_s[-1] - run.time_s[0]) if run.tau.size > 1 else 0.0
+    mean_speed = (float(np.mean(run.speed_rpm(0))) if run.tau.size
+                  else 0.5 * (profile.start_rpm + profile.end_rpm))
     window_s = window_revolutions * 60.0 / mean_speed
-    if profile.kind != "orbit":
-        window_s = min(window_s, profile.duration_s / 8.0)
+    if profile.kind != "orbit" and span > 0:
+        window_s = min(window_s, span / 10.0)
     films, contacts, falls, cycles = [], [], [], []
     t = run.time_s
     for b in range(run.runs.size):
@@ -148,7 +151,9 @@ def summarise(run: RotorRun, profile, rotor, solutions, settings: dict, *, syste
         per, fall, cyc = [], [], []
         for k in range(len(names)):
             tau = run.run_min_film_tau[b, k]
-            per.append({"min_film_um": float(run.run_min_film[b, k] * clearances[k] * 1e6),
+            # a film that closed within the contact step is reported as 0 (closed), not < 0
+            per.append({"min_film_um": max(float(run.run_min_film[b, k] * clearances[k]
+                                                 * 1e6), 0.0),
                         "min_film_time_s": float(tau / model.reference_speed),
                         "min_film_speed_rpm": float(run.speed_rpm(b, tau))})
             if math.isfinite(run.max_deflection[b, k]):
@@ -173,8 +178,8 @@ def summarise(run: RotorRun, profile, rotor, solutions, settings: dict, *, syste
                      f"speed after the tracked 1× component is removed; it 'appears' at the "
                      f"first window from which its amplitude stays ≥ {threshold:.3g} µm to "
                      f"the end of the record; windows of {window_s * 1e3:.3g} ms "
-                     f"({window_revolutions:g} revolutions at the mean speed, at most 1/8 "
-                     f"of the run), 50 % overlap, Hann.")
+                     f"({window_revolutions:g} revolutions at the record's mean speed, at "
+                     f"most 1/10 of the record), 50 % overlap, Hann.")
     else:
         notes.append(f"Limit cycle: subsynchronous orbit (tracked 1× removed), largest "
                      f"distance from its centre over the last {settle_periods:g} whirl "
@@ -211,7 +216,8 @@ def _contact(run: RotorRun, b: int, names: tuple, clearances: list) -> dict:
     return {"contact": True, "contact_bearing": names[k], "contact_kind": run.contact_kind[b],
             "contact_time_s": float(tau / run.model.reference_speed),
             "contact_speed_rpm": float(run.speed_rpm(b, tau)),
-            "contact_min_film_um": float(run.run_min_film[b, k] * clearances[k] * 1e6)}
+            "contact_min_film_um": max(float(run.run_min_film[b, k] * clearances[k] * 1e6),
+                                       0.0)}
 
 
 def _onset(falls: list, names: tuple, threshold: float, profile, system, settings,

@@ -56,38 +56,24 @@ import numpy as np
 
 from ..errors import ParameterError
 from ..inputs.bearing import BearingGeometry
+from ..inputs.rotor_system import RotorBody
+from ..rotor.rigid import gyroscopic_matrix, mass_matrix, rotation, station_matrix
 from .foil_state import foil_bound
+from .rotor_batch import Runs, runs  # noqa: F401  (re-exported: the batch of runs)
 from .system import (State, TransientModel, film_force, flux_residual, pressure_and_film,
                      stiffness_bound)
 
-#: names of the generalised coordinates, in order
-DOF = ("x", "y", "slope_x", "slope_y")
-
-
-def station_matrix(position: float) -> np.ndarray:
-    """T(z): the displacement (x, y) [m] of the station at ``position`` z [m] from the CG."""
-    z = float(position)
-    return np.array([[1.0, 0.0, z, 0.0], [0.0, 1.0, 0.0, z]])
+#: names of the generalised coordinates, in order (gfbopt.rotor.rigid's q = (x, y, ψx, ψy))
+DOF = ("x", "y", "psi_x", "psi_y")
 
 
 def rigid_rotor_matrices(mass: float, transverse_inertia: float,
                          polar_inertia: float) -> tuple[np.ndarray, np.ndarray]:
-    """(M, G) of a rigid rotor [kg, kg m²] in the coordinates :data:`DOF` (module docstring)."""
-    for name, value in (("mass", mass), ("transverse_inertia", transverse_inertia)):
-        if not (math.isfinite(value) and value > 0):
-            raise ParameterError(name, value, "must be finite and > 0")
-    if not (math.isfinite(polar_inertia) and polar_inertia >= 0):
-        raise ParameterError("polar_inertia", polar_inertia, "must be finite and >= 0")
-    m = np.diag([mass, mass, transverse_inertia, transverse_inertia]).astype(float)
-    g = np.zeros((4, 4))
-    g[2, 3], g[3, 2] = polar_inertia, -polar_inertia
-    return m, g
-
-
-def rotation(angle: float) -> np.ndarray:
-    """R(ψ): components in a frame turned by ψ (direction of rotation) → global."""
-    c, s = math.cos(angle), math.sin(angle)
-    return np.array([[c, -s], [s, c]])
+    """(M, G) of a rigid rotor [kg, kg m²] in the coordinates :data:`DOF` (the rotor issue's
+    :func:`~gfbopt.rotor.rigid.mass_matrix` and :func:`~gfbopt.rotor.rigid.gyroscopic_matrix`;
+    the inputs are checked by :class:`~gfbopt.inputs.rotor_system.RotorBody`)."""
+    body = RotorBody(mass, transverse_inertia, polar_inertia)
+    return mass_matrix(body), gyroscopic_matrix(body)
 
 
 @dataclass(frozen=True, eq=False)
@@ -276,51 +262,7 @@ def stackable(model: RotorTransientModel) -> bool:
     return True
 
 
-# ------------------------------------------------------------------ batch of runs
-@dataclass(frozen=True, eq=False)
-class Runs:
-    """Per-run parameters of a batch (arrays of shape (B,)).
-
-    speed : r0 = ω(0)/ω_ref; ramp : a = ω̇/ω_ref² (dr/dτ); inertia_scale μ (M and G × μ,
-    loads unchanged); imbalance_scale (every plane's amount × this).
-    """
-
-    speed: np.ndarray
-    ramp: np.ndarray
-    inertia_scale: np.ndarray
-    imbalance_scale: np.ndarray
-
-    @property
-    def size(self) -> int:
-        return self.speed.size
-
-    def take(self, keep) -> "Runs":
-        return Runs(self.speed[keep], self.ramp[keep], self.inertia_scale[keep],
-                    self.imbalance_scale[keep])
-
-    def speed_at(self, tau) -> np.ndarray:
-        """ω/ω_ref of each run at τ (scalar or (B,))."""
-        return self.speed + self.ramp * tau
-
-    def angle_at(self, tau) -> np.ndarray:
-        """Shaft angle ϑ [rad] since τ = 0."""
-        return self.speed * tau + 0.5 * self.ramp * tau * tau
-
-
-def runs(batch: int, speed=1.0, ramp=0.0, inertia_scale=1.0, imbalance_scale=1.0) -> Runs:
-    """A :class:`Runs` of ``batch`` rows, each value a scalar or one per run."""
-    def arr(name, v, positive):
-        a = np.broadcast_to(np.asarray(v, dtype=float), (batch,)).copy()
-        bad = ~np.isfinite(a) | ((a <= 0) if positive else np.zeros(batch, bool))
-        if bad.any():
-            raise ParameterError(name, float(a[bad][0]), "must be finite" +
-                                 (" and > 0" if positive else ""))
-        return a
-    return Runs(arr("speed", speed, True), arr("ramp", ramp, False),
-                arr("inertia_scale", inertia_scale, True),
-                arr("imbalance_scale", imbalance_scale, False))
-
-
+# ------------------------------------------------------------------ the system
 class RotorRightHandSide:
     """dz/dτ for a batch of runs (states (B, K, L), :class:`Layout`), and the films it saw.
 
