@@ -228,3 +228,36 @@ def test_supercritical_limit_cycle_grows_as_the_square_root_of_the_distance_past
         amps.append(lc.amplitude_um)
     slope = np.polyfit(np.log(deltas), np.log(amps), 1)[0]
     assert abs(slope - 0.5) <= 0.1, (amps, slope)
+
+
+def test_side_load_and_a_bearing_pushed_away_from_gravity_start_in_equilibrium(cache):
+    """Overhung CG (both bearings on one side of it) plus a side load: bearing B is pushed
+    away from gravity (its load points ≈ 180° from it).  The engine's statics give the rotor
+    module's bearing loads and directions (to round-off), and the packed equilibrium is a
+    fixed point of the rotor's right-hand side: accelerations ≤ 1e-9 of gravity's (the
+    static solves' force residual), films still to ≤ 1e-8 per rad."""
+    from gfbopt.inputs.options import ModelOptions
+    from gfbopt.inputs.rotor_system import BearingSupport, RotorBody, RotorSystem, SideLoad
+    from gfbopt.rotor.rigid import bearing_loads
+    from gfbopt.transient.rotor_io import frame_check, rotor_input
+    from gfbopt.transient.rotor_system import RotorRightHandSide
+
+    opts = ModelOptions(film="seam", seam_angle=math.pi, foil="simple",
+                        deflection_law="mean", loss_factor=0.0)
+    system = RotorSystem(RotorBody(3.2, 0.012, 0.002),
+                         (BearingSupport("A", 0.03, BEARING, opts),
+                          BearingSupport("B", 0.09, BEARING, opts)),
+                         side_loads=(SideLoad(15.0, 90.0, 0.12),))
+    loads = bearing_loads(system)
+    assert abs(loads[1].away_from_gravity_deg) > 90            # B is pushed upwards
+    rotor = rotor_input(system)
+    assert frame_check(rotor, system) < 1e-9
+    model, sols = build_model(rotor, 30_000.0, GRID, cache=cache)
+    for film, load in zip(model.bearings, loads):
+        assert math.degrees(film.frame_angle) == pytest.approx(load.direction_deg, abs=1e-9)
+    rhs = RotorRightHandSide(model, runs(1))
+    d = rhs(equilibrium_states(model, 1))
+    lay = rhs.layout
+    g_scale = 9.80665 / (model.clearance_ref * model.reference_speed ** 2)
+    assert np.max(np.abs(lay.rotor_of(d)[:, 4:8])) < 1e-9 * g_scale * 10
+    assert np.max(np.abs(lay.phi_of(d, 0))) < 1e-8 and np.max(np.abs(lay.phi_of(d, 1))) < 1e-8
