@@ -158,6 +158,8 @@ def run_rotor_run_up(study: Study, plan: dict, ctx: RunContext) -> StudyResult:
             ("linear_onset_speed_rpm", lin),
             ("appearance_over_linear_onset", up.onset["appearance_over_linear_onset"]),
             ("run_up_contact", float(up_d["contact"])),
+            ("run_up_contact_speed_rpm", up_d["contact_speed_rpm"]),
+            ("run_up_contact_time_s", up_d["contact_time_s"]),
             ("run_up_revolutions", up.run.revolutions), ("run_up_wall_time_s",
                                                         up.run.wall_time_s)]
     for b in up_d["bearings"]:
@@ -173,6 +175,10 @@ def run_rotor_run_up(study: Study, plan: dict, ctx: RunContext) -> StudyResult:
                               "(failed runs)", float(not up.success), 0))
     found.append(checks.check("top-speed orbit integrated (failed runs)",
                               float(not orbit.success), 0))
+    if up_d["contact"]:
+        notes.append(f"The run-up ends in contact ({up_d['contact_kind']}) at bearing "
+                     f"{up_d['contact_bearing']}, {up_d['contact_speed_rpm']:,.0f} rpm, "
+                     f"t = {up_d['contact_time_s']:.4g} s; the record up to there is kept.")
     if top_d["contact"]:
         notes.append(f"At the top speed the whirl grows into contact at bearing "
                      f"{top_d['contact_bearing']} after {top_d['contact_time_s']:.4g} s: no "
