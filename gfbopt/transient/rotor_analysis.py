@@ -187,6 +187,7 @@ def run_profile(rotor: Union[RotorSystem, RotorInput], profile: SpeedProfile, *,
                           stages=stages, sample_every=sample_every, contact_film=contact_film,
                           foil_travel=travel, progress=progress,
                           progress_total=progress_units(profile)[0],
+                          exact_end=profile.kind != "orbit",
                           max_step=RAMP_MAX_STEP if profile.kind != "orbit" else 0.1)
     settings = {"grid": str(grid), "method": method, "perturbation": perturbation,
                 "kick": kick if perturbation != "none" else 0.0,

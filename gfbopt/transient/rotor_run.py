@@ -166,7 +166,7 @@ def integrate_rotor(model: RotorTransientModel, batch: Runs, duration: float,
                     sample_every: float = 0.2, contact_film: float = CONTACT_FILM,
                     foil_travel: Optional[float] = None, check_every: int = 5,
                     max_step: float = MAX_STEP, progress=None,
-                    progress_total: int = 100) -> RotorRun:
+                    progress_total: int = 100, exact_end: bool = False) -> RotorRun:
     """Advance a batch of rotor runs over ``duration`` rad of τ from the packed ``initial``
     rows (:func:`.rotor_setup.equilibrium_states`).
 
@@ -177,7 +177,10 @@ def integrate_rotor(model: RotorTransientModel, batch: Runs, duration: float,
     (None: not checked); max_step : rkc's accuracy limit [rad of shaft rotation at the top
     speed] (default 0.1, the one-bearing engine's); progress : a
     :func:`gfbopt.progress.progress` reporter, advanced in proportion to τ up to
-    ``progress_total`` (its total: revolutions of an orbit, milliseconds of a ramp).
+    ``progress_total`` (its total: revolutions of an orbit, milliseconds of a ramp);
+    exact_end : shorten the last step to end at ``duration`` exactly (a ramp ends at its end
+    speed); otherwise whole steps, the last one past the end by less than a step, as the
+    one-bearing engine does.
     """
     t0 = time.perf_counter()
     if method not in METHODS:
@@ -238,15 +241,16 @@ def integrate_rotor(model: RotorTransientModel, batch: Runs, duration: float,
         while step < n_steps:
             step += 1
             rhs.reset()
+            h = min(dt, duration - tau) if exact_end and step == n_steps else dt
             try:
                 if method == "rkc":
-                    z = rkc_step(rhs, z, dt, stages)
+                    z = rkc_step(rhs, z, h, stages)
                 else:
-                    z = rk4_step(lambda r: _Rows(rhs(r.z)), _Rows(z), dt).z
+                    z = rk4_step(lambda r: _Rows(rhs(r.z)), _Rows(z), h).z
             except ConvergenceError as err:
                 failure = f"the foil recovery failed at τ = {tau:.4g}: {err}"
                 break
-            tau += dt
+            tau += h
             if not np.all(np.isfinite(lay.rotor_of(z)[:, :8])):
                 failure = (f"the integration blew up (non-finite state) at τ = {tau:.4g} "
                            f"with Δτ = {dt:.4g}" + (f" and {stages} stages"

@@ -3,6 +3,7 @@ exit 2 before any solve; a run that hits contact says where and when and keeps i
 a run-up's JSON and CSV carry the waterfall components, the appearance speed and the linear
 onset."""
 import json
+import math
 from pathlib import Path
 
 import pandas as pd
@@ -103,3 +104,25 @@ def test_run_up_json_and_csv(tmp_path, capsys):
     comp = pd.read_csv(out / "components_A.csv")
     assert comp["speed_rpm"].is_monotonic_increasing
     assert comp["speed_rpm"].iloc[0] > 5000 and comp["speed_rpm"].iloc[-1] < 9000
+
+
+def test_coast_down_slows_the_film_and_the_imbalance_with_it():
+    """A coast-down: the speed falls linearly at the rate, the 1× tracking follows it, and
+    the film's Λ follows the speed in the engine (no rebuild): the run starts at the start
+    speed's equilibrium and ends near the end speed's (the journal sinks as Λ falls)."""
+    from gfbopt.transient.rotor_analysis import rotor_ramp
+
+    system = load_rotor(ROTOR)
+    grid = Grid.parse("24x8")
+    result = rotor_ramp(system, 9000, 6000, 75_000, grid=grid, linear_onset=False)
+    assert result.success and not result.run.contact.any()
+    speed = result.run.speed_rpm(0)
+    assert speed[0] == pytest.approx(9000) and speed[-1] == pytest.approx(6000, abs=1.0)
+    assert (speed.max() - speed.min()) == pytest.approx(3000, abs=1.0)
+    comp = result.tables()["components_A.csv"]
+    assert comp["speed_rpm"].is_monotonic_decreasing
+    # the journal at bearing A sinks along gravity as the film's speed (Λ) falls
+    x, _ = result.run.journal(0, 0)
+    start_eps = result.equilibria[0]["eccentricity"]
+    assert x[-1] > x[0] and x[0] == pytest.approx(start_eps * math.cos(math.radians(
+        result.equilibria[0]["attitude_angle_deg"])) * 20e-6, rel=1e-9)
