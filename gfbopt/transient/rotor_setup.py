@@ -26,7 +26,7 @@ from ..inputs.grid import Grid
 from ..static import SolverCache, StaticSolution, solve_static
 from .rotor_system import (BearingFilm, ImbalancePlane, RotorTransientModel, empty_states,
                            layout, rotation, rotor_transient_model, station_matrix)
-from .system import transient_model
+from .system import rigid_film, transient_model
 
 
 @dataclass(frozen=True)
@@ -189,7 +189,7 @@ def equilibrium_states(model: RotorTransientModel, batch: int, solutions=None) -
         x0 = sol.eccentricity * math.cos(sol.attitude_angle)
         y0 = sol.eccentricity * math.sin(sol.attitude_angle)
         if lay.foil[k] is not None:
-            hr = 1.0 - x0 * b.tm.cos - y0 * b.tm.sin
+            hr = rigid_film(np.array([x0]), np.array([y0]), b.tm)[0]     # with the bore
             w = sol.film - hr[:, None]
             lay.foil_of(z, k)[0] = w if b.tm.foil_state.layout == "nodes" else w[:, 0]
         targets.append(rotation(b.frame_angle) @ np.array([x0, y0]) * b.clearance)

@@ -61,7 +61,7 @@ from ..rotor.rigid import gyroscopic_matrix, mass_matrix, rotation, station_matr
 from .foil_state import foil_bound
 from .rotor_batch import Runs, runs  # noqa: F401  (re-exported: the batch of runs)
 from .system import (State, TransientModel, film_force, flux_residual, pressure_and_film,
-                     stiffness_bound)
+                     rigid_film, stiffness_bound)
 
 #: names of the generalised coordinates, in order (gfbopt.rotor.rigid's q = (x, y, ψx, ψy))
 DOF = ("x", "y", "psi_x", "psi_y")
@@ -254,6 +254,8 @@ def stackable(model: RotorTransientModel) -> bool:
                 and np.array_equal(t.cos, a.cos) and np.array_equal(t.sin, a.sin)
                 and np.array_equal(t.theta_weight, a.theta_weight)
                 and np.array_equal(t.z_weight, a.z_weight)
+                and all(_same(getattr(t, name, None), getattr(a, name, None))
+                        for name in ("ambient", "bore", "compliance_rows"))
                 and (fa is None) == (fb is None)
                 and (fa is None or (fa.relaxation_time == fb.relaxation_time
                                     and fa.layout == fb.layout)))
@@ -450,6 +452,13 @@ class RotorRightHandSide:
         return rho
 
 
+def _same(a, b) -> bool:
+    """Two optional per-row arrays of the bearing as built are equal (or both absent)."""
+    if a is None or b is None:
+        return a is None and b is None
+    return bool(np.array_equal(a, b))
+
+
 class _AtSpeed:
     """The one-bearing model seen by the flux kernel at the current bearing number: Λ is
     set per evaluation (a run-up changes it continuously, without rebuilding anything);
@@ -467,5 +476,5 @@ def _deflection(h: np.ndarray, x: np.ndarray, y: np.ndarray, tm: TransientModel)
     """Largest foil deflection W = H − H_r of each run [clearances]."""
     if tm.law.name == "rigid":
         return np.zeros(x.shape)
-    hr = 1.0 - x[:, None] * tm.cos - y[:, None] * tm.sin          # (B, m)
+    hr = rigid_film(x, y, tm)                                     # (B, m), with the bore
     return (h - hr[:, :, None]).max(axis=(1, 2))
