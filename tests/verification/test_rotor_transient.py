@@ -199,9 +199,12 @@ def test_supercritical_limit_cycle_grows_as_the_square_root_of_the_distance_past
     A² = c1 δ (1 + k δ + …), so the log–log slope of A against δ is 0.5 + ½ kδ/(1 + kδ); the
     one-bearing bifurcation study (results/bifurcation) has k ≈ 12, a slope ≈ 0.6 at these δ
     at worst, so 0.5 ± 0.1 admits the next order while a subcritical jump or a linear law
-    (slope 1) fails.  Settled: the whirl amplitude changes by ≤ 0.2 % between its last two
-    10-period windows.  Measured in development (1,500 revolutions): 3.47 µm at 1 % and
-    4.92 µm at 2 % (ratio 1.418 against √2 = 1.414), both settled."""
+    (slope 1) fails.  Settled: the whirl amplitude changes by ≤ 1 % between its last two
+    10-period windows (the default criterion; the largest-distance amplitude of a window
+    carries a ≈ 0.5 % ripple from residual beats — measured 0.63 % at 2 % after 1,800
+    revolutions — and a 1 % error at one δ moves the slope by ≤ 0.015).  Measured in
+    development (1,500 revolutions): 3.47 µm at 1 % and 4.92 µm at 2 % (ratio 1.418 against
+    √2 = 1.414)."""
     from gfbopt.transient.spectra import limit_cycle
 
     grid = Grid.parse("24x8")
@@ -222,7 +225,7 @@ def test_supercritical_limit_cycle_grows_as_the_square_root_of_the_distance_past
     for b in range(3):
         x, y = run.journal(b, 0)
         lc = limit_cycle(run.time_s, x * 1e6, y * 1e6, run.shaft_angle(b), speed / 60,
-                         periods=10, tolerance=0.002)
+                         periods=10, tolerance=0.01)
         assert lc.settled, (deltas[b], lc)
         assert abs(lc.whirl_ratio / thr.whirl_ratio - 1) < 0.02
         amps.append(lc.amplitude_um)
