@@ -77,6 +77,7 @@ class OptimisationResult:
     front : the non-dominated feasible designs (one objective: the best feasible)
     best : the best feasible row for one objective (None for several, or none feasible)
     evaluated : designs evaluated in this run; reused : designs answered from the store
+        (an earlier run's); repeated : designs asked again in this run (answered once)
     evaluation_time_s : sum of the wall times of the evaluations of this run
     driver_time_s : time in the method's ask/tell, decoding and the store writes
     wall_time_s : the whole run
@@ -89,13 +90,14 @@ class OptimisationResult:
     best: Optional[dict]
     evaluated: int
     reused: int
+    repeated: int
     evaluation_time_s: float
     driver_time_s: float
     wall_time_s: float
 
     @property
     def asked(self) -> int:
-        return self.evaluated + self.reused
+        return self.evaluated + self.reused + self.repeated
 
     @property
     def driver_time_per_design_s(self) -> float:
@@ -214,7 +216,7 @@ def optimise(problem: DesignProblem, evaluate: Callable, settings: SearchSetting
     method = proposer(problem, settings, init)
     order: list = []            # keys in the order of first asking
     seen: set = set()
-    evaluated = reused = batch = 0
+    evaluated = reused = repeated = batch = 0
     evaluation_time = 0.0
     driver = time.perf_counter() - t_start
     while True:
@@ -228,6 +230,7 @@ def optimise(problem: DesignProblem, evaluate: Callable, settings: SearchSetting
         todo = []
         for key, design in zip(keys, designs):
             if key in seen:
+                repeated += 1
                 continue
             seen.add(key)
             order.append(key)
@@ -274,4 +277,4 @@ def optimise(problem: DesignProblem, evaluate: Callable, settings: SearchSetting
     front = pareto_front(table, problem)
     best = front.iloc[0].to_dict() if len(problem.objectives) == 1 and len(front) else None
     return OptimisationResult(problem, settings, table, front, best, evaluated, reused,
-                              evaluation_time, driver, time.perf_counter() - t_start)
+                              repeated, evaluation_time, driver, time.perf_counter() - t_start)

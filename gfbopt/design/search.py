@@ -205,7 +205,7 @@ class BayesProposer:
                                           normalize_y=True, n_restarts_optimizer=5,
                                           random_state=self._rng)
             space = self._space(X, y, C)
-            acq = acquisition.ExpectedImprovement(xi=0.01, random_state=self._rng)
+            acq = acquisition.ExpectedImprovement(xi=0.01)
             with warnings.catch_warnings():
                 # the GP's hyper-parameter fit warns when a length scale reaches its bound
                 # (a flat direction, common with few points): expected, not an error
