@@ -287,3 +287,42 @@ for _name, _entry in {
     "solves": ("-", "geometric programs solved"),
 }.items():
     GLOSSARY.setdefault(_name, _entry)
+
+
+# ---------------------------------------------------------------- rotor on two bearings
+# Columns of gfbopt.rotor (gfbopt rotor, the rotor_two_bearings study); added without
+# overriding an entry that another family defines.
+for _name, _entry in {
+    "bearing": ("text", "name of the bearing of the rotor (A, B, …)"),
+    "station": ("text", "axial station of the rotor: a bearing or a named station"),
+    "position_m": ("m", "axial position from the rotor's centre of gravity"),
+    "mode": ("-", "number of the mode tracked over speed in the Campbell diagram"),
+    "track_label": ("text", "the most frequent label of the tracked mode"),
+    "status": ("text", "onset, unstable at the lowest speed, or stable over the range"),
+    "inertia_scale": ("-", "μ_c: the rotor whirls in this mode when its inertias are μ_c "
+                      "times the real ones (> 1 stable)"),
+    "smallest_inertia_margin": ("-", "least μ_c − 1 of the mode over the speeds scanned"),
+    "log_decrement": ("-", "logarithmic decrement per whirl cycle (> 0 stable)"),
+    "damping_ratio": ("-", "damping ratio ζ = −Re s/|s| of the mode"),
+    "growth_rate_per_s": ("1/s", "growth rate of the mode (> 0 unstable)"),
+    "reference_whirl_ratio": ("-", "ν_ref of the Kelvin–Voigt foil states (empty: η = 0)"),
+    "node_position_m": ("m", "axial position where the mode's whirl amplitude is least"),
+    "phase_b_from_a_deg": ("deg", "phase of the dominant whirl at bearing B from bearing A "
+                           "(0 cylindrical, ±180 conical)"),
+    "amplitude_um": ("µm", "major semi-axis of the synchronous orbit"),
+    "amplitude_x_um": ("µm", "amplitude of x (x = Re(X e^{iωt}))"),
+    "amplitude_y_um": ("µm", "amplitude of y"),
+    "phase_x_deg": ("deg", "phase of x against the rotor's reference mark"),
+    "phase_y_deg": ("deg", "phase of y against the rotor's reference mark"),
+    "forward_radius_um": ("µm", "radius of the orbit's forward circular component"),
+    "backward_radius_um": ("µm", "radius of the orbit's backward circular component"),
+    "mass_share_kg": ("kg", "the bearing's share of the rotor mass in the half-mass rule"),
+    "answer": ("text", "the one-bearing onset search's answer in words"),
+}.items():
+    GLOSSARY.setdefault(_name, _entry)
+_PATTERNS = _PATTERNS + (
+    (r"(forward|backward)_radius_(.+)", "-", "{0} whirl radius of the mode at bearing {1}, "
+     "over the largest radius"),
+    (r"phase_deg_(.+)", "deg", "phase of the mode's dominant whirl at bearing {0} from "
+     "bearing A"),
+)

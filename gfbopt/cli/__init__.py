@@ -9,6 +9,7 @@ module                 commands
 :mod:`.transient`      ``gfbopt orbit``, ``gfbopt critical-mass``
 :mod:`.design`         ``gfbopt design``
 :mod:`.run`            ``gfbopt run``
+:mod:`.rotor`          ``gfbopt rotor`` (two bearings: onset of each mode, Campbell, imbalance)
 :mod:`.common`         operating-point options, refusal of ignored options, JSON output
 :mod:`.si`             a bearing file's [model] options merged with the command line
 =====================  =================================================================
@@ -26,9 +27,10 @@ from typing import Optional, Sequence
 from ..errors import GfboptError
 from ..version import __version__
 from . import design, linear, run, stability, static, transient
+from . import rotor
 from .common import Parser
 
-COMMANDS = (static, linear, stability, transient, design, run)
+COMMANDS = (static, linear, stability, transient, design, run, rotor)
 
 
 def build_parser() -> Parser:

@@ -19,6 +19,7 @@ from ..inputs import read_toml
 from . import design, maps, sweeps, tables, transients
 from . import doe
 from . import damping, stability
+from . import rotor
 from .base import Kind, LoadedStudy, RunContext, Study, StudyResult
 from .report import write_result
 from .spec import SCHEMAS, validate
@@ -53,7 +54,7 @@ def register(family) -> None:
     KINDS.update(family.KINDS)
 
 
-for _family in (design, doe, stability, damping):
+for _family in (design, doe, stability, damping, rotor):
     register(_family)
 assert set(KINDS) == set(SCHEMAS), "every schema has a runner and vice versa"
 

@@ -1,0 +1,164 @@
+"""``gfbopt rotor``: a rigid rotor on two foil bearings — which mode whirls first, from what
+speed, the Campbell diagram and the imbalance response.  A thin layer over
+:func:`gfbopt.rotor.analyse.analyse_rotor`::
+
+    gfbopt rotor ROTOR.toml --speed-range LOW HIGH [--speed-rpm N] [--campbell]
+                 [--imbalance-response] [--half-mass] [--grid NTxNZ] [--json] [--csv DIR]
+                 [--plot DIR]
+
+The rotor file (docs/formats/rotor_file.md) is read and checked, with every bearing file,
+before anything is solved.  JSON fields: ``onset_speed_rpm`` (first onset over all modes; null
+with ``onset_reason`` when none in the range), ``first_mode``, ``onset_whirl_frequency_hz``,
+``modes`` (label, onset speed, whirl frequency, shape), ``bearing_loads_newton``,
+``conventions`` and ``provenance``.
+"""
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+from ..errors import ParameterError
+from ..inputs.grid import DEFAULT_GRID
+from .common import emit, number
+
+
+def register(subparsers) -> None:
+    sub = subparsers.add_parser("rotor", help="a rigid rotor on two foil bearings: onset of "
+                                "each mode, Campbell diagram, imbalance response (SI)")
+    sub.add_argument("rotor_file", metavar="ROTOR.toml", help="rotor file (SI; "
+                     "docs/formats/rotor_file.md)")
+    sub.add_argument("--speed-range", type=number("speed-range"), nargs=2, required=True,
+                     metavar=("LOW", "HIGH"), help="speeds searched [rpm]")
+    sub.add_argument("--speed-rpm", type=number("speed-rpm"), default=None,
+                     help="also report the modes and each bearing's equilibrium at this speed "
+                     "[rpm]")
+    sub.add_argument("--campbell", action="store_true", help="Campbell diagram over the "
+                     "range (full-system eigenvalues)")
+    sub.add_argument("--campbell-speeds", type=int, default=20,
+                     help="speeds of the Campbell diagram (default 20)")
+    sub.add_argument("--imbalance-response", action="store_true",
+                     help="linear imbalance response over the range (needs [[imbalance]])")
+    sub.add_argument("--half-mass", action="store_true", help="also the per-bearing "
+                     "approximation (each bearing alone with its share of mass and load)")
+    sub.add_argument("--grid", default=str(DEFAULT_GRID),
+                     help=f"NTHETAxNZ (default {DEFAULT_GRID})")
+    sub.add_argument("--json", action="store_true", help="print one JSON object")
+    sub.add_argument("--csv", default=None, metavar="DIR", help="write the tables as CSV "
+                     "files in DIR")
+    sub.add_argument("--plot", default=None, metavar="DIR", help="write the figures (PNG) "
+                     "in DIR")
+    sub.set_defaults(handler=run)
+
+
+def _check(args) -> None:
+    low, high = args.speed_range
+    if not (math.isfinite(low) and math.isfinite(high) and 0 < low < high):
+        raise ParameterError("--speed-range", args.speed_range,
+                             "must be two speeds 0 < LOW < HIGH [rpm]")
+    if args.speed_rpm is not None and not args.speed_rpm > 0:
+        raise ParameterError("--speed-rpm", args.speed_rpm, "must be > 0 [rpm]")
+    if args.campbell_speeds < 2:
+        raise ParameterError("--campbell-speeds", args.campbell_speeds, "must be >= 2")
+    if not args.campbell and args.campbell_speeds != 20:
+        raise ParameterError("--campbell-speeds", args.campbell_speeds, "needs --campbell")
+    if args.plot and not (args.campbell or args.imbalance_response or args.half_mass):
+        raise ParameterError("--plot", args.plot, "needs --campbell, --imbalance-response or "
+                             "--half-mass (there is no figure of the onsets alone)")
+
+
+def run(args) -> int:
+    from ..inputs import Grid
+    from ..inputs.rotor_system import load_rotor
+    from ..rotor.analyse import analyse_rotor
+
+    _check(args)
+    grid = Grid.parse(args.grid)
+    system = load_rotor(args.rotor_file)
+    if args.imbalance_response and not system.imbalance:
+        raise ParameterError(f"{args.rotor_file}: imbalance", None, "--imbalance-response "
+                             "needs at least one [[imbalance]] plane in the rotor file")
+    result = analyse_rotor(system, tuple(args.speed_range), speed_rpm=args.speed_rpm,
+                           campbell=args.campbell, imbalance=args.imbalance_response,
+                           half_mass=args.half_mass, grid=grid,
+                           campbell_speeds=args.campbell_speeds,
+                           show_progress=not args.json)
+    out = {"rotor_file": args.rotor_file, "rotor": system.body.name, "grid": str(grid),
+           **result.to_dict()}
+    for key in ("scan", "equilibria"):       # in the CSV files; the JSON keeps the answers
+        out[key] = out[key] if not args.csv else f"{key}.csv"
+    if args.csv:
+        folder = Path(args.csv)
+        folder.mkdir(parents=True, exist_ok=True)
+        out["csv"] = [str(_write(frame, folder / f"{name}.csv"))
+                      for name, frame in result.tables().items()]
+    if args.plot:
+        out["figures"] = _figures(result, Path(args.plot), args.speed_range[1])
+    emit(out, args.json, lambda: _report(out), {"command": "rotor", "grid": str(grid),
+                                                "rotor_file": args.rotor_file})
+    return 0
+
+
+def _write(frame, path: Path) -> Path:
+    frame.to_csv(path, index=False, float_format="%.9g")
+    return path
+
+
+def _figures(result, folder: Path, top: float) -> list:
+    from ..plotting.core import save_figure
+    from ..plotting.rotor import plot_campbell, plot_imbalance_response, plot_onsets
+
+    folder.mkdir(parents=True, exist_ok=True)
+    onsets = {m.label: m.onset_speed_rpm for m in result.onsets.modes}
+    paths = []
+    if result.campbell is not None and len(result.campbell.table):
+        ax, _ = plot_campbell(result.campbell.table, onsets, top)
+        paths.append(save_figure(ax.figure, folder / "campbell.png"))
+    if result.imbalance is not None and len(result.imbalance.table):
+        ax, _ = plot_imbalance_response(result.imbalance.table, result.imbalance.peaks,
+                                        onsets, top)
+        paths.append(save_figure(ax.figure, folder / "imbalance_response.png"))
+    if result.half_mass is not None:
+        ax = plot_onsets([m.to_dict() for m in result.onsets.modes], result.half_mass, top)
+        paths.append(save_figure(ax.figure, folder / "onsets.png"))
+    return paths
+
+
+def _report(out: dict) -> str:
+    loads = ", ".join(f"{b['bearing']} {b['load_newton']:.4g} N at "
+                      f"{b['load_direction_deg']:.4g}°" for b in out["bearing_loads"])
+    lines = [f"gfbopt rotor — {out['rotor']} ({out['rotor_file']}), grid {out['grid']}",
+             f"  bearing loads: {loads}"]
+    for name, conv in out["conventions"]["bearings"].items():
+        lines.append(f"  bearing {name}: {conv['film_convention']}; {conv['foil']} foil, "
+                     f"{conv['deflection_law']} law, loss factor {conv['loss_factor']:g}")
+    if math.isfinite(out["onset_speed_rpm"]):
+        lines.append(f"  first to whirl: {out['first_mode']} from "
+                     f"{out['onset_speed_rpm']:,.0f} rpm at {out['onset_whirl_frequency_hz']:.4g}"
+                     " Hz")
+    else:
+        lines.append(f"  onset: none — {out['onset_reason']}")
+    for m in out["modes"]:
+        speed = (f"{m['onset_speed_rpm']:,.0f} rpm" if math.isfinite(m["onset_speed_rpm"])
+                 else m["status"])
+        lines.append(f"    {m['label']:<22} {speed:>28}, whirl {m['whirl_frequency_hz']:.4g}"
+                     f" Hz, B/A phase {m['shape']['phase_b_from_a_deg']:+.0f}°")
+    for c in out["load_capacity_exceeded"]:
+        lines.append(f"  bearing {c['bearing']} over capacity at {c['speed_rpm']:,.0f} rpm: "
+                     f"{c['message']}")
+    if "half_mass_approximation" in out:
+        h = out["half_mass_approximation"]
+        lines.append(f"  per-bearing (half-mass) approximation: {h['onset_speed_rpm']:,.0f} rpm"
+                     f" ({h['error_of_approximation']:+.1%} against the two-bearing onset)")
+    if "imbalance_response" in out:
+        for name, p in out["imbalance_response"]["peaks"].items():
+            lines.append(f"  imbalance response peak at {name}: {p['peak_amplitude_um']:.3g} µm"
+                         f" at {p['peak_speed_rpm']:,.0f} rpm")
+    if "campbell" in out and out["campbell"]["least_stable"]:
+        ls = out["campbell"]["least_stable"]
+        lines.append(f"  Campbell: {out['campbell']['modes']} modes over "
+                     f"{out['campbell']['speeds']} speeds; least stable {ls['label']} at "
+                     f"{ls['speed_rpm']:,.0f} rpm (log decrement {ls['log_decrement']:.3g})")
+    for key in ("csv", "figures"):
+        if key in out:
+            lines.append(f"  {key}: {', '.join(out[key])}")
+    return "\n".join(lines)

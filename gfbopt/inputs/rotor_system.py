@@ -1,0 +1,381 @@
+"""A rigid rotor on two foil bearings, described in SI units: the rotor file and its dataclasses.
+
+A rotor file is a TOML file (keys below are a contract; :data:`SCHEMA` lists them all and
+``docs/formats/rotor_file.md`` is generated from it)::
+
+    [rotor]
+    name = "blower"             # optional label
+    mass = 3.2                  # kg, whole rotor
+    transverse_inertia = 0.012  # kg m², about the centre of gravity
+    polar_inertia = 0.002       # kg m²
+    gravity_direction_deg = 0.0 # optional: direction of gravity in the x–y plane [deg]
+    gravity = 9.80665           # optional: m/s² (0: no weight, side loads only)
+
+    [[bearings]]                # exactly two
+    file = "bearings/ruscitto.toml"   # relative to the rotor file
+    position = -0.035           # m, axial, from the centre of gravity
+    name = "A"                  # optional (default A, B in file order)
+    [bearings.model]            # optional: overrides of the bearing file's [model] table
+    loss_factor = 0.1
+
+    [[side_loads]]              # optional static forces on the rotor
+    force = 10.0                # N, > 0
+    direction_deg = 90.0        # in the x–y plane [deg]
+    position = 0.0              # m, axial, from the centre of gravity
+
+    [[imbalance]]               # optional imbalance planes
+    amount_g_mm = 5.0           # or amount_kg_m (exactly one of the two)
+    phase_deg = 0.0             # angular position on the rotor [deg]
+    position = 0.12             # m, axial, from the centre of gravity
+
+    [[stations]]                # optional named axial stations for the imbalance response
+    name = "impeller"
+    position = 0.12             # m
+
+Frame (the same as the bearings', :mod:`gfbopt.static`): z along the rotor axis, positions
+measured from the centre of gravity; x and y in the plane of the bearings, the shaft spinning
+from x towards y (a right-handed frame x, y, z with spin +ω about z).  Every angle in the x–y
+plane (gravity, side loads, imbalance phase, each bearing's load direction) is measured from +x
+in the direction of rotation, in degrees at this edge.  By default gravity acts along +x
+(``gravity_direction_deg = 0``): x is then "down", the load line of both bearings of a
+horizontal rotor.
+
+Bad input raises one :class:`~gfbopt.errors.ParameterError` naming the file, the key, the value
+and the rule, before anything is solved.  A centre of gravity outside the bearing span
+(overhung rotor) and a bearing pushed away from gravity by the statics are legal
+(:mod:`gfbopt.rotor.rigid` rotates that bearing's frame).
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Optional, Union
+
+from ..errors import ParameterError
+from .bearing import BearingGeometry
+from .bearing_file import load_bearing_file, read_toml
+from .checks import check_finite, check_nonnegative, check_positive
+from .conversions import STANDARD_GRAVITY
+from .options import ModelOptions
+from .rotor_schema import SCHEMA, TABLES as _TABLES, Key, schema_markdown  # noqa: F401
+
+#: the number of bearings a rotor file must give (the rigid-rotor model has two supports)
+BEARING_COUNT = 2
+
+
+_TOP_LEVEL_OTHER = ("source", "notes")
+
+
+# ------------------------------------------------------------------ dataclasses
+@dataclass(frozen=True)
+class RotorBody:
+    """The rigid rotor's inertia.
+
+    mass [kg] > 0; transverse_inertia I_t [kg m²] > 0 about the centre of gravity;
+    polar_inertia I_p [kg m²], 0 ≤ I_p ≤ 2 I_t (the rotor file requires > 0; the Python API
+    accepts 0 for idealised checks without gyroscopic coupling); name.
+    """
+
+    mass: float
+    transverse_inertia: float
+    polar_inertia: float
+    name: str = "rotor"
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "mass", check_positive("mass", self.mass))
+        object.__setattr__(self, "transverse_inertia",
+                           check_positive("transverse_inertia", self.transverse_inertia))
+        ip = check_nonnegative("polar_inertia", self.polar_inertia)
+        if ip > 2.0 * self.transverse_inertia * (1 + 1e-12):
+            raise ParameterError("polar_inertia", self.polar_inertia,
+                                 f"must be <= 2 × transverse_inertia = "
+                                 f"{2 * self.transverse_inertia:.6g} kg m² (a rigid body's "
+                                 "principal moments obey I_p <= I_t + I_t)")
+        object.__setattr__(self, "polar_inertia", ip)
+
+
+@dataclass(frozen=True)
+class BearingSupport:
+    """One bearing of the rotor: its geometry (from its bearing file), where it sits, and the
+    formulation it is analysed with.
+
+    name; position [m] from the centre of gravity (signed, along z); geometry (SI);
+    options : the bearing file's ``[model]`` table with the rotor file's ``[bearings.model]``
+    over it (options not stated stay None: filled by
+    :func:`~gfbopt.inputs.options.resolve_model_options`); file : the bearing file used
+    (None when built in Python).  A stated seam angle is measured from the direction of
+    gravity, i.e. fixed in the housing (:mod:`gfbopt.rotor.rigid`).
+    """
+
+    name: str
+    position: float
+    geometry: BearingGeometry
+    options: ModelOptions = field(default_factory=ModelOptions)
+    file: Optional[str] = None
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "position", check_finite("position", self.position))
+        if not isinstance(self.geometry, BearingGeometry):
+            raise ParameterError("geometry", self.geometry, "must be a BearingGeometry (SI)")
+        if not isinstance(self.options, ModelOptions):
+            raise ParameterError("options", self.options, "must be ModelOptions")
+
+
+@dataclass(frozen=True)
+class SideLoad:
+    """A static force on the rotor: force [N] > 0, direction_deg [deg] in the x–y plane from
+    +x in the direction of rotation, position [m] from the centre of gravity."""
+
+    force: float
+    direction_deg: float
+    position: float = 0.0
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "force", check_positive("force", self.force))
+        object.__setattr__(self, "direction_deg",
+                           check_finite("direction_deg", self.direction_deg))
+        object.__setattr__(self, "position", check_finite("position", self.position))
+
+    @property
+    def vector(self) -> tuple[float, float]:
+        """(F_x, F_y) [N]."""
+        a = math.radians(self.direction_deg)
+        return self.force * math.cos(a), self.force * math.sin(a)
+
+
+@dataclass(frozen=True)
+class ImbalancePlane:
+    """An imbalance: amount m e [kg m] > 0, phase_deg of the heavy spot on the rotor (from its
+    reference mark, along +x at t = 0, in the direction of rotation) [deg], position [m]."""
+
+    amount_kg_m: float
+    position: float
+    phase_deg: float = 0.0
+    name: str = "plane"
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "amount_kg_m", check_positive("amount_kg_m", self.amount_kg_m))
+        object.__setattr__(self, "position", check_finite("position", self.position))
+        object.__setattr__(self, "phase_deg", check_finite("phase_deg", self.phase_deg))
+
+
+@dataclass(frozen=True)
+class Station:
+    """A named axial station [m from the centre of gravity] for the imbalance response."""
+
+    name: str
+    position: float
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "position", check_finite("position", self.position))
+
+
+@dataclass(frozen=True)
+class RotorSystem:
+    """A rigid rotor on two bearings, with its static loads and imbalance (SI).
+
+    body : inertia; bearings : exactly two :class:`BearingSupport` at different positions;
+    side_loads, imbalance, stations : tuples (may be empty); gravity [m/s²] ≥ 0 and
+    gravity_direction_deg [deg]; source : the rotor file (None when built in Python).
+    """
+
+    body: RotorBody
+    bearings: tuple
+    side_loads: tuple = ()
+    imbalance: tuple = ()
+    stations: tuple = ()
+    gravity: float = STANDARD_GRAVITY
+    gravity_direction_deg: float = 0.0
+    source: Optional[str] = None
+
+    def __post_init__(self) -> None:
+        where = f"{self.source}: " if self.source else ""
+        if not isinstance(self.body, RotorBody):
+            raise ParameterError(f"{where}rotor", self.body, "must be a RotorBody")
+        bearings = tuple(self.bearings)
+        if len(bearings) != BEARING_COUNT:
+            raise ParameterError(f"{where}bearings", f"{len(bearings)} bearing(s)",
+                                 "exactly two bearings are supported (a rigid rotor on two "
+                                 "supports)")
+        if bearings[0].position == bearings[1].position:
+            raise ParameterError(f"{where}bearings[2].position", bearings[1].position,
+                                 "must differ from bearings[1].position (two bearings at the "
+                                 "same position cannot resist a tilt)")
+        if bearings[0].name == bearings[1].name:
+            raise ParameterError(f"{where}bearings[2].name", bearings[1].name,
+                                 "must differ from the other bearing's name")
+        object.__setattr__(self, "bearings", bearings)
+        for key in ("side_loads", "imbalance", "stations"):
+            object.__setattr__(self, key, tuple(getattr(self, key)))
+        names = {b.name for b in bearings}
+        for k, s in enumerate(self.stations, 1):
+            if s.name in names:
+                raise ParameterError(f"{where}stations[{k}].name", s.name,
+                                     "must be unique (not a bearing's or another station's)")
+            names.add(s.name)
+        object.__setattr__(self, "gravity", check_nonnegative("gravity", self.gravity))
+        object.__setattr__(self, "gravity_direction_deg",
+                           check_finite("gravity_direction_deg", self.gravity_direction_deg))
+
+    @property
+    def weight_vector(self) -> tuple[float, float]:
+        """(W_x, W_y) = m g (cos, sin)(gravity direction) [N]."""
+        a = math.radians(self.gravity_direction_deg)
+        w = self.body.mass * self.gravity
+        return w * math.cos(a), w * math.sin(a)
+
+    @property
+    def span(self) -> float:
+        """Distance between the bearings [m]."""
+        return abs(self.bearings[1].position - self.bearings[0].position)
+
+    def station_positions(self) -> dict:
+        """name → axial position [m]: both bearings, then the named stations."""
+        out = {b.name: b.position for b in self.bearings}
+        out.update({s.name: s.position for s in self.stations})
+        return out
+
+
+# ------------------------------------------------------------------ the file
+def load_rotor(path: Union[str, Path]) -> RotorSystem:
+    """The rotor described in the rotor file ``path``, validated before anything is solved
+    (every bearing file read and checked too).  ParameterError names the file and key."""
+    path = Path(path)
+    return rotor_from_dict(read_toml(path), directory=path.parent, where=str(path))
+
+
+def rotor_from_dict(data: dict, directory: Union[str, Path] = ".",
+                    where: str = "<rotor>") -> RotorSystem:
+    """A :class:`RotorSystem` from the tables of a rotor file (``directory``: where bearing
+    files are looked up; ``where`` names the source in errors)."""
+    directory = Path(directory)
+    if not isinstance(data, dict):
+        raise ParameterError(where, data, "must be a table")
+    unknown = sorted(set(data) - set(_TABLES) - set(_TOP_LEVEL_OTHER))
+    if unknown:
+        raise ParameterError(f"{where}: {unknown[0]}", data[unknown[0]],
+                             _unknown_rule(unknown[0], _TABLES + _TOP_LEVEL_OTHER))
+    if "rotor" not in data:
+        raise ParameterError(f"{where}: [rotor]", None, "table is required but missing")
+    rotor = _table(data["rotor"], "rotor", f"{where}: rotor")
+    body = _build(RotorBody, f"{where}: rotor", mass=rotor["mass"],
+                  transverse_inertia=rotor["transverse_inertia"],
+                  polar_inertia=_positive_polar(rotor["polar_inertia"], where),
+                  name=rotor["name"])
+    bearing_rows = _rows(data, "bearings", where)
+    if len(bearing_rows) != BEARING_COUNT:
+        raise ParameterError(f"{where}: bearings", f"{len(bearing_rows)} [[bearings]] table(s)",
+                             "exactly two bearings are supported (a rigid rotor on two "
+                             "supports)")
+    bearings = [_bearing(row, k, directory, where) for k, row in enumerate(bearing_rows, 1)]
+    loads = [_build(SideLoad, f"{where}: side_loads[{k}]", **_table(row, "side_loads",
+                                                                    f"{where}: side_loads[{k}]"))
+             for k, row in enumerate(_rows(data, "side_loads", where), 1)]
+    planes = [_plane(row, k, where) for k, row in enumerate(_rows(data, "imbalance", where), 1)]
+    stations = [_build(Station, f"{where}: stations[{k}]",
+                       **_table(row, "stations", f"{where}: stations[{k}]"))
+                for k, row in enumerate(_rows(data, "stations", where), 1)]
+    gravity = check_nonnegative(f"{where}: rotor.gravity", rotor["gravity"])
+    direction = check_finite(f"{where}: rotor.gravity_direction_deg",
+                             rotor["gravity_direction_deg"])
+    return RotorSystem(body, tuple(bearings), tuple(loads), tuple(planes), tuple(stations),
+                       gravity=gravity, gravity_direction_deg=direction, source=where)
+
+
+def _unknown_rule(key: str, known) -> str:
+    import difflib
+
+    close = difflib.get_close_matches(key, known, n=1)
+    hint = f" (did you mean '{close[0]}'?)" if close else ""
+    return f"is not a key here{hint}; known: {', '.join(known)}"
+
+
+def _table(table, name: str, where: str) -> dict:
+    """Check one table against :data:`SCHEMA` (unknown, missing, kind); defaults filled."""
+    keys = {k.name: k for k in SCHEMA if k.table == name}
+    if not isinstance(table, dict):
+        raise ParameterError(where, table, "must be a table")
+    unknown = sorted(set(table) - set(keys))
+    if unknown:
+        raise ParameterError(f"{where}.{unknown[0]}", table[unknown[0]],
+                             _unknown_rule(unknown[0], tuple(keys)))
+    out = {}
+    for key in keys.values():
+        if key.name not in table:
+            if key.required:
+                raise ParameterError(f"{where}.{key.name}", None,
+                                     f"is required but missing ({key.doc} [{key.unit}])")
+            if key.default is not None and key.kind == "number":
+                out[key.name] = key.default
+            continue
+        value = table[key.name]
+        if key.kind == "number" and (isinstance(value, bool) or
+                                     not isinstance(value, (int, float))):
+            raise ParameterError(f"{where}.{key.name}", value, f"must be a number [{key.unit}]")
+        if key.kind == "string" and not isinstance(value, str):
+            raise ParameterError(f"{where}.{key.name}", value, "must be a string")
+        if key.kind == "table" and not isinstance(value, dict):
+            raise ParameterError(f"{where}.{key.name}", value, "must be a table")
+        out[key.name] = float(value) if key.kind == "number" else value
+    if name == "rotor":
+        out.setdefault("name", "rotor")
+    return out
+
+
+def _rows(data: dict, name: str, where: str) -> list:
+    rows = data.get(name, [])
+    if isinstance(rows, dict):
+        rows = [rows]
+    if not isinstance(rows, list):
+        raise ParameterError(f"{where}: {name}", rows, f"must be a list of [[{name}]] tables")
+    return rows
+
+
+def _build(cls, where: str, *args, **kwargs):
+    """cls(...) with a ParameterError renamed to ``where.key``."""
+    try:
+        return cls(*args, **kwargs)
+    except ParameterError as exc:
+        raise ParameterError(f"{where}.{exc.name}", exc.value, exc.rule) from None
+
+
+def _positive_polar(value: float, where: str) -> float:
+    if not (math.isfinite(value) and value > 0):
+        raise ParameterError(f"{where}: rotor.polar_inertia", value, "must be finite and > 0 "
+                             "[kg m²] (every real rotor has a polar inertia)")
+    return value
+
+
+def _bearing(row, k: int, directory: Path, where: str) -> BearingSupport:
+    here = f"{where}: bearings[{k}]"
+    table = _table(row, "bearings", here)
+    file = directory / table["file"]
+    if not file.is_file():
+        raise ParameterError(f"{here}.file", table["file"],
+                             f"must name an existing bearing file (looked for {file})")
+    geometry, options = load_bearing_file(file)
+    if "model" in table:
+        options = ModelOptions.from_table(table["model"], where=f"{here}.model").over(options)
+    return _build(BearingSupport, here, name=table.get("name", "AB"[k - 1]),
+                  position=table["position"], geometry=geometry, options=options,
+                  file=str(file))
+
+
+def _plane(row, k: int, where: str) -> ImbalancePlane:
+    here = f"{where}: imbalance[{k}]"
+    table = _table(row, "imbalance", here)
+    stated = [key for key in ("amount_kg_m", "amount_g_mm") if key in table]
+    if not stated:
+        raise ParameterError(f"{here}.amount_kg_m", None, "is required: give the imbalance "
+                             "as amount_kg_m [kg m] or amount_g_mm [g mm]")
+    if len(stated) == 2:
+        raise ParameterError(f"{here}.amount_g_mm", table["amount_g_mm"],
+                             "contradicts amount_kg_m: give one of the two")
+    amount = table.get("amount_kg_m", table.get("amount_g_mm", 0.0) * 1e-6)
+    if "amount_g_mm" in table and not (math.isfinite(table["amount_g_mm"])
+                                       and table["amount_g_mm"] > 0):
+        raise ParameterError(f"{here}.amount_g_mm", table["amount_g_mm"], "must be finite "
+                             "and > 0 [g mm]")
+    return _build(ImbalancePlane, here, amount_kg_m=amount, position=table["position"],
+                  phase_deg=table["phase_deg"], name=table.get("name", f"plane {k}"))

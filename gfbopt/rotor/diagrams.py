@@ -1,0 +1,190 @@
+"""Speed scans of the rotor on two bearings: the Campbell diagram (full-system eigenvalues,
+modes tracked over speed), the linear imbalance response (Bode) and the per-bearing
+(half-mass) approximation that engineers use and that this module shows beside the exact
+answer.
+
+* :func:`campbell_diagram` — at each speed the rotor's modes from :func:`gfbopt.rotor.
+  campbell.system_modes`, tracked by continuity (:func:`~gfbopt.rotor.campbell.track`); the
+  table has the damped natural frequency [Hz], whirl ratio, log decrement, damping ratio and
+  growth rate of every mode.  With a loss factor the foil's Kelvin–Voigt states use at each
+  speed the reference whirl ratio of the least-stable matched-whirl crossing there (stated in
+  the column ``reference_whirl_ratio``; 1/2 when no mode crosses).
+* :func:`imbalance_response` — the synchronous response q̂ = D(iω)⁻¹ Q̂ (Ω = ω, γ = 1: the
+  bearings' impedance at the running speed, which is right for a synchronous forcing) at each
+  bearing and named station: major semi-axis of the orbit [µm], x and y amplitudes [µm] and
+  phases [deg] (x = Re(X̂ e^{iωt})), forward and backward radii; the peak (critical speed)
+  of each station refined by a bounded scalar search.
+* :func:`half_mass_onsets` — each bearing alone, carrying its share of the weight and the same
+  share of the mass (m |W_k|/Σ|W|), in cylindrical whirl: :func:`gfbopt.rotor.onset_speed`.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+import pandas as pd
+from scipy.optimize import minimize_scalar
+
+from ..errors import ParameterError
+from ..inputs.conversions import rpm_to_rad_per_s
+from ..progress import progress
+from .campbell import system_modes, track
+from .onset import onset_speed
+from .rigid import dynamic_stiffness, imbalance_forces, station_matrix
+from .system import SpeedLine
+
+#: ν_ref of the Kelvin–Voigt foil states when no mode crosses at a speed [-]
+FALLBACK_REFERENCE_WHIRL = 0.5
+
+
+@dataclass(frozen=True)
+class CampbellDiagram:
+    """table : one row per (speed, tracked mode): speed_rpm, mode (track number), label,
+    whirl_frequency_hz, whirl_ratio, log_decrement, damping_ratio, growth_rate_per_s,
+    reference_whirl_ratio; capacity : speeds skipped (a bearing over capacity)."""
+
+    table: pd.DataFrame
+    capacity: list = field(default_factory=list)
+
+    def least_stable(self) -> pd.Series:
+        """The row with the smallest log decrement."""
+        return self.table.loc[self.table["log_decrement"].idxmin()]
+
+
+def reference_whirl(line: SpeedLine, speed: float) -> float:
+    """ν_ref at ``speed``: the whirl ratio of the least-stable matched-whirl crossing."""
+    found = line.crossings(speed)
+    return found[0].whirl_ratio if found else FALLBACK_REFERENCE_WHIRL
+
+
+def campbell_diagram(line: SpeedLine, speeds, show_progress: bool = True) -> CampbellDiagram:
+    """The Campbell diagram at ``speeds`` [rpm] (module docstring)."""
+    damped = any(c.options.loss_factor for c in line.rotor.cases)
+    done, per_speed, refs, skipped = [], [], [], []
+    with progress(total=len(speeds), desc="Campbell diagram", unit="speed",
+                  enabled=show_progress) as bar:
+        for speed in speeds:
+            states = line.states(speed)
+            bar.update(1)
+            if not states.ok:
+                skipped.append(states.failure)
+                continue
+            ref = reference_whirl(line, speed) if damped else math.nan
+            per_speed.append(system_modes(line.rotor, states,
+                                          reference_whirl=ref if damped else None))
+            done.append(speed)
+            refs.append(ref)
+    rows = []
+    for number, tr in enumerate(track(done, per_speed), 1):
+        for speed, m in tr:
+            rows.append({"speed_rpm": speed, "mode": number, "label": m.label,
+                         "whirl_frequency_hz": m.whirl_frequency_hz,
+                         "whirl_ratio": m.whirl_ratio, "log_decrement": m.log_decrement,
+                         "damping_ratio": m.damping_ratio,
+                         "growth_rate_per_s": m.growth_rate_per_s,
+                         "reference_whirl_ratio": refs[done.index(speed)]})
+    table = pd.DataFrame(rows)
+    if not table.empty:
+        # each track named by its most frequent label
+        names = table.groupby("mode")["label"].agg(lambda s: s.value_counts().index[0])
+        table["track_label"] = table["mode"].map(names)
+        table = table.sort_values(["mode", "speed_rpm"]).reset_index(drop=True)
+    return CampbellDiagram(table, skipped)
+
+
+@dataclass(frozen=True)
+class ImbalanceResponse:
+    """table : one row per (speed, station): speed_rpm, station, position_m, amplitude_um
+    (major semi-axis), amplitude_x_um, phase_x_deg, amplitude_y_um, phase_y_deg,
+    forward_radius_um, backward_radius_um; peaks : station → (peak speed [rpm], amplitude
+    [µm]); capacity : speeds skipped."""
+
+    table: pd.DataFrame
+    peaks: dict
+    capacity: list = field(default_factory=list)
+
+
+def synchronous_response(line: SpeedLine, speed: float) -> dict:
+    """station → (X̂, Ŷ) [m] at ``speed`` [rpm], or None when a bearing is over capacity."""
+    system = line.rotor.system
+    if not system.imbalance:
+        raise ParameterError("imbalance", (), "the rotor file has no [[imbalance]] plane: "
+                             "there is no imbalance response to compute")
+    states = line.states(speed)
+    if not states.ok:
+        return None
+    omega = rpm_to_rad_per_s(speed)
+    z = [st.impedance(1.0) for st in states.states]
+    d = dynamic_stiffness(system.body, omega, 1j * omega, line.rotor.transforms, z)
+    q = np.linalg.solve(d, imbalance_forces(system, omega))
+    return {name: station_matrix(pos) @ q for name, pos in system.station_positions().items()}
+
+
+def _row(speed, name, pos, xy) -> dict:
+    x, y = xy
+    f, b = abs(x + 1j * y) / 2, abs(x - 1j * y) / 2
+    return {"speed_rpm": speed, "station": name, "position_m": pos,
+            "amplitude_um": (f + b) * 1e6, "amplitude_x_um": abs(x) * 1e6,
+            "phase_x_deg": math.degrees(np.angle(x)), "amplitude_y_um": abs(y) * 1e6,
+            "phase_y_deg": math.degrees(np.angle(y)), "forward_radius_um": f * 1e6,
+            "backward_radius_um": b * 1e6}
+
+
+def imbalance_response(line: SpeedLine, speeds, show_progress: bool = True,
+                       refine_peaks: bool = True) -> ImbalanceResponse:
+    """The synchronous imbalance response at ``speeds`` [rpm] (module docstring)."""
+    positions = line.rotor.system.station_positions()
+    rows, skipped = [], []
+    with progress(total=len(speeds), desc="imbalance response", unit="speed",
+                  enabled=show_progress) as bar:
+        for speed in speeds:
+            resp = synchronous_response(line, speed)
+            bar.update(1)
+            if resp is None:
+                skipped.append(line.states(speed).failure)
+                continue
+            rows += [_row(speed, n, positions[n], xy) for n, xy in resp.items()]
+    table = pd.DataFrame(rows)
+    peaks = {}
+    for name in positions:
+        part = table[table["station"] == name].reset_index(drop=True) if rows else table
+        if part.empty:
+            continue
+        k = int(part["amplitude_um"].idxmax())
+        speed, amp = float(part.loc[k, "speed_rpm"]), float(part.loc[k, "amplitude_um"])
+        if refine_peaks and 0 < k < len(part) - 1:
+            lo, hi = float(part.loc[k - 1, "speed_rpm"]), float(part.loc[k + 1, "speed_rpm"])
+
+            def minus(s, name=name):
+                r = synchronous_response(line, s)
+                return 0.0 if r is None else -_row(s, name, 0.0, r[name])["amplitude_um"]
+
+            opt = minimize_scalar(minus, bounds=(lo, hi), method="bounded",
+                                  options={"xatol": 1e-4 * speed})
+            if -opt.fun >= amp:
+                speed, amp = float(opt.x), float(-opt.fun)
+        at_end = k in (0, len(part) - 1)
+        peaks[name] = {"peak_speed_rpm": speed, "peak_amplitude_um": amp,
+                       "at_range_end": bool(at_end)}
+    return ImbalanceResponse(table, peaks, skipped)
+
+
+def half_mass_onsets(line: SpeedLine, speed_range, show_progress: bool = False) -> list:
+    """Each bearing alone with its share of mass and load (module docstring): one dict per
+    bearing (bearing, mass_share_kg, load_newton, onset_speed_rpm, whirl_frequency_hz,
+    answer)."""
+    rotor = line.rotor
+    out = []
+    for case, load, share in zip(rotor.cases, rotor.loads, rotor.mass_share_kg):
+        try:
+            res = onset_speed(case.bearing, case.rotor, case.load_newton, speed_range,
+                              options=case.options, grid=case.grid, cache=case.cache)
+            out.append({"bearing": load.name, "mass_share_kg": share,
+                        "load_newton": load.magnitude, "onset_speed_rpm": res.onset_speed_rpm,
+                        "whirl_frequency_hz": res.whirl_frequency_hz, "answer": res.answer})
+        except ParameterError as exc:
+            out.append({"bearing": load.name, "mass_share_kg": share,
+                        "load_newton": load.magnitude, "onset_speed_rpm": math.nan,
+                        "whirl_frequency_hz": math.nan, "answer": str(exc)})
+    return out

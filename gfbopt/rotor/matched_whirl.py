@@ -1,0 +1,183 @@
+"""The exact linear threshold of the rigid rotor on two bearings at one speed, with matched
+whirl: the whirl frequencies Ω and inertia scales μ at which the dynamic stiffness
+
+    D(Ω; μ) = −Ω² μ M + iΩ ω μ G + Σ_k T_kᵀ Z_k(iΩ) T_k              (gfbopt.rotor.rigid (1))
+
+is singular, Z_k each bearing's frequency-dependent impedance at its own equilibrium.  The
+rotor's inertias (M and G together) scaled by μ: at each whirl ratio γ = Ω/ω this is the
+4 × 4 generalised eigenproblem
+
+    A(Ω) v = ν K_b(Ω) v,     A = Ω² M − iΩ ω G,   K_b = Σ T_kᵀ Z_k T_k,   ν = 1/μ,
+
+and a real ν > 0 is a threshold: the rotor with inertias μ = 1/ν has a mode on the imaginary
+axis at s = iΩ, with shape v (issue 16; docs/PHYSICS.md).  μ generalises the one-bearing
+critical mass: for one bearing carrying mass M, μ = M̄c/M̄.  Scaling the inertias keeps
+the rotor's shape (mass, inertias and the gyroscopic term alike), so the rotor itself
+(μ = 1) is below the threshold of a mode — that mode is stable — when the mode's critical
+μ_c > 1 (the rotor would need μ_c times its inertia to whirl; cf. M̄ < M̄c).
+
+Search (as :mod:`gfbopt.linear.crossings` does for one bearing, with four roots instead of
+two): ν(γ) on the scan (24 whirl ratios on (0.02, 1.2) by default, the one-bearing scan,
+with midpoints added wherever a root moves by more than 0.3 of its distance to the next root
+between two points — near γ = 1/2 two forward modes can cross the axis 2e-4 apart in γ), the
+four branches followed by continuity (optimal assignment of the nearest roots), every
+sign change of Im ν refined by Brent's method to 1e-10 in γ, kept when the root is real there
+(|Im ν| ≤ 1e-8 |ν|: a jump between branches is not a crossing) and ν > 0.  Every impedance
+comes from the bearings' :class:`~gfbopt.rotor.supports.BearingState` at this speed (one
+LU and one Krylov space per bearing for all modes and frequencies).
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+import scipy.linalg as sla
+from scipy.optimize import brentq, linear_sum_assignment
+
+from .modes import shape
+from .rigid import gyroscopic_matrix, mass_matrix
+from .supports import WHIRL_RANGE, RotorCase, SpeedStates
+
+#: absolute tolerance of a crossing's whirl ratio (Brent) [-] (that of gfbopt.linear)
+WHIRL_TOLERANCE = 1e-10
+#: a refined root counts as real when |Im ν| ≤ this × |ν| [-]
+REAL_ROOT = 1e-8
+#: scan points over the whirl range (as gfbopt.linear.linear_threshold)
+SAMPLES = 24
+#: a root may move by at most this fraction of its distance to the nearest other root from
+#: one scan point to the next; else the interval is halved (branch following stays sure)
+FOLLOW_FRACTION = 0.3
+#: at most this many scan points in all, and no interval narrower than MIN_SPACING [-]
+MAX_SAMPLES = 240
+MIN_SPACING = 1e-5
+
+
+@dataclass(frozen=True)
+class ModeCrossing:
+    """One mode on the imaginary axis at one speed.
+
+    inertia_scale μ_c [-] (the rotor whirls in this mode when its inertias are μ_c times
+    the real ones; μ_c > 1 stable), whirl_ratio γ = Ω/ω [-], whirl_frequency_hz [Hz],
+    label ('forward conical', …), shape (:func:`gfbopt.rotor.modes.shape`), vector q̂."""
+
+    inertia_scale: float
+    whirl_ratio: float
+    whirl_frequency_hz: float
+    label: str
+    shape: dict
+    vector: np.ndarray = field(repr=False, compare=False)
+
+
+def bearing_stiffness(rotor: RotorCase, states: SpeedStates, whirl_ratio: float) -> np.ndarray:
+    """K_b(iΩ) = Σ T_kᵀ Z_k(iΩ) T_k [N/m, N, N m] (4 × 4) at Ω = γ ω."""
+    kb = np.zeros((4, 4), dtype=complex)
+    for t, st in zip(rotor.transforms, states.states):
+        kb += t.T @ st.impedance(whirl_ratio) @ t
+    return kb
+
+
+def inertia_roots(rotor: RotorCase, states: SpeedStates, whirl_ratio: float
+                  ) -> tuple[np.ndarray, np.ndarray]:
+    """(ν (4,), eigenvectors (4, 4) as columns) of A v = ν K_b v at whirl ratio γ."""
+    omega = states.omega
+    big = whirl_ratio * omega
+    body = rotor.system.body
+    a = big**2 * mass_matrix(body) - 1j * big * omega * gyroscopic_matrix(body)
+    nu, vec = sla.eig(a, bearing_stiffness(rotor, states, whirl_ratio))
+    return nu, vec
+
+
+def _branches(values: np.ndarray) -> np.ndarray:
+    """Reorder each row of ``values`` (samples, 4) to continue the previous row's roots."""
+    out = values.copy()
+    for k in range(1, len(out)):
+        cost = np.abs(out[k - 1][:, None] - values[k][None, :])
+        _, cols = linear_sum_assignment(cost)
+        out[k] = values[k][cols]
+    return out
+
+
+def _ambiguous(a: np.ndarray, b: np.ndarray) -> bool:
+    """True when continuing roots ``a`` to ``b`` is unsafe: some root moves by more than
+    :data:`FOLLOW_FRACTION` of its distance to the nearest other root."""
+    sep = np.abs(a[:, None] - a[None, :]) + np.diag(np.full(a.size, np.inf))
+    return bool(np.any(np.abs(b - a) > FOLLOW_FRACTION * sep.min(axis=1)))
+
+
+def _adaptive_scan(roots, gammas: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The scan with midpoints inserted wherever following the branches is ambiguous
+    (:func:`_ambiguous`), until it is not or :data:`MAX_SAMPLES` points are reached; the
+    roots of each point ordered by branch."""
+    pts = {float(g): roots(g) for g in gammas}
+    while len(pts) < MAX_SAMPLES:
+        g = np.array(sorted(pts))
+        vals = _branches(np.array([pts[x] for x in g]))
+        split = [0.5 * (g[k] + g[k + 1]) for k in range(len(g) - 1)
+                 if g[k + 1] - g[k] > MIN_SPACING and _ambiguous(vals[k], vals[k + 1])]
+        if not split:
+            return g, vals
+        for x in split[:MAX_SAMPLES - len(pts)]:
+            pts[x] = roots(x)
+    g = np.array(sorted(pts))
+    return g, _branches(np.array([pts[x] for x in g]))
+
+
+def crossings(rotor: RotorCase, states: SpeedStates, whirl_range=WHIRL_RANGE,
+              samples: int = SAMPLES) -> list:
+    """Every mode crossing (:class:`ModeCrossing`) with μ_c > 0 at this speed, lowest μ_c
+    first (module docstring).  ``states`` must be complete (no bearing over capacity)."""
+    gammas = np.linspace(whirl_range[0], whirl_range[1], samples)
+    for st in states.states:
+        st.prepare(gammas)
+    gammas, values = _adaptive_scan(lambda g: inertia_roots(rotor, states, g)[0], gammas)
+    samples = len(gammas)
+    names = rotor.names
+    positions = [b.position for b in rotor.system.bearings]
+    found = []
+    for branch in range(values.shape[1]):
+        im = values[:, branch].imag
+        for k in range(samples - 1):
+            if not (im[k] == 0 or im[k] * im[k + 1] < 0):
+                continue
+            crossing = _refine(rotor, states, gammas[k], gammas[k + 1], values[k, branch],
+                               values[k + 1, branch], positions, names)
+            if crossing is not None and not any(_same(crossing, c) for c in found):
+                found.append(crossing)
+    return sorted(found, key=lambda c: (c.inertia_scale, c.whirl_ratio))
+
+
+def _refine(rotor, states, low, high, nu_low, nu_high, positions, names):
+    """The crossing of one branch between two scan points: Brent on Im of the root nearest
+    the branch's linear interpolation between its values at the ends (two close roots keep
+    their own references); None unless the root found is real and > 0."""
+    def nearest(g):
+        nu, vec = inertia_roots(rotor, states, g)
+        ref = nu_low + (g - low) / (high - low) * (nu_high - nu_low)
+        j = int(np.argmin(np.abs(nu - ref)))
+        return nu[j], vec[:, j]
+
+    try:
+        g = brentq(lambda x: nearest(x)[0].imag, low, high, xtol=WHIRL_TOLERANCE)
+    except ValueError:
+        return None
+    root, q = nearest(g)
+    if not (abs(root.imag) <= REAL_ROOT * abs(root) and root.real > 0):
+        return None
+    sh = shape(q, positions, names)
+    return ModeCrossing(1.0 / root.real, float(g), float(g * states.omega / (2 * math.pi)),
+                        sh["label"], sh, q)
+
+
+def _same(a: ModeCrossing, b: ModeCrossing) -> bool:
+    return (abs(a.whirl_ratio - b.whirl_ratio) <= 1e3 * WHIRL_TOLERANCE
+            and abs(a.inertia_scale / b.inertia_scale - 1) <= 1e-6)
+
+
+def by_mode(found: list) -> dict:
+    """label → the crossing with the smallest μ_c among those with that label."""
+    out: dict = {}
+    for c in found:
+        if c.label not in out or c.inertia_scale < out[c.label].inertia_scale:
+            out[c.label] = c
+    return out

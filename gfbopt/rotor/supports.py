@@ -1,0 +1,216 @@
+"""The rotor's two bearings at one speed: each bearing's equilibrium under its own static load,
+its linearisation, and its impedance Z_k(iγ) — built once per speed and reused for every
+mode, every whirl frequency and every analysis at that speed (threshold, Campbell, imbalance).
+
+Each bearing is analysed through the one-bearing route (:func:`gfbopt.rotor.analysis.
+resolve_case` and :func:`~gfbopt.rotor.analysis.equilibrium`): its own bearing file, its own
+``[model]`` options (with the rotor file's overrides), its load from the rotor's statics
+(:func:`gfbopt.rotor.rigid.bearing_loads`) and its seam re-measured from that load
+(:func:`~gfbopt.rotor.rigid.seam_from_load`).  A load beyond capacity at a speed is not a
+crash: :func:`support_states` returns the states it could build and the message (with the
+largest load the bearing carries) for the one it could not.
+
+The impedance at a speed comes from one sparse LU per bearing and a block Krylov space
+(:class:`gfbopt.linear.krylov.ShiftedImpedance`) over the whirl ratios scanned; a whirl
+ratio where the space has not converged (or outside it) gets a direct LU
+(:func:`gfbopt.linear.impedance`).  Values are cached per whirl ratio.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Optional
+
+import numpy as np
+
+from ..errors import ParameterError
+from ..inputs.conversions import STANDARD_GRAVITY, rpm_to_rad_per_s, stiffness_scale
+from ..inputs.grid import DEFAULT_GRID, Grid
+from ..inputs.options import ModelOptions, merge_options
+from ..inputs.rotor import Rotor
+from ..inputs.rotor_system import RotorSystem
+from ..linear import Linearisation, impedance, linearise
+from ..linear.krylov import ShiftedImpedance
+from ..static import SolverCache, StaticSolution
+from .analysis import Case, LoadCapacityError, equilibrium, resolve_case
+from .rigid import BearingLoad, bearing_loads, seam_from_load, transformations
+
+#: whirl ratios the threshold scans by default (those of gfbopt.linear.linear_threshold) [-]
+WHIRL_RANGE = (0.02, 1.2)
+
+
+@dataclass(frozen=True)
+class RotorCase:
+    """A resolved rotor: the system, each bearing's static load and one-bearing
+    :class:`~gfbopt.rotor.analysis.Case` (options filled, seam from its own load), the
+    transformations T_k, the grid and the shared solver cache.
+
+    mass_share_kg : each bearing's share of the rotor mass in the per-bearing (half-mass)
+    approximation, m |W_k|/(|W_A| + |W_B|) [kg]."""
+
+    system: RotorSystem
+    loads: tuple
+    cases: tuple
+    transforms: tuple
+    grid: Grid
+    cache: SolverCache = field(repr=False, compare=False)
+
+    @property
+    def mass_share_kg(self) -> tuple:
+        total = sum(l.magnitude for l in self.loads)
+        return tuple(self.system.body.mass * l.magnitude / total for l in self.loads)
+
+    @property
+    def names(self) -> tuple:
+        return tuple(b.name for b in self.system.bearings)
+
+    def conventions(self) -> dict:
+        """The options each bearing is analysed with, its load and frame, as outputs state."""
+        return {"frame": FRAME, "grid": str(self.grid),
+                "bearings": {n: {
+                    **c.conventions(), "load_newton": l.magnitude,
+                    "load_direction_deg": l.direction_deg,
+                    "load_from_gravity_deg": l.away_from_gravity_deg,
+                    "position_m": l.position, "bearing_file": s.file}
+                    for n, c, l, s in zip(self.names, self.cases, self.loads,
+                                          self.system.bearings)},
+                "gravity_m_per_s2": self.system.gravity,
+                "gravity_direction_deg": self.system.gravity_direction_deg}
+
+
+FRAME = ("z along the rotor axis from the centre of gravity; x, y in the bearing plane, the "
+         "shaft spinning from x to y; angles from +x in the direction of rotation [deg]; "
+         "q = (x, y, ψx = dx/dz, ψy = dy/dz); each bearing's impedance in its own load frame "
+         "(X along its static load, Y ahead of it)")
+
+
+def resolve_rotor(system: RotorSystem, grid: Grid = DEFAULT_GRID,
+                  cache: Optional[SolverCache] = None,
+                  options: Optional[ModelOptions] = None) -> RotorCase:
+    """Check and resolve everything before any solve: statics, each bearing's options
+    (``options`` stated here win over the rotor and bearing files), its Case and T_k."""
+    if not isinstance(system, RotorSystem):
+        raise ParameterError("system", system, "must be a RotorSystem (gfbopt.inputs."
+                             "rotor_system.load_rotor)")
+    if not isinstance(grid, Grid):
+        raise ParameterError("grid", grid, "must be a Grid")
+    cache = cache if cache is not None else SolverCache(grid)
+    loads = bearing_loads(system)
+    total = sum(l.magnitude for l in loads)
+    cases = []
+    for support, load in zip(system.bearings, loads):
+        resolved = merge_options(options or ModelOptions(), support.options)
+        resolved = seam_from_load(resolved, load.away_from_gravity_deg)
+        share = system.body.mass * load.magnitude / total
+        try:
+            cases.append(resolve_case(support.geometry, Rotor(share), load.magnitude,
+                                      options=resolved, grid=grid, cache=cache))
+        except ParameterError as exc:
+            raise ParameterError(f"bearing {support.name}: {exc.name}", exc.value,
+                                 exc.rule) from None
+    return RotorCase(system, loads, tuple(cases), transformations(system, loads), grid, cache)
+
+
+class BearingState:
+    """One bearing at one speed: equilibrium, linearisation and Z(iγ) [N/m] on demand."""
+
+    def __init__(self, case: Case, load: BearingLoad, speed_rpm: float,
+                 solution: StaticSolution, whirl_range=WHIRL_RANGE):
+        self.case, self.load, self.speed_rpm, self.solution = case, load, speed_rpm, solution
+        self.omega = rpm_to_rad_per_s(speed_rpm)
+        g = case.bearing
+        self.scale = stiffness_scale(g.ambient_pressure, g.radius, g.radial_clearance)
+        self.linearisation: Linearisation = linearise(solution, case.cache(solution.model,
+                                                                            case.grid))
+        self.whirl_range = tuple(whirl_range)
+        self._model: Optional[ShiftedImpedance] = None
+        self._values: dict = {}
+        self.direct_solves = 0
+
+    def _krylov(self) -> Optional[ShiftedImpedance]:
+        if self._model is None:
+            try:
+                self._model = ShiftedImpedance(self.linearisation, self.whirl_range)
+            except RuntimeError:          # A + s0 B exactly singular: direct solves only
+                self._model = False
+        return self._model or None
+
+    def prepare(self, whirl_ratios) -> None:
+        """Converge the Krylov space at these whirl ratios (the threshold's scan)."""
+        model = self._krylov()
+        if model is not None:
+            model.converge(np.asarray(whirl_ratios, dtype=float))
+
+    def nondimensional(self, whirl_ratio: float) -> np.ndarray:
+        """Z̄(iγ) (2 × 2, bearing load frame) [-]."""
+        g = float(whirl_ratio)
+        if g in self._values:
+            return self._values[g]
+        model = self._krylov()
+        low, high = self.whirl_range
+        if model is not None and low <= g <= high and model.converged(g):
+            z = model.evaluate(g)[0]
+        else:
+            z = impedance(self.linearisation, 1j * g)
+            self.direct_solves += 1
+        self._values[g] = z
+        return z
+
+    def impedance(self, whirl_ratio: float) -> np.ndarray:
+        """Z_k(iΩ) [N/m] at Ω = γ ω (2 × 2, bearing load frame)."""
+        return self.scale * self.nondimensional(whirl_ratio)
+
+    def summary(self) -> dict:
+        """The equilibrium, as outputs state it."""
+        sol = self.solution
+        return {"bearing": self.load.name, "speed_rpm": self.speed_rpm,
+                "load_newton": self.load.magnitude, "eccentricity": sol.eccentricity,
+                "attitude_angle_deg": math.degrees(sol.attitude_angle),
+                "min_film_thickness_um": sol.min_film * self.case.bearing.radial_clearance * 1e6,
+                "bearing_number": sol.model.bearing_number, "load_exceeds_capacity": False}
+
+
+@dataclass(frozen=True)
+class SpeedStates:
+    """Both bearings at one speed (``states``), or why not (``failure``: the bearing and the
+    capacity message; then ``states`` holds None for it)."""
+
+    speed_rpm: float
+    states: tuple
+    failure: Optional[dict] = None
+
+    @property
+    def ok(self) -> bool:
+        return self.failure is None
+
+    @property
+    def omega(self) -> float:
+        return rpm_to_rad_per_s(self.speed_rpm)
+
+
+def support_states(rotor: RotorCase, speed_rpm: float, initial: Optional[tuple] = None,
+                   whirl_range=WHIRL_RANGE) -> SpeedStates:
+    """Each bearing's equilibrium and linearisation at ``speed_rpm`` [rpm]; ``initial``: the
+    previous speed's (warm starts).  A bearing loaded beyond its capacity is reported in
+    ``failure`` (bearing, message with the largest load it carries), not raised."""
+    states = []
+    failure = None
+    for k, (case, load) in enumerate(zip(rotor.cases, rotor.loads)):
+        guess = initial[k].solution if initial and initial[k] is not None else None
+        try:
+            sol = equilibrium(case, speed_rpm, guess)
+        except LoadCapacityError as exc:
+            states.append(None)
+            failure = failure or {"bearing": load.name, "speed_rpm": speed_rpm,
+                                  "load_newton": load.magnitude, "message": exc.rule}
+            continue
+        states.append(BearingState(case, load, speed_rpm, sol, whirl_range))
+    return SpeedStates(speed_rpm, tuple(states), failure)
+
+
+def weight_note(system: RotorSystem) -> str:
+    """How the static loads were obtained, for outputs."""
+    g = system.gravity
+    source = ("standard gravity" if g == STANDARD_GRAVITY else f"g = {g:g} m/s²")
+    return (f"weight m g ({source}) along {system.gravity_direction_deg:g}° plus "
+            f"{len(system.side_loads)} side load(s), shared by force and moment balance")

@@ -1,0 +1,154 @@
+"""The rotor study kind: a rigid rotor on two foil bearings (issue 16).
+
+* ``rotor_two_bearings`` — for a rotor file (``problems/rotors/*.toml``): the onset speed of
+  every mode (matched whirl, :func:`gfbopt.rotor.system.rotor_onsets`), which whirls first, the
+  Campbell diagram (full-system eigenvalues), the imbalance response, the same rotor without
+  gyroscopic coupling (I_p = 0: how much I_p ω raises the forward conical onset) and the
+  per-bearing half-mass approximation beside it (each bearing alone with its share of mass
+  and load, :func:`gfbopt.rotor.onset_speed`), so that users see how far the rule of thumb is
+  from the two-bearing answer.
+
+Checks: the Campbell diagram (eigenvalues of the full system) and the matched-whirl onsets
+must agree where they should — below the first onset every mode of the diagram has a positive
+log decrement, above it at least one is negative.
+"""
+from __future__ import annotations
+
+import math
+import time
+
+import numpy as np
+import pandas as pd
+
+from ..errors import ParameterError
+from .base import Kind, RunContext, Study, StudyResult
+from .spec import GRID, opt, req
+
+SCHEMAS: dict[str, dict] = {
+    "rotor_two_bearings": {**GRID,
+        "rotor": req("string", "rotor file (SI), relative to the study file"),
+        "speed_range_rpm": req("numbers", "[low, high] speeds searched and scanned [rpm]",
+                               length=2),
+        "top_speed_rpm": req("number", "the rotor's top running speed [rpm], marked on the "
+                             "figures", positive=True),
+        "campbell_speeds": opt("integer", 20, "speeds of the Campbell diagram", minimum=2),
+        "imbalance_speeds": opt("integer", 40, "speeds of the imbalance response",
+                                minimum=2)},
+}
+
+
+def plan_rotor(study: Study) -> dict:
+    from ..inputs.rotor_system import load_rotor
+
+    path = study.directory / study.spec["rotor"]
+    try:
+        system = load_rotor(path)
+    except ParameterError as exc:
+        raise study.where("rotor").error(str(study.spec["rotor"]),
+                                         f"{exc.name}: {exc.rule}") from None
+    low, high = study.spec["speed_range_rpm"]
+    if not 0 < low < high:
+        raise study.where("speed_range_rpm").error([low, high], "must be [low, high] with "
+                                                   "0 < low < high [rpm]")
+    if not system.imbalance:
+        raise study.where("rotor").error(str(study.spec["rotor"]), "has no [[imbalance]] "
+                                         "plane: the study shows the imbalance response")
+    return {"system": system, "speed_range": (float(low), float(high))}
+
+
+def run_rotor(study: Study, plan: dict, ctx: RunContext) -> StudyResult:
+    from ..plotting.rotor import plot_campbell, plot_imbalance_response, plot_onsets
+    from ..rotor.analyse import analyse_rotor
+    from ..rotor.system import rotor_onsets, without_gyroscopics
+
+    spec, system = study.spec, plan["system"]
+    t0 = time.perf_counter()
+    result = analyse_rotor(system, plan["speed_range"], campbell=True, imbalance=True,
+                           half_mass=True, grid=study.grid,
+                           campbell_speeds=spec["campbell_speeds"],
+                           imbalance_speeds=spec["imbalance_speeds"])
+    plain = rotor_onsets(without_gyroscopics(system), plan["speed_range"], grid=study.grid)
+    out = result.to_dict()
+    tables = {f"{k}.csv": v for k, v in result.tables().items()}
+    rows = [{"label": m.label, "onset_speed_rpm": m.onset_speed_rpm,
+             "whirl_frequency_hz": m.whirl_frequency_hz, "status": m.status}
+            for m in plain.modes]
+    tables["modes_without_gyroscopics.csv"] = pd.DataFrame(rows)
+    top = spec["top_speed_rpm"]
+    onsets = {m.label: m.onset_speed_rpm for m in result.onsets.modes}
+    name = system.body.name
+    figs = {}
+    ax, _ = plot_campbell(result.campbell.table, onsets, top,
+                          title=f"Campbell diagram: {name} (grid {study.grid})")
+    figs["campbell.png"] = ax.figure
+    ax, _ = plot_imbalance_response(result.imbalance.table, result.imbalance.peaks, onsets, top,
+                                    title=f"Imbalance response: {name}")
+    figs["imbalance_response.png"] = ax.figure
+    ax = plot_onsets([m.to_dict() for m in result.onsets.modes], result.half_mass, top,
+                     title=f"Onset of each mode against the half-mass rule: {name}")
+    figs["onsets.png"] = ax.figure
+    checks = [_campbell_check(result)]
+    notes = _notes(result, plain, out, top)
+    notes.append(f"computed in {time.perf_counter() - t0:.1f} s, grid {study.grid}")
+    options = {"grid": str(study.grid), "rotor_file": spec["rotor"],
+               "speed_range_rpm": list(plan["speed_range"]),
+               "conventions": result.onsets.conventions}
+    return StudyResult(study, tables=tables, figures=figs, checks=checks, options=options,
+                       notes=notes)
+
+
+def _campbell_check(result) -> dict:
+    """Campbell below/above the first onset against the matched-whirl onset (a count of
+    speeds where they disagree, 0 expected)."""
+    from . import checks
+
+    table = result.campbell.table
+    onset = result.onsets.onset_speed_rpm
+    worst = table.groupby("speed_rpm")["log_decrement"].min()
+    if math.isfinite(onset):
+        # speeds within 1 % of the onset are left out (the onset's tolerance and the grid)
+        wrong = sum(1 for s, d in worst.items() if abs(s / onset - 1) > 0.01
+                    and (d < 0) != (s > onset))
+    else:
+        wrong = int((worst < 0).sum())
+    return checks.check("Campbell diagram (full system) agrees with the matched-whirl onset: "
+                        "speeds where the least log decrement has the wrong sign", wrong, 0)
+
+
+def _notes(result, plain, out: dict, top: float) -> list:
+    notes = []
+    r = result.onsets
+    loads = ", ".join(f"{l.name} {l.magnitude:.3g} N" for l in r.bearing_loads)
+    notes.append(f"Bearing loads from the statics: {loads}.")
+    if math.isfinite(r.onset_speed_rpm):
+        notes.append(f"First to whirl: {r.first_mode} from {r.onset_speed_rpm:,.0f} rpm at "
+                     f"{r.onset_whirl_frequency_hz:.4g} Hz; the top speed {top:,.0f} rpm is "
+                     f"{top / r.onset_speed_rpm:.2f}× the onset.")
+    else:
+        notes.append(f"No onset in the range: {r.onset_reason}.")
+    for m in r.modes:
+        other = plain.mode(m.label)
+        if other is not None and math.isfinite(m.onset_speed_rpm) and math.isfinite(
+                other.onset_speed_rpm):
+            notes.append(f"{m.label}: onset {m.onset_speed_rpm:,.0f} rpm with gyroscopic "
+                         f"coupling, {other.onset_speed_rpm:,.0f} rpm without (I_p = 0): "
+                         f"{m.onset_speed_rpm / other.onset_speed_rpm - 1:+.1%}.")
+    h = out["half_mass_approximation"]
+    notes.append("Per-bearing (half-mass) approximation: " + "; ".join(
+        f"bearing {b['bearing']} alone ({b['mass_share_kg']:.3g} kg, {b['load_newton']:.3g} N)"
+        f": {b['onset_speed_rpm']:,.0f} rpm" for b in h["bearings"]) +
+        f"; its first onset is {h['error_of_approximation']:+.1%} against the two-bearing "
+        "answer, and it cannot say which mode whirls (it has no conical mode).")
+    for station, p in result.imbalance.peaks.items():
+        notes.append(f"Imbalance response at {station}: peak {p['peak_amplitude_um']:.3g} µm at "
+                     f"{p['peak_speed_rpm']:,.0f} rpm.")
+    notes.append("The imbalance response uses the synchronous impedances (γ = 1); above the "
+                 "first onset it is the linear response of an unstable rotor.")
+    least = result.campbell.least_stable()
+    notes.append(f"Campbell diagram: least log decrement {least['log_decrement']:.3g} "
+                 f"({least['label']}, {least['speed_rpm']:,.0f} rpm); "
+                 f"{int(np.isfinite(result.campbell.table['log_decrement']).sum())} eigenvalues.")
+    return notes
+
+
+KINDS = {"rotor_two_bearings": Kind(plan_rotor, run_rotor)}
