@@ -10,6 +10,7 @@ module                 commands
 :mod:`.design`         ``gfbopt design``
 :mod:`.run`            ``gfbopt run``
 :mod:`.rotor`          ``gfbopt rotor`` (two bearings: onset of each mode, Campbell, imbalance)
+:mod:`.capacity`       ``gfbopt capacity`` (load capacity, lift-off speed)
 :mod:`.common`         operating-point options, refusal of ignored options, JSON output
 :mod:`.si`             a bearing file's [model] options merged with the command line
 =====================  =================================================================
@@ -28,9 +29,11 @@ from ..errors import GfboptError
 from ..version import __version__
 from . import design, linear, run, stability, static, transient
 from . import rotor
+from . import capacity
 from .common import Parser
 
 COMMANDS = (static, linear, stability, transient, design, run, rotor)
+COMMANDS += (capacity,)
 
 
 def build_parser() -> Parser:

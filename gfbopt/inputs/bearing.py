@@ -1,10 +1,12 @@
 """A gas foil journal bearing described in SI units, and its non-dimensional groups."""
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
+from typing import Optional
 
 from ..errors import ParameterError
 from ..physics.bump import bump_compliance
+from .bore_si import BearingBuild
 from .checks import check_finite, check_positive
 from .conversions import (bearing_number_from_speed, compliance_from_alpha,
                           load_to_newton, load_to_nondimensional, rpm_to_rad_per_s,
@@ -31,6 +33,9 @@ class BearingGeometry:
     viscosity : gas dynamic viscosity μ [Pa s]
     ambient_pressure : ambient pressure p_a [Pa]
     name : label used in reports
+    build : the bearing as built (:class:`gfbopt.inputs.bore.BearingBuild`: bore profile,
+        pads, bump zones, SI and degrees), or None for a round bore, one top foil and a
+        uniform foundation
     """
 
     radius: float
@@ -46,6 +51,7 @@ class BearingGeometry:
     viscosity: float
     ambient_pressure: float = 101325.0
     name: str = "bearing"
+    build: Optional[BearingBuild] = None
 
     def __post_init__(self) -> None:
         for key in ("radius", "length", "radial_clearance", "bump_pitch", "bump_half_length",
@@ -61,6 +67,8 @@ class BearingGeometry:
                 "radial_clearance", self.radial_clearance,
                 f"must be small against the radius (c/R <= 0.01; R = {self.radius!r} m) "
                 "for the thin-film Reynolds equation to hold")
+        if self.build is not None:
+            self.build.nondimensional(self)       # bore, pads and zones checked here
 
     # Derived non-dimensional groups --------------------------------------------
     @property
@@ -108,6 +116,13 @@ class BearingGeometry:
         ``foil='rigid'`` sets S = 0; other keyword arguments go to BearingModel.
         """
         compliance = 0.0 if foil == "rigid" else self.compliance
+        if self.build is not None and "as_built" not in kwargs:
+            built = self.build.nondimensional(self)
+            if foil == "rigid":       # a rigid comparison keeps the bore, not the bumps
+                built = replace(built, zones=())
+            elif built.zones:
+                compliance = built.mean_compliance()
+            kwargs["as_built"] = built
         return BearingModel(bearing_number=self.bearing_number(speed_rpm),
                             compliance=compliance,
                             length_ratio=self.length_ratio,

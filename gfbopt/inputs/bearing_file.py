@@ -33,9 +33,11 @@ except ModuleNotFoundError:  # pragma: no cover - Python 3.10
 
 from ..errors import ParameterError
 from .bearing import BearingGeometry
+from .bore_si import build_from_tables
 from .options import ModelOptions
 
-_FIELDS = {f.name: f for f in dataclasses.fields(BearingGeometry)}
+_FIELDS = {f.name: f for f in dataclasses.fields(BearingGeometry)
+           if f.name != "build"}          # the as-built tables are [bore], [[pads]], [[zones]]
 _OPTIONAL = {name for name, f in _FIELDS.items()
              if f.default is not dataclasses.MISSING}
 
@@ -73,7 +75,9 @@ def load_bearing(path: str | Path) -> BearingGeometry:
     data = read_toml(path)
     if "bearing" not in data:
         raise ParameterError(f"{path}: [bearing]", None, "table is required but missing")
-    return bearing_from_dict(data["bearing"], where=f"{Path(path).name}: bearing")
+    geometry = bearing_from_dict(data["bearing"], where=f"{Path(path).name}: bearing")
+    build = build_from_tables(data, where=Path(path).name)      # [bore], [[pads]], [[zones]]
+    return geometry if build is None else dataclasses.replace(geometry, build=build)
 
 
 def load_bearing_file(path: str | Path) -> tuple[BearingGeometry, ModelOptions]:

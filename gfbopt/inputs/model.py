@@ -6,6 +6,7 @@ from dataclasses import dataclass, replace
 from typing import Optional
 
 from ..errors import ParameterError
+from .bore import AsBuilt, check_as_built
 from .checks import (check_choice, check_finite, check_flag, check_loss_factor,
                      check_nonnegative, check_positive)
 
@@ -68,6 +69,8 @@ class BearingModel:
         depend on it) and needs a foundation: η > 0 is refused with foil='rigid' or S = 0.
         The linear analysis supports it (:mod:`gfbopt.linear`); an engine that does not is
         refused a damped model by :func:`gfbopt.physics.foil_laws.foil_law`.
+    as_built : the bearing as built (:class:`gfbopt.inputs.bore.AsBuilt`: bore profile,
+        pads, bump zones), or None for a round bore, one top foil and a uniform foundation.
     """
 
     bearing_number: float
@@ -81,6 +84,7 @@ class BearingModel:
     deflection_law: str = "mean"
     subambient: str = "full"
     loss_factor: float = 0.0
+    as_built: Optional[AsBuilt] = None
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "bearing_number",
@@ -114,6 +118,8 @@ class BearingModel:
                 if self.foil == "rigid" else
                 "must be 0 when the compliance S = 0 (the foundation does not deflect, so "
                 "there is nothing for its structural damping to act on)"))
+        if self.as_built is not None:
+            check_as_built(self)
 
     @property
     def is_rigid(self) -> bool:
@@ -139,7 +145,8 @@ class BearingModel:
                 "deflection_law": self.deflection_law,
                 "compression_only": self.compression_only, "subambient": self.subambient,
                 "loss_factor": self.loss_factor,
-                "film_convention": film_convention(self.film, self.seam_angle, self.foil)}
+                "film_convention": film_convention(self.film, self.seam_angle, self.foil),
+                **({} if self.as_built is None else self.as_built.describe())}
 
     def groups(self) -> dict:
         """The non-dimensional groups Λ, S, C, L/D of this model."""

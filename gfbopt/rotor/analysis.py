@@ -63,9 +63,10 @@ class Case:
 
     def conventions(self) -> dict:
         """The options used, as every output states them."""
+        built = {} if self.bearing.build is None else self.bearing.build.describe()
         return {**self.options.to_dict(), "compliance": self.bearing.compliance,
                 "length_ratio": self.bearing.length_ratio, "grid": str(self.grid),
-                "load_source": self.load_source}
+                "load_source": self.load_source, **built}
 
 
 def resolve_case(bearing: BearingGeometry, rotor: Rotor, load_newton: Optional[float], *,

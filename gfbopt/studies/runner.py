@@ -20,6 +20,7 @@ from . import design, maps, sweeps, tables, transients
 from . import doe
 from . import damping, stability
 from . import rotor
+from . import bearing_as_built
 from .base import Kind, LoadedStudy, RunContext, Study, StudyResult
 from .report import write_result
 from .spec import SCHEMAS, validate
@@ -56,6 +57,7 @@ def register(family) -> None:
 
 for _family in (design, doe, stability, damping, rotor):
     register(_family)
+register(bearing_as_built)
 assert set(KINDS) == set(SCHEMAS), "every schema has a runner and vice versa"
 
 
