@@ -18,8 +18,9 @@ How a run goes:
    e.g. after rounding a discrete variable) is answered from it; the others are evaluated by
    ``evaluate(**fixed, **design)`` (a module-level function returning one row: a dict with
    the objective and constraint columns), through an executor — serial, a process pool
-   or a Dask cluster (:func:`gfbopt.parallel.stream_tasks`, or a pool kept for the whole run,
-   :func:`gfbopt.design.executor.persistent_pool`); each task runs
+   or a Dask cluster (:func:`executor`, over :func:`gfbopt.parallel.stream_tasks`; inside
+   ``with gfbopt.parallel.WorkerPool(n):`` every batch of the run reuses one pool and its
+   workers' solvers, and a task whose worker died is retried on a fresh pool); each task runs
    :func:`gfbopt.parallel.run_points` on its point with the worker's solver cache, so a failed
    evaluation is a row with ``success = False`` and its message, never a crash;
 3. every finished row is appended to the store as it arrives (``flush_rows`` rows per part;
@@ -131,10 +132,19 @@ def _task(argument: dict) -> dict:
     return row
 
 
-def _serial(function, arguments):
+def executor(workers: int = 1, client=None) -> Callable:
+    """The ``run_tasks`` of :func:`optimise`: this process (``workers <= 1``), a pool of
+    ``workers`` spawn processes (the run's :class:`gfbopt.parallel.WorkerPool` when one is
+    open) or a Dask cluster (``client``), through :func:`gfbopt.parallel.stream_tasks`."""
+    from functools import partial
+
     from ..parallel import stream_tasks
 
-    return stream_tasks(function, arguments, workers=1)
+    return partial(stream_tasks, workers=workers, client=client)
+
+
+def _serial(function, arguments):
+    return executor(1)(function, arguments)
 
 
 def _number(value) -> float:
@@ -192,8 +202,7 @@ def optimise(problem: DesignProblem, evaluate: Callable, settings: SearchSetting
     store : a :class:`gfbopt.doe.ResultStore` whose schema is :func:`store_schema` (None:
         nothing is written); reopened with ``resume=True`` it answers the designs it holds
     run_tasks : executor ``run_tasks(function, arguments)`` yielding ``(k, result)`` as each
-        task finishes (default: this process; e.g. ``functools.partial(stream_tasks,
-        workers=2)`` or :func:`gfbopt.design.executor.persistent_pool`)
+        task finishes (default: this process; :func:`executor` for a pool or Dask)
     initial : designs (dicts) put first in the initial sample (e.g. the baseline)
     flush_rows, flush_seconds : rows per Parquet part / longest time between writes
     progress : called with the fraction of the budget asked
@@ -242,6 +251,8 @@ def optimise(problem: DesignProblem, evaluate: Callable, settings: SearchSetting
         if todo:
             arguments = [{"function": evaluate, "point": {**fixed, **d}} for _, d, _ in todo]
             for k, result in run_tasks(_task, arguments):
+                if k is None:                   # an executor's tick: nothing finished
+                    continue
                 t1 = time.perf_counter()
                 key, design, index = todo[k]
                 lost = isinstance(result, BaseException)

@@ -98,14 +98,17 @@ def test_killed_run_resumes_with_every_design_evaluated_once(tmp_path):
     assert resumed.front["point"].tolist() == clean.front["point"].tolist()
 
 
-def test_persistent_pool_gives_the_serial_answer():
-    """Two spawn workers kept for the whole run (one pool, six generations): the same table
-    as the serial run, row for row, whatever the completion order."""
-    from gfbopt.design.executor import persistent_pool
+def test_one_pool_for_the_run_gives_the_serial_answer():
+    """Two spawn workers kept for the whole run (gfbopt.parallel.WorkerPool: one pool for
+    six generations): the same table as the serial run, row for row, whatever the
+    completion order."""
+    from gfbopt.design.optimiser import executor
+    from gfbopt.parallel import WorkerPool
 
     serial = optimise(ZDT, surrogates.zdt1, SETTINGS)
-    with persistent_pool(2) as run_tasks:
-        pooled = optimise(ZDT, surrogates.zdt1, SETTINGS, run_tasks=run_tasks)
+    with WorkerPool(2) as pool:
+        pooled = optimise(ZDT, surrogates.zdt1, SETTINGS, run_tasks=executor(2))
+    assert pool.started <= 2               # one pool: a pool per generation would start 12
     cols = ["point", "evaluation", "f1", "f2"]
     assert pooled.table[cols].equals(serial.table[cols])
     # the evaluations ran in the pool's workers, not here (which worker took which task is
