@@ -143,6 +143,22 @@ def executor(workers: int = 1, client=None) -> Callable:
     return partial(stream_tasks, workers=workers, client=client)
 
 
+def evaluate_points(function: Callable, points: list, run_tasks: Optional[Callable] = None
+                    ) -> list:
+    """``function(**point)`` for every point through an executor (``run_tasks``, default
+    this process), the rows in the order of ``points``; a task the executor lost is a row
+    with ``success = False`` and ``executor:`` in its message."""
+    run_tasks = run_tasks or _serial
+    rows: list = [None] * len(points)
+    for k, result in run_tasks(_task, [{"function": function, "point": p} for p in points]):
+        if k is None:
+            continue
+        rows[k] = (result if not isinstance(result, BaseException) else
+                   {"success": False, "message": f"executor: {type(result).__name__}: "
+                    f"{result}"})
+    return rows
+
+
 def _serial(function, arguments):
     return executor(1)(function, arguments)
 

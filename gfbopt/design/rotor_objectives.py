@@ -10,7 +10,7 @@ unprefixed names change both).  :func:`apply_design` turns it into a new
   (:func:`gfbopt.rotor.system.rotor_onsets`: matched whirl, each bearing at its own load) —
   ``first_onset_speed_rpm`` is the first onset over all modes, censored at the top of the
   search range when every mode is stable there (``onset_status`` says which);
-* the power lost in both films at the top speed (``power_loss_w``, from the drag torque of
+* the power lost in both films at the top speed (``total_power_loss_w``, from the drag torque of
   :mod:`gfbopt.physics.torque`) and the minimum film there;
 * the minimum film at the lowest speed under the heaviest load (the static loads times
   ``heaviest_load_factor``), the smaller of the two bearings;
@@ -54,7 +54,7 @@ BUMP_GEOMETRY = ("bump_pitch_mm", "bump_half_length_mm", "bump_thickness_um")
 OUTPUTS = {
     "first_onset_speed_rpm": "float64", "first_mode": "string", "onset_status": "string",
     "onset_whirl_frequency_hz": "float64", "stable_to_top_speed": "bool",
-    "power_loss_w": "float64", "min_film_top_speed_um": "float64",
+    "total_power_loss_w": "float64", "min_film_top_speed_um": "float64",
     "min_film_um": "float64", "lift_off_speed_rpm": "float64",
     "capacity_margin": "float64", "bump_stress_mpa": "float64",
     "top_foil_sag_ratio": "float64", "bump_closing_ratio": "float64",
@@ -219,7 +219,7 @@ def _film_and_power(rotor, line, settings: EvaluationSettings, cache) -> dict:
                       case.load_newton * settings.heaviest_load_factor, settings.grid, cache)
         film_low = min(film_low, sol.min_film * case.bearing.radial_clearance * 1e6
                        if sol.success else 0.0)
-    return {"power_loss_w": power, "min_film_top_speed_um": film_top,
+    return {"total_power_loss_w": power, "min_film_top_speed_um": film_top,
             "min_film_um": film_low}
 
 
@@ -327,7 +327,7 @@ def evaluate_rotor_design(system, settings: EvaluationSettings, cache=None,
         row.update(first_onset(line, settings))
         row.update(_film_and_power(rotor, line, settings, cache))
         row.update(_capacity_rows(rotor, settings, cache))
-        row["success"] = bool(math.isfinite(row["power_loss_w"]))
+        row["success"] = bool(math.isfinite(row["total_power_loss_w"]))
         row["message"] = "" if row["success"] else ("a bearing cannot carry its load at the "
                                                     "top speed")
     except ParameterError as exc:
