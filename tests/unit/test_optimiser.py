@@ -87,9 +87,10 @@ def test_nsga2_front_respects_the_constraint():
 # ------------------------------------------------------------------ planted optima
 def test_bayes_finds_the_constrained_optimum():
     """min (x−0.8)² + (y−0.8)² with x + y ≤ 1: 0.18 at (0.5, 0.5) on the constraint.
-    24 evaluations (8 Latin hypercube + 16 GP proposals).  Measured with seeds 0-1: f within
-    0.4 % of 0.18, (x, y) within 0.015 of (0.5, 0.5).  Bounds: 2 % on f, 0.03 on the
-    position; no reported best may break the constraint."""
+    24 evaluations (8 Latin hypercube + 16 GP proposals).  Measured with seeds 0-2: f within
+    0.09-0.54 % of 0.18, (x, y) within 0.008-0.028 of (0.5, 0.5) (along the constraint line
+    f grows only quadratically, so the position is the looser of the two).  Bounds: 2 % on
+    f, 0.03 on the position; no reported best may break the constraint."""
     r = optimise(BOWL, surrogates.pinched_bowl, SearchSettings("bayes", budget=24, startup=8,
                                                                seed=0))
     assert r.best["sum_xy"] <= 1.0
