@@ -401,3 +401,49 @@ _PATTERNS = _PATTERNS + (
     (r"(.+)_default_grid", "-", "{0} on the default grid"),
     (r"(.+)_relative_change", "-", "{0}: default grid over search grid − 1"),
 )
+
+
+# ---------------------------------------------------------------- rotor transients
+# Columns of rotor transients (gfbopt.transient.rotor_result, study kind rotor_run_up);
+# per-bearing columns carry the bearing's name (x_A_um, min_film_B_um, …).
+for _name, _entry in {
+    "time_s": ("s", "time since the start of the run"),
+    "shaft_angle_deg": ("deg", "shaft angle since the start of the run (the imbalance phase "
+                        "origin)"),
+    "sync_amplitude_x_um": ("µm", "order-tracked 1× amplitude of the journal's x (along "
+                            "gravity), zero to peak"),
+    "sync_phase_x_deg": ("deg", "phase of that 1× component: x peaks when the shaft angle is "
+                         "minus this"),
+    "sync_amplitude_y_um": ("µm", "order-tracked 1× amplitude of the journal's y, zero to "
+                            "peak"),
+    "sync_phase_y_deg": ("deg", "phase of the 1× component of y"),
+    "sub_amplitude_um": ("µm", "largest subsynchronous spectral peak (0.05–0.95 × shaft "
+                         "speed), 1× removed, zero to peak"),
+    "sub_frequency_hz": ("Hz", "frequency of that peak (positive: forward whirl)"),
+    "sub_whirl_ratio": ("-", "that frequency over the shaft frequency"),
+    "quantity": ("text", "what the row reports"),
+    "value": ("-", "its value, in the unit named by the quantity"),
+}.items():
+    GLOSSARY.setdefault(_name, _entry)
+_PATTERNS += (
+    (r"x_(\w+)_um", "µm", "journal centre x at bearing {0} (global frame, along gravity, "
+     "from the bearing centre)"),
+    (r"y_(\w+)_um", "µm", "journal centre y at bearing {0} (90° ahead of gravity)"),
+    (r"min_film_(\w+)_um", "µm", "smallest film at bearing {0} since the previous sample"),
+)
+for _name, _entry in {
+    "speed_over_linear_onset": ("-", "shaft speed over the rotor's linear onset speed"),
+    "contact": ("flag", "the run ended in contact (film ≤ 0.02 c or foil travel exhausted)"),
+    "contact_time_s": ("s", "time of contact since the start of the run (empty: none)"),
+    "limit_cycle_amplitude_um": ("µm", "subsynchronous whirl at a constant speed: largest "
+                                 "distance of the orbit (1× removed) from its centre over "
+                                 "the last window"),
+    "limit_cycle_frequency_hz": ("Hz", "frequency of that whirl (positive: forward)"),
+    "limit_cycle_settled": ("flag", "the whirl amplitude changed by ≤ the settle tolerance "
+                            "between the last two windows"),
+    "limit_cycle_change": ("-", "relative change of the whirl amplitude between the last two "
+                           "windows"),
+    "min_film_um": ("µm", "smallest film thickness over the run (0: the film closed)"),
+    "revolutions": ("-", "shaft revolutions integrated"),
+}.items():
+    GLOSSARY.setdefault(_name, _entry)

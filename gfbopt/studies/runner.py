@@ -121,3 +121,8 @@ def run_study(path: Union[str, Path, LoadedStudy],
     result = compute(loaded, workers=workers, progress=progress, results_root=results_root)
     write_result(result, Path(results_root), force=force)
     return result
+
+
+from . import rotor_transient  # noqa: E402  (rotor transients, issue 18)
+
+register(rotor_transient)
