@@ -394,6 +394,11 @@ for _name, _entry in {
     "first_mode_default_grid": ("text", "the mode that whirls first, on the default grid"),
     "onset_status_default_grid": ("text", "onset status on the default grid"),
     "feasible_default_grid": ("-", "the design meets every limit on the default grid"),
+    "limit_cycle_um": ("µm", "subsynchronous whirl limit cycle at the bearing (largest "
+                       "distance from the orbit's centre)"),
+    "settled": ("-", "the limit cycle changed by ≤ 1 % over the last whirl periods"),
+    "revolutions": ("-", "shaft revolutions of the orbit"),
+    "contact": ("-", "the film closed (contact) during the orbit"),
 }.items():
     GLOSSARY.setdefault(_name, _entry)
 _PATTERNS = _PATTERNS + (

@@ -102,3 +102,33 @@ def regrid(system, settings, designs: list, problem: DesignProblem,
         line["feasible_default_grid"] = bool(new.get("success")) and problem.feasible(new)
         out.append(line)
     return pd.DataFrame.from_records(out)
+
+
+def whirl_at_top_speed(system, design: dict, settings, revolutions: float) -> dict:
+    """The rotor with ``design`` run at the top speed for ``revolutions`` from its
+    equilibrium with a small cylindrical kick (:func:`gfbopt.transient.rotor_orbit`, the
+    rotor transient of issue 18, on the search grid, the loss factor of the search): per
+    bearing the subsynchronous limit cycle [µm] (settled or not) and the smallest film
+    [µm], and whether the film closed (contact) first."""
+    from ..inputs.options import ModelOptions, merge_options
+    from ..transient.rotor_analysis import rotor_orbit
+    from .rotor_objectives import apply_design
+
+    designed, _ = apply_design(system, design, settings)
+    supports = tuple(dataclasses.replace(b, options=merge_options(
+        ModelOptions(loss_factor=settings.loss_factor), b.options))
+        for b in designed.bearings)
+    designed = dataclasses.replace(designed, bearings=supports)
+    result = rotor_orbit(designed, settings.top_speed_rpm, revolutions, grid=settings.grid)
+    d = result.to_dict()
+    out = {"revolutions": revolutions, "success": bool(d["success"]),
+           "message": d.get("message", ""), "contact": bool(d.get("contact")),
+           "contact_bearing": d.get("contact_bearing"),
+           "contact_time_s": d.get("contact_time_s", math.nan), "bearings": []}
+    for b in d["bearings"]:
+        out["bearings"].append({
+            "bearing": b["bearing"], "min_film_um": b.get("min_film_um", math.nan),
+            "limit_cycle_um": b.get("limit_cycle_amplitude_um", math.nan),
+            "settled": bool(b.get("limit_cycle_settled", False)),
+            "whirl_frequency_hz": b.get("limit_cycle_frequency_hz", math.nan)})
+    return out

@@ -57,6 +57,7 @@ class RotorDesignPlan:
     robustness: RobustnessSpec
     study_hash: str
     regrid_designs: int = 3
+    limit_cycle_revolutions: float = 0.0
 
 
 def _variables(rows: list, where, bearings: tuple) -> tuple:
@@ -221,4 +222,5 @@ def plan_rotor_design(study, study_hash: str = "") -> RotorDesignPlan:
     settings = EvaluationSettings(grid=Grid.parse(s["search_grid"]), **common)
     default = EvaluationSettings(grid=Grid.parse(s["grid"]), **common)
     return RotorDesignPlan(system, problem, search, settings, default, band, s["goal"],
-                           robustness, study_hash, s["regrid_designs"])
+                           robustness, study_hash, s["regrid_designs"],
+                           s["limit_cycle_revolutions"])

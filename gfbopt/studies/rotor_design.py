@@ -20,9 +20,9 @@ search.  A run:
 4. writes the verdict in words as the README's first line, the tables (every evaluation,
    the front, the robustness and the default-grid check) and figures that mark the top speed.
 
-The limit cycle at the top speed of a design that is not stable there (the verdict's whirl
-amplitude) needs the rotor transient of issue 18; it is reported as not computed until that
-is merged.
+When no design is stable to the top speed, the chosen one is run at the top speed in time
+(the rotor transient of issue 18, :func:`gfbopt.design.robustness.whirl_at_top_speed`): the
+verdict gives its whirl limit cycle at each bearing and the minimum film, or the contact.
 """
 from __future__ import annotations
 
@@ -81,6 +81,9 @@ SCHEMAS = {"rotor_bearing_design": {
                        "re-evaluates the chosen and front designs)"),
     "regrid_designs": opt("integer", 3, "designs re-evaluated on the default grid (the "
                           "chosen one, then the front's best onsets)", minimum=1),
+    "limit_cycle_revolutions": opt("number", 200.0, "revolutions of the orbit at the top "
+                                   "speed when no design is stable there (0: none)",
+                                   minimum=0.0),
     "rotor": req("string", "rotor file (SI), relative to the study file"),
     "speed_range_rpm": req("numbers", "[lowest, top] running speeds [rpm]", length=2),
     "search_high_rpm": opt("number", None, "top of the onset search [rpm] (default 1.25 × "
@@ -124,19 +127,23 @@ SCHEMAS = {"rotor_bearing_design": {
 }}
 
 
+#: keys that do not change a stored evaluation (words, and what happens after the search)
+AFTER_SEARCH = ("title", "source", "notes", "name", "robustness", "grid", "regrid_designs",
+                "limit_cycle_revolutions")
+
+
 def _digest(path: Path) -> str:
     return hashlib.sha256(path.read_bytes()).hexdigest() if path.is_file() else ""
 
 
 def design_hash(study: Study) -> str:
-    """What the stored evaluations depend on: the validated spec (title, source, notes,
-    robustness and the default grid excepted), the rotor file and its bearing files (content),
-    and gfbopt's major.minor version."""
+    """What the stored evaluations depend on: the validated spec (except
+    :data:`AFTER_SEARCH`), the rotor file and its bearing files (content), and gfbopt's
+    major.minor version."""
     from ..inputs import read_toml
     from ..version import __version__
 
-    spec = {k: v for k, v in study.spec.items()
-            if k not in ("title", "source", "notes", "name", "robustness", "grid")}
+    spec = {k: v for k, v in study.spec.items() if k not in AFTER_SEARCH}
     rotor = study.directory / study.spec["rotor"]
     files = {"rotor": _digest(rotor)}
     try:
@@ -157,7 +164,7 @@ def plan(study: Study):
 
 def run_design(loaded: LoadedStudy, results_root="results", *, workers: int = 1,
                client=None, resume: bool = False, progress=None,
-               write: bool = True) -> StudyResult:
+               write: bool = True, force: bool = False) -> StudyResult:
     """Run the design study into ``results_root/NAME/`` (module docstring); ``resume``
     keeps the evaluations of an earlier (killed) run of the same study."""
     from ..design.optimiser import executor, optimise, store_schema
@@ -183,7 +190,7 @@ def run_design(loaded: LoadedStudy, results_root="results", *, workers: int = 1,
     if write:
         from .report import write_result
 
-        write_result(result, Path(results_root))
+        write_result(result, Path(results_root), force=force)
     return result
 
 

@@ -56,7 +56,7 @@ def _onset_text(row: dict, search_high: float) -> str:
     return f"{row['first_onset_speed_rpm']:,.0f} rpm ({row['first_mode']})"
 
 
-def verdict(chosen, why: str, plan, check) -> str:
+def verdict(chosen, why: str, plan, check, whirl=None) -> str:
     """The answer in words, for the first line of the README."""
     s = plan.settings
     top, grid, default = s.top_speed_rpm, str(s.grid), str(plan.default_settings.grid)
@@ -79,9 +79,26 @@ def verdict(chosen, why: str, plan, check) -> str:
                 f"search grid{honest}.")
     return (f"No design in this space is stable to {top:,.0f} rpm; the best first onset is "
             f"{chosen['first_onset_speed_rpm']:,.0f} rpm (mode {chosen['first_mode']}) with "
-            f"{describe(chosen, names)}, {film}; the whirl limit cycle at {top:,.0f} rpm was "
-            "not computed (it needs the rotor transient of issue 18, not merged here) — "
-            f"answer from the {grid} search grid{honest}.")
+            f"{describe(chosen, names)}, {film}; {whirl_text(whirl, top)} — answer from the "
+            f"{grid} search grid{honest}.")
+
+
+def whirl_text(whirl, top: float) -> str:
+    """The whirl at the top speed in words (the rotor transient's orbit)."""
+    if whirl is None:
+        return f"the whirl at {top:,.0f} rpm was not computed (limit_cycle_revolutions = 0)"
+    if whirl["contact"]:
+        return (f"at {top:,.0f} rpm the whirl grows until the film closes at bearing "
+                f"{whirl['contact_bearing']} after {whirl['contact_time_s'] * 1e3:.0f} ms "
+                "(no limit cycle within the film)")
+    if not whirl["success"]:
+        return f"the orbit at {top:,.0f} rpm failed ({whirl['message']})"
+    cycles = " and ".join(f"{b['limit_cycle_um']:.2f} µm at bearing {b['bearing']}"
+                          for b in whirl["bearings"])
+    film = min(b["min_film_um"] for b in whirl["bearings"])
+    state = "settled" if all(b["settled"] for b in whirl["bearings"]) else "not yet settled"
+    return (f"at {top:,.0f} rpm the whirl limit cycle is {cycles} with minimum film "
+            f"{film:.2f} µm ({whirl['revolutions']:g} revolutions, {state})")
 
 
 def _reproduce(plan, chosen: dict) -> float:
@@ -124,7 +141,14 @@ def report(study, plan, search, run_tasks, progress, elapsed: float) -> StudyRes
     if progress:
         progress(0.97)
     check = default.iloc[0].to_dict() if len(default) else None
-    text = verdict(chosen, why, plan, check)
+    whirl = None
+    if (chosen is not None and chosen["first_onset_speed_rpm"] < s.top_speed_rpm
+            and plan.limit_cycle_revolutions > 0):
+        from ..design.robustness import whirl_at_top_speed
+
+        whirl = whirl_at_top_speed(plan.system, {n: float(chosen[n]) for n in problem.names},
+                                   s, plan.limit_cycle_revolutions)
+    text = verdict(chosen, why, plan, check, whirl)
     notes = [text, f"Why this design: {why}."]
     mean = search.evaluation_time_s / search.evaluated if search.evaluated else math.nan
     method = ("pymoo NSGA-II" if plan.search.method == "nsga2" else
@@ -154,6 +178,10 @@ def report(study, plan, search, run_tasks, progress, elapsed: float) -> StudyRes
             f"{c['p05_onset_speed_rpm']:,.0f} rpm, worst {c['worst_onset_speed_rpm']:,.0f} rpm"
             f"; {c['stable_to_top_fraction']:.0%} of the samples stable to the top speed.")
     tables = {"evaluations.csv": table, "pareto_front.csv": front}
+    if whirl is not None:
+        tables["whirl_at_top_speed.csv"] = pd.DataFrame(
+            [{**b, "speed_rpm": s.top_speed_rpm, "revolutions": whirl["revolutions"],
+              "contact": whirl["contact"]} for b in whirl["bearings"]])
     if chosen is not None:
         tables["chosen.csv"] = pd.DataFrame([chosen])
     if len(default):
