@@ -26,9 +26,9 @@ from typing import Optional
 
 import numpy as np
 
+from ..doe.sampling import Variable as SampledVariable
 from ..errors import ParameterError
 
-SCALES = ("linear", "log")
 SENSES = ("min", "max")
 #: normalised violation given to a failed evaluation (larger than any physical one we expect)
 FAILED_VIOLATION = 1e3
@@ -45,40 +45,16 @@ def _finite(name: str, value) -> float:
 
 
 @dataclass(frozen=True)
-class Variable:
+class Variable(SampledVariable):
     """A design variable: ``low``–``high`` (``scale`` linear or log) or discrete ``values``
-    (sorted levels; ``low``/``high`` are then their extremes)."""
-
-    name: str
-    low: Optional[float] = None
-    high: Optional[float] = None
-    scale: str = "linear"
-    values: Optional[tuple] = None
+    (sorted levels).  Validated as a sampled input of the design-of-experiments machinery
+    (:class:`gfbopt.doe.sampling.Variable`); adds the unit-cube coding the optimisers use."""
 
     def __post_init__(self) -> None:
+        super().__post_init__()
         if self.values is not None:
-            if self.low is not None or self.high is not None:
-                raise ParameterError(self.name, self.values, "give either values or a "
-                                     "low–high range, not both")
             levels = tuple(sorted({_finite(f"{self.name}.values", v) for v in self.values}))
-            if not levels:
-                raise ParameterError(f"{self.name}.values", self.values, "must not be empty")
             object.__setattr__(self, "values", levels)
-            return
-        if self.low is None or self.high is None:
-            raise ParameterError(self.name, (self.low, self.high), "needs low and high "
-                                 "(or values)")
-        lo, hi = _finite(f"{self.name}.low", self.low), _finite(f"{self.name}.high", self.high)
-        if lo >= hi:
-            raise ParameterError(self.name, (self.low, self.high), "range must have "
-                                 "low < high (empty or inverted)")
-        if self.scale not in SCALES:
-            raise ParameterError(f"{self.name}.scale", self.scale,
-                                 f"must be one of {', '.join(SCALES)}")
-        if self.scale == "log" and lo <= 0:
-            raise ParameterError(self.name, (lo, hi), "a log-scale range must have low > 0")
-        object.__setattr__(self, "low", lo)
-        object.__setattr__(self, "high", hi)
 
     @property
     def discrete(self) -> bool:

@@ -22,7 +22,7 @@ from dataclasses import dataclass
 from ..errors import ParameterError
 from .problem import Constraint, DesignProblem, Objective, Variable
 from .rotor_objectives import BUMP_GEOMETRY, DESIGN_VARIABLES, EvaluationSettings
-from .search import METHODS, SearchSettings
+from .search import SearchSettings
 
 GOALS = ("front", "max_onset", "stable_then_min_power")
 BORE_KINDS = ("shims", "lobes")
