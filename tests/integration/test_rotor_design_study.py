@@ -78,3 +78,21 @@ def test_optimiser_choice_within_a_fine_scan_resolution(tmp_path):
     assert abs(chosen["radial_clearance_um"] - best) <= 2.5 + 1e-9
     assert chosen["first_onset_speed_rpm"] >= max(o for o in onsets if math.isfinite(o)) \
         * (1 - 0.02)
+
+
+def test_first_onset_adapter_agrees_with_rotor_onsets():
+    """The design search's first onset (refining only the first crossing, on the least μ_c
+    over all modes) against the rotor's own onset of every mode (refining each mode):
+    brentq to 1e-3 relative here against 1e-4 there, so they agree to ~1e-3; bound 2e-3
+    (measured 1.8e-4 on the blower at 36x10)."""
+    from gfbopt.design.rotor_objectives import EvaluationSettings
+    from gfbopt.inputs.grid import Grid
+    from gfbopt.inputs.rotor_system import load_rotor
+    from gfbopt.rotor.system import rotor_onsets
+
+    system = load_rotor(ROOT / "problems" / "rotors" / "blower.toml")
+    settings = EvaluationSettings(4000.0, 45000.0, 56250.0, Grid.parse("36x10"))
+    row = evaluate_rotor_design(system, settings, None)
+    ref = rotor_onsets(system, (4000.0, 56250.0), grid=settings.grid, show_progress=False)
+    assert row["first_mode"] == ref.first_mode
+    assert row["first_onset_speed_rpm"] == pytest.approx(ref.onset_speed_rpm, rel=2e-3)
