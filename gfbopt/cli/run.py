@@ -143,8 +143,9 @@ def _check_options(args, loaded) -> int:
     from ..studies.rotor_design import KINDS as DESIGNS      # design runs resume too
 
     if args.resume and not sampled and not any(s.study.kind in DESIGNS for s in loaded):
-        raise ParameterError("--resume", True, "applies to sampled studies (kind = "
-                             "\"sweep\") only; none is given")
+        raise ParameterError("--resume", True, "applies to sampled and design studies "
+                             "(kind = \"sweep\" or \"rotor_bearing_design\") only; none "
+                             "is given")
     return workers
 
 
@@ -160,7 +161,8 @@ def run_studies(args) -> int:
     loaded = [_load(path, args) for path in args.problems]      # all validated first
     workers = _check_options(args, loaded)
     client = None
-    if args.scheduler is not None and any(s.study.kind in SAMPLED for s in loaded):
+    if args.scheduler is not None and any(s.study.kind in SAMPLED or s.study.kind ==
+                                          "rotor_bearing_design" for s in loaded):
         from ..parallel import connect_scheduler
 
         client = connect_scheduler(args.scheduler)             # before anything is written
@@ -183,8 +185,8 @@ def run_studies(args) -> int:
                         from ..studies.rotor_design import run_design
 
                         result = run_design(study, results, workers=workers,
-                                            resume=args.resume, progress=show,
-                                            force=args.force)
+                                            client=client, resume=args.resume,
+                                            progress=show, force=args.force)
                     elif study.study.kind in SAMPLED:
                         result = run_sampled(study, results, workers=workers, client=client,
                                              scheduler=args.scheduler, resume=args.resume,
