@@ -121,7 +121,7 @@ def whirl_at_top_speed(system, design: dict, settings, revolutions: float) -> di
     designed = dataclasses.replace(designed, bearings=supports)
     result = rotor_orbit(designed, settings.top_speed_rpm, revolutions, grid=settings.grid)
     d = result.to_dict()
-    out = {"revolutions": revolutions, "success": bool(d["success"]),
+    out = {"revolutions": revolutions, "grid": str(settings.grid), "success": bool(d["success"]),
            "message": d.get("message", ""), "contact": bool(d.get("contact")),
            "contact_bearing": d.get("contact_bearing"),
            "contact_time_s": d.get("contact_time_s", math.nan), "bearings": []}

@@ -58,6 +58,7 @@ class RotorDesignPlan:
     study_hash: str
     regrid_designs: int = 3
     limit_cycle_revolutions: float = 0.0
+    limit_cycle_grid: object = None
 
 
 def _variables(rows: list, where, bearings: tuple) -> tuple:
@@ -223,4 +224,4 @@ def plan_rotor_design(study, study_hash: str = "") -> RotorDesignPlan:
     default = EvaluationSettings(grid=Grid.parse(s["grid"]), **common)
     return RotorDesignPlan(system, problem, search, settings, default, band, s["goal"],
                            robustness, study_hash, s["regrid_designs"],
-                           s["limit_cycle_revolutions"])
+                           s["limit_cycle_revolutions"], Grid.parse(s["limit_cycle_grid"]))

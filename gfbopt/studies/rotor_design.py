@@ -84,6 +84,8 @@ SCHEMAS = {"rotor_bearing_design": {
     "limit_cycle_revolutions": opt("number", 200.0, "revolutions of the orbit at the top "
                                    "speed when no design is stable there (0: none)",
                                    minimum=0.0),
+    "limit_cycle_grid": opt("grid", "72x20", "grid of that orbit (the rotor transient's "
+                            "documented grid)"),
     "rotor": req("string", "rotor file (SI), relative to the study file"),
     "speed_range_rpm": req("numbers", "[lowest, top] running speeds [rpm]", length=2),
     "search_high_rpm": opt("number", None, "top of the onset search [rpm] (default 1.25 × "
@@ -129,7 +131,7 @@ SCHEMAS = {"rotor_bearing_design": {
 
 #: keys that do not change a stored evaluation (words, and what happens after the search)
 AFTER_SEARCH = ("title", "source", "notes", "name", "robustness", "grid", "regrid_designs",
-                "limit_cycle_revolutions")
+                "limit_cycle_revolutions", "limit_cycle_grid")
 
 
 def _digest(path: Path) -> str:

@@ -3,6 +3,7 @@ its robustness and its answer on the default grid, the verdict in words, tables,
 checks."""
 from __future__ import annotations
 
+import dataclasses
 import math
 
 import numpy as np
@@ -70,6 +71,11 @@ def verdict(chosen, why: str, plan, check, whirl=None) -> str:
                   f"{check['first_onset_speed_rpm_default_grid']:,.0f} rpm "
                   f"({check['first_onset_speed_rpm_relative_change']:+.1%}) and the power "
                   f"loss {check['total_power_loss_w_default_grid']:.0f} W")
+        if not check.get("feasible_default_grid", True):
+            honest += (f", but there the design breaks a limit (minimum film "
+                       f"{check['min_film_um_default_grid']:.2f} µm against "
+                       f"{check['min_film_um_search_grid']:.2f} µm on the search grid): the "
+                       "search grid is too coarse for this limit")
     film = (f"minimum film {chosen['min_film_um']:.2f} µm at {s.speed_low_rpm:,.0f} rpm under "
             f"{s.heaviest_load_factor:g}× the static load")
     if chosen["first_onset_speed_rpm"] >= top:
@@ -92,13 +98,15 @@ def whirl_text(whirl, top: float) -> str:
                 f"{whirl['contact_bearing']} after {whirl['contact_time_s'] * 1e3:.0f} ms "
                 "(no limit cycle within the film)")
     if not whirl["success"]:
-        return f"the orbit at {top:,.0f} rpm failed ({whirl['message']})"
+        return (f"the orbit at {top:,.0f} rpm on the {whirl['grid']} grid failed "
+                f"({whirl['message']}): no limit cycle to report")
     cycles = " and ".join(f"{b['limit_cycle_um']:.2f} µm at bearing {b['bearing']}"
                           for b in whirl["bearings"])
     film = min(b["min_film_um"] for b in whirl["bearings"])
     state = "settled" if all(b["settled"] for b in whirl["bearings"]) else "not yet settled"
     return (f"at {top:,.0f} rpm the whirl limit cycle is {cycles} with minimum film "
-            f"{film:.2f} µm ({whirl['revolutions']:g} revolutions, {state})")
+            f"{film:.2f} µm ({whirl['revolutions']:g} revolutions on the {whirl['grid']} "
+            f"grid, {state})")
 
 
 def _reproduce(plan, chosen: dict) -> float:
@@ -147,7 +155,8 @@ def report(study, plan, search, run_tasks, progress, elapsed: float) -> StudyRes
         from ..design.robustness import whirl_at_top_speed
 
         whirl = whirl_at_top_speed(plan.system, {n: float(chosen[n]) for n in problem.names},
-                                   s, plan.limit_cycle_revolutions)
+                                   dataclasses.replace(s, grid=plan.limit_cycle_grid),
+                                   plan.limit_cycle_revolutions)
     text = verdict(chosen, why, plan, check, whirl)
     notes = [text, f"Why this design: {why}."]
     mean = search.evaluation_time_s / search.evaluated if search.evaluated else math.nan
@@ -181,7 +190,9 @@ def report(study, plan, search, run_tasks, progress, elapsed: float) -> StudyRes
     if whirl is not None:
         tables["whirl_at_top_speed.csv"] = pd.DataFrame(
             [{**b, "speed_rpm": s.top_speed_rpm, "revolutions": whirl["revolutions"],
-              "contact": whirl["contact"]} for b in whirl["bearings"]])
+              "contact": whirl["contact"], "success": whirl["success"],
+              "message": whirl["message"], "grid": whirl["grid"]}
+             for b in whirl["bearings"]])
     if chosen is not None:
         tables["chosen.csv"] = pd.DataFrame([chosen])
     if len(default):
