@@ -28,7 +28,7 @@ from .inputs.conversions import mass_from_parameter, rpm_to_rad_per_s
 from .static import SolverCache, StaticSolution, solve_static, solver_for
 
 #: outputs of a static solve (NaN when it failed)
-STATIC_OUTPUTS = ("eccentricity", "attitude_angle_deg", "load", "min_film")
+STATIC_OUTPUTS = ("eccentricity", "attitude_angle_deg", "load", "min_film", "torque_ratio")
 
 
 def _solver(model: BearingModel, grid: Optional[Grid], cache: Optional[SolverCache]):

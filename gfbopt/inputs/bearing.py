@@ -118,8 +118,8 @@ class BearingGeometry:
         compliance = 0.0 if foil == "rigid" else self.compliance
         if self.build is not None and "as_built" not in kwargs:
             built = self.build.nondimensional(self)
-            if foil == "rigid":       # a rigid comparison keeps the bore, not the bumps
-                built = replace(built, zones=())
+            if foil == "rigid":       # a rigid comparison keeps the bore, not the foils
+                built = replace(built, zones=(), pads=())
             elif built.zones:
                 compliance = built.mean_compliance()
             kwargs["as_built"] = built

@@ -41,6 +41,11 @@ TWO_PI = 2.0 * math.pi
 ANGLE_TOLERANCE = 1e-9
 
 
+def _deg(angle: float) -> float:
+    """An angle [rad] in degrees, rounded to 1e-9° for outputs."""
+    return round(math.degrees(angle), 9)
+
+
 def _wrap(angle):
     """An angle (or array) in [0, 2π) [rad]."""
     return np.mod(angle, TWO_PI)
@@ -143,11 +148,11 @@ class BoreProfile:
         out = {"bore": self.kind}
         if self.kind in ("shims", "lobes"):
             out.update(bore_count=self.count, bore_preload_ratio=self.preload,
-                       bore_offset_deg=math.degrees(self.offset))
+                       bore_offset_deg=_deg(self.offset))
         if self.kind == "shims":
-            out["bore_width_deg"] = math.degrees(self.width)
+            out["bore_width_deg"] = _deg(self.width)
         if self.kind == "table":
-            out.update(bore_angle_deg=[math.degrees(a) for a in self.table_angles],
+            out.update(bore_angle_deg=[_deg(a) for a in self.table_angles],
                        bore_clearance_change=list(self.table_change))
         return out
 
@@ -321,9 +326,9 @@ class AsBuilt:
     def describe(self) -> dict:
         """Bore, pads and zones as every output states them (degrees)."""
         out = self.bore.describe()
-        out["pads_leading_end_deg"] = [math.degrees(p.leading_end) for p in self.pads] or None
-        out["pads_arc_deg"] = [math.degrees(p.arc) for p in self.pads] or None
-        out["zones_deg"] = ([[math.degrees(z.start), math.degrees(z.end)] for z in self.zones]
+        out["pads_leading_end_deg"] = [_deg(p.leading_end) for p in self.pads] or None
+        out["pads_arc_deg"] = [_deg(p.arc) for p in self.pads] or None
+        out["zones_deg"] = ([[_deg(z.start), _deg(z.end)] for z in self.zones]
                             or None)
         out["zones_compliance"] = [z.compliance for z in self.zones] or None
         return out
@@ -357,8 +362,11 @@ def check_as_built(model) -> None:
         raise ParameterError("seam_angle", "max_film", "a bore profile or bump zones are "
                              "fixed in the housing, but the seam on the maximum-film line "
                              "moves with the journal: state a fixed seam angle")
+    if ab.pads and model.film != "seam":
+        raise ParameterError("pads", len(ab.pads), "top-foil pads end in seams at ambient "
+                             "pressure: they need film = 'seam' (a periodic film has none)")
     if ab.pads and not ab.single_pad:
-        if model.film != "seam" or model.seam_angle is None:
+        if model.seam_angle is None:
             raise ParameterError("pads", len(ab.pads), "several pads need film = 'seam' with "
                                  "a fixed seam angle (one pad's leading end)")
         if model.foil == "beam":

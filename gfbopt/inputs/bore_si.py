@@ -27,8 +27,15 @@ class BoreSpec:
     angle_deg: tuple = ()
     clearance_change: tuple = ()
 
-    def profile(self, clearance: float) -> BoreProfile:
-        """The non-dimensional :class:`BoreProfile` for radial clearance c [m]."""
+    def profile(self, clearance: Optional[float]) -> BoreProfile:
+        """The non-dimensional :class:`BoreProfile` for radial clearance c [m] (None: a
+        non-dimensional model, which takes a preload ratio and no depths)."""
+        if clearance is None and (self.preload_depth is not None or self.kind == "table"):
+            raise ParameterError("bore.preload_depth" if self.kind != "table" else
+                                 "bore.clearance_change", self.preload_depth,
+                                 "needs the bearing's clearance: give preload_ratio for a "
+                                 "non-dimensional model (gfbopt.inputs.bore.BoreProfile for "
+                                 "a table over c)")
         if self.kind in ("shims", "lobes"):
             if (self.preload_depth is None) == (self.preload_ratio is None):
                 raise ParameterError("bore.preload_depth/preload_ratio",
@@ -205,3 +212,18 @@ def build_from_tables(data: dict, where: str = "bearing file") -> Optional[Beari
     pads = tuple(PadSpec(**t) for t in lists["pads"])
     zones = tuple(ZoneSpec(**t) for t in lists["zones"])
     return BearingBuild(bore, pads, zones)
+
+
+def as_built(bore: Optional[BoreSpec] = None, pads: tuple = (), zones: tuple = ()) -> AsBuilt:
+    """A non-dimensional :class:`~gfbopt.inputs.bore.AsBuilt` from degrees, for
+    ``BearingModel(as_built=...)``: ``bore`` a :class:`BoreSpec` with a preload ratio, ``pads``
+    :class:`PadSpec` (degrees), ``zones`` (start_deg, end_deg, compliance S) triples."""
+    profile = BoreProfile() if bore is None else bore.profile(None)
+    pad_list = tuple(Pad(math.radians(check_finite(f"pads[{k}].leading_end_deg",
+                                                   p.leading_end_deg)),
+                         math.radians(check_finite(f"pads[{k}].arc_deg", p.arc_deg)))
+                     for k, p in enumerate(pads))
+    zone_list = tuple(Zone(math.radians(check_finite(f"zones[{k}].start_deg", a)),
+                           math.radians(check_finite(f"zones[{k}].end_deg", b)), s)
+                      for k, (a, b, s) in enumerate(zones))
+    return AsBuilt(profile, pad_list, zone_list)

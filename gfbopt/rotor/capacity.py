@@ -158,6 +158,18 @@ class _Curve:
         return math.nan if sol is None else sol.min_film * self.bearing.radial_clearance * 1e6
 
 
+def _march(line: _Curve, start: float, factor: float, end: float) -> tuple:
+    """Step x by ``factor`` from ``start`` (h ≥ 0 there) towards ``end`` until h < 0; then
+    refine the crossing.  Returns (root or None, the last x with h ≥ 0)."""
+    good = start
+    while (good < end) if factor > 1 else (good > end):
+        trial = good * factor
+        if line.h(trial) < 0:
+            return line.refine(good, trial), good
+        good = trial
+    return None, good
+
+
 def _resolve(bearing, options, min_film_um, grid):
     if not isinstance(bearing, BearingGeometry):
         raise ParameterError("bearing", bearing, "must be a BearingGeometry (SI)")
@@ -199,15 +211,11 @@ def load_capacity(bearing: BearingGeometry, speed_rpm: float, min_film_um: float
                            curve=line.rows, success=False, wall_time_s=time.perf_counter() - t0,
                            message=f"h_min < {limit:.4g} µm already at {load:.3g} N "
                            f"({speed:.6g} rpm): no load capacity above it", **common)
-    good = load
-    for _ in range(40):
-        trial = good * LOAD_STEP
-        if line.h(trial) < 0:
-            root = line.refine(good, trial)
-            return CurveResult("capacity", root, load_newton=root,
-                               min_film_thickness_um=line.final(root), curve=line.rows,
-                               wall_time_s=time.perf_counter() - t0, **common)
-        good = trial
+    root, good = _march(line, load, LOAD_STEP, load * LOAD_STEP ** 40)
+    if root is not None:
+        return CurveResult("capacity", root, load_newton=root,
+                           min_film_thickness_um=line.final(root), curve=line.rows,
+                           wall_time_s=time.perf_counter() - t0, **common)
     return CurveResult("capacity", math.nan, load_newton=good, min_film_thickness_um=math.nan,
                        curve=line.rows, success=False, wall_time_s=time.perf_counter() - t0,
                        message=f"h_min stays above {limit:.4g} µm up to {good:.4g} N", **common)
@@ -235,15 +243,11 @@ def lift_off_speed(bearing: BearingGeometry, load_newton: float, min_film_um: fl
                            curve=line.rows, success=False, wall_time_s=time.perf_counter() - t0,
                            message=f"no lift-off below {top:.6g} rpm (h_min < {limit:.4g} µm "
                            f"under {load:.5g} N)", **common)
-    good = top
-    while good > top / 1000:
-        trial = good / SPEED_STEP
-        if line.h(trial) < 0:
-            root = line.refine(good, trial)
-            return CurveResult("lift_off", root, speed_rpm=root,
-                               min_film_thickness_um=line.final(root), curve=line.rows,
-                               wall_time_s=time.perf_counter() - t0, **common)
-        good = trial
+    root, good = _march(line, top, 1.0 / SPEED_STEP, top / 1000)
+    if root is not None:
+        return CurveResult("lift_off", root, speed_rpm=root,
+                           min_film_thickness_um=line.final(root), curve=line.rows,
+                           wall_time_s=time.perf_counter() - t0, **common)
     return CurveResult("lift_off", math.nan, speed_rpm=good, min_film_thickness_um=math.nan,
                        curve=line.rows, success=False, wall_time_s=time.perf_counter() - t0,
                        message=f"h_min stays above {limit:.4g} µm down to {good:.4g} rpm",

@@ -16,7 +16,7 @@ from gfbopt.rotor.capacity import lift_off_speed, load_capacity
 
 REPO = Path(__file__).resolve().parents[2]
 RUSCITTO = REPO / "problems/bearings/ruscitto.toml"
-GRID = Grid(36, 10)
+GRID = Grid(24, 8)        # trends and the limit, not converged values
 
 
 def gfbopt(*args: str) -> subprocess.CompletedProcess:
@@ -92,14 +92,22 @@ end_deg = 360.0
      "end_deg = 360.0\n", "zones", "cover the bore"),
     ("[[zones]]\nstart_deg = 90.0\nend_deg = 10.0\n", "zones[0].end_deg", "negative"),
 ])
-def test_bad_as_built_input_is_one_line_exit_2(tmp_path, extra, name, words):
-    """Each rule: one line naming the parameter, value and rule, exit 2, no traceback."""
-    out = gfbopt("static", "--bearing", _file(tmp_path, extra), "--speed-rpm", "30000",
-                 "--load-newton", "20", "--grid", "36x10")
+def test_bad_as_built_input_is_refused_before_solving(tmp_path, extra, name, words):
+    """Each rule: one ParameterError naming the parameter, value and rule, raised while the
+    file is read or the model built (before any solver exists)."""
+    with pytest.raises(ParameterError) as err:
+        load_bearing(_file(tmp_path, extra)).model(30000.0, film="seam", seam_angle=math.pi)
+    assert name in str(err.value) and words in str(err.value), str(err.value)
+
+
+def test_bad_as_built_input_is_one_line_exit_2(tmp_path):
+    """From the command line: one line, exit 2, no traceback."""
+    out = gfbopt("static", "--bearing", _file(tmp_path, SHIMS.replace("5e-6", "20e-6")),
+                 "--speed-rpm", "30000", "--load-newton", "20", "--grid", "36x10")
     assert out.returncode == 2, out.stderr
     line = out.stderr.strip()
     assert "\n" not in line and "Traceback" not in line
-    assert name in line and words in line, line
+    assert line.startswith("gfbopt: error: bore.preload_depth") and "20 µm >= clearance" in line
 
 
 def test_capacity_curve_monotone_and_on_the_limit():
@@ -136,20 +144,29 @@ def test_lift_off_monotone_on_the_limit_and_no_lift_off():
     assert none.answer.startswith(f"no lift-off below {0.5 * result.value:.6g} rpm")
 
 
-def test_capacity_command_contract_and_bad_input(tmp_path):
+def test_capacity_command_contract(tmp_path):
     figure = tmp_path / "lift.png"
     out = gfbopt("capacity", "--bearing", str(RUSCITTO), "--lift-off", "--load-newton", "20",
-                 "--min-film-um", "5", "--grid", "36x10", "--json", "--figure", str(figure))
+                 "--min-film-um", "5", "--grid", "24x8", "--json", "--figure", str(figure))
     assert out.returncode == 0, out.stderr
     data = json.loads(out.stdout)
     for key in ("lift_off_speed_rpm", "answer", "curve", "conventions", "provenance"):
         assert key in data
     assert figure.stat().st_size > 10_000
-    for args, name in ((["--min-film-um", "25", "--speed-rpm", "30000"], "min_film_um"),
-                       (["--min-film-um", "5"], "--speed-rpm"),
-                       (["--min-film-um", "5", "--lift-off"], "--load-newton")):
-        bad = gfbopt("capacity", "--bearing", str(RUSCITTO), "--grid", "36x10", *args)
-        assert bad.returncode == 2 and name in bad.stderr and "Traceback" not in bad.stderr
+
+
+@pytest.mark.parametrize("args, name", [
+    (["--min-film-um", "25", "--speed-rpm", "30000"], "min_film_um"),
+    (["--min-film-um", "5"], "--speed-rpm"),
+    (["--min-film-um", "5", "--lift-off"], "--load-newton"),
+    (["--min-film-um", "5", "--speed-rpm", "3e4", "--load-newton", "20"], "--load-newton")])
+def test_capacity_command_bad_input(capsys, args, name):
+    """In-process (the same main() as the console script): one line, exit 2."""
+    from gfbopt.cli import main
+
+    assert main(["capacity", "--bearing", str(RUSCITTO), "--grid", "24x8", *args]) == 2
+    err = capsys.readouterr().err.strip()
+    assert err.startswith(f"gfbopt: error: {name}") and "\n" not in err
 
 
 def test_python_api_refuses_bad_preload_before_solving():

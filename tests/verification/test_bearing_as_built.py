@@ -182,3 +182,70 @@ def test_preloaded_linear_threshold_equals_nonlinear_critical_mass():
     row = critical_mass_point(model, load=0.5, grid=GRID, tolerance=0.005)
     assert row["success"], row["message"]
     assert row["nonlinear_over_linear"] == pytest.approx(1.0, abs=0.01)
+
+
+def test_first_order_bore_pressure_is_ausmans_for_a_cosine_bore():
+    """A bore B = ε cos θ is the eccentricity's own film: the first-order bore pressure (the
+    cold start of a preloaded bearing) equals Ausman's to round-off, on a periodic and on a
+    seamed grid (which repeats its first row)."""
+    from gfbopt.physics.bore import first_order_bore_pressure
+    from gfbopt.physics.closed_forms import first_order_pressure
+
+    z = np.linspace(-1.0, 1.0, 11)
+    theta = 2 * math.pi * np.arange(36) / 36
+    ausman = first_order_pressure(BearingModel(bearing_number=2.0), z, theta, 0.01) - 1.0
+    ours = first_order_bore_pressure(0.01 * np.cos(theta), z, 2.0, 1.0, periodic=True)
+    np.testing.assert_allclose(ours, ausman, atol=1e-15)
+    seamed = first_order_bore_pressure(np.append(0.01 * np.cos(theta), 0.01), z, 2.0, 1.0,
+                                       periodic=False)
+    np.testing.assert_allclose(seamed[:-1], ausman, atol=1e-15)
+
+
+@pytest.mark.parametrize("built", [
+    AsBuilt(THREE_SHIMS),
+    AsBuilt(pads=tuple(Pad(SEAM + k * 2 * math.pi / 3, 2 * math.pi / 3) for k in range(3))),
+    AsBuilt(BoreProfile("lobes", 3, 0.2), zones=(Zone(0, math.pi, 0.5),
+                                                 Zone(math.pi, 2 * math.pi, 1.5)))])
+@pytest.mark.parametrize("law", [dict(), dict(deflection_law="local"),
+                                 dict(loss_factor=0.3)])
+def test_as_built_equilibrium_is_a_transient_fixed_point(built, law):
+    """The transient engine sees the same film as the static model: at the equilibrium the
+    right-hand side vanishes (film 1e-10: IPOPT's residual tolerance scaled by 1/(2Λ); journal
+    to round-off), with the Kelvin–Voigt foil state at rest too when η > 0."""
+    from gfbopt.transient import transient_model
+    from gfbopt.transient.system import RightHandSide, equilibrium_state
+
+    sol = solve_static(_base(as_built=built, **law), load=0.5, grid=GRID)
+    assert sol.success
+    tm = transient_model(sol)
+    rate = RightHandSide(tm, np.array([1.0]))(equilibrium_state(tm, 1))
+    assert np.abs(rate.phi).max() < 1e-10
+    assert abs(rate.u[0]) < 1e-13 and abs(rate.v[0]) < 1e-13
+    if rate.w is not None:
+        assert np.abs(rate.w).max() < 1e-12
+
+
+def test_zones_damped_local_law_nonlinear_equals_linear():
+    """Bump zones under the local law with a loss factor η = 0.3: the transient (Kelvin–Voigt
+    state, τ_f = η/ν_ref) critical mass equals the linear hysteretic one to ≤ 1 %
+    (docs/PHYSICS.md §7: they share the impedance at the threshold whirl)."""
+    zones = (Zone(-math.pi / 2, math.pi / 2, 0.7), Zone(math.pi / 2, 3 * math.pi / 2, 1.3))
+    model = _base(as_built=AsBuilt(zones=zones), deflection_law="local", loss_factor=0.3)
+    row = critical_mass_point(model, load=0.5, grid=GRID, tolerance=0.005)
+    assert row["success"], row["message"]
+    assert row["nonlinear_over_linear"] == pytest.approx(1.0, abs=0.01)
+
+
+def test_python_api_in_degrees():
+    """The public constructor takes degrees (as files and the command line do) and gives the
+    same bearing as the radian internals; a depth without a clearance is refused."""
+    from gfbopt.errors import ParameterError
+    from gfbopt.inputs.bore_si import BoreSpec, PadSpec, as_built
+
+    built = as_built(BoreSpec("shims", 3, preload_ratio=0.25, width_deg=60.0),
+                     pads=[PadSpec(180.0, 120.0), PadSpec(300.0, 120.0), PadSpec(60.0, 120.0)],
+                     zones=[(0.0, 180.0, 0.5), (180.0, 360.0, 1.5)])
+    assert built.bore == THREE_SHIMS
+    assert built.describe()["pads_leading_end_deg"] == [60.0, 180.0, 300.0]
+    with pytest.raises(ParameterError, match="preload_ratio"):
+        as_built(BoreSpec("lobes", 3, preload_depth=5e-6))
