@@ -365,8 +365,8 @@ for _name, _entry in {
     "total_power_loss_w": ("W", "power lost in both bearings' films at the top speed"),
     "min_film_top_speed_um": ("µm", "smaller minimum film of the two bearings at the top "
                               "speed"),
-    "min_film_um": ("µm", "smaller minimum film of the two bearings at the lowest speed "
-                    "under the heaviest load"),
+    "min_film_lowest_speed_um": ("µm", "smaller minimum film of the two bearings at the "
+                                 "lowest speed under the heaviest load"),
     "capacity_margin": ("-", "smaller load capacity over static load of the two bearings"),
     "bump_stress_mpa": ("MPa", "largest bump bending stress at the design pressure"),
     "top_foil_sag_ratio": ("-", "largest top-foil sag between bumps over the clearance"),
@@ -397,8 +397,6 @@ for _name, _entry in {
     "limit_cycle_um": ("µm", "subsynchronous whirl limit cycle at the bearing (largest "
                        "distance from the orbit's centre)"),
     "settled": ("-", "the limit cycle changed by ≤ 1 % over the last whirl periods"),
-    "revolutions": ("-", "shaft revolutions of the orbit"),
-    "contact": ("-", "the film closed (contact) during the orbit"),
 }.items():
     GLOSSARY.setdefault(_name, _entry)
 _PATTERNS = _PATTERNS + (

@@ -23,7 +23,7 @@ from .problem import DesignProblem
 from .rotor_objectives import evaluate_rotor_design
 
 #: outputs compared between the search grid and the default grid
-COMPARED = ("first_onset_speed_rpm", "total_power_loss_w", "min_film_um")
+COMPARED = ("first_onset_speed_rpm", "total_power_loss_w", "min_film_lowest_speed_um")
 
 
 def tolerance_sample(design: dict, tolerances: dict, band: tuple, n: int, seed: int,

@@ -55,7 +55,7 @@ OUTPUTS = {
     "first_onset_speed_rpm": "float64", "first_mode": "string", "onset_status": "string",
     "onset_whirl_frequency_hz": "float64", "stable_to_top_speed": "bool",
     "total_power_loss_w": "float64", "min_film_top_speed_um": "float64",
-    "min_film_um": "float64", "lift_off_speed_rpm": "float64",
+    "min_film_lowest_speed_um": "float64", "lift_off_speed_rpm": "float64",
     "capacity_margin": "float64", "bump_stress_mpa": "float64",
     "top_foil_sag_ratio": "float64", "bump_closing_ratio": "float64",
     "compliance_a": "float64", "compliance_b": "float64", "grid": "string",
@@ -220,7 +220,7 @@ def _film_and_power(rotor, line, settings: EvaluationSettings, cache) -> dict:
         film_low = min(film_low, sol.min_film * case.bearing.radial_clearance * 1e6
                        if sol.success else 0.0)
     return {"total_power_loss_w": power, "min_film_top_speed_um": film_top,
-            "min_film_um": film_low}
+            "min_film_lowest_speed_um": film_low}
 
 
 def _capacity_rows(rotor, settings: EvaluationSettings, cache) -> dict:

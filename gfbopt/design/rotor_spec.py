@@ -122,7 +122,7 @@ def _tolerances(table: dict, where, variables: tuple) -> dict:
 def _problem(spec: dict, where, variables: tuple) -> DesignProblem:
     goal = spec["goal"]
     top = spec["speed_range_rpm"][1]
-    constraints = [Constraint("min_film_um", lower=spec["min_film_um"])]
+    constraints = [Constraint("min_film_lowest_speed_um", lower=spec["min_film_um"])]
     if spec["max_lift_off_speed_rpm"] is not None:
         constraints.append(Constraint("lift_off_speed_rpm",
                                       upper=spec["max_lift_off_speed_rpm"]))

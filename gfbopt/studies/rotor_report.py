@@ -73,10 +73,10 @@ def verdict(chosen, why: str, plan, check, whirl=None) -> str:
                   f"loss {check['total_power_loss_w_default_grid']:.0f} W")
         if not check.get("feasible_default_grid", True):
             honest += (f", but there the design breaks a limit (minimum film "
-                       f"{check['min_film_um_default_grid']:.2f} µm against "
-                       f"{check['min_film_um_search_grid']:.2f} µm on the search grid): the "
+                       f"{check['min_film_lowest_speed_um_default_grid']:.2f} µm against "
+                       f"{check['min_film_lowest_speed_um_search_grid']:.2f} µm on the search grid): the "
                        "search grid is too coarse for this limit")
-    film = (f"minimum film {chosen['min_film_um']:.2f} µm at {s.speed_low_rpm:,.0f} rpm under "
+    film = (f"minimum film {chosen['min_film_lowest_speed_um']:.2f} µm at {s.speed_low_rpm:,.0f} rpm under "
             f"{s.heaviest_load_factor:g}× the static load")
     if chosen["first_onset_speed_rpm"] >= top:
         return (f"Stable to {top:,.0f} rpm with {describe(chosen, names)}: first onset "
