@@ -103,3 +103,18 @@ def test_design_values_reach_the_bearings():
     assert b.build.bore.preload_depth == pytest.approx(5e-6)
     with pytest.raises(ParameterError, match="not a design variable"):
         apply_design(plan.system, {"colour": 1.0}, s)
+
+
+def test_resume_is_an_option_of_design_studies():
+    """gfbopt run --resume acts on a design study (it continues the stored search) and is
+    still refused for a study kind that has no store."""
+    from argparse import Namespace
+
+    from gfbopt.cli.run import _check_options
+    from gfbopt.studies import load_study
+
+    args = Namespace(workers=1, max_workers=None, scheduler=None, resume=True)
+    assert _check_options(args, [load_study(FILE)]) == 1
+    other = load_study(ROOT / "problems" / "thesis_table_3_1.toml")
+    with pytest.raises(ParameterError, match="--resume"):
+        _check_options(args, [other])
