@@ -120,6 +120,18 @@ def connect_scheduler(address: str, timeout: float = 10.0):
                              f"({type(exc).__name__})") from None
 
 
+def quiet_logs() -> None:
+    """Keep distributed's own log records (reconnection attempts, their tracebacks) off the
+    terminal: gfbopt reports a lost scheduler or worker in one line of its own."""
+    import logging
+
+    import distributed  # noqa: F401 - its import configures its loggers: set them after
+
+    for name in ("distributed", "distributed.client", "distributed.comm",
+                 "distributed.core", "distributed.utils", "distributed.worker"):
+        logging.getLogger(name).setLevel(logging.CRITICAL)
+
+
 def worker_count(client) -> int:
     """Workers connected to the client's scheduler (0 when it cannot be asked)."""
     try:
@@ -134,7 +146,7 @@ def _lost(client) -> bool:
 
 def stream_dask(function: Callable, arguments: list, client, *, retries: int = 2,
                 tick: Optional[float] = None, status: Optional[Callable[[str], None]] = None,
-                worker_timeout: float = WORKER_TIMEOUT_S):
+                worker_timeout: float = WORKER_TIMEOUT_S, status_every: float = STATUS_EVERY_S):
     """Yield ``(k, result)`` as the tasks finish on the cluster (see the module docstring);
     ``(None, None)`` every ``tick`` seconds while nothing finishes."""
     from distributed.client import FutureCancelledError  # noqa: F401 - documents the cause
@@ -166,7 +178,7 @@ def stream_dask(function: Callable, arguments: list, client, *, retries: int = 2
                         if waited >= worker_timeout:
                             raise InfrastructureError(
                                 f"no Dask worker connected to {address} for {waited:.0f} s")
-                        if status is not None and now - last_status >= STATUS_EVERY_S:
+                        if status is not None and now - last_status >= status_every:
                             last_status = now
                             status(f"waiting for Dask workers at {address}: 0 connected, "
                                    f"{waited:.0f} s (gives up after {worker_timeout:.0f} s)")
@@ -180,8 +192,16 @@ def stream_dask(function: Callable, arguments: list, client, *, retries: int = 2
             for future in finished:
                 k = futures.pop(future)
                 if future.status == "finished":
+                    try:
+                        result = future.result(timeout=60)
+                    except Exception as exc:  # noqa: BLE001 - the result could not travel
+                        if _lost(client) or type(exc).__name__ in ("CommClosedError",
+                                                                   "TimeoutError"):
+                            raise InfrastructureError(f"the Dask scheduler at {address} was "
+                                                      "lost") from None
+                        result = exc
                     last_yield = time.monotonic()
-                    yield k, future.result()
+                    yield k, result
                     continue
                 if _lost(client):
                     raise InfrastructureError(f"the Dask scheduler at {address} was lost")

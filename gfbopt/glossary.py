@@ -262,7 +262,11 @@ for _name, _entry in {
                          "bump foil the limits allow (the limit decides), empty otherwise"),
     "baseline_compliance": ("-", "S of the bearing's original bump foil"),
     "baseline_onset_speed_rpm": ("rpm", "onset speed of whirl with the original bump foil"),
-    "feasible": ("flag", "the minimum film meets the limit at the film-check speed"),
+    "feasible": ("flag", "the design meets every limit: the minimum film at the film-check "
+                 "speed, and a bump foil with a whole number of bumps realises S"),
+    "meets_film_limit": ("flag", "the minimum film meets the limit at the film-check speed "
+                         "(the search ranks S among these; the design then picks a realisable "
+                         "S within 2 % of the best onset)"),
     "onset_whirl_frequency_hz": ("Hz", "whirl frequency at the onset of instability"),
     "mass_margin_at_check_speed": ("-", "M_crit/M − 1 at the film-check speed"),
     "bump_pitch_mm": ("mm", "bump pitch s of the least-stress bump foil realising S"),

@@ -82,14 +82,14 @@ def _load(path: str, args):
     from pathlib import Path
 
     from ..errors import ParameterError
-    from ..inputs import read_toml
     from ..studies import SCHEMAS, study_from_dict
+    from ..studies.runner import read_study_file
 
     if args.grid is None and args.max_points is None:
         from ..studies import load_study
 
         return load_study(path)
-    data = read_toml(path)
+    data = read_study_file(path)
     schema = SCHEMAS.get(data.get("kind"), {})
     if args.grid is not None:
         if "grid" not in schema and data.get("kind") in SCHEMAS:
@@ -163,8 +163,10 @@ def run_studies(args) -> int:
     client = None
     if args.scheduler is not None and any(s.study.kind in SAMPLED or s.study.kind ==
                                           "rotor_bearing_design" for s in loaded):
+        from ..cluster import quiet_logs
         from ..parallel import connect_scheduler
 
+        quiet_logs()
         client = connect_scheduler(args.scheduler)             # before anything is written
     try:
         for study in loaded:                                    # every folder checked first
@@ -207,10 +209,23 @@ def run_studies(args) -> int:
     except InfrastructureError as exc:
         print(f"gfbopt: error: {exc}", file=sys.stderr, flush=True)
         return 1
+    except OSError as exc:                  # a full disk, a folder removed under the run
+        print(f"gfbopt: error: {current}: cannot write ({exc.strerror or exc}: "
+              f"{exc.filename or '?'}); what was written is kept: free the space and run "
+              "again (--resume for a sampled study)", file=sys.stderr, flush=True)
+        return 1
     finally:
         if client is not None:
-            client.close()
+            _close(client)
     return 1 if failed else 0
+
+
+def _close(client) -> None:
+    """Close the Dask client without a traceback when its scheduler is already gone."""
+    try:
+        client.close(timeout=5)
+    except Exception:  # noqa: BLE001 - nothing left to close cleanly
+        pass
 
 
 def _signal_name(signum: int) -> str:

@@ -116,10 +116,10 @@ class OnsetResult:
 
 def onset_speed(bearing: BearingGeometry, rotor: Rotor, load_newton: Optional[float],
                 speed_range, *, film: Optional[str] = None,
-                seam_angle: Union[float, str, None] = None, foil: Optional[str] = None,
+                seam_angle_deg: Union[float, str, None] = None, foil: Optional[str] = None,
                 deflection_law: Optional[str] = None, loss_factor: Optional[float] = None,
                 options: Optional[ModelOptions] = None, grid: Grid = DEFAULT_GRID,
-                cache: Optional[SolverCache] = None) -> OnsetResult:
+                cache: Optional[SolverCache] = None, seam_angle=None) -> OnsetResult:
     """The lowest speed in ``speed_range`` [rpm] at which the rotor whirls (module docstring).
 
     Parameters
@@ -127,7 +127,7 @@ def onset_speed(bearing: BearingGeometry, rotor: Rotor, load_newton: Optional[fl
     bearing : the bearing in SI; rotor : mass per bearing [kg]
     load_newton : static load per bearing W0 [N], fixed along the line (None: W0 = M g)
     speed_range : (low, high) [rpm]
-    film, seam_angle, foil, deflection_law, loss_factor, options, grid, cache : as for
+    film, seam_angle_deg, foil, deflection_law, loss_factor, options, grid, cache : as for
         :func:`gfbopt.rotor.stability`
 
     Returns
@@ -137,7 +137,8 @@ def onset_speed(bearing: BearingGeometry, rotor: Rotor, load_newton: Optional[fl
     """
     t0 = time.perf_counter()
     low, high = check_speed_range(speed_range)
-    case = resolve_case(bearing, rotor, load_newton, film=film, seam_angle=seam_angle,
+    case = resolve_case(bearing, rotor, load_newton, film=film, seam_angle_deg=seam_angle_deg,
+                        seam_angle=seam_angle,
                         foil=foil, deflection_law=deflection_law, loss_factor=loss_factor,
                         options=options, grid=grid, cache=cache)
     line = _SpeedLine(case)

@@ -15,6 +15,7 @@ from dataclasses import replace
 from pathlib import Path
 from typing import Callable, Optional, Union
 
+from ..errors import ParameterError
 from ..inputs import read_toml
 from . import design, maps, sweeps, tables, transients
 from . import doe
@@ -89,8 +90,18 @@ def load_study(path: Union[str, Path]) -> LoadedStudy:
     """Read, validate and plan the study file ``path``; any mistake raises one
     ParameterError naming the file and the key, before anything is solved."""
     path = Path(path)
-    return study_from_dict(read_toml(path), name=path.stem, file=str(path),
+    return study_from_dict(read_study_file(path), name=path.stem, file=str(path),
                            directory=path.parent)
+
+
+def read_study_file(path: Union[str, Path]) -> dict:
+    """The parsed study file; a file nested too deeply to parse (tomllib recurses) is one
+    ParameterError, not a RecursionError."""
+    try:
+        return read_toml(path)
+    except RecursionError:
+        raise ParameterError("file", str(path), "is nested too deeply to be a study file"
+                             ) from None
 
 
 def compute(loaded: LoadedStudy, *, workers: int = 1,

@@ -19,46 +19,14 @@ from pathlib import Path
 import pytest
 
 from gfbopt.doe import SamplePlan, Variable, read_results, run_doe
+from tiny_sweeps import sweep_toml
 
 ROOT = Path(__file__).resolve().parents[2]
 ENV = {**os.environ, "PYTHONPATH": str(ROOT)}
 
-SWEEP = """\
-kind = "sweep"
-title = "tiny static sweep"
-source = "test"
-analysis = "static"
-grid = "24x6"
-chunk_size = 1
-batch_rows = {batch}
-min_success_fraction = 0.9
-
-[model]
-foil = "simple"
-
-[fixed]
-length_ratio = 1.0
-
-[sampling]
-method = "lhs"
-n = {n}
-seed = 5
-
-[[sampling.variables]]
-name = "bearing_number"
-low = 0.5
-high = 3.0
-
-[[sampling.variables]]
-name = "eccentricity"
-low = 0.2
-high = 0.7
-"""
-
-
 def _study(tmp_path, n=40, batch=1, name="tiny") -> Path:
     path = tmp_path / f"{name}.toml"
-    path.write_text(SWEEP.format(n=n, batch=batch))
+    path.write_text(sweep_toml(n=n, batch=batch))
     return path
 
 
@@ -112,6 +80,7 @@ def test_a_killed_worker_is_retried_and_every_point_computed(tmp_path):
     assert (frame["y"] == 2.0 * frame["x"]).all()
 
 
+@pytest.mark.slow  # the command-line variant; the default tier covers the item in-process
 def test_gfbopt_run_completes_every_point_when_a_pool_worker_is_killed(tmp_path):
     study = _study(tmp_path, n=40)
     results = tmp_path / "results"
@@ -170,6 +139,7 @@ def test_sigterm_writes_every_finished_row(tmp_path):
     assert "250 of 400 points stored" in out.stderr and "Traceback" not in out.stderr
 
 
+@pytest.mark.slow  # the command-line variant; the default tier covers the item in-process
 def test_gfbopt_run_on_sigterm_keeps_the_rows_and_says_how_to_resume(tmp_path):
     study = _study(tmp_path, n=400, batch=100_000)        # never a size-triggered write
     results = tmp_path / "results"
@@ -229,6 +199,7 @@ def test_rows_are_written_on_a_timer_while_a_chunk_is_in_flight(tmp_path):
 
 
 # ------------------------------------------------------------------ item 7: one writer
+@pytest.mark.slow  # the command-line variant; the default tier covers the item in-process
 def test_a_second_run_on_the_same_results_folder_is_refused(tmp_path):
     study = _study(tmp_path, n=400, batch=1)
     results = tmp_path / "results"

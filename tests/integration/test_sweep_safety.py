@@ -23,46 +23,16 @@ from gfbopt.doe import ResultStore, read_results
 from gfbopt.errors import ParameterError
 from gfbopt.studies import study_from_dict
 from gfbopt.studies.doe import run_sampled
+from tiny_sweeps import sweep_toml
 
 ROOT = Path(__file__).resolve().parents[2]
 BEARING = ROOT / "problems" / "bearings" / "ruscitto.toml"
 
-STATIC = """\
-kind = "sweep"
-title = "tiny static sweep"
-source = "test"
-analysis = "static"
-grid = "24x6"
-chunk_size = 2
-batch_rows = 4
-min_success_fraction = 0.0
+def _text(target="eccentricity", low=0.2, high=0.7, n=8) -> str:
+    """A tiny static sweep whose points with S < 0 fail (compliance sampled from -0.5)."""
+    return sweep_toml(n=n, chunk=2, batch=4, min_success=0.0, variables=(
+        ("bearing_number", 0.5, 3.0), (target, low, high), ("compliance", -0.5, 1.5)))
 
-[model]
-foil = "simple"
-
-[fixed]
-length_ratio = 1.0
-
-[sampling]
-method = "lhs"
-n = 8
-seed = 5
-
-[[sampling.variables]]
-name = "bearing_number"
-low = 0.5
-high = 3.0
-
-[[sampling.variables]]
-name = "{target}"
-low = {low}
-high = {high}
-
-[[sampling.variables]]
-name = "compliance"
-low = -0.5
-high = 1.5
-"""
 
 ONSET = """\
 kind = "sweep"
@@ -90,7 +60,7 @@ high = 4.0e-5
 
 
 def _static(target="eccentricity", low=0.2, high=0.7, n=None, **changes) -> dict:
-    data = tomllib.loads(STATIC.format(target=target, low=low, high=high))
+    data = tomllib.loads(_text(target, low, high))
     data.update(changes)
     if n is not None:
         data["sampling"]["n"] = n
@@ -228,7 +198,7 @@ def test_a_study_name_must_be_one_safe_folder_name(name):
 
 def test_name_dotdot_from_the_command_line_writes_nothing(tmp_path):
     study = tmp_path / "x.toml"
-    text = STATIC.format(target="eccentricity", low=0.2, high=0.7)
+    text = _text()
     study.write_text('name = ".."\n' + text)
     (tmp_path / "README.md").write_text("the user's file")
     out = _run_cli(study, "--results", tmp_path / "results", cwd=tmp_path)
@@ -311,15 +281,18 @@ def test_invalid_fixed_onset_inputs_are_refused_before_any_solve(tmp_path, fixed
         _onset(tmp_path, fixed={**base, **fixed})
 
 
-def test_too_many_workers_and_an_empty_scheduler_are_refused(tmp_path):
+def test_too_many_workers_and_an_empty_scheduler_are_refused(tmp_path, capsys):
+    from gfbopt.cli import main
+
     study = tmp_path / "tiny.toml"
-    study.write_text(STATIC.format(target="eccentricity", low=0.2, high=0.7))
+    study.write_text(_text())
     for args, text in ((("--workers", "100000"), "--max-workers"),
                        (("--scheduler", ""), "must be a scheduler address"),
                        (("--scheduler", "ucx://127.0.0.1:8786"), "ucx:// is not supported")):
-        out = _run_cli(study, *args, "--results", tmp_path / "r", cwd=tmp_path)
-        assert out.returncode == 2 and text in out.stderr, out.stderr
-        assert len(out.stderr.strip().splitlines()) == 1
+        status = main(["run", str(study), *args, "--results", str(tmp_path / "r")])
+        err = capsys.readouterr().err
+        assert status == 2 and text in err, err
+        assert len(err.strip().splitlines()) == 1
     assert not (tmp_path / "r").exists()
 
 
@@ -330,7 +303,7 @@ def test_grid_option_overrides_the_study_grid_and_is_refused_without_one(tmp_pat
     from gfbopt.cli.run import _load
 
     study = tmp_path / "tiny.toml"
-    study.write_text(STATIC.format(target="eccentricity", low=0.2, high=0.7))
+    study.write_text(_text())
     loaded = _load(str(study), Namespace(grid="36x10", max_points=None))
     assert str(loaded.plan.grid) == "36x10" and loaded.study.spec["grid"] == "36x10"
     with pytest.raises(ParameterError, match="--grid = '36x10'.*no single grid"):
@@ -348,7 +321,7 @@ def test_running_a_study_leaves_the_checkout_clean_and_its_provenance_clean(tmp_
     shutil.copy(ROOT / ".gitignore", repo / ".gitignore")
     (repo / "problems").mkdir()
     (repo / "problems" / "tiny.toml").write_text(
-        STATIC.format(target="eccentricity", low=0.2, high=0.7).replace("n = 8", "n = 2"))
+        _text(n=2))
     git = ["git", "-C", str(repo), "-c", "user.name=t", "-c", "user.email=t@t"]
     subprocess.run(git[:3] + ["init", "-q"], check=True)
     subprocess.run(git + ["add", "-A"], check=True)
@@ -358,6 +331,7 @@ def test_running_a_study_leaves_the_checkout_clean_and_its_provenance_clean(tmp_
                           "--workers", "1"], cwd=repo, env=env, capture_output=True,
                          text=True, timeout=600)
     assert out.returncode == 0, out.stderr
+    assert "gfbopt: tiny 100/100 % (100 %)" in out.stderr     # progress, stderr not a TTY
     status = subprocess.run(git + ["status", "--porcelain", "--untracked-files=all"],
                             capture_output=True, text=True, check=True).stdout
     assert status == "", status
