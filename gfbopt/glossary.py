@@ -357,6 +357,59 @@ for _name, _entry in {
     GLOSSARY.setdefault(_name, _entry)
 
 
+# ---------------------------------------------------------------- rotor bearing-pair design
+# Columns of gfbopt.studies.rotor_design (issue 20); added without overriding others.
+for _name, _entry in {
+    "first_onset_speed_rpm": ("rpm", "first onset of whirl over all modes of the rotor (the "
+                              "end of the search when every mode is stable there)"),
+    "first_mode": ("text", "the mode that whirls first"),
+    "onset_status": ("text", "onset, stable over the range, or unstable at the lowest speed"),
+    "onset_whirl_frequency_hz": ("Hz", "whirl frequency at the first onset"),
+    "stable_to_top_speed": ("-", "every mode stable up to the top speed"),
+    "total_power_loss_w": ("W", "power lost in both bearings' films at the top speed"),
+    "min_film_top_speed_um": ("µm", "smaller minimum film of the two bearings at the top "
+                              "speed"),
+    "min_film_lowest_speed_um": ("µm", "smaller minimum film of the two bearings at the "
+                                 "lowest speed under the heaviest load"),
+    "capacity_margin": ("-", "smaller load capacity over static load of the two bearings"),
+    "bump_stress_mpa": ("MPa", "largest bump bending stress at the design pressure"),
+    "top_foil_sag_ratio": ("-", "largest top-foil sag between bumps over the clearance"),
+    "bump_closing_ratio": ("-", "(2 l0 + gap)/s: a bump closes within its pitch when ≤ 1"),
+    "compliance_a": ("-", "compliance S of bearing A"),
+    "compliance_b": ("-", "compliance S of bearing B"),
+    "evaluation": ("-", "order in which the optimiser first asked for the design"),
+    "batch": ("-", "generation (NSGA-II) or proposal batch (Bayesian) of the design"),
+    "feasible": ("-", "the design succeeded and meets every limit"),
+    "radial_clearance_um": ("µm", "radial clearance c"),
+    "length_mm": ("mm", "bearing length L"),
+    "bump_pitch_mm": ("mm", "bump pitch s"),
+    "bump_half_length_mm": ("mm", "half bump length l0"),
+    "bump_thickness_um": ("µm", "bump foil thickness t_b"),
+    "preload_count": ("-", "number of shims or lobes"),
+    "pads": ("-", "number of top-foil pads"),
+    "nominal_onset_speed_rpm": ("rpm", "first onset of the design as searched"),
+    "worst_onset_speed_rpm": ("rpm", "lowest first onset over the tolerance sample"),
+    "p05_onset_speed_rpm": ("rpm", "5th percentile of the first onset over the tolerance "
+                            "sample"),
+    "stable_to_top_fraction": ("-", "fraction of the tolerance sample stable to the top "
+                               "speed"),
+    "samples": ("-", "designs in the tolerance sample"),
+    "failed_samples": ("-", "samples whose evaluation failed"),
+    "first_mode_default_grid": ("text", "the mode that whirls first, on the default grid"),
+    "onset_status_default_grid": ("text", "onset status on the default grid"),
+    "feasible_default_grid": ("-", "the design meets every limit on the default grid"),
+    "limit_cycle_um": ("µm", "subsynchronous whirl limit cycle at the bearing (largest "
+                       "distance from the orbit's centre)"),
+    "settled": ("-", "the limit cycle changed by ≤ 1 % over the last whirl periods"),
+}.items():
+    GLOSSARY.setdefault(_name, _entry)
+_PATTERNS = _PATTERNS + (
+    (r"(.+)_search_grid", "-", "{0} on the search grid"),
+    (r"(.+)_default_grid", "-", "{0} on the default grid"),
+    (r"(.+)_relative_change", "-", "{0}: default grid over search grid − 1"),
+)
+
+
 # ---------------------------------------------------------------- rotor transients
 # Columns of rotor transients (gfbopt.transient.rotor_result, study kind rotor_run_up);
 # per-bearing columns carry the bearing's name (x_A_um, min_film_B_um, …).

@@ -70,6 +70,8 @@ class StudyResult:
     options: dict = field(default_factory=dict)
     notes: list = field(default_factory=list)
     wall_time_s: float = 0.0
+    #: the answer in words, written as the README's first line (design studies)
+    verdict: str = ""
 
     @property
     def passed(self) -> bool:
