@@ -38,12 +38,19 @@ class Study:
         return w
 
 
+#: where ``gfbopt run`` writes by default: user runs go to ``runs/`` (git-ignored); the
+#: shipped ``results/`` are regenerated only on purpose (``--results results``, docs/studies.md)
+DEFAULT_RESULTS = "runs"
+
+
 @dataclass(frozen=True)
 class RunContext:
-    """How to run: number of worker processes and an optional progress callback."""
+    """How to run: number of worker processes, an optional progress callback (fraction
+    done) and the results folder (where sampled studies keep their store)."""
 
     workers: int = 1
     progress: Optional[Callable[[float], None]] = None
+    results_root: str = DEFAULT_RESULTS
 
 
 @dataclass(frozen=True, eq=False)
