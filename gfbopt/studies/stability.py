@@ -85,7 +85,7 @@ SCHEMAS: dict[str, dict] = {
 # ------------------------------------------------------------------ points (module level:
 # they are pickled to the workers)
 def onset_point(bearing, rotor_mass_kg: float, load_newton: float, speed_range, *,
-                film: str, seam_angle, foil: str, deflection_law: str, loss_factor: float,
+                film: str, seam_angle_deg, foil: str, deflection_law: str, loss_factor: float,
                 grid: Grid, cache=None) -> dict:
     """The onset speed of one rotor on one formulation, as a row with ``onset_status``."""
     from ..inputs.rotor import Rotor
@@ -97,7 +97,8 @@ def onset_point(bearing, rotor_mass_kg: float, load_newton: float, speed_range, 
            "critical_mass_kg_at_low_speed": math.nan}
     try:
         res = onset_speed(bearing, Rotor(rotor_mass_kg), load_newton, speed_range, film=film,
-                          seam_angle_deg=seam_angle, foil=foil, deflection_law=deflection_law,
+                          seam_angle_deg=seam_angle_deg, foil=foil,
+                          deflection_law=deflection_law,
                           loss_factor=loss_factor, grid=grid, cache=cache)
     except ParameterError as exc:
         overload = "load capacity" in str(exc)
@@ -240,7 +241,7 @@ def plan_onset_conventions(study: Study) -> dict:
                   "load_newton": spec["load_newton"], "speed_range": speed_range,
                   "foil": model["foil"], "deflection_law": model["deflection_law"],
                   "loss_factor": model["loss_factor"], "grid": study.grid}
-    points = [{**common, "film": f, "seam_angle": None if s is None else _seam(s)}
+    points = [{**common, "film": f, "seam_angle_deg": None if s is None else _seam(s)}
               for f, s in conventions]
     tags = [{"convention": _convention_label(f, s), "film": f,
              "seam_angle_deg": s if s is not None else "none"} for f, s in conventions]
