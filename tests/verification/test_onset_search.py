@@ -175,9 +175,9 @@ def test_message_is_empty_on_success_and_remarks_are_notes(cache):
     assert math.isinf(result.scan[0]["critical_mass_parameter"])
     assert result.message == ""
     assert "stable for every rotor mass" in result.notes
-    row = onset_point(BEARING, 2.0, 40.0, (3000.0, 4000.0), film="periodic", seam_angle=None,
-                      foil="simple", deflection_law="mean", loss_factor=0.0, grid=COARSE,
-                      cache=cache)
+    row = onset_point(BEARING, 2.0, 40.0, (3000.0, 4000.0), film="periodic",
+                      seam_angle_deg=None, foil="simple", deflection_law="mean",
+                      loss_factor=0.0, grid=COARSE, cache=cache)
     assert row["success"] and row["message"] == ""
 
 
