@@ -274,6 +274,10 @@ def test_fifty_random_cases_at_72x20(monkeypatch):
                                 **common), old)
         guided = onset_speed(BEARING, Rotor(mass), load, span, coarse_grid="36x10", **common)
         assert_same(guided, old)
+        if not guided.coarse_scan:           # the guide failed (its notes say so): dropped
+            assert "guide failed" in guided.notes
+            compared += 1
+            continue
         fine, coarse = guided.scan[0], guided.coarse_scan[0]
         if math.isfinite(fine["critical_mass_parameter"]) and fine[
                 "critical_mass_parameter"] > 0:
