@@ -138,7 +138,7 @@ def run(args) -> int:
     if args.onset or args.speed_range is not None:
         span = (tuple(args.speed_range) if args.speed_range is not None
                 else tuple(f * args.speed_rpm for f in ONSET_RANGE))
-        onset = onset_speed(bearing, rotor, args.load_newton, span, **common)
+        onset = onset_speed(bearing, rotor, args.load_newton, span, **common, progress=True)
         out["onset"] = {k: v for k, v in onset.to_dict().items() if k != "conventions"}
         out["onset_speed_rpm"] = onset.onset_speed_rpm
         out["onset_whirl_frequency_hz"] = onset.whirl_frequency_hz

@@ -48,6 +48,8 @@ class StaticSolution:
     solve_time_s: float
     state: np.ndarray = field(repr=False)
     message: str = ""
+    #: which method solved it: "ipopt", or "newton" (the warm fast path, gfbopt.static.newton)
+    solver: str = "ipopt"
 
     @property
     def mean_pressure(self) -> np.ndarray:
