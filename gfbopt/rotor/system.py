@@ -12,9 +12,20 @@ Along the speed line the rotor, its bearings' loads and its imbalance are fixed;
 the rotor whirls in that mode when its inertias are μ_c times the real ones).  A mode's onset
 speed is where μ_c(ω) falls through 1.  Speeds are scanned geometrically with a ratio of at
 most 1.25 (as the one-bearing :func:`gfbopt.rotor.onset_speed`), and the first scan interval of
-each mode where μ_c − 1 changes sign from + to − is refined by Brent's method to a relative
-:data:`SPEED_TOLERANCE`, following that mode (same label, nearest whirl ratio) inside the
-bracket.  An unstable window narrower than a scan interval can be missed.
+each mode where μ_c − 1 changes sign from + to − is refined, following that mode (same label,
+nearest whirl ratio) inside the bracket:
+
+* ``method="secant"`` (default): secant steps on g = ln μ_c against ln N (nearly linear: the
+  inertia terms grow as N², the bearings' impedance slowly), safeguarded by bisection inside the
+  bracket, until the next step from the latest point would be at most
+  :data:`SECANT_TOLERANCE` on ln N (the latest point, whose error that step estimates, is the
+  onset; 2–3 speeds per mode); Brent's method as below if it has not converged in
+  :data:`SECANT_STEPS` steps;
+* ``method="scan"`` (the reference of gfbopt 0.2): Brent's method on (μ_c − 1)/(μ_c + 1) to a
+  relative :data:`SPEED_TOLERANCE` (5–7 speeds per mode).
+
+The two agree to the reference's tolerance (a test).  An unstable window narrower than a scan
+interval can be missed.
 
 A speed at which a bearing's share exceeds its load capacity is reported (``capacity`` rows,
 with the largest load it carries), not raised; the modes are searched over the other speeds.
@@ -28,6 +39,7 @@ from typing import Optional
 
 from scipy.optimize import brentq
 
+from ..errors import ParameterError
 from ..inputs.grid import DEFAULT_GRID, Grid
 from ..inputs.options import ModelOptions
 from ..inputs.rotor_system import RotorSystem
@@ -35,10 +47,19 @@ from ..progress import progress
 from ..static import SolverCache
 from .matched_whirl import ModeCrossing, by_mode, crossings
 from .onset import SCAN_RATIO, check_speed_range
-from .supports import WHIRL_RANGE, RotorCase, SpeedStates, resolve_rotor, support_states
+from .supports import (WHIRL_RANGE, RotorCase, SpeedStates, predicted_starts, resolve_rotor,
+                       support_states)
 
-#: relative tolerance of each mode's onset speed [-] (as gfbopt.rotor.onset)
+#: relative tolerance of each mode's onset speed with method "scan" [-] (Brent)
 SPEED_TOLERANCE = 1e-4
+#: the secant refinement stops when the next secant step from its latest point would be at
+#: most this on ln N [-]: that step estimates the latest point's error (superlinear
+#: convergence of a nearly linear g), which is returned
+SECANT_TOLERANCE = 1e-6
+#: secant steps before the refinement falls back to Brent's method
+SECANT_STEPS = 12
+#: ways to refine each mode's onset (module docstring)
+METHODS = ("secant", "scan")
 
 
 @dataclass(frozen=True)
@@ -119,11 +140,13 @@ class SpeedLine:
 
     def states(self, speed: float) -> SpeedStates:
         if speed not in self._states:
-            ok = [s for s, st in self._states.items() if st.ok]
-            near = min(ok, key=lambda s: abs(math.log(s / speed)), default=None)
-            self._states[speed] = support_states(
-                self.rotor, speed, self._states[near].states if near else None,
-                self.whirl_range)
+            ok = sorted((s for s, st in self._states.items() if st.ok),
+                        key=lambda s: abs(math.log(s / speed)))
+            guesses = (predicted_starts(self._states[ok[0]],
+                                        self._states[ok[1]] if len(ok) > 1 else None, speed)
+                       if ok else None)
+            self._states[speed] = support_states(self.rotor, speed, None, self.whirl_range,
+                                                 guesses=guesses)
         return self._states[speed]
 
     def crossings(self, speed: float) -> list:
@@ -170,12 +193,16 @@ def scan_speeds(low: float, high: float) -> list:
 def rotor_onsets(system: RotorSystem, speed_range, *, grid: Grid = DEFAULT_GRID,
                  options: Optional[ModelOptions] = None, cache: Optional[SolverCache] = None,
                  whirl_range=WHIRL_RANGE, speed_tolerance: float = SPEED_TOLERANCE,
-                 show_progress: bool = True, line: Optional[SpeedLine] = None) -> RotorOnsets:
+                 show_progress: bool = True, line: Optional[SpeedLine] = None,
+                 method: str = "secant") -> RotorOnsets:
     """The onset speed of each mode of ``system`` in ``speed_range`` = (low, high) [rpm]
     (module docstring).  ``options`` stated here override every bearing's formulation;
-    ``line`` reuses a :class:`SpeedLine` (e.g. the Campbell diagram's)."""
+    ``line`` reuses a :class:`SpeedLine` (e.g. the Campbell diagram's); ``method``: "secant"
+    or "scan" (the reference refinement)."""
     t0 = time.perf_counter()
     low, high = check_speed_range(speed_range)
+    if method not in METHODS:
+        raise ParameterError("method", method, f"must be one of: {', '.join(METHODS)}")
     rotor = line.rotor if line is not None else resolve_rotor(system, grid, cache, options)
     line = line or SpeedLine(rotor, whirl_range)
     speeds = scan_speeds(low, high)
@@ -186,7 +213,7 @@ def rotor_onsets(system: RotorSystem, speed_range, *, grid: Grid = DEFAULT_GRID,
             bar.update(1)
     valid = [s for s in speeds if line.crossings(s) is not None]
     labels = sorted({c.label for s in valid for c in line.crossings(s)})
-    modes = [_mode_onset(line, valid, label, speed_tolerance) for label in labels]
+    modes = [_mode_onset(line, valid, label, speed_tolerance, method) for label in labels]
     modes.sort(key=lambda m: (math.isnan(m.onset_speed_rpm), m.onset_speed_rpm, m.label))
     first = next((m for m in modes if m.status == ONSET), None)
     low_unstable = [m.label for m in modes if m.status == UNSTABLE_LOW]
@@ -214,7 +241,8 @@ def rotor_onsets(system: RotorSystem, speed_range, *, grid: Grid = DEFAULT_GRID,
         speed_range_rpm=(low, high), wall_time_s=time.perf_counter() - t0)
 
 
-def _mode_onset(line: SpeedLine, speeds: list, label: str, tol: float) -> ModeOnset:
+def _mode_onset(line: SpeedLine, speeds: list, label: str, tol: float,
+                method: str = "secant") -> ModeOnset:
     """One mode's onset on the scanned ``speeds`` (those with both bearings solved)."""
     rows = []                                    # (speed, crossing or None)
     for s in speeds:
@@ -231,14 +259,50 @@ def _mode_onset(line: SpeedLine, speeds: list, label: str, tol: float) -> ModeOn
             return ModeOnset(label, math.nan, c.whirl_ratio, c.whirl_frequency_hz, c.shape,
                              UNSTABLE_LOW, margin)
         whirl = c.whirl_ratio
-        root = brentq(lambda x: line.margin(x, label, whirl), previous[0], s,
-                      xtol=tol * previous[0], rtol=tol)
+        root = (_secant(line, label, previous, (s, c)) if method == "secant" else None)
+        if root is None:
+            root = brentq(lambda x: line.margin(x, label, whirl), previous[0], s,
+                          xtol=tol * previous[0], rtol=tol)
         at = line.follow(root, label, whirl)
         return ModeOnset(label, root, at.whirl_ratio, at.whirl_frequency_hz,
                          at.shape, ONSET, margin)
     best = min(present, key=lambda c: c.inertia_scale)
     return ModeOnset(label, math.nan, best.whirl_ratio, best.whirl_frequency_hz, best.shape,
                      STABLE, margin)
+
+
+def _log_scale(crossing: Optional[ModeCrossing]) -> float:
+    """ln μ_c of a crossing; +inf when the mode has none (stable for every inertia scale)."""
+    return math.inf if crossing is None else math.log(crossing.inertia_scale)
+
+
+def _secant(line: SpeedLine, label: str, stable: tuple, unstable: tuple) -> Optional[float]:
+    """The onset of mode ``label`` between the scan speeds ``stable`` = (N, crossing) with
+    μ_c > 1 and ``unstable`` with μ_c ≤ 1: secant steps on ln μ_c against ln N from the
+    bracket's ends, bisection whenever a step would leave the bracket or a point has no
+    crossing (module docstring).  None when it has not converged (Brent's method then)."""
+    a, b = math.log(stable[0]), math.log(unstable[0])
+    x0, g0 = a, _log_scale(stable[1])
+    x1, g1 = b, _log_scale(unstable[1])
+    whirl = unstable[1].whirl_ratio
+    for _ in range(SECANT_STEPS):
+        finite = math.isfinite(g0) and math.isfinite(g1) and g1 != g0
+        x = x1 - g1 * (x1 - x0) / (g1 - g0) if finite else 0.5 * (a + b)
+        if not a < x < b:
+            x = 0.5 * (a + b)
+        c = line.follow(math.exp(x), label, whirl)
+        gx = _log_scale(c)
+        if c is not None:
+            whirl = c.whirl_ratio
+        if gx > 0:
+            a = x
+        else:
+            b = x
+        if math.isfinite(gx) and math.isfinite(g1) and gx != g1 and abs(
+                gx * (x - x1) / (gx - g1)) <= SECANT_TOLERANCE:
+            return math.exp(x)
+        x0, g0, x1, g1 = x1, g1, x, gx
+    return None
 
 
 def without_gyroscopics(system: RotorSystem) -> RotorSystem:
