@@ -234,7 +234,9 @@ def _unique(values: np.ndarray, tol: float = 1e-6) -> np.ndarray:
 
 def characteristic(rotor: RotorCase, states: SpeedStates, full: "FullSystem"):
     """s ↦ det of the scaled dynamic stiffness Λ D(s) Λ (per radian; each bearing's exact
-    Z̄_k(s) at complex s, with the Kelvin–Voigt foundation 1 + τ_f s when η > 0)."""
+    Z̄_k(s) at complex s: from its Krylov space where that has converged at s, else a direct
+    LU (:meth:`~gfbopt.rotor.supports.BearingState.at`); with the Kelvin–Voigt foundation
+    1 + τ_f s when η > 0, by a direct LU)."""
     body = rotor.system.body
     omega = states.omega
     lam = full.lam
@@ -244,10 +246,11 @@ def characteristic(rotor: RotorCase, states: SpeedStates, full: "FullSystem"):
                                                + s * gyroscopic_matrix(body))
         for st, t in zip(states.states, rotor.transforms):
             lin = st.linearisation
-            k = None
             if lin.loss_factor > 0 and lin.compliance is not None:
-                k = 1.0 + lin.loss_factor / full.reference_whirl * s
-            mat = mat + st.scale * (t.T @ impedance(lin, s, k) @ t)
+                z = impedance(lin, s, 1.0 + lin.loss_factor / full.reference_whirl * s)
+            else:                       # analytic in s: the Krylov space's value (.reduced)
+                z = st.at(s)
+            mat = mat + st.scale * (t.T @ z @ t)
         return complex(np.linalg.det(lam @ mat @ lam))
 
     return d

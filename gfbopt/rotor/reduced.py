@@ -160,15 +160,19 @@ class ReducedImpedance:
 
     def converge(self, points) -> np.ndarray:
         """Extend the space until :meth:`evaluate`'s test accepts every complex s in
-        ``points`` (checked from the farthest from the shift inwards, up to the first that
-        is not accepted: the far ones converge last); the mask of those accepted."""
+        ``points``; the mask of those accepted.  Each step checks only the pending point
+        farthest from the shift (the far ones converge last) by dense solves, and once it
+        passes, every pending point at once in Schur form."""
         points = np.asarray(points, dtype=complex)
         done = np.zeros(points.size, dtype=bool)
-        order = np.argsort(-np.abs(points - self.model.shift), kind="stable")
+        distance = np.abs(points - self.model.shift)
         while True:
-            for j in order[~done[order]]:
-                if not self._accepted_dense(points[j]):
-                    break
-                done[j] = True
-            if done.all() or not self.model.extend():
+            pending = np.flatnonzero(~done)
+            far = pending[np.argmax(distance[pending])]
+            if self._accepted_dense(points[far]):
+                done[pending] = self.evaluate_many(points[pending])[1]
+                done[far] = True
+                if done.all():
+                    return done
+            if not self.model.extend():
                 return done

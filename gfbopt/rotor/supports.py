@@ -43,7 +43,12 @@ from ..static import SolverCache, StaticSolution, solve_static
 from .analysis import Case, LoadCapacityError, equilibrium, resolve_case
 from .reduced import ReducedImpedance
 from .rigid import BearingLoad, bearing_loads, seam_from_load, transformations
+from .speed_line import transferred_start
 
+#: the grid of a fine grid's first (cold) equilibrium, interpolated as its start, and the
+#: cell ratio from which it is used [-]
+COLD_GRID = Grid(36, 10)
+COLD_FACTOR = 4
 #: whirl ratios the threshold scans by default (those of gfbopt.linear.linear_threshold) [-]
 WHIRL_RANGE = (0.02, 1.2)
 
@@ -270,10 +275,21 @@ def predicted_starts(near: SpeedStates, other: Optional[SpeedStates], speed_rpm:
 def _equilibrium(case: Case, speed_rpm: float, guess: Optional[StaticSolution]
                  ) -> StaticSolution:
     """The Newton fast path from ``guess`` (IPOPT from ``guess`` when it does not converge),
-    else a cold :func:`~gfbopt.rotor.analysis.equilibrium` (module docstring)."""
+    else a cold :func:`~gfbopt.rotor.analysis.equilibrium` (module docstring).  Without a
+    guess on a grid of at least :data:`COLD_FACTOR` times :data:`COLD_GRID`'s cells, the
+    guess is the equilibrium on that coarse grid interpolated onto this one
+    (:func:`gfbopt.rotor.speed_line.transferred_start`): a cold IPOPT solve on the fine grid
+    costs several seconds at 144 × 36."""
+    model = case.model(speed_rpm)
+    if guess is None and (case.grid.n_theta * case.grid.n_z
+                          >= COLD_FACTOR * COLD_GRID.n_theta * COLD_GRID.n_z):
+        try:
+            coarse = equilibrium(replace(case, grid=COLD_GRID), speed_rpm)
+            guess = transferred_start(coarse, case.cache(model, case.grid), model)
+        except LoadCapacityError:
+            guess = None
     if guess is None:
         return equilibrium(case, speed_rpm)
-    model = case.model(speed_rpm)
     sol = solve_static(model, load=case.load, solver=case.cache(model, case.grid),
                        initial=guess, continuation=False, fast_path=True)
     return sol if sol.success else equilibrium(case, speed_rpm)
