@@ -36,6 +36,7 @@ import numpy as np
 from scipy.optimize import brentq, linear_sum_assignment
 
 from .modes import shape
+from .probe import probe, probe_scale
 from .rigid import gyroscopic_matrix, mass_matrix
 from .supports import WHIRL_RANGE, RotorCase, SpeedStates
 
@@ -59,7 +60,9 @@ class ModeCrossing:
 
     inertia_scale μ_c [-] (the rotor whirls in this mode when its inertias are μ_c times
     the real ones; μ_c > 1 stable), whirl_ratio γ = Ω/ω [-], whirl_frequency_hz [Hz],
-    label ('forward conical', …), shape (:func:`gfbopt.rotor.modes.shape`), vector q̂."""
+    label ('forward conical', …), shape (:func:`gfbopt.rotor.modes.shape`), vector q̂;
+    note: why μ_c = 0 when the probe found the rotor unstable below every crossing
+    (:mod:`.probe`), else empty."""
 
     inertia_scale: float
     whirl_ratio: float
@@ -67,6 +70,7 @@ class ModeCrossing:
     label: str
     shape: dict
     vector: np.ndarray = field(repr=False, compare=False)
+    note: str = ""
 
 
 def bearing_stiffness(rotor: RotorCase, states: SpeedStates, whirl_ratio: float) -> np.ndarray:
@@ -163,7 +167,9 @@ def _adaptive_scan(roots, gammas: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
 def crossings(rotor: RotorCase, states: SpeedStates, whirl_range=WHIRL_RANGE,
               samples: int = SAMPLES) -> list:
     """Every mode crossing (:class:`ModeCrossing`) with μ_c > 0 at this speed, lowest μ_c
-    first (module docstring).  ``states`` must be complete (no bearing over capacity)."""
+    first (module docstring), preceded by one with μ_c = 0 when the probe below the first
+    crossing finds a growing mode (:mod:`.probe`: the massless journal is unstable).
+    ``states`` must be complete (no bearing over capacity)."""
     gammas = np.linspace(whirl_range[0], whirl_range[1], samples)
     for st in states.states:
         st.prepare(gammas)
@@ -181,7 +187,26 @@ def crossings(rotor: RotorCase, states: SpeedStates, whirl_range=WHIRL_RANGE,
                                values[k + 1, branch], positions, names)
             if crossing is not None and not any(_same(crossing, c) for c in found):
                 found.append(crossing)
-    return sorted(found, key=lambda c: (c.inertia_scale, c.whirl_ratio))
+    found.sort(key=lambda c: (c.inertia_scale, c.whirl_ratio))
+    low_scale = _probed(rotor, states, found, whirl_range, positions, names)
+    return ([low_scale] if low_scale is not None else []) + found
+
+
+def _probed(rotor, states, found, whirl_range, positions, names):
+    """The probe below the smallest crossing (:mod:`.probe`): a crossing with μ_c = 0 (the
+    rotor whirls at every inertia scale below the first crossing) when it is unstable."""
+    mu = probe_scale([c.inertia_scale for c in found])
+    p = probe(rotor, states, mu, whirl_range)
+    if not p.unstable:
+        return None
+    sh = shape(p.vector, positions, names)
+    after = (f"; a crossing at μ_c = {found[0].inertia_scale:.4g} ({found[0].label}) may "
+             "bound a stable range above it" if found else "")
+    note = (f"unstable for every inertia scale: already at μ = {mu:.3g} a {sh['label']} "
+            f"mode whirling at γ = {p.whirl_ratio:.3f} grows at {p.growth_rate:.3g} per "
+            f"radian (the massless journal is unstable){after}")
+    return ModeCrossing(0.0, p.whirl_ratio, float(p.whirl_ratio * states.omega / (2 * math.pi)),
+                        sh["label"], sh, p.vector, note)
 
 
 def _refine(rotor, states, low, high, nu_low, nu_high, positions, names):

@@ -52,7 +52,9 @@ class ModeOnset:
     label ('forward conical', …); onset_speed_rpm [rpm] (nan: none in the range, see
     status); whirl_ratio, whirl_frequency_hz [Hz] at the onset; shape at the onset
     (:func:`gfbopt.rotor.modes.shape`); status: 'onset', 'unstable at the lowest speed' or
-    'stable over the range'; smallest_inertia_margin: the least μ_c − 1 over the scan [-]."""
+    'stable over the range'; smallest_inertia_margin: the least μ_c − 1 over the scan [-];
+    note: the probe's message when the mode is unstable for every inertia scale there
+    (μ_c = 0: the massless journal whirls, :mod:`gfbopt.rotor.probe`)."""
 
     label: str
     onset_speed_rpm: float
@@ -61,12 +63,14 @@ class ModeOnset:
     shape: dict
     status: str
     smallest_inertia_margin: float
+    note: str = ""
 
     def to_dict(self) -> dict:
         return {"label": self.label, "onset_speed_rpm": self.onset_speed_rpm,
                 "whirl_ratio": self.whirl_ratio,
                 "whirl_frequency_hz": self.whirl_frequency_hz, "status": self.status,
-                "smallest_inertia_margin": self.smallest_inertia_margin, "shape": self.shape}
+                "smallest_inertia_margin": self.smallest_inertia_margin, "shape": self.shape,
+                "note": self.note}
 
 
 def mode_rows(line, speeds: list, label: str) -> list:
@@ -101,7 +105,7 @@ def mode_onset(line, speeds: list, label: str, tol: float, method: str = "secant
             continue
         if previous is None:
             return ModeOnset(label, math.nan, c.whirl_ratio, c.whirl_frequency_hz, c.shape,
-                             UNSTABLE_LOW, margin)
+                             UNSTABLE_LOW, margin, c.note)
         return _refined(line, label, previous, (s, c), tol, method, margin)
     best = min((c for _, c in rows if c is not None), key=lambda c: c.inertia_scale)
     return ModeOnset(label, math.nan, best.whirl_ratio, best.whirl_frequency_hz, best.shape,
@@ -123,7 +127,7 @@ def _refined(line, label, stable, unstable, tol, method, margin, seed=None) -> M
                       xtol=tol * stable[0], rtol=tol)
     at = line.follow(root, label, whirl)
     return ModeOnset(label, root, at.whirl_ratio, at.whirl_frequency_hz, at.shape, ONSET,
-                     margin)
+                     margin, at.note)
 
 
 def _log_scale(crossing) -> float:
@@ -183,7 +187,7 @@ def guided_onset(fine, coarse, speeds: list, label: str, tol: float) -> Optional
     s, c = merged[first_unstable]
     if first_unstable == 0:
         return ModeOnset(label, math.nan, c.whirl_ratio, c.whirl_frequency_hz, c.shape,
-                         UNSTABLE_LOW, margin)
+                         UNSTABLE_LOW, margin, c.note)
     stable, unstable = merged[first_unstable - 1], merged[first_unstable]
     coarse_stable, coarse_unstable = rows[first_unstable - 1], rows[first_unstable]
 

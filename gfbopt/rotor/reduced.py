@@ -50,6 +50,7 @@ class _Schur:
         t, q = sla.schur(h[:m, :m], output="complex")
         rhs = np.zeros((m, 2), dtype=complex)
         rhs[:2] = model._r                              # noqa: SLF001
+        self.shift = model.shift
         self.t = np.asfortranarray(t)
         self.c = q.conj().T @ rhs
         self.f = model._fv[:, :m] @ q                   # noqa: SLF001
@@ -113,6 +114,11 @@ class ReducedImpedance:
             return z, False
         before = self._schur(previous=True).solve(sigma)[0]
         return z, bool(np.abs(z - before).max() <= self.tol * np.abs(z).max())
+
+    def schur(self) -> Optional[_Schur]:
+        """The Schur form on the whole space (None before two blocks): its ``t``, ``c``,
+        ``f`` and ``shift`` give Z̄(s) = f (I + (s − shift) t)⁻¹ c."""
+        return self._schur()
 
     def evaluate_many(self, points: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """:meth:`evaluate` at every complex s of an array: (Z̄ (n, 2, 2), converged (n,))."""

@@ -186,6 +186,23 @@ class BearingState:
     def _from_space(self, s: complex) -> Optional[np.ndarray]:
         return self._reduced.value(s) if self._krylov() is not None else None
 
+    def schur_model(self):
+        """The Krylov space in Schur form (:meth:`gfbopt.rotor.reduced.ReducedImpedance.
+        schur`), or None without one."""
+        return self._reduced.schur() if self._krylov() is not None else None
+
+    def converged_at(self, s: complex) -> bool:
+        """True when the Krylov space gives Z̄(s) to its tolerance as it is."""
+        return self._krylov() is not None and self._reduced.evaluate(complex(s))[1]
+
+    def extend_at(self, s: complex) -> bool:
+        """Extend the Krylov space until it gives Z̄(s); True when it grew."""
+        if self._krylov() is None:
+            return False
+        before = self._model.blocks
+        self._reduced.value(complex(s))
+        return self._model.blocks > before
+
     def at(self, s: complex) -> np.ndarray:
         """Z̄(s) at complex s [-] (per radian; s = iγ on the axis) with the hysteretic
         foundation of the upper half plane (exact for η = 0): from the Krylov space where it

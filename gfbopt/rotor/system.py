@@ -208,8 +208,10 @@ def rotor_onsets(system: RotorSystem, speed_range, *, grid: Grid = DEFAULT_GRID,
     capacity = [x.states(s).failure for x in lines for s in sorted(x._states)
                 if not x.states(s).ok]
     if low_unstable:
+        notes = sorted({m.note for m in modes if m.status == UNSTABLE_LOW and m.note})
         reason = (f"unstable already at the lowest valid speed in mode(s) "
-                  f"{', '.join(low_unstable)}: the onset lies below the range")
+                  f"{', '.join(low_unstable)}: the onset lies below the range"
+                  + "".join(f" ({n})" for n in notes))
         first = None
     elif first is None:
         reason = ("no onset in the range: every mode is stable from "
