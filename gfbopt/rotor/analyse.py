@@ -147,7 +147,7 @@ def analyse_rotor(system: RotorSystem, speed_range, *, speed_rpm: Optional[float
     onsets = rotor_onsets(system, (low, high), line=line, show_progress=show_progress)
     at = modes_at_speed(line, float(speed_rpm)) if speed_rpm is not None else None
     cd = (campbell_diagram(line, list(np.linspace(low, high, campbell_speeds)),
-                           show_progress) if campbell else None)
+                           show_progress, onsets=onsets.modes) if campbell else None)
     ir = (imbalance_response(line, list(np.linspace(low, high, imbalance_speeds)),
                              show_progress) if imbalance else None)
     hm = half_mass_onsets(line, (low, high)) if half_mass else None
