@@ -121,7 +121,8 @@ def modes_at_speed(line: SpeedLine, speed_rpm: float) -> dict:
             "thresholds": [{"label": c.label, "inertia_scale": c.inertia_scale,
                             "inertia_margin": c.inertia_scale - 1.0,
                             "whirl_frequency_hz": c.whirl_frequency_hz,
-                            "whirl_ratio": c.whirl_ratio} for c in line.crossings(speed_rpm)]}
+                            "whirl_ratio": c.whirl_ratio, "note": c.note}
+                           for c in line.crossings(speed_rpm)]}
 
 
 def analyse_rotor(system: RotorSystem, speed_range, *, speed_rpm: Optional[float] = None,

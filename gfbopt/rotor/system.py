@@ -43,7 +43,7 @@ from ..inputs.options import ModelOptions
 from ..inputs.rotor_system import RotorSystem
 from ..progress import progress
 from ..static import SolverCache
-from .matched_whirl import ModeCrossing, by_mode, crossings
+from .matched_whirl import ModeCrossing, crossings
 from .mode_search import (ONSET, SECANT_TOLERANCE, STABLE, UNSTABLE_LOW,  # noqa: F401
                           ModeOnset, guided_onset, mode_onset)
 from .onset import SCAN_RATIO, check_coarse_grid, check_speed_range

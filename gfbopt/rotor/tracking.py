@@ -1,30 +1,29 @@
 """The Campbell diagram's modes tracked over speed by continuity, and named consistently with the
 matched-whirl threshold.
 
-Continuation.  At each speed after the first, every track's mode is looked for first where it
-is predicted: its eigenvalue per second extrapolated linearly from its last two speeds (a
-Campbell line is continuous in Hz, not in whirl ratio): :func:`gfbopt.rotor.campbell.system_modes` follows
-these guesses to roots of the exact characteristic equation before its own estimates, so a
-mode is not lost to another root between speeds.
+Continuation. At each speed after the first, every track's mode is looked for first where it is
+predicted: its eigenvalue per second extrapolated linearly from its last two speeds (a Campbell
+line is continuous in Hz, not in whirl ratio): :func:`gfbopt.rotor.campbell.system_modes`
+follows these guesses to roots of the exact characteristic equation before its own estimates,
+so a mode is not lost to another root between speeds.
 
-Assignment.  A track continues at the root nearest its guess when that root is near (within
-:data:`NEAR`) and nearest no other track's guess — at a veering of two modes (the study
-rotor's forward modes near 12,000 rpm) their shapes exchange within one speed step, so the
-shape cannot decide there but the continuation can.  The other modes at a speed are matched
-to the remaining tracks' last modes by the optimal assignment on the cost (1 − MAC) + 4 |s − s_pred|/|s_pred|, MAC = |d_aᴴ d_b|²/(|d_a|² |d_b|²)
-the modal assurance criterion of the orbits at the two bearings d = (X_A, Y_A, X_B, Y_B) [m]
-(one unit for all four, unlike q = (x, y, ψx, ψy)), s_pred the track's prediction (per
-second).  A match
-costing more than :data:`MAX_COST` starts a new track instead.
+Assignment. A track continues at the root nearest its guess when that root is near (within
+:data:`NEAR`) and nearest no other track's guess — at a veering of two modes (the study rotor's
+forward modes near 12,000 rpm) their shapes exchange within one speed step, so the shape cannot
+decide there but the continuation can. The other modes at a speed are matched to the remaining
+tracks' last modes by the optimal assignment on the cost (1 − MAC) + 4 |s − s_pred|/|s_pred|,
+MAC = |d_aᴴ d_b|²/(|d_a|² |d_b|²) the modal assurance criterion of the orbits at the two
+bearings d = (X_A, Y_A, X_B, Y_B) [m] (one unit for all four, unlike q = (x, y, ψx, ψy)),
+s_pred the track's prediction (per second). A match costing more than :data:`MAX_COST` starts a
+new track instead.
 
-Names.  Each row keeps its own shape's label (the shape of an asymmetric rotor's mode drifts
-between cylindrical, mixed and conical with speed).  A track is named by the label where its
-log decrement first falls through zero — at the threshold the full system's eigenvector is the
+Names. Each row keeps its own shape's label (the shape of an asymmetric rotor's mode drifts
+between cylindrical, mixed and conical with speed). A track is named by the label where its log
+decrement first falls through zero — at the threshold the full system's eigenvector is the
 matched-whirl mode's, so the name is the threshold's onset label (a test) — and, for a track
-that stays stable, by its label where it is least stable.  ``track_zero_rpm`` is that zero's
+that stays stable, by its label where it is least stable. ``track_zero_rpm`` is that zero's
 speed by linear interpolation of the log decrement between the diagram's speeds (the exact
-onsets are the threshold's).
-"""
+onsets are the threshold's)."""
 from __future__ import annotations
 
 import math
@@ -93,7 +92,8 @@ def assign(tracks: list, active: list, speed: float, omega: float, modes: list,
     """Append each of ``modes`` to its track (or a new one); the new list of active tracks.
     ``tracks``: lists of (speed, mode, omega); ``starts``: the active tracks' guesses
     (:func:`guesses`).  A track of two points or more whose guess has a root nearest it
-    (within :data:`NEAR` of it, and nearest no other track's guess) continues there — the continuation; the others
+    (within :data:`NEAR` of it, and nearest no other track's guess) continues there — the
+    continuation; the others
     are matched by the optimal assignment on :func:`cost` (module docstring)."""
     new_active, used = [], set()
     linked = {}
