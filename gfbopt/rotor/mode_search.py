@@ -18,7 +18,7 @@ grid is solved where the answer needs it:
   with the coarse slope (2–3 fine speeds).
 
 Assumption (the risk): the fine and coarse μ_c differ by less than :data:`COARSE_MARGIN`
-relative wherever the check is skipped.  Measured on the study rotor: ≤ 2.5 % between 36 × 10
+relative wherever the check is skipped.  Measured on the study rotor: ≤ 3.1 % between 36 × 10
 and 144 × 36 (μ_c at the scan speeds; benchmarks/bench_rotor.py records it).  When a fine
 evaluation contradicts the coarse bracket, the mode is searched on the fine grid alone.
 """
