@@ -28,7 +28,7 @@ from .inputs.conversions import mass_from_parameter, rpm_to_rad_per_s
 from .static import SolverCache, StaticSolution, solve_static, solver_for
 
 #: outputs of a static solve (NaN when it failed)
-STATIC_OUTPUTS = ("eccentricity", "attitude_angle_deg", "load", "min_film")
+STATIC_OUTPUTS = ("eccentricity", "attitude_angle_deg", "load", "min_film", "torque_ratio")
 
 
 def _solver(model: BearingModel, grid: Optional[Grid], cache: Optional[SolverCache]):
@@ -48,20 +48,27 @@ def equilibrium(model: BearingModel, *, eccentricity: Optional[float] = None,
 
 def static_row(model: BearingModel, solution: StaticSolution,
                geometry: Optional[BearingGeometry] = None) -> dict:
-    """The flat row of a static solution: Λ, S, L/D, C; ε, φ [deg], W̄, H_min; with a
-    ``geometry`` also W [N] and h_min [µm]; diagnostics ``success``, ``message``, ``status``,
-    ``iterations``, ``residual``.  Outputs are NaN when the solve failed."""
+    """The flat row of a static solution: Λ, S, L/D, C; ε, φ [deg], W̄, H_min, the torque
+    ratio T/T₀; with a ``geometry`` also W [N], h_min [µm], the drag torque [N m] and the
+    power loss [W]; diagnostics ``success``, ``message``, ``status``, ``iterations``,
+    ``residual``.  Outputs are NaN when the solve failed."""
+    from .physics.torque import drag_torque_and_power
+
     ok = bool(solution.success)
     nan = math.nan
     row = {**model.groups(),
            "eccentricity": solution.eccentricity if ok else nan,
            "attitude_angle_deg": math.degrees(solution.attitude_angle) if ok else nan,
            "load": solution.load if ok else nan,
-           "min_film": solution.min_film if ok else nan}
+           "min_film": solution.min_film if ok else nan,
+           "torque_ratio": solution.torque_ratio if ok else nan}
     if geometry is not None:
         row["load_newton"] = geometry.load_newton(solution.load) if ok else nan
         row["min_film_thickness_um"] = (solution.min_film * geometry.radial_clearance * 1e6
                                         if ok else nan)
+        torque, power = drag_torque_and_power(solution.torque_ratio, model.bearing_number,
+                                              geometry)
+        row["drag_torque_nm"], row["power_loss_w"] = (torque, power) if ok else (nan, nan)
     row.update(success=ok, message=solution.message, status=solution.status,
                iterations=solution.iterations, residual=solution.residual)
     return row

@@ -52,6 +52,8 @@ class Stencil:
     theta_weight : trapezoid weight of each θ node for ∫ dθ [rad]
     z_weight_unit : trapezoid weights of the axial nodes for ∫ dZ, per unit ΔZ [-]
     periodic : True for a periodic film
+    fixed_rows : θ rows held at ambient pressure besides the seam rows (the leading ends of
+        further pads and the gaps between pads, :meth:`gfbopt.inputs.bore.AsBuilt.fixed_rows`)
     """
 
     grid: Grid
@@ -70,6 +72,16 @@ class Stencil:
     west_row: np.ndarray
     theta_weight: np.ndarray
     z_weight_unit: np.ndarray
+    fixed_rows: tuple = ()
+
+    @property
+    def ambient_rows(self) -> np.ndarray:
+        """Boolean mask of the θ rows at ambient pressure (seam rows and ``fixed_rows``)."""
+        mask = np.zeros(self.n_theta_nodes, dtype=bool)
+        if not self.periodic:
+            mask[[0, -1]] = True
+        mask[list(self.fixed_rows)] = True
+        return mask
 
     @property
     def n_nodes(self) -> int:
@@ -95,8 +107,9 @@ def trapezoid_weights(n_nodes: int) -> np.ndarray:
     return w
 
 
-def make_stencil(grid: Grid, periodic: bool) -> Stencil:
-    """Index arrays of the five-point stencil on ``grid`` for a periodic or seamed film."""
+def make_stencil(grid: Grid, periodic: bool, fixed_rows: tuple = ()) -> Stencil:
+    """Index arrays of the five-point stencil on ``grid`` for a periodic or seamed film;
+    ``fixed_rows`` (θ row indices) are held at ambient pressure too (several pads)."""
     n_theta, n_z = grid.n_theta, grid.n_z
     m = n_theta if periodic else n_theta + 1
     nzn = n_z + 1
@@ -106,6 +119,10 @@ def make_stencil(grid: Grid, periodic: bool) -> Stencil:
     interior = (j_all > 0) & (j_all < n_z)
     if not periodic:
         interior &= (i_all > 0) & (i_all < n_theta)
+    fixed_rows = tuple(sorted(int(i) for i in fixed_rows))
+    if fixed_rows and (periodic or fixed_rows[0] <= 0 or fixed_rows[-1] >= n_theta):
+        raise ValueError("fixed rows need a seam film and lie strictly inside the grid")
+    interior &= ~np.isin(i_all, fixed_rows)
     i_u = i_all[interior]
     j_u = j_all[interior]
     east_row = (i_u + 1) % m
@@ -118,7 +135,7 @@ def make_stencil(grid: Grid, periodic: bool) -> Stencil:
                    east=east_row * nzn + j_u, west=west_row * nzn + j_u,
                    north=unknown + 1, south=unknown - 1,
                    east_row=east_row, west_row=west_row,
-                   theta_weight=theta_weight, z_weight_unit=z_weight)
+                   theta_weight=theta_weight, z_weight_unit=z_weight, fixed_rows=fixed_rows)
 
 
 def reynolds_residual(p, h, st: Stencil, bearing_number, dz, d_ph_dt=None):
@@ -173,3 +190,27 @@ def film_forces(q, theta, weights):
     the θ nodes (``Stencil.theta_weight``) [rad].  Returns (F_X, F_Y) with X along the load.
     """
     return (-weighted_sum(weights, cos(theta) * q), -weighted_sum(weights, sin(theta) * q))
+
+
+def shear_torque(p: np.ndarray, h: np.ndarray, st: Stencil, bearing_number: float,
+                 length_ratio: float) -> tuple[float, float]:
+    """Drag torque on the journal over Petroff's, (Couette part, pressure-gradient part) [-].
+
+    T / (2π μ ω R³ L / c) = (1/(4π L/D)) [∬ dθ dZ / H + (3/Λ) ∬ H ∂P/∂θ dθ dZ]
+    (docs/PHYSICS.md §5b).  p, h : P and H at every node (flat) [-].  The Couette integral is
+    the trapezoid rule on the nodes (seam rows half weight; on a periodic film this is the
+    periodic trapezoid rule, geometrically convergent for a smooth film); the pressure part
+    is the midpoint rule on the θ faces of the stencil, H at a face the mean of its nodes
+    (second order), with the trapezoid rule along Z.
+    """
+    m, nzn = st.n_theta_nodes, st.n_z_nodes
+    pm, hm = np.reshape(p, (m, nzn)), np.reshape(h, (m, nzn))
+    zw = st.z_weight_unit * st.axial_spacing(length_ratio)
+    couette = float(st.theta_weight @ (1.0 / hm) @ zw)
+    if st.periodic:
+        dp, hf = np.roll(pm, -1, axis=0) - pm, 0.5 * (hm + np.roll(hm, -1, axis=0))
+    else:
+        dp, hf = pm[1:] - pm[:-1], 0.5 * (hm[1:] + hm[:-1])
+    gradient = float(np.sum((hf * dp) @ zw))
+    scale = 1.0 / (4.0 * math.pi * length_ratio)
+    return scale * couette, scale * 3.0 * gradient / bearing_number

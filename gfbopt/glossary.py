@@ -262,7 +262,11 @@ for _name, _entry in {
                          "bump foil the limits allow (the limit decides), empty otherwise"),
     "baseline_compliance": ("-", "S of the bearing's original bump foil"),
     "baseline_onset_speed_rpm": ("rpm", "onset speed of whirl with the original bump foil"),
-    "feasible": ("flag", "the minimum film meets the limit at the film-check speed"),
+    "feasible": ("flag", "the design meets every limit: the minimum film at the film-check "
+                 "speed, and a bump foil with a whole number of bumps realises S"),
+    "meets_film_limit": ("flag", "the minimum film meets the limit at the film-check speed "
+                         "(the search ranks S among these; the design then picks a realisable "
+                         "S within 2 % of the best onset)"),
     "onset_whirl_frequency_hz": ("Hz", "whirl frequency at the onset of instability"),
     "mass_margin_at_check_speed": ("-", "M_crit/M − 1 at the film-check speed"),
     "bump_pitch_mm": ("mm", "bump pitch s of the least-stress bump foil realising S"),
@@ -332,3 +336,28 @@ _PATTERNS = _PATTERNS + (
     (r"phase_deg_(.+)", "deg", "phase of the mode's dominant whirl at bearing {0} from "
      "bearing A"),
 )
+
+
+# ---------------------------------------------------------------- the bearing as built
+# Drag torque and the as-built description (gfbopt.inputs.bore, gfbopt.physics.torque,
+# gfbopt.rotor.capacity, gfbopt.studies.bearing_as_built); added without overriding others.
+for _name, _entry in {
+    "torque_ratio": ("-", "drag torque on the journal over Petroff's, T / (2π μ ω R³ L / c) "
+                     "(1 for a concentric journal in a round bore)"),
+    "couette_torque_ratio": ("-", "the Couette (journal-motion shear) part of torque_ratio"),
+    "drag_torque_nm": ("N m", "drag torque on the journal: the torque the drive supplies per "
+                       "bearing"),
+    "power_loss_w": ("W", "power lost in the film per bearing, drag torque × ω"),
+    "petroff_power_w": ("W", "Petroff's power loss of the concentric journal, "
+                        "2π μ ω² R³ L / c"),
+    "preload_depth_um": ("µm", "mechanical preload depth (shim thickness or lobe depth)"),
+    "preload_ratio": ("-", "preload depth over the radial clearance"),
+    "bore": ("text", "bore profile: round, shims, lobes or table"),
+    "n_pads": ("-", "number of top-foil pads"),
+    "n_shims": ("-", "number of shims (or lobes) of the bore"),
+    "min_film_limit_um": ("µm", "smallest minimum film allowed"),
+    "load_capacity_newton": ("N", "largest static load carried with h_min ≥ the limit"),
+    "lift_off_speed_rpm": ("rpm", "lowest speed at which the load is carried with h_min ≥ "
+                           "the limit"),
+}.items():
+    GLOSSARY.setdefault(_name, _entry)

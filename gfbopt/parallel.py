@@ -3,16 +3,28 @@
 ``run_points(function, points, workers=...)`` calls ``function(**point)`` for every point
 and returns the rows in the order of ``points``, whichever executor ran them:
 
-* ``workers <= 1`` (or a single point): in this process, one :class:`SolverCache` for the
-  call (or the ``cache`` given);
+* ``workers <= 1`` (or a single point): in this process, with one :class:`SolverCache`
+  (the ``cache`` given, the run's serial cache inside :class:`WorkerPool`, or a new one);
 * ``workers > 1``: a pool of ``spawn`` processes.  IPOPT/MUMPS is not thread-safe and a CasADi
   solver cannot be pickled, so only the points travel; every worker builds its solvers
-  itself, once per (grid, film, structure), in its **per-worker solver cache** — the one
-  piece of module-level state in gfbopt, created by the worker initialiser
-  (:func:`_start_worker`) and living as long as the worker process.  The initialiser also
-  pins BLAS to one thread (:func:`limit_blas_threads`) and makes the worker ignore Ctrl-C,
-  which the parent handles: on Ctrl-C the pending points are cancelled, the workers are
-  terminated and ``KeyboardInterrupt`` is raised again.
+  itself, once per (grid, film, structure), in its **per-worker solver cache** — created by
+  the worker initialiser (:func:`_start_worker`) and living as long as the worker process.
+  The initialiser also pins BLAS to one thread (:func:`limit_blas_threads`) and makes the
+  worker ignore Ctrl-C, which the parent handles: on Ctrl-C the pending points are
+  cancelled, the workers are terminated and ``KeyboardInterrupt`` is raised again.
+
+**One pool per run.**  ``with WorkerPool(workers):`` opens one pool for everything inside
+the block: every ``run_points``/``stream_tasks`` call with ``workers > 1`` reuses its
+processes (and so their solver caches and imports) instead of starting a pool per batch —
+``gfbopt run`` opens one around all its studies.  The pool starts workers only as tasks
+need them (at most ``workers``), and workers import only gfbopt's numerical core
+(``gfbopt.static``) until a task's function needs more (cvxpy only where a geometric program
+runs).  Outside such a block each call starts and ends its own pool, as before.
+
+**Infrastructure failures are not results.**  A worker that dies (SIGKILL, the OOM killer)
+breaks the pool: the tasks that had not finished are run again on a fresh pool, up to
+``retries`` times each; a task that still cannot run is reported as
+:class:`InfrastructureFailure` (never as a failed point of the analysis).
 
 Workers are started with ``spawn``: a script that runs points on workers must guard its
 top level with ``if __name__ == "__main__":`` (as any multiprocessing program).
@@ -25,18 +37,35 @@ column of the same name that the function returns.
 """
 from __future__ import annotations
 
+import contextlib
+import contextvars
 import inspect
 import multiprocessing
 import signal
+import threading
 import time
 from collections.abc import Callable, Sequence
-from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
+from concurrent.futures import FIRST_COMPLETED, CancelledError, ProcessPoolExecutor, wait
 from concurrent.futures.process import BrokenProcessPool
+from typing import Optional
 
+from .runtime import (  # noqa: F401 - re-exported: the executors' failures and signals
+    InfrastructureError,
+    InfrastructureFailure,
+    Interrupted,
+    call_task as _call_task,
+    check_interrupted,
+    interrupt_on_signals,
+    interrupted,
+)
 from .static import SolverCache
 
 #: The per-worker solver cache (set in each pool worker by :func:`_start_worker`).
 _WORKER_CACHE: SolverCache | None = None
+#: The pool of the run in progress (``with WorkerPool(...)``), if any.
+_ACTIVE_POOL: contextvars.ContextVar = contextvars.ContextVar("gfbopt_pool", default=None)
+#: times a task is run again after the pool it ran on broke
+DEFAULT_RETRIES = 2
 
 
 def limit_blas_threads() -> None:
@@ -49,11 +78,14 @@ def limit_blas_threads() -> None:
 
 
 def _start_worker() -> None:
-    """Initialiser of a pool worker: BLAS pinned, Ctrl-C left to the parent, empty cache."""
+    """Initialiser of a pool worker: BLAS pinned, signals left to the parent, empty cache."""
     global _WORKER_CACHE
     import os
 
+    # signals go to the driver, which writes what finished and then ends the workers
+    # (SIGKILL); a SIGTERM sent to the whole process group does not break the pool
     signal.signal(signal.SIGINT, signal.SIG_IGN)
+    signal.signal(signal.SIGTERM, signal.SIG_IGN)
     # libraries loaded later in the worker (IPOPT/MUMPS and their OpenMP runtime, when the
     # first solver is built) read these at load time; threadpoolctl covers those already loaded
     for var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
@@ -68,7 +100,6 @@ def _exit_with_parent(period: float = 1.0) -> None:
     driver): a daemon thread polls the parent pid (the worker is re-parented when the
     driver dies), so no orphaned worker keeps computing points nobody will store."""
     import os
-    import threading
 
     parent = os.getppid()
 
@@ -79,6 +110,95 @@ def _exit_with_parent(period: float = 1.0) -> None:
                 os._exit(1)
 
     threading.Thread(target=watch, name="gfbopt-parent-watch", daemon=True).start()
+
+
+# ====================================================================== the run's pool
+class WorkerPool:
+    """One pool of spawn worker processes for a whole run (see the module docstring).
+
+    ``with WorkerPool(workers) as pool:`` makes it the pool of every ``run_points`` and
+    ``stream_tasks`` call inside the block; it is closed (workers ended) when the block
+    ends, terminated at once on an exception or Ctrl-C.  ``workers <= 1`` runs everything
+    in this process with one solver cache for the whole run (:attr:`cache`).
+    ``started`` counts the worker processes started (restarts after a broken pool too).
+    """
+
+    def __init__(self, workers: int = 1):
+        self.workers = max(1, int(workers))
+        self.cache = SolverCache()
+        self.started = 0
+        self.restarts = 0
+        self._executor: Optional[ProcessPoolExecutor] = None
+        self._token = None
+
+    def executor(self) -> ProcessPoolExecutor:
+        """The live executor (created on first use; processes start as tasks need them)."""
+        if self._executor is None:
+            self._executor = ProcessPoolExecutor(
+                max_workers=self.workers, mp_context=multiprocessing.get_context("spawn"),
+                initializer=_start_worker)
+        return self._executor
+
+    def _processes(self) -> list:
+        return list(getattr(self._executor, "_processes", {}).values())  # no public API < 3.14
+
+    def restart(self) -> None:
+        """End the current (broken) executor; the next task starts a fresh one."""
+        self.terminate()
+        self.restarts += 1
+
+    def terminate(self) -> None:
+        """Cancel pending tasks and end the workers now (they ignore SIGINT)."""
+        if self._executor is None:
+            return
+        processes = self._processes()
+        self.started += len(processes)
+        self._executor.shutdown(wait=False, cancel_futures=True)
+        for process in processes:
+            if process.is_alive():
+                process.kill()            # workers ignore SIGINT and SIGTERM
+        for process in processes:
+            process.join(timeout=5)
+        self._executor = None
+
+    def close(self) -> None:
+        """Wait for the running tasks and end the workers."""
+        if self._executor is not None:
+            self.started += len(self._processes())
+            self._executor.shutdown(wait=True)
+            self._executor = None
+
+    def __enter__(self) -> "WorkerPool":
+        self._token = _ACTIVE_POOL.set(self)
+        return self
+
+    def __exit__(self, kind, value, tb) -> None:
+        _ACTIVE_POOL.reset(self._token)
+        if kind is None:
+            self.close()
+        else:
+            self.terminate()
+
+
+def active_pool() -> Optional[WorkerPool]:
+    """The pool of the run in progress (``with WorkerPool(...)``), or None."""
+    return _ACTIVE_POOL.get()
+
+
+@contextlib.contextmanager
+def _pool_for(workers: int, n_tasks: int):
+    """The run's pool when one is open (and parallel), else a pool for this call only."""
+    pool = active_pool()
+    if pool is not None and pool.workers > 1:
+        yield pool
+        return
+    own = WorkerPool(min(workers, n_tasks))
+    try:
+        yield own
+    except BaseException:
+        own.terminate()
+        raise
+    own.close()
 
 
 def _takes_cache(function: Callable) -> bool:
@@ -94,7 +214,7 @@ def _evaluate(function: Callable, point: dict, cache: SolverCache | None) -> lis
     try:
         kwargs = dict(point)
         if _takes_cache(function):
-            kwargs["cache"] = cache if cache is not None else _WORKER_CACHE
+            kwargs["cache"] = cache if cache is not None else worker_cache()
         out = function(**kwargs)
         rows = [dict(r) for r in (out if isinstance(out, list) else [out])]
         for row in rows:
@@ -121,80 +241,63 @@ def run_points(function: Callable, points: Sequence[dict], *, workers: int = 1,
     function : a module-level function (it is pickled to the workers) returning a dict or a
         list of dicts; it receives the solver cache as ``cache=`` if it accepts that keyword
     points : keyword arguments of each call (picklable: numbers, strings, frozen inputs)
-    workers : number of processes; 1 runs in this process
+    workers : number of processes; 1 runs in this process (inside ``with WorkerPool(n)``
+        the run's pool is used whatever ``workers`` > 1 says)
     tags : per point, columns put in front of its rows (labels such as the variant)
     progress : called with the fraction of points done, e.g. a terminal progress bar
-    cache : solver cache for the serial executor (a new one when None); ignored by the pool
+    cache : solver cache for the serial executor (default: the run's, or a new one)
 
     Returns
     -------
     list of rows (dicts): each with ``success``, ``wall_time_s`` and, on failure,
-    ``message``.
+    ``message``.  A point whose worker kept dying is a failed row saying so.
     """
     points = list(points)
     tags = [{} for _ in points] if tags is None else list(tags)
     if len(tags) != len(points):
         raise ValueError("tags must have one entry per point")
-    if workers <= 1 or len(points) <= 1:
-        cache = cache if cache is not None else SolverCache()
+    run_pool = active_pool()
+    if workers <= 1 or len(points) <= 1 or (run_pool is not None and run_pool.workers <= 1):
+        if cache is None:
+            cache = run_pool.cache if run_pool is not None else SolverCache()
         results = []
         for k, point in enumerate(points):
             results.append(_evaluate(function, point, cache))
+            check_interrupted()          # a solver may have swallowed SIGTERM/SIGINT
             if progress is not None:
                 progress((k + 1) / len(points))
     else:
-        results = _run_pool(function, points, workers, progress)
+        results = [None] * len(points)
+        for k, result in stream_tasks(_call_points, [(function, p) for p in points],
+                                      workers=workers):
+            check_interrupted()
+            results[k] = result if isinstance(result, list) else [
+                {"success": False, "message": f"{type(result).__name__}: {result}"}]
+            if progress is not None:
+                progress(sum(r is not None for r in results) / len(points))
     return [{**tag, **row, **tag} for tag, rows in zip(tags, results) for row in rows]
 
 
-def _run_pool(function: Callable, points: list, workers: int, progress) -> list[list[dict]]:
-    context = multiprocessing.get_context("spawn")
-    pool = ProcessPoolExecutor(max_workers=min(workers, len(points)), mp_context=context,
-                               initializer=_start_worker)
-    results: list = [None] * len(points)
-    try:
-        futures = {pool.submit(_in_worker, function, p): k for k, p in enumerate(points)}
-        pending = set(futures)
-        while pending:
-            done, pending = wait(pending, return_when=FIRST_COMPLETED)
-            for future in done:
-                k = futures[future]
-                try:
-                    results[k] = future.result()
-                except BrokenProcessPool as exc:
-                    results[k] = [{"success": False, "message": "the worker process died "
-                                   f"(BrokenProcessPool: {exc})"}]
-            if progress is not None:
-                progress(sum(r is not None for r in results) / len(points))
-    except BaseException:                 # Ctrl-C or an error in the parent: stop the workers
-        _terminate(pool)
-        raise
-    pool.shutdown(wait=True)
-    return results
-
-
-def _terminate(pool: ProcessPoolExecutor) -> None:
-    """Cancel the pending points and end the workers now (they ignore SIGINT)."""
-    processes = list(getattr(pool, "_processes", {}).values())  # no public API before 3.14
-    pool.shutdown(wait=False, cancel_futures=True)
-    for process in processes:
-        if process.is_alive():
-            process.terminate()
-    for process in processes:
-        process.join(timeout=5)
+def _call_points(argument) -> list[dict]:
+    function, point = argument
+    return _evaluate(function, point, None)
 
 
 # ====================================================================== streaming executors
-# Design-of-experiments studies (gfbopt.studies.doe) send *tasks* — a function and a chunk of
-# neighbouring points — and want the rows as each task finishes, to write them to the results
-# store in batches.  :func:`stream_tasks` yields ``(index, result)`` in completion order from
-# this process, a local pool of spawn processes, or a Dask distributed cluster.
+# Design-of-experiments studies (gfbopt.studies.doe, gfbopt.doe.run_doe) send *tasks* — a
+# function and a chunk of neighbouring points — and want the rows as each task finishes, to
+# write them to the results store.  :func:`stream_tasks` yields ``(index, result)`` in
+# completion order from this process, a pool of spawn processes, or a Dask cluster.
 
 def worker_cache() -> SolverCache:
     """The solver cache of this process: the per-worker cache of a pool worker or of a Dask
     worker process (created on first use, with BLAS pinned to one thread), one build per
-    (grid, film, structure) for the life of the process."""
+    (grid, film, structure) for the life of the process.  In the driver inside a
+    :class:`WorkerPool` block: the run's serial cache."""
     global _WORKER_CACHE
+    run_pool = active_pool()
+    if run_pool is not None:
+        return run_pool.cache
     if _WORKER_CACHE is None:
         limit_blas_threads()
         _WORKER_CACHE = SolverCache()
@@ -210,85 +313,80 @@ def worker_name() -> str:
 
 
 def connect_scheduler(address: str, timeout: float = 10.0):
-    """A ``distributed.Client`` on the Dask scheduler at ``address``; ParameterError naming
-    the address when it cannot be reached (or dask.distributed is not installed)."""
-    from .errors import ParameterError
+    """A ``distributed.Client`` on the Dask scheduler at ``address`` (see
+    :func:`gfbopt.cluster.connect_scheduler`)."""
+    from .cluster import connect_scheduler as connect
 
-    try:
-        from distributed import Client
-    except ImportError:  # pragma: no cover - optional extra
-        raise ParameterError("--scheduler", address, "needs dask[distributed] "
-                             "(pip install 'gfbopt[dask]')") from None
-    try:
-        return Client(address, timeout=timeout, set_as_default=False)
-    except (OSError, TimeoutError, ValueError) as exc:
-        raise ParameterError("--scheduler", address, f"cannot be reached "
-                             f"({type(exc).__name__}: {str(exc).splitlines()[0][:120]})"
-                             ) from None
-
-
-def _call_task(function: Callable, argument):
-    """Run one task in a worker; an exception is returned (as data), never raised."""
-    try:
-        return function(argument)
-    except Exception as exc:  # noqa: BLE001 - a failed task is rows with its error
-        return exc
+    return connect(address, timeout=timeout)
 
 
 def stream_tasks(function: Callable, arguments: Sequence, *, workers: int = 1,
-                 client=None):
+                 client=None, retries: int = DEFAULT_RETRIES, tick: Optional[float] = None,
+                 status: Optional[Callable[[str], None]] = None):
     """Yield ``(k, function(arguments[k]))`` as each task finishes (completion order).
 
-    ``client``: a ``distributed.Client`` — the tasks run on its cluster (only the
-    arguments travel; a worker's solvers live in its process, :func:`worker_cache`).
-    Otherwise ``workers > 1`` runs a pool of spawn processes (BLAS pinned, Ctrl-C left to
-    the parent, terminated on Ctrl-C or error) and ``workers <= 1`` runs here.  A task that
-    raised yields the exception object; a worker that died yields a BrokenProcessPool error.
-    Closing the generator early (Ctrl-C in the consumer) cancels the pending tasks.
+    ``client``: a ``distributed.Client`` — the tasks run on its cluster
+    (:func:`gfbopt.cluster.stream_dask`).  Otherwise ``workers > 1`` runs on the run's
+    :class:`WorkerPool` (or a pool for this call) and ``workers <= 1`` runs here.  A task
+    that raised yields the exception object; a task whose worker died is run again on a
+    fresh pool up to ``retries`` times, then yields :class:`InfrastructureFailure`.
+    ``tick`` (seconds): also yield ``(None, None)`` whenever no task finished for that long,
+    so the consumer can write what it holds.  Closing the generator early (Ctrl-C in the
+    consumer) cancels the pending tasks and ends the workers.
     """
     arguments = list(arguments)
+    run_pool = active_pool()
     if client is not None:
-        yield from _stream_dask(function, arguments, client)
-    elif workers <= 1 or len(arguments) <= 1:
+        from .cluster import stream_dask
+
+        yield from stream_dask(function, arguments, client, retries=retries, tick=tick,
+                               status=status)
+    elif workers <= 1 or len(arguments) <= 1 or (run_pool is not None
+                                                 and run_pool.workers <= 1):
         for k, argument in enumerate(arguments):
             yield k, _call_task(function, argument)
     else:
-        yield from _stream_pool(function, arguments, workers)
+        with _pool_for(workers, len(arguments)) as pool:
+            yield from _stream_pool(function, arguments, pool, retries, tick)
 
 
-def _stream_pool(function: Callable, arguments: list, workers: int):
-    context = multiprocessing.get_context("spawn")
-    pool = ProcessPoolExecutor(max_workers=min(workers, len(arguments)), mp_context=context,
-                               initializer=_start_worker)
-    try:
-        futures = {pool.submit(_call_task, function, a): k for k, a in enumerate(arguments)}
+def _stream_pool(function: Callable, arguments: list, pool: WorkerPool, retries: int,
+                 tick: Optional[float]):
+    todo = set(range(len(arguments)))
+    attempts = [0] * len(arguments)
+    while todo:
+        try:
+            executor = pool.executor()
+            futures = {executor.submit(_call_task, function, arguments[k]): k
+                       for k in sorted(todo)}
+        except BrokenProcessPool:
+            futures = {}
+        broken = not futures
         pending = set(futures)
-        while pending:
-            done, pending = wait(pending, return_when=FIRST_COMPLETED)
-            for future in done:
-                try:
-                    result = future.result()
-                except BrokenProcessPool as exc:
-                    result = BrokenProcessPool(f"the worker process died ({exc})")
-                yield futures[future], result
-    except BaseException:                 # Ctrl-C, error, or the consumer closed us
-        _terminate(pool)
-        raise
-    pool.shutdown(wait=True)
-
-
-def _stream_dask(function: Callable, arguments: list, client):
-    from distributed import as_completed
-
-    futures = client.map(_call_task, [function] * len(arguments), arguments, pure=False)
-    index = {f.key: k for k, f in enumerate(futures)}
-    try:
-        for future in as_completed(futures, loop=client.loop):
-            try:
-                result = future.result()
-            except Exception as exc:  # noqa: BLE001 - a lost worker, a killed task
-                result = exc
-            yield index[future.key], result
-    except BaseException:
-        client.cancel(futures)
-        raise
+        try:
+            while pending:
+                done, pending = wait(pending, timeout=tick, return_when=FIRST_COMPLETED)
+                if not done:
+                    yield None, None
+                    continue
+                for future in done:
+                    k = futures[future]
+                    try:
+                        result = future.result()
+                    except (BrokenProcessPool, CancelledError):
+                        broken = True
+                        continue
+                    todo.discard(k)
+                    yield k, result
+        except BaseException:             # Ctrl-C, error, or the consumer closed us
+            pool.terminate()
+            raise
+        if broken and todo:
+            pool.restart()
+            for k in sorted(todo):
+                attempts[k] += 1
+                if attempts[k] > retries:
+                    todo.discard(k)
+                    yield k, InfrastructureFailure(
+                        f"the worker process died on {attempts[k]} pools in a row (killed "
+                        "or out of memory); not a result of these points")

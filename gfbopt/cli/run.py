@@ -1,83 +1,224 @@
-"""``gfbopt run``: named studies from ``problems/`` into ``results/``.
+"""``gfbopt run``: named studies from ``problems/`` into ``runs/`` (or ``--results DIR``).
 
-Every file given is validated (schema, values, models) before the first study starts, so a
-mistake in the tenth file costs no solving of the first nine.  One line per study as it
-finishes; a progress bar on a terminal (nothing when stderr is not a TTY).  Exit status 0
-when every internal check passed, 1 when one failed, 2 for a mistake in a study file.
+Every file given is validated (schema, values, models, the size of sampled jobs) and every
+results folder checked (writable, not foreign, not locked by another run) before the first
+study starts, so a mistake in the tenth file costs no solving of the first nine.  One line
+per study as it finishes; progress on stderr (a bar on a terminal, a status line every 10 s
+otherwise).  One worker pool serves the whole run (:class:`gfbopt.parallel.WorkerPool`).
+
+Exit status: 0 when every internal check passed, 1 when one failed (or the run could not
+finish: workers or the Dask scheduler lost), 2 for a mistake in a study file or an option,
+130 after Ctrl-C and 143 after SIGTERM — in both cases the finished rows of a sampled study
+are written first and one line says what was kept and how to resume.
 
 Sampled studies (``kind = "sweep"``, :mod:`gfbopt.studies.doe`) also take ``--resume``
 (compute only the points not yet in ``RESULTS/NAME/store/``) and ``--scheduler ADDRESS`` (run
-on a Dask distributed cluster; an unreachable address is one line and exit 2, nothing
-written).  Other kinds run on the local executor whatever these options say.
+on a Dask distributed cluster; docs/doe.md).  Other kinds run on the local executor whatever
+these options say.
 """
 from __future__ import annotations
 
 import os
+import sys
+
+#: most worker processes per available core (each is a process with its own solvers)
+WORKERS_PER_CORE = 4
 
 
-def _default_workers() -> int:
+def _cores() -> int:
     try:
         return max(1, len(os.sched_getaffinity(0)))
     except AttributeError:  # pragma: no cover - not Linux
         return max(1, os.cpu_count() or 1)
 
 
-def _workers(text: str) -> int:
+def _positive(name: str):
     import argparse
 
-    try:
-        value = int(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"workers = {text!r}: must be an integer") from None
-    if value < 1:
-        raise argparse.ArgumentTypeError(f"workers = {value}: must be >= 1")
-    return value
+    def parse(text: str) -> int:
+        try:
+            value = int(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"{name} = {text!r}: must be an integer") \
+                from None
+        if value < 1:
+            raise argparse.ArgumentTypeError(f"{name} = {value}: must be >= 1")
+        return value
+    return parse
 
 
 def register(subparsers) -> None:
     run = subparsers.add_parser("run", help="run named studies: gfbopt run problems/NAME.toml")
     run.add_argument("problems", nargs="+", help="study files (problems/NAME.toml)")
-    run.add_argument("--results", default="results", help="output folder (default results/)")
-    run.add_argument("--workers", type=_workers, default=None,
-                     help="worker processes for the studies whose points are independent "
-                     "(stability maps); default: the number of available cores")
+    run.add_argument("--results", default=None,
+                     help="output folder (default runs/, which git ignores; the shipped "
+                     "results/ are regenerated with --results results, docs/studies.md)")
+    run.add_argument("--workers", type=_positive("workers"), default=None,
+                     help="worker processes (one pool for the whole run); default: the "
+                     f"number of available cores; at most {WORKERS_PER_CORE} per core unless "
+                     "--max-workers")
+    run.add_argument("--max-workers", type=_positive("max-workers"), default=None,
+                     help=f"raise the limit on --workers ({WORKERS_PER_CORE} × cores)")
+    run.add_argument("--grid", default=None, metavar="NTHETAxNZ",
+                     help="finite-difference grid of every study given (overrides the "
+                     "files' grid, e.g. 72x20)")
+    run.add_argument("--force", action="store_true",
+                     help="overwrite files in RESULTS/NAME/ that gfbopt did not write")
     run.add_argument("--resume", action="store_true",
                      help="sampled studies: keep the points already stored in "
-                     "RESULTS/NAME/store/ and compute only the others (refused when the store "
-                     "belongs to another study file)")
+                     "RESULTS/NAME/store/ and compute only the others (refused when the "
+                     "store holds other inputs)")
+    run.add_argument("--max-points", type=_positive("max-points"), default=None,
+                     help="sampled studies: raise the limit on the number of points "
+                     "(default 100,000)")
     run.add_argument("--scheduler", metavar="ADDRESS", default=None,
-                     help="sampled studies: run on the Dask distributed scheduler at ADDRESS "
-                     "(e.g. tcp://10.0.0.5:8786) instead of the local process pool")
+                     help="sampled studies: run on the Dask scheduler at ADDRESS, e.g. "
+                     "tcp://127.0.0.1:8786 (a scheduler is trusted code; docs/doe.md)")
     run.set_defaults(handler=run_studies)
 
 
+def _load(path: str, args):
+    """Validate and plan one study file, with --grid and --max-points applied."""
+    from pathlib import Path
+
+    from ..errors import ParameterError
+    from ..studies import SCHEMAS, study_from_dict
+    from ..studies.runner import read_study_file
+
+    if args.grid is None and args.max_points is None:
+        from ..studies import load_study
+
+        return load_study(path)
+    data = read_study_file(path)
+    schema = SCHEMAS.get(data.get("kind"), {})
+    if args.grid is not None:
+        if "grid" not in schema and data.get("kind") in SCHEMAS:
+            raise ParameterError("--grid", args.grid, f"{path}: a {data['kind']} study has "
+                                 "no single grid (it names its grids itself)")
+        data["grid"] = args.grid
+    if args.max_points is not None and "max_points" in schema:
+        data["max_points"] = args.max_points
+    return study_from_dict(data, name=Path(path).stem, file=str(path),
+                           directory=Path(path).parent)
+
+
+class _Progress:
+    """A fraction callback drawing one study's progress (gfbopt.progress); the bar starts
+    with the first report, so a study refused before any work prints nothing."""
+
+    def __init__(self, name: str):
+        self.name = name
+        self.bar = None
+
+    def __call__(self, fraction: float) -> None:
+        from ..progress import progress
+
+        if self.bar is None:
+            self.bar = progress(total=100, desc=self.name, unit="%")
+        step = int(round(100 * min(1.0, max(0.0, fraction)))) - self.bar.n
+        if step > 0:
+            self.bar.update(step)
+
+    def close(self) -> None:
+        if self.bar is not None:
+            self.bar.close()
+
+
+def _check_options(args, loaded) -> int:
+    from ..errors import ParameterError
+    from ..studies.doe import KINDS as SAMPLED
+
+    workers = args.workers or _cores()
+    limit = args.max_workers or WORKERS_PER_CORE * _cores()
+    if workers > limit:
+        raise ParameterError("--workers", workers, f"is more than {WORKERS_PER_CORE} × the "
+                             f"{_cores()} available cores = {limit} (each worker is a process "
+                             "with its own solvers, ~200 MB); raise the limit with "
+                             "--max-workers")
+    sampled = any(s.study.kind in SAMPLED for s in loaded)
+    if args.scheduler is not None:
+        from ..cluster import check_address
+
+        check_address(args.scheduler)          # "" and ucx:// refused whatever the kinds
+    if args.resume and not sampled:
+        raise ParameterError("--resume", True, "applies to sampled studies (kind = "
+                             "\"sweep\") only; none is given")
+    return workers
+
+
 def run_studies(args) -> int:
-    from ..studies import load_study, run_study, summary_line
+    from ..parallel import InfrastructureError, Interrupted, WorkerPool, interrupt_on_signals
+    from ..studies import run_study, summary_line
+    from ..studies.base import DEFAULT_RESULTS
     from ..studies.doe import KINDS as SAMPLED
     from ..studies.doe import run_sampled
-    from .common import progress_bar
+    from ..studies.report import prepare_output
 
-    loaded = [load_study(path) for path in args.problems]      # all validated first
-    workers = args.workers or _default_workers()
+    results = args.results or DEFAULT_RESULTS
+    loaded = [_load(path, args) for path in args.problems]      # all validated first
+    workers = _check_options(args, loaded)
     client = None
-    if args.scheduler and any(s.study.kind in SAMPLED for s in loaded):
+    if args.scheduler is not None and any(s.study.kind in SAMPLED for s in loaded):
+        from ..cluster import quiet_logs
         from ..parallel import connect_scheduler
 
+        quiet_logs()
         client = connect_scheduler(args.scheduler)             # before anything is written
-    failed = 0
     try:
-        for study in loaded:
-            if study.study.kind in SAMPLED:
-                result = run_sampled(study, args.results, workers=workers, client=client,
-                                     scheduler=args.scheduler, resume=args.resume,
-                                     progress=progress_bar(study.study.name))
-            else:
-                result = run_study(study, results_root=args.results, workers=workers,
-                                   progress=progress_bar(study.study.name))
-            print(summary_line(result, f"{args.results}/{study.study.name}/"), flush=True)
-            failed += not result.passed
-    finally:
+        for study in loaded:                                    # every folder checked first
+            prepare_output(results, study.study.name, force=args.force)
+    except BaseException:
         if client is not None:
             client.close()
+        raise
+    failed = 0
+    current = ""
+    try:
+        with interrupt_on_signals(), WorkerPool(workers):
+            for study in loaded:
+                current = study.study.name
+                show = _Progress(current)
+                try:
+                    if study.study.kind in SAMPLED:
+                        result = run_sampled(study, results, workers=workers, client=client,
+                                             scheduler=args.scheduler, resume=args.resume,
+                                             progress=show, force=args.force)
+                    else:
+                        result = run_study(study, results_root=results, workers=workers,
+                                           progress=show, force=args.force)
+                finally:
+                    show.close()
+                print(summary_line(result, f"{results}/{study.study.name}/"), flush=True)
+                failed += not result.passed
+    except Interrupted as exc:
+        report = exc.report or (f"{current}: stopped by {_signal_name(exc.signum)}; this "
+                                "study's results are written when it ends, so none were "
+                                "kept for it (studies reported above are complete)")
+        print(f"gfbopt: interrupted: {report}", file=sys.stderr, flush=True)
+        return exc.exit_status
+    except InfrastructureError as exc:
+        print(f"gfbopt: error: {exc}", file=sys.stderr, flush=True)
+        return 1
+    except OSError as exc:                  # a full disk, a folder removed under the run
+        print(f"gfbopt: error: {current}: cannot write ({exc.strerror or exc}: "
+              f"{exc.filename or '?'}); what was written is kept: free the space and run "
+              "again (--resume for a sampled study)", file=sys.stderr, flush=True)
+        return 1
+    finally:
+        if client is not None:
+            _close(client)
     return 1 if failed else 0
 
+
+def _close(client) -> None:
+    """Close the Dask client without a traceback when its scheduler is already gone."""
+    try:
+        client.close(timeout=5)
+    except Exception:  # noqa: BLE001 - nothing left to close cleanly
+        pass
+
+
+def _signal_name(signum: int) -> str:
+    import signal
+
+    return signal.Signals(signum).name

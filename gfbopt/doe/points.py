@@ -22,7 +22,6 @@ analysis               what one point computes
 from __future__ import annotations
 
 import dataclasses
-import math
 import time
 from dataclasses import dataclass
 
@@ -35,6 +34,7 @@ FORMULATION = {"foil": "string", "film": "string", "seam_angle_deg": "float64",
                "compression_only": "bool"}
 STATIC_OUT = {"eccentricity": "float64", "load": "float64", "attitude_angle_deg": "float64",
               "min_film": "float64", "status": "string", "residual": "float64"}
+STATIC_OUT["torque_ratio"] = "float64"        # drag torque over Petroff's (issue 17)
 #: geometry of a bearing file that an ``onset_speed`` study may sample [m]
 GEOMETRY = ("bump_pitch", "bump_thickness", "bump_half_length", "radial_clearance",
             "bump_youngs_modulus", "top_foil_thickness", "length", "radius")
@@ -123,9 +123,6 @@ def _model(inputs: dict):
     from ..inputs import BearingModel
 
     kwargs = {k: inputs[k] for k in (*MODEL_NUMBERS, *FORMULATION) if k in inputs}
-    if "seam_angle_deg" in kwargs:
-        seam = kwargs.pop("seam_angle_deg")
-        kwargs["seam_angle"] = None if seam in (None, "max_film") else math.radians(seam)
     if float(kwargs.get("compliance", 0.0)) == 0.0 and "foil" not in kwargs:
         kwargs["foil"] = "rigid"
     return BearingModel(**kwargs)
@@ -182,11 +179,20 @@ _FUNCTIONS = {"static": _static, "linear_threshold": _linear_threshold,
 
 
 def evaluate_chunk(task: dict) -> list[dict]:
-    """Rows of one chunk of points (see the module docstring).
+    """Rows of one chunk of points (see :func:`iter_chunk`)."""
+    return list(iter_chunk(task))
+
+
+def iter_chunk(task: dict):
+    """The rows of one chunk of points, one at a time (see the module docstring).
 
     ``task``: ``analysis``, ``grid`` (a Grid), ``fixed`` (inputs shared by every point),
     ``points`` (dicts with ``point`` and the sampled inputs), and for ``onset_speed`` the
     ``bearing`` (BearingGeometry) and ``options`` (ModelOptions) of the bearing file.
+
+    A column is an input or an output, never both: the inputs of the point (sampled or
+    fixed) are written as given, and an output of the same name (the target a static solve
+    was given, returned as NaN by a failed point) is not written over them.
     """
     from ..parallel import worker_cache, worker_name
 
@@ -196,7 +202,6 @@ def evaluate_chunk(task: dict) -> list[dict]:
     extra = ({"bearing": task.get("bearing"), "options": task.get("options")}
              if ANALYSES[task["analysis"]].needs_bearing else {})
     state: dict = {}
-    rows = []
     for point in task["points"]:
         inputs = {**task["fixed"], **{k: v for k, v in point.items() if k != "point"}}
         t0 = time.perf_counter()
@@ -204,12 +209,10 @@ def evaluate_chunk(task: dict) -> list[dict]:
             out = function(inputs, task["grid"], cache, state, **extra)
         except Exception as exc:  # noqa: BLE001 - a failed point is a row with its error
             out = {"success": False, "message": f"{type(exc).__name__}: {exc}"}
-        row = {**inputs, **{k: v for k, v in out.items() if k not in inputs or k in
-                            ANALYSES[task["analysis"]].outputs}}
+        row = {**{k: v for k, v in out.items() if k not in inputs}, **inputs}
         row.update(point=point["point"], wall_time_s=time.perf_counter() - t0, worker=who)
         row.setdefault("message", "")
-        rows.append(row)
-    return rows
+        yield row
 
 
 def failed_rows(task: dict, error: BaseException) -> list[dict]:

@@ -22,6 +22,7 @@ from ..inputs.conversions import rpm_to_rad_per_s, stiffness_scale, whirl_freque
 from ..physics.compliance import ComplianceTerms, PerturbationContext
 from ..physics.foil_laws import foil_law
 from ..static import StaticSolution, StaticSolver, solver_for
+from ..static.build import row_values
 
 
 @dataclass(frozen=True, eq=False)
@@ -91,7 +92,8 @@ def linearise(solution: StaticSolution, solver: Optional[StaticSolver] = None) -
     n_u = blocks.n_pressure
     dp = -2 * lam * film
     law = foil_law(model, engine="linear")
-    slope = law.squeeze_film_slope(pressure, model.compliance, model.compression_only)
+    s_rows = row_values(model, st, solution.seam_angle)[1]    # S per θ row (bump zones)
+    slope = law.squeeze_film_slope(pressure, s_rows[st.row], model.compression_only)
     if slope is not None:
         dp = dp - 2 * lam * pressure * slope
     b = sp.csc_matrix((np.concatenate([dp, -2 * lam * pressure]),
@@ -119,7 +121,8 @@ def _perturbation_context(solution: StaticSolution, solver: StaticSolver,
         beam=np.arange(lay.beam.start, lay.beam.stop),
         beam_dofs=solution.state[lay.beam], law_data=solver.law_data,
         film_sensitivity=lambda: film_sensitivity(st, p_full, solution.film.ravel(),
-                                                  model.bearing_number, dz))
+                                                  model.bearing_number, dz),
+        row_compliance=row_values(model, st, solution.seam_angle)[1], pressure_rows=st.row)
 
 
 def film_sensitivity(st: disc.Stencil, p_full: np.ndarray, h_full: np.ndarray,

@@ -37,6 +37,8 @@ class PerturbationContext:
     film_sensitivity : a callable returning ∂R/∂H (n_p × n_p, sparse), how the steady
     Reynolds residual at each unknown node moves with the film at each unknown node (built
     on demand: only the local law needs it).
+    row_compliance : S per θ row (bump zones; None: the uniform ``compliance``);
+    pressure_rows : the θ row of each unknown pressure node.
     """
 
     compliance: float
@@ -52,6 +54,17 @@ class PerturbationContext:
     beam_dofs: np.ndarray
     law_data: object
     film_sensitivity: Callable[[], sp.spmatrix]
+    row_compliance: Optional[np.ndarray] = None
+    pressure_rows: Optional[np.ndarray] = None
+
+    def rows(self):
+        """S per θ row (or the uniform S)."""
+        return self.compliance if self.row_compliance is None else self.row_compliance
+
+    def nodes(self):
+        """S at each unknown pressure node (or the uniform S)."""
+        return (self.compliance if self.row_compliance is None
+                else self.row_compliance[self.pressure_rows])
 
 
 @dataclass(frozen=True, eq=False)

@@ -38,7 +38,6 @@ stiffness and damping coefficients for elastically supported gas foil bearings",
 from __future__ import annotations
 
 import abc
-import math
 from dataclasses import dataclass
 from typing import Optional
 
@@ -46,10 +45,12 @@ import casadi as ca
 import numpy as np
 import scipy.sparse as sp
 
-from ..errors import ConvergenceError, ParameterError
+from ..errors import ParameterError
 from .algebra import is_symbolic, positive_part
 from .beam import BeamMatrices, beam_deflection, beam_dofs, beam_matrices, beam_residual
 from .compliance import ComplianceTerms, PerturbationContext, active, embed
+from .foil_recovery import (beam_film, node_compliance, row_mean_phi, rows_to_nodes,
+                            set_boundary)
 
 #: Engines a law may support: the CasADi/IPOPT equilibrium, the linearisation, and the
 #: transient integrators.
@@ -77,40 +78,6 @@ def simple_deflection(q, compliance, compression_only):
     compression_only 0 or 1 (may be a CasADi parameter, so the choice is arithmetic).
     """
     return compliance * ((1 - compression_only) * q + compression_only * positive_part(q))
-
-
-def _rows_to_nodes(rows, st):
-    """Repeat one value per θ row along the axial nodes (flat node order, numbers/symbols)."""
-    if is_symbolic(rows):
-        return rows[np.repeat(np.arange(st.n_theta_nodes), st.n_z_nodes).tolist()]
-    return np.repeat(rows, st.n_z_nodes)
-
-
-def _set_boundary(p: np.ndarray, periodic: bool) -> np.ndarray:
-    """P = 1 on the axial edges, and on the seam rows of a seamed film."""
-    p[..., :, 0] = 1.0
-    p[..., :, -1] = 1.0
-    if not periodic:
-        p[..., 0, :] = 1.0
-        p[..., -1, :] = 1.0
-    return p
-
-
-def _row_mean_phi(phi: np.ndarray, hr: np.ndarray, tm) -> tuple[np.ndarray, float]:
-    """(Φ̃, c) with P̄ = Φ̃/a + c on each row whose film is a (axially uniform film).
-
-    Φ̃ = Σ_interior w Φ / Σ w and c = Σ_ends w / Σ w; seam rows carry P = 1, so their
-    Φ̃ is set to make P̄ − 1 = 0 there.
-    """
-    zw = tm.z_weight
-    total = zw.sum()
-    interior = np.ones(phi.shape[-1], dtype=bool)
-    interior[[0, -1]] = False
-    phit = (phi[..., interior] @ zw[interior]) / total
-    c = zw[~interior].sum() / total
-    if not tm.periodic:
-        phit[:, [0, -1]] = (1.0 - c) * hr[:, [0, -1]]
-    return phit, c
 
 
 class FoilLaw(abc.ABC):
@@ -227,11 +194,11 @@ class SimpleLaw(FoilLaw):
 
     def static_film(self, h_rigid, lifted, mean_gauge, p_full, u, foil, st, data):
         w_rows = simple_deflection(mean_gauge, foil.compliance, foil.compression_only)
-        return _rows_to_nodes(lifted, st), lifted - (h_rigid + w_rows), None
+        return rows_to_nodes(lifted, st), lifted - (h_rigid + w_rows), None
 
     def deflection(self, p_full, mean_gauge, u, foil, st, data):
         w = simple_deflection(mean_gauge, foil.compliance, foil.compression_only)
-        return _rows_to_nodes(w, st), 0.0
+        return rows_to_nodes(w, st), 0.0
 
     def start(self, h_rigid, mean_gauge, foil, st, data):
         w = simple_deflection(mean_gauge, foil.compliance, foil.compression_only)
@@ -241,7 +208,7 @@ class SimpleLaw(FoilLaw):
         # Lifted film row i: H_i − H_r,i − S c_i Q_i/(2 L/D) = 0 (c_i = 1, or [q_i > 0] for
         # compression-only bumps), so ∂/∂Q_i = −S c_i/(2 L/D) ∝ S.  Nothing else carries S:
         # Reynolds sees the row film H_i, and the squeeze term the rate of H_i.
-        values = (-ctx.compliance / (2.0 * ctx.length_ratio)
+        values = (-ctx.rows() / (2.0 * ctx.length_ratio)
                   * active(ctx.mean_gauge, ctx.compression_only))
         a = sp.csc_matrix((values, (ctx.film_rows, ctx.axial_cols)), shape=(ctx.size, ctx.size))
         return ComplianceTerms(a, None, "compliance")
@@ -249,24 +216,23 @@ class SimpleLaw(FoilLaw):
     def recover(self, phi, hr, tm, guess=None, cache=None):
         # On each row H = a with a = H_r + S (P̄ − 1) and P = Φ/a, P̄ = Φ̃/a + c, so
         # a² − b a − S Φ̃ = 0 with b = H_r + S (c − 1): closed form.
-        phit, c = _row_mean_phi(phi, hr, tm)
-        s = tm.compliance
+        phit, c = row_mean_phi(phi, hr, tm)
+        s = tm.compliance_rows                            # S per θ row (bump zones)
         b = hr + s * (c - 1.0)
         a = 0.5 * (b + np.sqrt(b * b + 4 * s * phit))
         if tm.compression_only:
             a = np.maximum(a, hr)
-        p = _set_boundary(phi / a[:, :, None], tm.periodic)
+        p = set_boundary(phi / a[:, :, None], tm)
         return p, a[:, :, None]
 
     def recover_deflected(self, phi, hr, w, tm):
         a = hr + w                                        # W (B, m): one per θ row
-        return _set_boundary(phi / a[:, :, None], tm.periodic), a[:, :, None]
+        return set_boundary(phi / a[:, :, None], tm), a[:, :, None]
 
     def deflection_target(self, p, tm):
         q = (p @ tm.z_weight) / tm.z_weight.sum() - 1.0   # P̄ − 1 per row (B, m)
-        if not tm.periodic:
-            q[:, [0, -1]] = 0.0                           # seam rows: P = 1
-        return tm.compliance * (np.maximum(q, 0.0) if tm.compression_only else q)
+        q[:, tm.ambient] = 0.0                            # seam and pad-end rows: P = 1
+        return tm.compliance_rows * (np.maximum(q, 0.0) if tm.compression_only else q)
 
 
 class RigidLaw(SimpleLaw):
@@ -282,7 +248,7 @@ class RigidLaw(SimpleLaw):
         return None
 
     def recover(self, phi, hr, tm, guess=None, cache=None):
-        p = _set_boundary(phi / hr[:, :, None], tm.periodic)
+        p = set_boundary(phi / hr[:, :, None], tm)
         return p, hr[:, :, None]
 
 
@@ -298,11 +264,13 @@ class LocalLaw(FoilLaw):
     lifted_film_is_total = False
 
     def static_film(self, h_rigid, lifted, mean_gauge, p_full, u, foil, st, data):
-        w = simple_deflection(p_full - 1, foil.compliance, foil.compression_only)
-        return _rows_to_nodes(lifted, st) + w, lifted - h_rigid, None
+        w = simple_deflection(p_full - 1, node_compliance(foil.compliance, st),
+                              foil.compression_only)
+        return rows_to_nodes(lifted, st) + w, lifted - h_rigid, None
 
     def deflection(self, p_full, mean_gauge, u, foil, st, data):
-        return simple_deflection(p_full - 1, foil.compliance, foil.compression_only), 0.0
+        return simple_deflection(p_full - 1, node_compliance(foil.compliance, st),
+                                 foil.compression_only), 0.0
 
     def start(self, h_rigid, mean_gauge, foil, st, data):
         return h_rigid, np.zeros(0)
@@ -316,7 +284,7 @@ class LocalLaw(FoilLaw):
         # derivative in P_k is ∂R/∂P|_H + (∂R/∂H_k) S c_k: the second part ∝ S.  The squeeze
         # term −2Λ (H Ṗ + P Ḣ) carries −2Λ P_k S c_k Ṗ_k (∝ S) on the diagonal.
         n_p = ctx.pressure.size
-        slope = self.squeeze_film_slope(ctx.pressure, ctx.compliance, ctx.compression_only)
+        slope = self.squeeze_film_slope(ctx.pressure, ctx.nodes(), ctx.compression_only)
         rows = np.arange(n_p)
         a = embed(ctx.film_sensitivity() @ sp.diags(slope), rows, rows, ctx.size)
         b = embed(sp.diags(-2.0 * ctx.bearing_number * ctx.pressure * slope), rows, rows,
@@ -325,22 +293,22 @@ class LocalLaw(FoilLaw):
 
     def recover(self, phi, hr, tm, guess=None, cache=None):
         # S P² + (H_r − S) P − Φ = 0 per node: closed form.
-        s = tm.compliance
+        s = tm.compliance_rows[:, None]                   # S per θ row (bump zones)
         hr3 = hr[:, :, None]
         p = (-(hr3 - s) + np.sqrt((hr3 - s) ** 2 + 4 * s * phi)) / (2 * s)
         if tm.compression_only:   # W = S max(P − 1, 0): where P < 1 the film is rigid
             p = np.where(p < 1.0, phi / hr3, p)
-        p = _set_boundary(p, tm.periodic)
+        p = set_boundary(p, tm)
         h = hr3 + (s * (p - 1.0) if not tm.compression_only else s * np.maximum(p - 1.0, 0))
         return p, h
 
     def recover_deflected(self, phi, hr, w, tm):
         h = hr[:, :, None] + w                            # W (B, m, n_z + 1): one per node
-        return _set_boundary(phi / h, tm.periodic), h
+        return set_boundary(phi / h, tm), h
 
     def deflection_target(self, p, tm):
         q = p - 1.0                                       # 0 on boundary nodes (P = 1)
-        return tm.compliance * (np.maximum(q, 0.0) if tm.compression_only else q)
+        return tm.compliance_rows[:, None] * (np.maximum(q, 0.0) if tm.compression_only else q)
 
 
 class BeamLaw(FoilLaw):
@@ -375,13 +343,13 @@ class BeamLaw(FoilLaw):
         w_rows = ca.vertcat(0, u[0::2])[:st.n_theta_nodes]
         residual = beam_residual(u, self._beam_load(mean_gauge, st), data, foil.compliance,
                                  foil.coefficient, foil.compression_only)
-        return _rows_to_nodes(lifted, st), lifted - (h_rigid + w_rows), residual
+        return rows_to_nodes(lifted, st), lifted - (h_rigid + w_rows), residual
 
     def deflection(self, p_full, mean_gauge, u, foil, st, data):
         w_beam = np.concatenate([[0.0], u[0::2]])
         res = beam_residual(u, self._beam_load(mean_gauge, st), data, foil.compliance,
                             foil.coefficient, foil.compression_only)
-        return _rows_to_nodes(w_beam[:st.n_theta_nodes], st), float(np.abs(res).max())
+        return rows_to_nodes(w_beam[:st.n_theta_nodes], st), float(np.abs(res).max())
 
     def start(self, h_rigid, mean_gauge, foil, st, data):
         u = beam_dofs(self._beam_load(mean_gauge, st), data, foil.compliance, foil.coefficient)
@@ -414,44 +382,10 @@ class BeamLaw(FoilLaw):
         return w
 
     def recover(self, phi, hr, tm, guess=None, cache=None):
-        phit, c = _row_mean_phi(phi, hr, tm)
-        a = _beam_film(hr, phit, c, tm, guess, cache)
-        p = _set_boundary(phi / a[:, :, None], tm.periodic)
+        phit, c = row_mean_phi(phi, hr, tm)
+        a = beam_film(hr, phit, c, tm, guess, cache)
+        p = set_boundary(phi / a[:, :, None], tm)
         return p, a[:, :, None]
-
-
-def _beam_film(hr, phit, c, tm, guess, cache: Optional[dict] = None):
-    """Solve a = H_r + 𝓛 q, q = Φ̃/a + c − 1 (q = 0 on seam rows), for the row films a
-    (B, m), 𝓛 = ``tm.foil_data`` the beam's compliance map.
-
-    Chord iterations a ← a − J⁻¹ f with the inverse Jacobian J = I + 𝓛 diag(Φ̃/a²) kept in
-    ``cache`` between evaluations (it changes little from one RK stage to the next); it is
-    recomputed when the iteration stalls.  Converged to |f| < 1e-13.
-    """
-    lmap = tm.foil_data
-    live = np.ones(hr.shape[1])
-    if not tm.periodic:
-        live[[0, -1]] = 0.0
-    a = hr.copy() if guess is None or guess.shape != hr.shape else guess.copy()
-    cache = {} if cache is None else cache
-    eye = np.eye(a.shape[1])
-    previous = math.inf
-    err = math.inf
-    for _ in range(40):
-        q = (phit / a + c - 1.0) * live
-        f = a - hr - q @ lmap.T
-        err = float(np.abs(f).max())
-        if err < 1e-13:
-            return a
-        jinv = cache.get("jinv")
-        if jinv is None or jinv.shape[0] != a.shape[0] or err > 0.1 * previous:
-            jac = eye[None] + lmap[None] * (live * phit / (a * a))[:, None, :]
-            jinv = np.linalg.inv(jac)
-            cache["jinv"] = jinv
-        previous = err
-        a = a - np.einsum("bij,bj->bi", jinv, f)
-    raise ConvergenceError("beam film did not converge in the transient model", "max_iter",
-                           err)
 
 
 #: The registry: law name → law.

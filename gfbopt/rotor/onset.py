@@ -197,12 +197,12 @@ class OnsetResult:
 
 def onset_speed(bearing: BearingGeometry, rotor: Rotor, load_newton: Optional[float],
                 speed_range, *, film: Optional[str] = None,
-                seam_angle: Union[float, str, None] = None, foil: Optional[str] = None,
+                seam_angle_deg: Union[float, str, None] = None, foil: Optional[str] = None,
                 deflection_law: Optional[str] = None, loss_factor: Optional[float] = None,
                 options: Optional[ModelOptions] = None, grid: Grid = DEFAULT_GRID,
                 cache: Optional[SolverCache] = None, method: str = "secant",
                 coarse_grid: Union[Grid, str, None] = "auto",
-                progress: bool = False) -> OnsetResult:
+                progress: bool = False, seam_angle=None) -> OnsetResult:
     """The lowest speed in ``speed_range`` [rpm] at which the rotor whirls (module docstring).
 
     Parameters
@@ -210,7 +210,7 @@ def onset_speed(bearing: BearingGeometry, rotor: Rotor, load_newton: Optional[fl
     bearing : the bearing in SI; rotor : mass per bearing [kg]
     load_newton : static load per bearing W0 [N], fixed along the line (None: W0 = M g)
     speed_range : (low, high) [rpm]
-    film, seam_angle, foil, deflection_law, loss_factor, options, grid, cache : as for
+    film, seam_angle_deg, foil, deflection_law, loss_factor, options, grid, cache : as for
         :func:`gfbopt.rotor.stability`
     method : "secant" (default) or "scan" (the reference search of gfbopt 0.2)
     coarse_grid : with "secant", the grid of a coarse scan that guides the search: "auto"
@@ -233,7 +233,8 @@ def onset_speed(bearing: BearingGeometry, rotor: Rotor, load_newton: Optional[fl
     if method == "scan" and coarse_grid not in (None, "auto", "none"):
         raise ParameterError("coarse_grid", coarse_grid, "is used by method 'secant' only")
     guide_grid = guide_grid if method == "secant" else None
-    case = resolve_case(bearing, rotor, load_newton, film=film, seam_angle=seam_angle,
+    case = resolve_case(bearing, rotor, load_newton, film=film, seam_angle_deg=seam_angle_deg,
+                        seam_angle=seam_angle,
                         foil=foil, deflection_law=deflection_law, loss_factor=loss_factor,
                         options=options, grid=grid, cache=cache)
     count = max(2, math.ceil(math.log(high / low) / math.log(SCAN_RATIO) - 1e-9) + 1)

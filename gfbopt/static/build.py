@@ -21,7 +21,7 @@ from ..errors import ParameterError
 from ..inputs.grid import DEFAULT_GRID, Grid
 from ..inputs.model import FILM_MODELS, BearingModel
 from ..physics.foil_laws import FOIL_LAWS, static_structure
-from .model import build_problem
+from .model import build_problem, n_parameters
 
 if TYPE_CHECKING:  # pragma: no cover
     from .solution import StaticSolution
@@ -75,6 +75,8 @@ class StaticSolver:
     foil_law : the static structure, a law of :mod:`gfbopt.physics.foil_laws` with its own
         model: 'simple' (also serves rigid models, S = 0), 'local' or 'beam'
     ipopt_options : overrides of the IPOPT options (CasADi ``nlpsol`` keys)
+    fixed_rows : θ rows held at ambient pressure besides the seam (several pads: their
+        leading ends and gaps, :meth:`gfbopt.inputs.bore.AsBuilt.fixed_rows`)
 
     Attributes
     ----------
@@ -87,7 +89,8 @@ class StaticSolver:
     """
 
     def __init__(self, grid: Grid = DEFAULT_GRID, film: str = "periodic",
-                 foil_law: str = "simple", ipopt_options: Optional[dict] = None):
+                 foil_law: str = "simple", ipopt_options: Optional[dict] = None,
+                 fixed_rows: tuple = ()):
         t0 = time.perf_counter()
         if not isinstance(grid, Grid):
             raise ParameterError("grid", grid, "must be a gfbopt Grid")
@@ -102,7 +105,8 @@ class StaticSolver:
         self.grid = grid
         self.film = film
         self.law = FOIL_LAWS[foil_law]
-        self.stencil = disc.make_stencil(grid, periodic=(film == "periodic"))
+        self.stencil = disc.make_stencil(grid, periodic=(film == "periodic"),
+                                         fixed_rows=tuple(fixed_rows))
         self.law_data = self.law.prepare(grid, self.stencil.dpsi)
         problem = build_problem(self.stencil, self.law, self.law_data)
         self.layout = problem.layout
@@ -158,20 +162,30 @@ class StaticSolver:
 
         ``attitude`` [rad] fixes the journal position too (forces at a given position);
         ``seam_angle`` [rad] overrides the model's seam (used to freeze a following seam).
+        The bore's clearance change and the foundation compliance per θ row follow
+        (:func:`row_values`).
         """
-        seam = model.seam_angle if seam_angle is None else seam_angle
+        seam = fixed_origin(model) if seam_angle is None else seam_angle
         follows = seam is None
-        return np.array([model.bearing_number, model.compliance, model.top_foil_coefficient,
-                         model.length_ratio, float(load_mode), target,
-                         0.0 if follows else seam, float(follows),
-                         float(model.compression_only), float(model.subambient == "gumbel"),
-                         float(attitude is not None),
-                         0.0 if attitude is None else float(attitude)])
+        bore, s_rows = row_values(model, self.stencil, seam)
+        return np.concatenate([[model.bearing_number, model.compliance,
+                                model.top_foil_coefficient, model.length_ratio,
+                                float(load_mode), target, 0.0 if follows else seam,
+                                float(follows), float(model.compression_only),
+                                float(model.subambient == "gumbel"),
+                                float(attitude is not None),
+                                0.0 if attitude is None else float(attitude)], bore, s_rows])
+
+    @property
+    def n_parameters(self) -> int:
+        """Length of the parameter vector."""
+        return n_parameters(self.stencil)
 
     @property
     def key(self) -> tuple:
-        """(grid, film, static structure): what this build can solve (:func:`solver_key`)."""
-        return (self.grid, self.film, self.law.name)
+        """(grid, film, static structure, rows at ambient besides the seam): what this build
+        can solve (:func:`solver_key`)."""
+        return (self.grid, self.film, self.law.name, self.stencil.fixed_rows)
 
     def matches(self, model: BearingModel, grid: Grid) -> bool:
         """True if this build can solve ``model`` on ``grid``."""
@@ -212,18 +226,56 @@ class StaticSolver:
 
 
 def solver_key(model: BearingModel, grid: Grid) -> tuple:
-    """The one definition of which build serves ``model`` on ``grid``: (grid, film, structure).
+    """The one definition of which build serves ``model`` on ``grid``: (grid, film,
+    structure, rows held at ambient besides the seam).
 
-    Λ, S, C, L/D, the seam angle, the eccentricity or load and the compression-only and
-    Gümbel switches are parameters of a build, so they are not part of the key.
+    Λ, S, C, L/D, the seam angle, the eccentricity or load, the compression-only and Gümbel
+    switches, the bore profile (preload) and the foundation zones are parameters of a build,
+    so they are not part of the key; several pads change which rows are unknown, so they are.
     """
-    return (grid, model.film, static_structure(model))
+    ab = model.as_built
+    fixed = () if ab is None else ab.fixed_rows(model.seam_angle or 0.0, grid.n_theta)
+    return (grid, model.film, static_structure(model), fixed)
 
 
 def solver_for(model: BearingModel, grid: Grid = DEFAULT_GRID, **kwargs) -> StaticSolver:
     """Build the :class:`StaticSolver` that fits ``model`` on ``grid``."""
-    _, film, structure = solver_key(model, grid)
-    return StaticSolver(grid, film=film, foil_law=structure, **kwargs)
+    _, film, structure, fixed = solver_key(model, grid)
+    return StaticSolver(grid, film=film, foil_law=structure, fixed_rows=fixed, **kwargs)
+
+
+def solution_stencil(solution: "StaticSolution") -> disc.Stencil:
+    """The stencil a solution was solved on (its grid, film and pads)."""
+    return disc.make_stencil(solution.grid, periodic=solution.model.film == "periodic",
+                             fixed_rows=solver_key(solution.model, solution.grid)[3])
+
+
+def fixed_origin(model: BearingModel) -> Optional[float]:
+    """The grid origin θ_s [rad] when it is fixed in the housing, or None when it follows
+    the journal (θ_s = π + φ: the seam on the maximum-film line, or a periodic film).
+
+    A periodic film whose bore or foundation varies round the housing is solved on a grid
+    fixed in the housing, its origin on the load line (the bore does not move with the
+    journal); a seam on the maximum-film line is refused with such a bearing
+    (:func:`gfbopt.inputs.bore.check_as_built`).
+    """
+    if model.seam_angle is not None:
+        return model.seam_angle
+    if model.as_built is not None and model.as_built.housing_fixed:
+        return 0.0
+    return None
+
+
+def row_values(model: BearingModel, st: disc.Stencil, origin: Optional[float]) -> tuple:
+    """(B_i, S_i): the bore's clearance change Δc/c and the foundation compliance per θ row
+    of ``st`` with its origin at ``origin`` [rad] (None: following the journal, where only a
+    round bore and a uniform foundation are allowed) [-]."""
+    ab = model.as_built
+    m = st.n_theta_nodes
+    if ab is None or not ab.housing_fixed:
+        return np.zeros(m), np.full(m, model.compliance)
+    theta = (0.0 if origin is None else origin) + st.psi
+    return ab.bore_rows(theta), ab.compliance_rows(theta, model.compliance)
 
 
 class SolverCache:

@@ -37,10 +37,20 @@ from .. import discretisation as disc
 from ..physics.film import force_gauge, rigid_film_polar
 from ..physics.foil_laws import FoilLaw, FoilParameters
 
-#: Names of the entries of the parameter vector ``p`` (see :meth:`StaticSolver.parameters`).
+#: Names of the scalar entries of the parameter vector ``p`` (see
+#: :meth:`StaticSolver.parameters`); after them come two vectors of one value per θ row:
+#: the bore's clearance change B_i = Δc/c and the foundation compliance S_i (the bearing as
+#: built, :mod:`gfbopt.inputs.bore`), so a preload or a zone change needs no rebuild.
 PARAMETERS = ("bearing_number", "compliance", "top_foil_coefficient", "length_ratio",
               "load_mode", "target", "seam_angle", "seam_follows", "compression_only", "gumbel",
               "position_mode", "attitude_target")
+#: Names of the per-θ-row parameter vectors, in order after :data:`PARAMETERS`.
+ROW_PARAMETERS = ("bore", "row_compliance")
+
+
+def n_parameters(st: disc.Stencil) -> int:
+    """Length of the parameter vector of a build on stencil ``st``."""
+    return len(PARAMETERS) + len(ROW_PARAMETERS) * st.n_theta_nodes
 
 
 @dataclass(frozen=True)
@@ -83,7 +93,7 @@ def build_problem(st: disc.Stencil, law: FoilLaw, law_data) -> SymbolicProblem:
     """
     lifted = _lifted_equations(st, law, law_data)
     x = ca.MX.sym("x", lifted.layout.size)
-    p = ca.MX.sym("p", len(PARAMETERS))
+    p = ca.MX.sym("p", n_parameters(st))
     fields, g_lifted, dz = lifted.values(x, p)
     jac_lifted, d_fields = lifted.derivatives(x, p)
     strips = _StripReynolds(st)
@@ -108,9 +118,12 @@ class _Lifted:
 def _lifted_equations(st: disc.Stencil, law: FoilLaw, law_data) -> _Lifted:
     m = st.n_theta_nodes
     n_beam = law.extra_unknowns(st.grid)
-    par = ca.SX.sym("p", len(PARAMETERS))
+    par = ca.SX.sym("p", n_parameters(st))
+    n_scalar = len(PARAMETERS)
     (_, s, c, ld, mode, target, seam_angle, follows, comp, gumbel,
-     position, attitude_target) = ca.vertsplit(par)       # Λ enters Reynolds only
+     position, attitude_target) = ca.vertsplit(par[:n_scalar])   # Λ enters Reynolds only
+    bore = par[n_scalar:n_scalar + m]                  # B_i = Δc/c per θ row
+    s_rows = par[n_scalar + m:n_scalar + 2 * m]        # S_i per θ row
     pu = ca.SX.sym("P", st.n_unknown)
     hr = ca.SX.sym("H", m)
     q = ca.SX.sym("Q", m)
@@ -135,10 +148,11 @@ def _lifted_equations(st: disc.Stencil, law: FoilLaw, law_data) -> _Lifted:
     p_full[st.unknown.tolist()] = pu
     theta_seam = follows * (math.pi + phi) + (1 - follows) * seam_angle
     theta = theta_seam + ca.DM(st.psi)
-    h_rigid = rigid_film_polar(ecc, phi, theta)
+    h_rigid = rigid_film_polar(ecc, phi, theta) + bore
     mean_gauge = q / (2 * ld)
+    foil = FoilParameters(s if law.name == "beam" else s_rows, c, comp)
     h_nodes, film_eq, foil_eq = law.static_film(
-        h_rigid, hr, mean_gauge, p_full, u, FoilParameters(s, c, comp), st, law_data)
+        h_rigid, hr, mean_gauge, p_full, u, foil, st, law_data)
     force_p = 1 + force_gauge(p_full - 1, gumbel)
     groups = [film_eq, q - disc.axial_integral(p_full, st, dz),
               qf - disc.axial_integral(force_p, st, dz)]

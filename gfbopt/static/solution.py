@@ -24,6 +24,9 @@ class StaticSolution:
     Arrays: ``theta`` [rad, from the load line, direction of rotation] at the θ nodes,
     ``z`` [-] at the axial nodes, ``pressure`` P of shape (n_theta_nodes, n_z + 1),
     ``film`` H and ``deflection`` W of the same shape, ``mean_pressure`` P̄ per θ node.
+    Drag torque on the journal over Petroff's 2π μ ω R³ L / c: ``couette_torque_ratio``
+    (shear of the journal's motion) and ``pressure_torque_ratio`` (the pressure-gradient
+    part), their sum :attr:`torque_ratio` (docs/PHYSICS.md §5b).
     """
 
     model: BearingModel
@@ -50,6 +53,14 @@ class StaticSolution:
     message: str = ""
     #: which method solved it: "ipopt", or "newton" (the warm fast path, gfbopt.static.newton)
     solver: str = "ipopt"
+    couette_torque_ratio: float = math.nan
+    pressure_torque_ratio: float = math.nan
+
+    @property
+    def torque_ratio(self) -> float:
+        """Drag torque on the journal over Petroff's, T / (2π μ ω R³ L / c) [-] (1 for a
+        concentric journal in a round bore)."""
+        return self.couette_torque_ratio + self.pressure_torque_ratio
 
     @property
     def mean_pressure(self) -> np.ndarray:
@@ -82,13 +93,16 @@ class StaticSolution:
             "min_film_angle_from_seam_deg": math.degrees(self.min_film_angle_from_seam),
             "max_mean_pressure": float(self.mean_pressure.max()),
             "max_deflection": float(self.deflection.max()),
+            "torque_ratio": self.torque_ratio,
+            "couette_torque_ratio": self.couette_torque_ratio,
             "success": self.success, "status": self.status, "iterations": self.iterations,
             "residual": self.residual, "force_residual": self.force_residual,
             "solve_time_s": self.solve_time_s,
         }
 
 
-def foil_parameters(model: BearingModel) -> FoilParameters:
-    """The foil groups of ``model`` as numbers (the numpy side of the foil law)."""
-    return FoilParameters(model.compliance, model.top_foil_coefficient,
-                          float(model.compression_only))
+def foil_parameters(model: BearingModel, row_compliance=None) -> FoilParameters:
+    """The foil groups of ``model`` as numbers (the numpy side of the foil law); with
+    ``row_compliance`` (S per θ row) the simple and local laws see the foundation zones."""
+    s = model.compliance if row_compliance is None or model.foil == "beam" else row_compliance
+    return FoilParameters(s, model.top_foil_coefficient, float(model.compression_only))

@@ -21,9 +21,10 @@ from ..inputs.checks import check_finite, check_positive
 from ..inputs.grid import DEFAULT_GRID, Grid
 from ..inputs.model import BearingModel
 from ..physics.closed_forms import first_order_pressure, small_eccentricity_limit
+from ..physics.bore import first_order_bore_pressure
 from ..physics.film import force_gauge, rigid_film_polar
 from . import newton
-from .build import StaticSolver, solver_for
+from .build import StaticSolver, fixed_origin, row_values, solver_for
 from .solution import StaticSolution, foil_parameters
 
 #: residual tolerance on the Reynolds and force equations accepted as converged [-]
@@ -39,11 +40,17 @@ def _cold_guess(solver: StaticSolver, model: BearingModel, eccentricity: float,
     # law tan φ = π √(1 − ε²)/(4ε)); compliance delays the closing.
     closing = min(eccentricity / (1.0 + model.compliance), 0.95)
     phi0 = min(max(phi0 * (1.0 - closing**2), 0.05), 1.5) if attitude is None else attitude
-    seam = math.pi + phi0 if model.seam_angle is None else model.seam_angle
+    origin = fixed_origin(model)
+    seam = math.pi + phi0 if origin is None else origin
     theta = seam + st.psi
     shrink = 1.0 / (1.0 + model.compliance)       # a compliant film carries less pressure
-    p = first_order_pressure(model, st.z_nodes(model.length_ratio), theta - phi0 - math.pi,
+    z = st.z_nodes(model.length_ratio)
+    p = first_order_pressure(model, z, theta - phi0 - math.pi,
                              min(eccentricity, 0.8) * shrink).ravel()
+    bore = row_values(model, st, origin)[0]
+    if bore.any():          # a preloaded bore raises pressure of its own (physics/bore.py)
+        p = p + shrink * first_order_bore_pressure(bore, z, model.bearing_number,
+                                                   model.length_ratio, st.periodic).ravel()
     p_full = np.ones(st.n_nodes)
     p_full[st.unknown] = np.maximum(p[st.unknown], 0.05)
     return consistent_state(solver, model, p_full, eccentricity, phi0)
@@ -54,7 +61,8 @@ def consistent_state(solver: StaticSolver, model: BearingModel, p_full: np.ndarr
     """The solver vector x for a pressure field, ε and φ [rad], with every lifted variable
     (film, axial integrals, beam dofs, force partial sums) computed to match."""
     st, lay = solver.stencil, solver.layout
-    seam = math.pi + attitude if model.seam_angle is None else model.seam_angle
+    origin = fixed_origin(model)
+    seam = math.pi + attitude if origin is None else origin
     theta = seam + st.psi
     dz = st.axial_spacing(model.length_ratio)
     q = disc.axial_integral(p_full, st, dz)
@@ -62,9 +70,11 @@ def consistent_state(solver: StaticSolver, model: BearingModel, p_full: np.ndarr
     mean_gauge = q / (2 * model.length_ratio)
     x = np.zeros(lay.size)
     x[lay.pressure] = p_full[st.unknown]
-    h_rigid = rigid_film_polar(eccentricity, attitude, theta)
-    x[lay.film], x[lay.beam] = solver.law.start(h_rigid, mean_gauge, foil_parameters(model),
-                                                st, solver.law_data)
+    bore, s_rows = row_values(model, st, origin)
+    h_rigid = rigid_film_polar(eccentricity, attitude, theta) + bore
+    x[lay.film], x[lay.beam] = solver.law.start(h_rigid, mean_gauge,
+                                                foil_parameters(model, s_rows), st,
+                                                solver.law_data)
     x[lay.axial] = q
     x[lay.force] = qf
     parts = [disc.film_forces(qf[b], st.psi[b], st.theta_weight[b])
@@ -103,17 +113,20 @@ def postprocess(solver: StaticSolver, model: BearingModel, x: np.ndarray, stats:
     st, lay = solver.stencil, solver.layout
     ecc = float(x[lay.eccentricity])
     phi = float(x[lay.attitude])
-    seam = (math.pi + phi) if model.seam_angle is None else float(model.seam_angle)
+    origin = fixed_origin(model)
+    seam = (math.pi + phi) if origin is None else float(origin)
     theta = seam + st.psi
+    bore, s_rows = row_values(model, st, origin)
     p = np.ones(st.n_nodes)
     p[st.unknown] = x[lay.pressure]
     dz = st.axial_spacing(model.length_ratio)
     q = disc.axial_integral(p, st, dz)
     mean_gauge = q / (2 * model.length_ratio)
-    h_rigid = rigid_film_polar(ecc, phi, theta)
+    h_rigid = rigid_film_polar(ecc, phi, theta) + bore
     nzn = st.n_z_nodes
     w_nodes, foil_res = solver.law.deflection(p, mean_gauge, x[lay.beam],
-                                              foil_parameters(model), st, solver.law_data)
+                                              foil_parameters(model, s_rows), st,
+                                              solver.law_data)
     h = np.repeat(h_rigid, nzn) + w_nodes
     reynolds = disc.reynolds_residual(p, h, st, model.bearing_number, dz)
     force_p = 1 + force_gauge(p - 1, model.subambient == "gumbel")
@@ -132,6 +145,7 @@ def postprocess(solver: StaticSolver, model: BearingModel, x: np.ndarray, stats:
           and force_res < RESIDUAL_TOLERANCE * max(1.0, abs(target)) and hmat.min() > 0
           and p.min() > 0)
     hmin, angle = _minimum_film(hmat, theta, st.periodic)
+    couette, gradient = disc.shear_torque(p, h, st, model.bearing_number, model.length_ratio)
     message = "" if ok else (f"IPOPT status {status}; Reynolds residual {residual:.2e}; "
                              f"force residual {force_res:.2e}; min H {hmat.min():.3g}")
     return StaticSolution(
@@ -141,7 +155,8 @@ def postprocess(solver: StaticSolver, model: BearingModel, x: np.ndarray, stats:
         pressure=p.reshape(st.n_theta_nodes, nzn), film=hmat,
         deflection=w_nodes.reshape(st.n_theta_nodes, nzn), success=ok, status=status,
         iterations=int(stats.get("iter_count", -1)), residual=residual,
-        force_residual=float(force_res), solve_time_s=elapsed, state=x, message=message)
+        force_residual=float(force_res), solve_time_s=elapsed, state=x, message=message,
+        couette_torque_ratio=couette, pressure_torque_ratio=gradient)
 
 
 def _minimum_film(hmat: np.ndarray, theta: np.ndarray, periodic: bool) -> tuple[float, float]:
@@ -202,8 +217,13 @@ def solve_static(model: BearingModel, *, eccentricity: Optional[float] = None,
                              f"was built for another formulation than film={model.film}, "
                              f"foil={model.foil}, deflection_law={model.deflection_law}")
     t0 = time.perf_counter()
-    if not load_mode and target == 0.0:
+    round_bore = model.as_built is None or model.as_built.bore.is_round
+    if not load_mode and target == 0.0 and round_bore:
         sol = _concentric(solver, model, t0)
+    elif not load_mode and target == 0.0:
+        # a preloaded bore carries pressure with the journal concentric; φ is undefined
+        # there, so the film force is found at the position (0, 0)
+        sol = _solve_with_continuation(solver, model, False, 0.0, initial, False, t0, 0.0)
     else:
         sol = (_fast_path(solver, model, load_mode, target, initial, t0, attitude_angle)
                if fast_path and initial is not None else None)

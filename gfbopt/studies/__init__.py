@@ -18,7 +18,8 @@ module                 responsibility
 :mod:`.damping`        loss_factor_map (loss factor η against compliance S)
 :mod:`.doe`            sweep (sampled studies into a Parquet store; resume, Dask)
 :mod:`.checks`         internal checks and comparisons with published values
-:mod:`.report`         CSV, figures, summary.json, README per study, results/index.md
+:mod:`.report`         CSV, figures, summary.json, README per study, RESULTS/index.md
+:mod:`.output`         where results may be written: safe names, no symlink escape, atomic
 :mod:`.runner`         load_study, study_from_dict, compute, run_study
 =====================  ===================================================================
 """

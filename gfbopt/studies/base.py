@@ -38,12 +38,19 @@ class Study:
         return w
 
 
+#: where ``gfbopt run`` writes by default: user runs go to ``runs/`` (git-ignored); the
+#: shipped ``results/`` are regenerated only on purpose (``--results results``, docs/studies.md)
+DEFAULT_RESULTS = "runs"
+
+
 @dataclass(frozen=True)
 class RunContext:
-    """How to run: number of worker processes and an optional progress callback."""
+    """How to run: number of worker processes, an optional progress callback (fraction
+    done) and the results folder (where sampled studies keep their store)."""
 
     workers: int = 1
     progress: Optional[Callable[[float], None]] = None
+    results_root: str = DEFAULT_RESULTS
 
 
 @dataclass(frozen=True, eq=False)
@@ -78,16 +85,8 @@ class StudyResult:
 
 
 # ------------------------------------------------------------------ model building
-def seam_angle(value) -> Optional[float]:
-    """``seam_angle_deg`` of a study file → BearingModel's ``seam_angle`` [rad] or None."""
-    return None if value in (None, "max_film") else math.radians(value)
-
-
 def _model_kwargs(options: dict) -> dict:
-    kwargs = {k: v for k, v in options.items() if k not in ("label", "seam_angle_deg")}
-    if "seam_angle_deg" in options:
-        kwargs["seam_angle"] = seam_angle(options["seam_angle_deg"])
-    return kwargs
+    return {k: v for k, v in options.items() if k != "label"}   # seam_angle_deg in degrees
 
 
 def build_model(options: dict, where: Where, *, rigid_when_no_compliance: bool = False

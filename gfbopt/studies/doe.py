@@ -31,6 +31,7 @@ Python API::
 """
 from __future__ import annotations
 
+import dataclasses
 import hashlib
 import json
 import math
@@ -43,6 +44,7 @@ import numpy as np
 import pandas as pd
 
 from ..doe import METHODS, ResultStore, SamplePlan, Variable, sample
+from ..doe.limits import MAX_POINTS, check_fixed, check_size, plan_size
 from ..doe.points import (
     ANALYSES,
     FORMULATION,
@@ -74,7 +76,8 @@ SAMPLING = {
     "n": opt("integer", 0, "number of points (lhs, sobol) or base samples (saltelli)",
              minimum=1),
     "levels": opt("integer", 0, "levels per range variable (factorial)", minimum=2),
-    "seed": opt("integer", 0, "seed of the random methods (lhs, sobol, saltelli)"),
+    "seed": opt("integer", 0, "seed of the random methods (lhs, sobol, saltelli)",
+                minimum=0, maximum=2**32 - 1),
     "variables": req("tables", "sampled inputs", keys=VARIABLE),
 }
 SCHEMAS = {
@@ -88,10 +91,16 @@ SCHEMAS = {
                            "(static, linear_threshold)", keys=MODEL_FORMULATION),
               "sampling": req("table", "the sample plan", keys=SAMPLING),
               "chunk_size": opt("integer", 8, "neighbouring points per task (warm starts)",
+                                minimum=1, maximum=10_000),
+              "batch_rows": opt("integer", 256, "rows per Parquet part written (at most; "
+                                "rows are also written 10 s after they finish)", minimum=1,
+                                maximum=100_000),
+              "max_points": opt("integer", MAX_POINTS, "largest number of points accepted "
+                                "(a bound on the job; gfbopt run --max-points sets it)",
                                 minimum=1),
-              "batch_rows": opt("integer", 256, "rows per Parquet part written", minimum=1),
               "min_success_fraction": opt("number", 0.9, "smallest fraction of points "
-                                          "that must succeed (check)", minimum=0.0),
+                                          "that must succeed (check)", minimum=0.0,
+                                          maximum=1.0),
               "sensitivity_outputs": opt("strings", [], "outputs whose Sobol indices are "
                                          "computed (saltelli design)")},
 }
@@ -111,6 +120,8 @@ class SweepPlan:
     options: object
     schema: dict
     study_hash: str
+    inputs: dict
+    estimate: str
 
 
 def _fixed_values(spec: dict, where) -> dict:
@@ -120,9 +131,41 @@ def _fixed_values(spec: dict, where) -> dict:
     return {**spec["model"], **{k: float(v) for k, v in spec["fixed"].items()}}
 
 
-def study_hash(spec: dict) -> str:
-    """sha256 of the validated study (what the results depend on; comments excluded)."""
-    return hashlib.sha256(json.dumps(spec, sort_keys=True, default=str).encode()).hexdigest()
+#: what the numbers of a sweep depend on (hashed); everything else in the file (name,
+#: title, source, notes, chunk_size, batch_rows, max_points, min_success_fraction,
+#: sensitivity_outputs) may change between a run and its resume
+HASHED_KEYS = {"analysis": "analysis", "grid": "grid", "model": "model options",
+               "fixed": "fixed inputs", "sampling": "sample plan"}
+
+
+def code_version() -> str:
+    """The code-version part of the study hash: gfbopt's major.minor version.  A resume
+    with another minor release is refused (a release may change the numbers); patch releases
+    and uncommitted edits are not hashed (each part's provenance records the commit)."""
+    from ..version import __version__
+
+    return ".".join(__version__.split(".")[:2])
+
+
+def _digest(value) -> str:
+    return hashlib.sha256(json.dumps(value, sort_keys=True, default=str).encode()
+                          ).hexdigest()[:16]
+
+
+def study_inputs(spec: dict, bearing=None, options=None) -> dict:
+    """Digest of each input the numbers depend on (the bearing file by its parsed
+    content — every value of [bearing] and [model] — not its path)."""
+    out = {label: _digest(spec[key]) for key, label in HASHED_KEYS.items()}
+    if bearing is not None:
+        out["bearing file content"] = _digest([dataclasses.asdict(bearing),
+                                               dataclasses.asdict(options)])
+    out["gfbopt version"] = code_version()
+    return out
+
+
+def study_hash(inputs: dict) -> str:
+    """sha256 over the digests of :func:`study_inputs`."""
+    return hashlib.sha256(json.dumps(inputs, sort_keys=True).encode()).hexdigest()
 
 
 def plan_sweep(study: Study) -> SweepPlan:
@@ -150,6 +193,7 @@ def plan_sweep(study: Study) -> SweepPlan:
         except ParameterError as exc:
             raise w.error(exc.value, exc.rule) from None
     fixed = _fixed_values(spec, study.where())
+    check_fixed(fixed, study.where("fixed"))
     for name in fixed:
         if name not in analysis.inputs:
             raise study.where("fixed", name).error(fixed[name], f"is not an input of analysis "
@@ -191,6 +235,10 @@ def plan_sweep(study: Study) -> SweepPlan:
     if spec["sensitivity_outputs"] and method != "saltelli":
         raise study.where("sensitivity_outputs").error(spec["sensitivity_outputs"],
                                                        "need sampling.method = 'saltelli'")
+    estimate = check_size(plan_size(plan), columns=len(analysis.inputs) + len(analysis.outputs),
+                          analysis=analysis.name, cells=study.grid.n_theta * study.grid.n_z,
+                          workers=1, max_points=spec["max_points"],
+                          name=f"{study.file}: sampling")
     try:
         frame = sample(plan)
     except ParameterError as exc:
@@ -202,8 +250,9 @@ def plan_sweep(study: Study) -> SweepPlan:
             columns[name] = "bool"
         elif isinstance(value, str):
             columns[name] = "string"
+    digests = study_inputs(spec, bearing, options)
     return SweepPlan(plan, frame, analysis.name, fixed, study.grid, bearing, options, columns,
-                     study_hash(spec))
+                     study_hash(digests), digests, estimate)
 
 
 # ------------------------------------------------------------------ running
@@ -227,80 +276,121 @@ def _conform(row: dict, schema: dict) -> dict:
     return {k: row[k] for k in schema if k in row}
 
 
-def run_sampled(loaded, results_root="results", *, workers: int = 1,
+def _stored(store) -> int:
+    try:
+        return len(store.read())
+    except ParameterError:
+        return 0
+
+
+def run_sampled(loaded, results_root="runs", *, workers: int = 1,
                 scheduler: str | None = None, client=None, resume: bool = False,
                 progress: Callable[[float], None] | None = None,
-                write: bool = True) -> StudyResult:
+                write: bool = True, force: bool = False,
+                notify: Callable[[str], None] | None = None,
+                flush_s: float | None = None) -> StudyResult:
     """Run a loaded sampled study into ``results_root/NAME/store/`` (module docstring).
 
-    workers : local processes (1: this process); scheduler : address of a Dask scheduler
-    (``client``: an existing ``distributed.Client`` instead); resume : keep the stored points.
-    An unreachable scheduler raises ParameterError before anything is written.
+    workers : local processes (1: this process; inside ``with WorkerPool(n)`` the run's
+    pool); scheduler : address of a Dask scheduler (``client``: an existing
+    ``distributed.Client`` instead); resume : keep the stored points; force : overwrite
+    files in ``results_root/NAME/`` that gfbopt did not write; notify : where notices go
+    (parts moved aside, waiting for workers; default stderr); flush_s : seconds after which
+    finished rows are written (default 10).  An unreachable scheduler, an unwritable or
+    foreign results folder, or a store in use by another run raise ParameterError before
+    anything is computed.  SIGTERM/SIGINT raise :class:`gfbopt.parallel.Interrupted` whose
+    ``report`` says what was kept and how to resume, after the finished rows are written.
     """
+    import sys
+
+    from ..doe.engine import FLUSH_S, execute
+    from ..doe.points import iter_chunk
+    from ..doe.store import lock_store
+    from ..parallel import InfrastructureError, Interrupted
+    from .report import prepare_output
+
     study, sp = loaded.study, loaded.plan
     spec = study.spec
+    notify = notify or (lambda text: print(f"gfbopt: {text}", file=sys.stderr, flush=True))
+    out = (prepare_output(Path(results_root), study.name, force=force) if write
+           else Path(results_root) / study.name)
     own_client = None
-    if client is None and scheduler:
+    if client is None and scheduler is not None:
         from ..parallel import connect_scheduler
 
         client = own_client = connect_scheduler(scheduler)       # before anything is written
     try:
-        out = Path(results_root) / study.name
-        from ..provenance import provenance
+        with lock_store(out / "store"):
+            from ..provenance import provenance
 
-        store = ResultStore.create(out / "store", study=study.name, study_hash=sp.study_hash,
-                                   schema=sp.schema, resume=resume,
-                                   metadata={"study_file": study.file,
-                                             "provenance": provenance(grid=str(sp.grid))})
-        done = store.done_points() if resume else set()
-        todo = np.array([k for k, p in enumerate(sp.frame["point"]) if int(p) not in done],
-                        dtype=int)
-        tasks = _tasks(sp, todo, spec["chunk_size"])
-        executor = ("dask " + (scheduler or "client") if client is not None else
-                    "process pool" if workers > 1 and len(tasks) > 1 else "serial")
-        t0 = time.perf_counter()
-        n_done = _execute(tasks, store, sp.schema, spec["batch_rows"], workers, client,
-                          progress, len(todo))
-        elapsed = time.perf_counter() - t0
-        n_workers = (len(client.scheduler_info()["workers"]) if client is not None
-                     else (min(workers, len(tasks)) if workers > 1 and len(tasks) > 1 else 1))
+            store = ResultStore.create(out / "store", study=study.name,
+                                       study_hash=sp.study_hash, schema=sp.schema,
+                                       resume=resume, inputs=sp.inputs, study_file=study.file,
+                                       metadata={"study_file": study.file,
+                                                 "provenance": provenance(grid=str(sp.grid))})
+            for text in store.notices:
+                notify(text)
+            done = store.done_points() if resume else set()
+            todo = np.array([k for k, p in enumerate(sp.frame["point"]) if int(p) not in done],
+                            dtype=int)
+            tasks = _tasks(sp, todo, spec["chunk_size"])
+            executor = ("dask " + (scheduler or "client") if client is not None else
+                        "process pool" if workers > 1 and len(tasks) > 1 else "serial")
+            finished = [0]
+
+            def advance(n: int) -> None:
+                finished[0] += n
+                if progress is not None and len(todo):
+                    progress(finished[0] / len(todo))
+
+            t0 = time.perf_counter()
+            try:
+                outcome = execute(evaluate_chunk, tasks, store,
+                                  conform=lambda r: _conform(r, sp.schema),
+                                  batch_rows=spec["batch_rows"], workers=workers,
+                                  client=client, iterate=iter_chunk, failed_rows=failed_rows,
+                                  progress=advance, status=notify,
+                                  flush_s=FLUSH_S if flush_s is None else flush_s)
+            except (Interrupted, InfrastructureError) as exc:
+                kept = _stored(store)
+                why = signal_name(exc.signum) if isinstance(exc, Interrupted) else str(exc)
+                report = (f"{why}: {kept} of {len(sp.frame)} points of {study.name} are "
+                          f"stored in {out / 'store'}; `gfbopt run {study.file} --resume` "
+                          f"computes the other {len(sp.frame) - kept}")
+                if isinstance(exc, Interrupted):
+                    raise Interrupted(exc.signum, report) from None
+                raise InfrastructureError(report) from None
+            elapsed = time.perf_counter() - t0
+            n_workers = _workers_used(client, workers, len(tasks))
+            frame = store.read()
     finally:
         if own_client is not None:
             own_client.close()
-    frame = store.read()
-    result = _result(study, sp, frame, n_done, elapsed, n_workers, executor, len(done))
+    result = _result(study, sp, frame, finished[0], elapsed, n_workers, executor, len(done),
+                     outcome.lost)
     if write:
         from .report import write_result
 
-        write_result(result, Path(results_root))
+        write_result(result, Path(results_root), force=force, notify=notify)
     return result
 
 
-def _execute(tasks, store, schema, batch_rows, workers, client, progress, total) -> int:
-    """Run the tasks, appending rows to the store in batches as they finish."""
-    from ..parallel import stream_tasks
+def signal_name(signum: int) -> str:
+    import signal
 
-    buffer: list = []
-    finished = 0
-    last_write = time.monotonic()
-    stream = stream_tasks(evaluate_chunk, tasks, workers=workers, client=client)
-    try:
-        for k, result in stream:
-            rows = result if isinstance(result, list) else failed_rows(tasks[k], result)
-            buffer += [_conform(r, schema) for r in rows]
-            finished += len(rows)
-            if len(buffer) >= batch_rows or time.monotonic() - last_write > 30.0:
-                store.append(buffer)
-                buffer, last_write = [], time.monotonic()
-            if progress is not None and total:
-                progress(finished / total)
-    finally:                                    # Ctrl-C: keep what finished, stop the rest
-        stream.close()
-        store.append(buffer)
-    return finished
+    return signal.Signals(signum).name
 
 
-def _result(study, sp, frame, n_done, elapsed, n_workers, executor, resumed) -> StudyResult:
+def _workers_used(client, workers: int, n_tasks: int) -> int:
+    if client is not None:
+        from ..cluster import worker_count
+
+        return worker_count(client)
+    return min(workers, n_tasks) if workers > 1 and n_tasks > 1 else 1
+
+
+def _result(study, sp, frame, n_done, elapsed, n_workers, executor, resumed,
+            lost=()) -> StudyResult:
     n = len(sp.frame)
     ok = int(frame["success"].fillna(False).sum()) if len(frame) else 0
     once = len(frame) == n and set(frame["point"]) == set(sp.frame["point"])
@@ -317,6 +407,8 @@ def _result(study, sp, frame, n_done, elapsed, n_workers, executor, resumed) -> 
              (f"throughput: {n_done} points in {elapsed:.1f} s = {rate:.2f} points/s on "
              f"{n_workers} worker(s) ({executor}); {resumed} points already stored (resume)"),
              f"{n - ok} of {n} points failed (rows with success = false and their message)",
+             f"bound on the job: {sp.estimate} (limit: max_points = "
+             f"{study.spec['max_points']:,})",
              "full table: store/ (Parquet parts; gfbopt.doe.read_results('store'))"]
     tables = {}
     if len(frame) <= CSV_ROWS:
@@ -337,6 +429,9 @@ def _result(study, sp, frame, n_done, elapsed, n_workers, executor, resumed) -> 
             figures[f"sobol_{output}.png"] = ax.figure
         checks.append({"what": f"Sobol indices of {output} computed", "value":
                        float(s.base_samples), "limit": 2.0, "passed": bool(s.success)})
+    if lost:
+        notes.append(f"{len(lost)} points were not computed because their workers kept dying "
+                     "(not stored as failures): `gfbopt run ... --resume` computes them")
     options = {"variants": {}, "grid": str(sp.grid), "analysis": sp.analysis,
                "sampling": sp.plan.method, "points": n, "workers": n_workers,
                "executor": executor, "points_per_second": rate}
@@ -345,8 +440,9 @@ def _result(study, sp, frame, n_done, elapsed, n_workers, executor, resumed) -> 
 
 
 def _run_default(study: Study, plan: SweepPlan, context: RunContext) -> StudyResult:
-    """``compute``/``run_study``: results/NAME/store/, no resume, the local executor."""
-    return run_sampled(LoadedStudy(study, plan), "results", workers=context.workers,
+    """``compute``/``run_study``: RESULTS/NAME/store/ (the context's results folder), no
+    resume, the local executor."""
+    return run_sampled(LoadedStudy(study, plan), context.results_root, workers=context.workers,
                        progress=context.progress, write=False)
 
 

@@ -1,7 +1,7 @@
 """Loading, validating and running studies.
 
     from gfbopt.studies import load_study, run_study, study_from_dict, compute
-    run_study("problems/thesis_table_3_1.toml")          # writes results/thesis_table_3_1/
+    run_study("problems/thesis_table_3_1.toml")          # writes runs/thesis_table_3_1/
     study = study_from_dict({...}, name="mine")          # a study built in Python
     result = compute(study, workers=2)                   # StudyResult: tables, checks, …
 
@@ -15,13 +15,16 @@ from dataclasses import replace
 from pathlib import Path
 from typing import Callable, Optional, Union
 
+from ..errors import ParameterError
 from ..inputs import read_toml
 from . import design, maps, sweeps, tables, transients
 from . import doe
 from . import damping, stability
 from . import rotor
-from .base import Kind, LoadedStudy, RunContext, Study, StudyResult
-from .report import write_result
+from . import bearing_as_built
+from .base import DEFAULT_RESULTS, Kind, LoadedStudy, RunContext, Study, StudyResult
+from .output import check_name
+from .report import prepare_output, write_result
 from .spec import SCHEMAS, validate
 
 
@@ -45,7 +48,12 @@ KINDS: dict[str, Kind] = {
 
 def register(family) -> None:
     """Add a family of study kinds defined in its own module: ``family.SCHEMAS`` (kind →
-    schema, in the vocabulary of :mod:`.spec`) and ``family.KINDS`` (kind → :class:`Kind`)."""
+    schema, in the vocabulary of :mod:`.spec`) and ``family.KINDS`` (kind → :class:`Kind`).
+
+    A kind's ``run(study, plan, context)`` gets a :class:`RunContext` (``workers``,
+    ``progress``, ``results_root``); it should call :func:`gfbopt.parallel.run_points` with
+    ``workers=context.workers``, which uses the run's one worker pool when ``gfbopt run``
+    opened it (:class:`gfbopt.parallel.WorkerPool`)."""
     clash = set(family.KINDS) & set(KINDS)
     if clash or set(family.KINDS) != set(family.SCHEMAS):
         raise ValueError(f"study kinds of {family.__name__}: clash {sorted(clash)} or "
@@ -56,6 +64,7 @@ def register(family) -> None:
 
 for _family in (design, doe, stability, damping, rotor):
     register(_family)
+register(bearing_as_built)
 assert set(KINDS) == set(SCHEMAS), "every schema has a runner and vice versa"
 
 
@@ -67,7 +76,8 @@ def study_from_dict(data: dict, *, name: Optional[str] = None, file: str = "<dic
     ``bearing`` file) are looked up.
     """
     spec = validate(data, file)
-    name = spec["name"] or name or Path(file).stem
+    name = spec["name"] if spec["name"] is not None else (name or Path(file).stem)
+    check_name(name, f"{file}: name")
     spec = {**spec, "name": name}
     study = Study(file=file, name=name, kind=spec["kind"], spec=spec,
                   directory=Path(directory))
@@ -78,28 +88,45 @@ def load_study(path: Union[str, Path]) -> LoadedStudy:
     """Read, validate and plan the study file ``path``; any mistake raises one
     ParameterError naming the file and the key, before anything is solved."""
     path = Path(path)
-    return study_from_dict(read_toml(path), name=path.stem, file=str(path),
+    return study_from_dict(read_study_file(path), name=path.stem, file=str(path),
                            directory=path.parent)
 
 
+def read_study_file(path: Union[str, Path]) -> dict:
+    """The parsed study file; a file nested too deeply to parse (tomllib recurses) is one
+    ParameterError, not a RecursionError."""
+    try:
+        return read_toml(path)
+    except RecursionError:
+        raise ParameterError("file", str(path), "is nested too deeply to be a study file"
+                             ) from None
+
+
 def compute(loaded: LoadedStudy, *, workers: int = 1,
-            progress: Optional[Callable[[float], None]] = None) -> StudyResult:
-    """Run a loaded study and return its results (nothing is written)."""
+            progress: Optional[Callable[[float], None]] = None,
+            results_root: Union[str, Path] = DEFAULT_RESULTS) -> StudyResult:
+    """Run a loaded study and return its results (nothing is written, except the store of
+    a sampled study, kept in ``results_root/NAME/store/``)."""
     kind = KINDS[loaded.study.kind]
-    context = RunContext(workers=workers if kind.parallel else 1, progress=progress)
+    context = RunContext(workers=workers if kind.parallel else 1, progress=progress,
+                         results_root=str(results_root))
     t0 = time.perf_counter()
     result = kind.run(loaded.study, loaded.plan, context)
     return replace(result, wall_time_s=time.perf_counter() - t0)
 
 
-def run_study(path: Union[str, Path, LoadedStudy], results_root: Union[str, Path] = "results",
-              *, workers: int = 1,
-              progress: Optional[Callable[[float], None]] = None) -> StudyResult:
+def run_study(path: Union[str, Path, LoadedStudy],
+              results_root: Union[str, Path] = DEFAULT_RESULTS, *, workers: int = 1,
+              progress: Optional[Callable[[float], None]] = None,
+              force: bool = False) -> StudyResult:
     """Run a study file (or a loaded study) and write ``results_root/NAME/`` and the index.
 
+    The folder is checked before computing (writable, not a symlink out of
+    ``results_root``, no file gfbopt did not write unless ``force``; :mod:`.output`).
     Returns the :class:`StudyResult` (``passed``, ``agreement``, tables, checks).
     """
     loaded = path if isinstance(path, LoadedStudy) else load_study(path)
-    result = compute(loaded, workers=workers, progress=progress)
-    write_result(result, Path(results_root))
+    prepare_output(Path(results_root), loaded.study.name, force=force)
+    result = compute(loaded, workers=workers, progress=progress, results_root=results_root)
+    write_result(result, Path(results_root), force=force)
     return result

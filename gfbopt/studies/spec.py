@@ -46,7 +46,7 @@ class Key:
     doc : meaning and unit (shown in errors)
     default : :data:`REQUIRED` for a required key
     choices : allowed values (a callable returning them is evaluated when checking)
-    minimum : smallest allowed number; ``positive`` → must be > 0
+    minimum : smallest allowed number; ``positive`` → must be > 0; maximum : largest
     length : exact length of a list
     """
 
@@ -59,6 +59,7 @@ class Key:
     minimum: Optional[float] = None
     positive: bool = False
     length: Optional[int] = None
+    maximum: Optional[float] = None
 
 
 def req(kind: str, doc: str, **kw) -> Key:
@@ -305,13 +306,19 @@ def _check_scalar(key: Key, value, where: Where):
             raise where.error(value, f"must be an integer ({key.doc})")
         if not _is_number(value):
             raise where.error(value, f"must be a number ({key.doc})")
-        value = float(value) if kind == "number" else value
-        if not math.isfinite(value):
+        try:
+            value = float(value) if kind == "number" else value
+            finite = kind == "integer" or math.isfinite(value)
+        except OverflowError:
+            finite = False
+        if not finite:
             raise where.error(value, "must be finite")
         if key.positive and value <= 0:
             raise where.error(value, f"must be > 0 ({key.doc})")
         if key.minimum is not None and value < key.minimum:
             raise where.error(value, f"must be >= {key.minimum:g} ({key.doc})")
+        if key.maximum is not None and value > key.maximum:
+            raise where.error(value, f"must be <= {key.maximum:g} ({key.doc})")
         return value
     if kind == "flag":
         if not isinstance(value, bool):

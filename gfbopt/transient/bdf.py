@@ -87,8 +87,7 @@ class FlatRotor:
         return self.pack(self.rhs(self.unpack(y)))
 
     def _live_rows(self) -> np.ndarray:
-        rows = np.arange(self.m)
-        return rows if self.tm.periodic else rows[1:-1]
+        return np.flatnonzero(~self.tm.ambient)        # not the seam or pad-end rows
 
     def _build_pattern(self) -> None:
         m, nzn, tm = self.m, self.nzn, self.tm
@@ -137,7 +136,7 @@ class FlatRotor:
         rows: (2, len(self._dense_cols)), analytically (module doc)."""
         tm = self.tm
         s = self.unpack(y)
-        hr = 1.0 - s.x[0] * tm.cos - s.y[0] * tm.sin
+        hr = 1.0 + tm.bore - s.x[0] * tm.cos - s.y[0] * tm.sin
         zw = tm.z_weight
         total = zw.sum()
         if self.damped:               # P = Φ/H, H = H_r + W: ∂P/∂W = −Φ/H²
@@ -147,7 +146,7 @@ class FlatRotor:
         elif tm.foil == "rigid":
             g = zw[None, 1:-1] / hr[:, None]
         else:
-            sc = tm.compliance
+            sc = tm.compliance_rows
             c = (zw[0] + zw[-1]) / total
             phit = (s.phi[0][:, 1:-1] @ zw[1:-1]) / total
             b = hr + sc * (c - 1.0)

@@ -162,7 +162,8 @@ def foil_bound(p: np.ndarray, h: np.ndarray, tm) -> float:
     """
     foil = tm.foil_state
     top = p.max(axis=-1, keepdims=True) if foil.layout == "rows" else p
-    return float(((1.0 + tm.compliance * (top + 1.0) / h) / foil.relaxation_time).max())
+    s = tm.compliance_rows[:, None]                     # S per θ row (bump zones)
+    return float(((1.0 + s * (top + 1.0) / h) / foil.relaxation_time).max())
 
 
 def deflection_of_mode(deflection: np.ndarray, layout: str) -> np.ndarray:

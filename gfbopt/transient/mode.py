@@ -29,7 +29,7 @@ from typing import Optional
 import numpy as np
 import scipy.sparse.linalg as spla
 
-from ..discretisation import make_stencil
+from ..static.build import solution_stencil
 from ..errors import ParameterError
 from .foil_state import deflection_of_mode
 
@@ -88,7 +88,7 @@ def linear_mode(lin, mass: float, eigenvalue: complex) -> LinearMode:
     _, _, vh = np.linalg.svd(dyn)
     xi = vh[-1].conj()                                      # null vector
     y_hat = basis @ xi
-    st = make_stencil(sol.grid, periodic=sol.model.film == "periodic")
+    st = solution_stencil(sol)
     n_u = st.unknown.size
     dphi = np.zeros(sol.pressure.size, dtype=complex)
     dphi[st.unknown] = -(b @ y_hat)[:n_u] / (2 * sol.model.bearing_number)

@@ -40,6 +40,7 @@ from ..physics.film import force_gauge
 from ..physics.film import rigid_film_tabulated
 from ..physics.foil_laws import FoilLaw, foil_law
 from ..static import StaticSolution
+from ..static.build import row_values, solution_stencil
 from .foil_state import KelvinVoigtFoil, foil_bound, kelvin_voigt_foil
 
 
@@ -67,6 +68,9 @@ class TransientModel:
     gumbel: bool
     foil_data: Optional[np.ndarray]  # the law's precomputed data (beam: W per unit P̄ − 1)
     foil_state: Optional[KelvinVoigtFoil] = None   # the damped foil's state (η > 0), or None
+    ambient: Optional[np.ndarray] = None     # (m,) rows at ambient pressure (seams, pad ends)
+    bore: Optional[np.ndarray] = None        # (m,) the bore's clearance change Δc/c
+    compliance_rows: Optional[np.ndarray] = None   # (m,) S per θ row (bump zones)
 
     @property
     def foil(self) -> str:
@@ -108,14 +112,17 @@ def transient_model(solution: StaticSolution, reference_whirl_ratio: Optional[fl
     cos, sin = np.cos(solution.theta), np.sin(solution.theta)
     x0 = solution.eccentricity * math.cos(solution.attitude_angle)
     y0 = solution.eccentricity * math.sin(solution.attitude_angle)
-    foil_state = kelvin_voigt_foil(solution, law, 1.0 - x0 * cos - y0 * sin,
+    st = solution_stencil(solution)
+    bore, s_rows = row_values(model, st, solution.seam_angle)   # the bearing as built
+    foil_state = kelvin_voigt_foil(solution, law, 1.0 + bore - x0 * cos - y0 * sin,
                                    reference_whirl_ratio, solver, threshold)
     return TransientModel(
         static=solution, bearing_number=model.bearing_number, compliance=model.compliance,
         load=solution.load, periodic=periodic, cos=cos, sin=sin, theta_weight=tw,
         z_weight=zw, dtheta=dtheta, dz=dz, law=law,
         compression_only=bool(model.compression_only), gumbel=model.subambient == "gumbel",
-        foil_data=foil_data, foil_state=foil_state)
+        foil_data=foil_data, foil_state=foil_state, ambient=st.ambient_rows, bore=bore,
+        compliance_rows=s_rows)
 
 
 # ----------------------------------------------------------------------- kernel
@@ -163,8 +170,7 @@ def flux_residual(p: np.ndarray, h: np.ndarray, tm: TransientModel) -> np.ndarra
     axial /= dz
     axial += dflux[..., :, 1:-1]
     res[..., :, 1:-1] = axial
-    if not tm.periodic:
-        res[..., [0, -1], :] = 0.0
+    res[..., tm.ambient, :] = 0.0
     return res
 
 
@@ -179,8 +185,9 @@ def _west(a: np.ndarray) -> np.ndarray:
 
 
 def rigid_film(x: np.ndarray, y: np.ndarray, tm: TransientModel) -> np.ndarray:
-    """H_r = 1 − X cos θ − Y sin θ per θ row, shape (B, m) (:mod:`gfbopt.physics.film`)."""
-    return rigid_film_tabulated(x[:, None], y[:, None], tm.cos, tm.sin)
+    """H_r = 1 + B − X cos θ − Y sin θ per θ row, shape (B, m) (:mod:`gfbopt.physics.film`;
+    B the bore's clearance change)."""
+    return rigid_film_tabulated(x[:, None], y[:, None], tm.cos, tm.sin) + tm.bore
 
 
 def pressure_and_film(phi: np.ndarray, x: np.ndarray, y: np.ndarray, tm: TransientModel,
@@ -312,9 +319,7 @@ def stiffness_bound(s: State, tm: TransientModel) -> float:
     off = (np.abs(2 * ce * pe - 0.5 * lam * hh_e) / dth / hh_e
            + np.abs(2 * cw * pw + 0.5 * lam * hh_w) / dth / hh_w
            + 2 * cn * pn / dz / h + 2 * cs * ps / dz / h)
-    bound = (diag + off)[..., :, 1:-1]
-    if not tm.periodic:
-        bound = bound[..., 1:-1, :]
+    bound = (diag + off)[..., :, 1:-1][..., ~tm.ambient, :]
     film = float(bound.max() / (2 * lam))
     return film if tm.foil_state is None else max(film, foil_bound(p, h, tm))
 

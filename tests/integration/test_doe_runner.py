@@ -111,7 +111,7 @@ def test_resume_refuses_the_store_of_another_study(tmp_path):
     first.write_text(STUDY.format(n=5, chunk=2, batch=2, s_low=0.2))   # same name, new study
     refused = _run_cli(first, "--workers", "1", "--resume", "--results", results)
     assert refused.returncode == 2
-    assert "holds results of another study" in refused.stderr
+    assert "with other inputs (changed: sample plan" in refused.stderr
     assert len(refused.stderr.strip().splitlines()) == 1
 
 
@@ -159,7 +159,7 @@ def test_dask_local_cluster_gives_the_process_pool_table(tmp_path):
     loaded = study_from_dict(__import__("tomllib").loads(text), name="same", file="same.toml")
     run_sampled(loaded, tmp_path / "pool", workers=2)
     with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
-                                  dashboard_address=None) as cluster, \
+                                  dashboard_address=":0") as cluster, \
             distributed.Client(cluster) as client:
         result = run_sampled(loaded, tmp_path / "dask", client=client)
     assert "dask" in result.options["executor"]

@@ -79,7 +79,7 @@ def test_jacobian_equals_casadi_ad_of_the_flat_residual(built):
     solver, model = built
     flat = solver.residual_function.expand()
     xs = ca.SX.sym("x", solver.layout.size)
-    ps = ca.SX.sym("p", len(PARAMETERS))
+    ps = ca.SX.sym("p", solver.n_parameters)
     reference = ca.Function("reference", [xs, ps], [ca.jacobian(flat(xs, ps), xs)])
     for seed in (1, 2):
         x = _random_state(solver, seed)

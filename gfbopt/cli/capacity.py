@@ -1,0 +1,117 @@
+"""``gfbopt capacity``: load capacity at a speed, or lift-off speed at a load, for a
+minimum-film limit (SI, per bearing)::
+
+    gfbopt capacity --bearing FILE --speed-rpm N --min-film-um H            # largest load
+    gfbopt capacity --bearing FILE --lift-off --load-newton F --min-film-um H [--max-speed-rpm N]
+
+A thin layer over :func:`gfbopt.rotor.capacity.load_capacity` and
+:func:`~gfbopt.rotor.capacity.lift_off_speed`.  ``--figure FILE`` draws the curve
+(h_min against load or speed, the limit and the answer); ``--csv FILE`` writes it.  The
+formulation comes from the bearing file's ``[model]`` table and the options given here; the
+bore, pads and zones from its ``[bore]``, ``[[pads]]`` and ``[[zones]]`` tables.
+"""
+from __future__ import annotations
+
+import sys
+
+from ..errors import ParameterError
+from ..inputs.grid import DEFAULT_GRID
+from .common import emit, number
+from .si import seam_angle_text, stated_options
+
+
+def register(subparsers) -> None:
+    sub = subparsers.add_parser("capacity", help="load capacity at a speed, or lift-off "
+                                "speed at a load, for a minimum-film limit (SI)")
+    sub.add_argument("--bearing", required=True, help="bearing TOML file (SI)")
+    sub.add_argument("--min-film-um", type=number("min-film-um"), required=True,
+                     help="smallest minimum film allowed [µm]")
+    sub.add_argument("--speed-rpm", type=number("speed-rpm"), default=None,
+                     help="shaft speed of the load capacity [rpm]")
+    sub.add_argument("--lift-off", action="store_true", help="find the lift-off speed of "
+                     "--load-newton instead")
+    sub.add_argument("--load-newton", type=number("load-newton"), default=None,
+                     help="static load on one bearing [N] (with --lift-off)")
+    sub.add_argument("--max-speed-rpm", type=number("max-speed-rpm"), default=None,
+                     help="highest speed of the lift-off search [rpm] (default 100000)")
+    sub.add_argument("--film", default=None, choices=("periodic", "seam"),
+                     help="film convention (default: the file's, else a seam 180° from the "
+                     "load)")
+    sub.add_argument("--seam-angle", type=seam_angle_text, default=None,
+                     help="top-foil welded end, degrees from the load line [0, 360)")
+    sub.add_argument("--foil", default=None, choices=("rigid", "simple", "beam"),
+                     help="foil model (default: the file's, else simple)")
+    sub.add_argument("--deflection-law", default=None, choices=("mean", "local"),
+                     help="foil deflection law (default: the file's, else mean)")
+    sub.add_argument("--grid", default=str(DEFAULT_GRID),
+                     help=f"NTHETAxNZ (default {DEFAULT_GRID})")
+    sub.add_argument("--figure", default=None, help="draw the curve to this file (png, pdf)")
+    sub.add_argument("--csv", default=None, help="write the curve to this CSV")
+    sub.add_argument("--json", action="store_true", help="print one JSON object")
+    sub.set_defaults(handler=run)
+
+
+def _check(args) -> None:
+    """Contradictory input: one line, before anything is solved."""
+    if args.lift_off:
+        if args.load_newton is None:
+            raise ParameterError("--load-newton", None, "is required with --lift-off")
+        if args.speed_rpm is not None:
+            raise ParameterError("--speed-rpm", args.speed_rpm, "is not used with --lift-off "
+                                 "(the speed is the answer); give --max-speed-rpm to bound it")
+    else:
+        if args.speed_rpm is None:
+            raise ParameterError("--speed-rpm", None, "is required for the load capacity (or "
+                                 "give --lift-off --load-newton F)")
+        for option, value in (("--load-newton", args.load_newton),
+                              ("--max-speed-rpm", args.max_speed_rpm)):
+            if value is not None:
+                raise ParameterError(option, value, "is used with --lift-off only (the load "
+                                     "is the answer of the load capacity)")
+
+
+def run(args) -> int:
+    from ..inputs import Grid
+    from ..inputs.bearing_file import load_bearing_file
+    from ..inputs.options import merge_options
+    from ..rotor.capacity import lift_off_speed, load_capacity
+
+    _check(args)
+    grid = Grid.parse(args.grid)
+    bearing, file_options = load_bearing_file(args.bearing)
+    options = merge_options(stated_options(args), file_options)
+    if args.lift_off:
+        extra = {} if args.max_speed_rpm is None else {"max_speed_rpm": args.max_speed_rpm}
+        result = lift_off_speed(bearing, args.load_newton, args.min_film_um, options=options,
+                                grid=grid, **extra)
+    else:
+        result = load_capacity(bearing, args.speed_rpm, args.min_film_um, options=options,
+                               grid=grid)
+    out = {"bearing": bearing.name, **result.to_dict()}
+    if args.csv:
+        import pandas as pd
+
+        pd.DataFrame(result.curve).to_csv(args.csv, index=False)
+    if args.figure:
+        from ..plotting.bearing import plot_capacity_curve
+        from ..plotting.core import save_figure
+
+        save_figure(plot_capacity_curve(out).figure, args.figure)
+    emit(out, args.json, lambda: _report(out), out["conventions"])
+    if not result.success and "no lift-off" not in result.message:
+        print(f"gfbopt: {result.message}", file=sys.stderr)
+    return 0 if result.success or "no lift-off" in result.message else 1
+
+
+def _report(out: dict) -> str:
+    conv = out["conventions"]
+    lines = [f"gfbopt capacity — {out['bearing']}: {out['answer']}",
+             f"  film: {conv['film_convention']}; foil {conv['foil']}, "
+             f"{conv['deflection_law']} law; grid {conv['grid']}"]
+    if conv.get("bore") or conv.get("pads_leading_end_deg") or conv.get("zones"):
+        lines.append(f"  as built: bore {conv.get('bore')}, pads "
+                     f"{conv.get('pads_leading_end_deg')}, zones {conv.get('zones')}")
+    if out["success"]:
+        lines.append(f"  at the answer: h_min = {out['min_film_thickness_um']:.6g} µm "
+                     f"({len(out['curve'])} equilibria solved, {out['wall_time_s']:.2f} s)")
+    return "\n".join(lines)
