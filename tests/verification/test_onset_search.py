@@ -62,7 +62,7 @@ def assert_same(new, old):
 
 #: (label, film options, rotor mass [kg], load [N], speed range [rpm])
 CASES = [("seam_180", {}, 2.0, 20.0, (8000.0, 20000.0)),
-         ("max_film, η = 0.3", dict(film="seam", seam_angle="max_film", loss_factor=0.3), 3.0,
+         ("max_film, η = 0.3", dict(film="seam", seam_angle_deg="max_film", loss_factor=0.3), 3.0,
           25.0, (6000.0, 15000.0))]
 
 
@@ -190,8 +190,8 @@ def random_case(rng: random.Random) -> tuple:
     loss factor, mass 0.3–6 kg, load 5–60 N, a speed range inside 2,000–80,000 rpm."""
     convention = rng.choice(["periodic", "max_film", "seam"])
     options = (dict(film="periodic") if convention == "periodic" else
-               dict(film="seam", seam_angle="max_film") if convention == "max_film" else
-               dict(film="seam", seam_angle=math.radians(rng.uniform(0.0, 360.0))))
+               dict(film="seam", seam_angle_deg="max_film") if convention == "max_film" else
+               dict(film="seam", seam_angle_deg=rng.uniform(0.0, 360.0)))
     options.update(deflection_law=rng.choice(["mean", "local"]),
                    loss_factor=rng.choice([0.0, 0.2]))
     mass = math.exp(rng.uniform(math.log(0.3), math.log(6.0)))
@@ -247,10 +247,10 @@ def _study_cases():
     conventions at 48 × 12, and its three 144 × 36 checks), the original foil of
     problems/ruscitto_pitch_design.toml (both laws, η = 0–0.3, 36 × 10)."""
     cases = []
-    seam = [dict(film="seam", seam_angle=math.radians(a)) for a in range(0, 360, 15)]
-    for options in seam + [dict(film="periodic"), dict(film="seam", seam_angle="max_film")]:
+    seam = [dict(film="seam", seam_angle_deg=float(a)) for a in range(0, 360, 15)]
+    for options in seam + [dict(film="periodic"), dict(film="seam", seam_angle_deg="max_film")]:
         cases.append((options, (3000.0, 60000.0), Grid(48, 12)))
-    for options in (dict(film="periodic"), dict(film="seam", seam_angle="max_film"), {}):
+    for options in (dict(film="periodic"), dict(film="seam", seam_angle_deg="max_film"), {}):
         cases.append((options, (3000.0, 60000.0), Grid(144, 36)))
     for law in ("mean", "local"):
         for eta in (0.0, 0.1, 0.2, 0.3):
