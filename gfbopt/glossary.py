@@ -301,7 +301,13 @@ for _name, _entry in {
     "station": ("text", "axial station of the rotor: a bearing or a named station"),
     "position_m": ("m", "axial position from the rotor's centre of gravity"),
     "mode": ("-", "number of the mode tracked over speed in the Campbell diagram"),
-    "track_label": ("text", "the most frequent label of the tracked mode"),
+    "track_label": ("text", "the tracked mode's name: its label where its log decrement "
+                    "falls through zero (the matched-whirl onset's label), else where it is "
+                    "least stable"),
+    "track_zero_rpm": ("rpm", "where the tracked mode's log decrement falls through zero, "
+                       "interpolated between the diagram's speeds (empty: it does not)"),
+    "note": ("text", "why the mode is unstable for every inertia scale (μ_c = 0: the "
+             "massless journal whirls), else empty"),
     "status": ("text", "onset, unstable at the lowest speed, or stable over the range"),
     "inertia_scale": ("-", "μ_c: the rotor whirls in this mode when its inertias are μ_c "
                       "times the real ones (> 1 stable)"),

@@ -149,6 +149,8 @@ def _report(out: dict) -> str:
                  else m["status"])
         lines.append(f"    {m['label']:<22} {speed:>28}, whirl {m['whirl_frequency_hz']:.4g}"
                      f" Hz, B/A phase {m['shape']['phase_b_from_a_deg']:+.0f}°")
+        if m.get("note"):
+            lines.append(f"      {m['note']}")
     for c in out["load_capacity_exceeded"]:
         lines.append(f"  bearing {c['bearing']} over capacity at {c['speed_rpm']:,.0f} rpm: "
                      f"{c['message']}")
