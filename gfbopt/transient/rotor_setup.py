@@ -32,7 +32,7 @@ from .system import rigid_film, transient_model
 @dataclass(frozen=True)
 class RotorBearing:
     """A bearing of the rotor: geometry (SI), axial position z [m] from the CG, the keyword
-    arguments of its model (``BearingGeometry.model``: foil, film, seam_angle [rad],
+    arguments of its model (``BearingGeometry.model``: foil, film, seam_angle_deg [deg],
     deflection_law, loss_factor, …), and a label."""
 
     geometry: BearingGeometry

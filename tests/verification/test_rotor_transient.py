@@ -30,7 +30,7 @@ from gfbopt.transient.rotor_system import rigid_rotor_matrices, runs
 from gfbopt.transient.spectra import synchronous_fit
 
 BEARING = load_bearing("problems/bearings/ruscitto.toml")
-OPTIONS = {"film": "seam", "seam_angle": math.pi}
+OPTIONS = {"film": "seam", "seam_angle_deg": 180.0}
 GRID = Grid.parse("36x10")
 G = 9.80665
 
@@ -137,7 +137,7 @@ def _study_system(speed_note="", amount_kg_m=2e-7, polar=0.002):
     from gfbopt.inputs.rotor_system import (BearingSupport, ImbalancePlane, RotorBody,
                                             RotorSystem)
 
-    opts = ModelOptions(film="seam", seam_angle=math.pi, foil="simple",
+    opts = ModelOptions(film="seam", seam_angle_deg=180.0, foil="simple",
                         deflection_law="mean", loss_factor=0.0)
     return RotorSystem(RotorBody(3.2, 0.012, polar),
                        (BearingSupport("A", -0.035, BEARING, opts),
@@ -245,7 +245,7 @@ def test_side_load_and_a_bearing_pushed_away_from_gravity_start_in_equilibrium(c
     from gfbopt.transient.rotor_io import frame_check, rotor_input
     from gfbopt.transient.rotor_system import RotorRightHandSide
 
-    opts = ModelOptions(film="seam", seam_angle=math.pi, foil="simple",
+    opts = ModelOptions(film="seam", seam_angle_deg=180.0, foil="simple",
                         deflection_law="mean", loss_factor=0.0)
     system = RotorSystem(RotorBody(3.2, 0.012, 0.002),
                          (BearingSupport("A", 0.03, BEARING, opts),
