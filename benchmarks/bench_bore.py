@@ -46,7 +46,7 @@ TARGET_RATIO = 1.2
 
 def _model(bearing, build=None):
     geometry = bearing if build is None else dataclasses.replace(bearing, build=build)
-    return geometry.model(SPEED, film="seam", seam_angle=math.pi)
+    return geometry.model(SPEED, film="seam", seam_angle_deg=180.0)
 
 
 def _shims(depth_um: float) -> BearingBuild:

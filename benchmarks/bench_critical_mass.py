@@ -158,7 +158,7 @@ def scaling() -> dict:
 DAMPED_CASES = {
     "axial-mean law, periodic film": MODEL.replace(loss_factor=0.3),
     "local law, seam 180° from the load": MODEL.replace(loss_factor=0.3, deflection_law="local",
-                                                         film="seam", seam_angle=math.pi),
+                                                         film="seam", seam_angle_deg=180.0),
 }
 
 

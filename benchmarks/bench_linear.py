@@ -94,10 +94,10 @@ THRESHOLD_CASES = {
     "beam": (0.3, BearingModel(bearing_number=5.0, compliance=1.0, foil="beam",
                                top_foil_coefficient=1.0, film="seam")),
     "seam": (("load", 0.55), BearingModel(bearing_number=3.4, compliance=1.05, film="seam",
-                                          seam_angle=math.pi)),
+                                          seam_angle_deg=180.0)),
     "eta": (0.4, BearingModel(bearing_number=2.0, compliance=1.0, loss_factor=0.3)),
     "multi": (0.8, BearingModel(bearing_number=40.0, foil="rigid", film="seam",
-                                length_ratio=1.5, seam_angle=math.radians(90))),
+                                length_ratio=1.5, seam_angle_deg=90)),
 }
 CLI_ARGS = ["linear", "--eccentricity", "0.4", "--bearing-number", "2", "--compliance", "1",
             "--length-ratio", "1", "--json"]

@@ -262,7 +262,11 @@ for _name, _entry in {
                          "bump foil the limits allow (the limit decides), empty otherwise"),
     "baseline_compliance": ("-", "S of the bearing's original bump foil"),
     "baseline_onset_speed_rpm": ("rpm", "onset speed of whirl with the original bump foil"),
-    "feasible": ("flag", "the minimum film meets the limit at the film-check speed"),
+    "feasible": ("flag", "the design meets every limit: the minimum film at the film-check "
+                 "speed, and a bump foil with a whole number of bumps realises S"),
+    "meets_film_limit": ("flag", "the minimum film meets the limit at the film-check speed "
+                         "(the search ranks S among these; the design then picks a realisable "
+                         "S within 2 % of the best onset)"),
     "onset_whirl_frequency_hz": ("Hz", "whirl frequency at the onset of instability"),
     "mass_margin_at_check_speed": ("-", "M_crit/M − 1 at the film-check speed"),
     "bump_pitch_mm": ("mm", "bump pitch s of the least-stress bump foil realising S"),
@@ -297,7 +301,13 @@ for _name, _entry in {
     "station": ("text", "axial station of the rotor: a bearing or a named station"),
     "position_m": ("m", "axial position from the rotor's centre of gravity"),
     "mode": ("-", "number of the mode tracked over speed in the Campbell diagram"),
-    "track_label": ("text", "the most frequent label of the tracked mode"),
+    "track_label": ("text", "the tracked mode's name: its label where its log decrement "
+                    "falls through zero (the matched-whirl onset's label), else where it is "
+                    "least stable"),
+    "track_zero_rpm": ("rpm", "where the tracked mode's log decrement falls through zero, "
+                       "interpolated between the diagram's speeds (empty: it does not)"),
+    "note": ("text", "why the mode is unstable for every inertia scale (μ_c = 0: the "
+             "massless journal whirls), else empty"),
     "status": ("text", "onset, unstable at the lowest speed, or stable over the range"),
     "inertia_scale": ("-", "μ_c: the rotor whirls in this mode when its inertias are μ_c "
                       "times the real ones (> 1 stable)"),
@@ -349,5 +359,104 @@ for _name, _entry in {
     "load_capacity_newton": ("N", "largest static load carried with h_min ≥ the limit"),
     "lift_off_speed_rpm": ("rpm", "lowest speed at which the load is carried with h_min ≥ "
                            "the limit"),
+}.items():
+    GLOSSARY.setdefault(_name, _entry)
+
+
+# ---------------------------------------------------------------- rotor bearing-pair design
+# Columns of gfbopt.studies.rotor_design (issue 20); added without overriding others.
+for _name, _entry in {
+    "first_onset_speed_rpm": ("rpm", "first onset of whirl over all modes of the rotor (the "
+                              "end of the search when every mode is stable there)"),
+    "first_mode": ("text", "the mode that whirls first"),
+    "onset_status": ("text", "onset, stable over the range, or unstable at the lowest speed"),
+    "onset_whirl_frequency_hz": ("Hz", "whirl frequency at the first onset"),
+    "stable_to_top_speed": ("-", "every mode stable up to the top speed"),
+    "total_power_loss_w": ("W", "power lost in both bearings' films at the top speed"),
+    "min_film_top_speed_um": ("µm", "smaller minimum film of the two bearings at the top "
+                              "speed"),
+    "min_film_lowest_speed_um": ("µm", "smaller minimum film of the two bearings at the "
+                                 "lowest speed under the heaviest load"),
+    "capacity_margin": ("-", "smaller load capacity over static load of the two bearings"),
+    "bump_stress_mpa": ("MPa", "largest bump bending stress at the design pressure"),
+    "top_foil_sag_ratio": ("-", "largest top-foil sag between bumps over the clearance"),
+    "bump_closing_ratio": ("-", "(2 l0 + gap)/s: a bump closes within its pitch when ≤ 1"),
+    "compliance_a": ("-", "compliance S of bearing A"),
+    "compliance_b": ("-", "compliance S of bearing B"),
+    "evaluation": ("-", "order in which the optimiser first asked for the design"),
+    "batch": ("-", "generation (NSGA-II) or proposal batch (Bayesian) of the design"),
+    "feasible": ("-", "the design succeeded and meets every limit"),
+    "radial_clearance_um": ("µm", "radial clearance c"),
+    "length_mm": ("mm", "bearing length L"),
+    "bump_pitch_mm": ("mm", "bump pitch s"),
+    "bump_half_length_mm": ("mm", "half bump length l0"),
+    "bump_thickness_um": ("µm", "bump foil thickness t_b"),
+    "preload_count": ("-", "number of shims or lobes"),
+    "pads": ("-", "number of top-foil pads"),
+    "nominal_onset_speed_rpm": ("rpm", "first onset of the design as searched"),
+    "worst_onset_speed_rpm": ("rpm", "lowest first onset over the tolerance sample"),
+    "p05_onset_speed_rpm": ("rpm", "5th percentile of the first onset over the tolerance "
+                            "sample"),
+    "stable_to_top_fraction": ("-", "fraction of the tolerance sample stable to the top "
+                               "speed"),
+    "samples": ("-", "designs in the tolerance sample"),
+    "failed_samples": ("-", "samples whose evaluation failed"),
+    "first_mode_default_grid": ("text", "the mode that whirls first, on the default grid"),
+    "onset_status_default_grid": ("text", "onset status on the default grid"),
+    "feasible_default_grid": ("-", "the design meets every limit on the default grid"),
+    "limit_cycle_um": ("µm", "subsynchronous whirl limit cycle at the bearing (largest "
+                       "distance from the orbit's centre)"),
+    "settled": ("-", "the limit cycle changed by ≤ 1 % over the last whirl periods"),
+}.items():
+    GLOSSARY.setdefault(_name, _entry)
+_PATTERNS = _PATTERNS + (
+    (r"(.+)_search_grid", "-", "{0} on the search grid"),
+    (r"(.+)_default_grid", "-", "{0} on the default grid"),
+    (r"(.+)_relative_change", "-", "{0}: default grid over search grid − 1"),
+)
+
+
+# ---------------------------------------------------------------- rotor transients
+# Columns of rotor transients (gfbopt.transient.rotor_result, study kind rotor_run_up);
+# per-bearing columns carry the bearing's name (x_A_um, min_film_B_um, …).
+for _name, _entry in {
+    "time_s": ("s", "time since the start of the run"),
+    "shaft_angle_deg": ("deg", "shaft angle since the start of the run (the imbalance phase "
+                        "origin)"),
+    "sync_amplitude_x_um": ("µm", "order-tracked 1× amplitude of the journal's x (along "
+                            "gravity), zero to peak"),
+    "sync_phase_x_deg": ("deg", "phase of that 1× component: x peaks when the shaft angle is "
+                         "minus this"),
+    "sync_amplitude_y_um": ("µm", "order-tracked 1× amplitude of the journal's y, zero to "
+                            "peak"),
+    "sync_phase_y_deg": ("deg", "phase of the 1× component of y"),
+    "sub_amplitude_um": ("µm", "largest subsynchronous spectral peak (0.05–0.95 × shaft "
+                         "speed), 1× removed, zero to peak"),
+    "sub_frequency_hz": ("Hz", "frequency of that peak (positive: forward whirl)"),
+    "sub_whirl_ratio": ("-", "that frequency over the shaft frequency"),
+    "quantity": ("text", "what the row reports"),
+    "value": ("-", "its value, in the unit named by the quantity"),
+}.items():
+    GLOSSARY.setdefault(_name, _entry)
+_PATTERNS += (
+    (r"x_(\w+)_um", "µm", "journal centre x at bearing {0} (global frame, along gravity, "
+     "from the bearing centre)"),
+    (r"y_(\w+)_um", "µm", "journal centre y at bearing {0} (90° ahead of gravity)"),
+    (r"min_film_(\w+)_um", "µm", "smallest film at bearing {0} since the previous sample"),
+)
+for _name, _entry in {
+    "speed_over_linear_onset": ("-", "shaft speed over the rotor's linear onset speed"),
+    "contact": ("flag", "the run ended in contact (film ≤ 0.02 c or foil travel exhausted)"),
+    "contact_time_s": ("s", "time of contact since the start of the run (empty: none)"),
+    "limit_cycle_amplitude_um": ("µm", "subsynchronous whirl at a constant speed: largest "
+                                 "distance of the orbit (1× removed) from its centre over "
+                                 "the last window"),
+    "limit_cycle_frequency_hz": ("Hz", "frequency of that whirl (positive: forward)"),
+    "limit_cycle_settled": ("flag", "the whirl amplitude changed by ≤ the settle tolerance "
+                            "between the last two windows"),
+    "limit_cycle_change": ("-", "relative change of the whirl amplitude between the last two "
+                           "windows"),
+    "min_film_um": ("µm", "smallest film thickness over the run (0: the film closed)"),
+    "revolutions": ("-", "shaft revolutions integrated"),
 }.items():
     GLOSSARY.setdefault(_name, _entry)

@@ -1,5 +1,5 @@
 """Shared pieces of the sub-commands: the operating-point options, the rules that refuse
-options which would be ignored, JSON output with provenance, and the progress bar."""
+options which would be ignored, JSON output with provenance, and progress."""
 from __future__ import annotations
 
 import argparse
@@ -12,6 +12,7 @@ from typing import Callable, Optional
 
 from ..errors import ParameterError
 from ..inputs import DEFAULT_GRID, BearingGeometry, BearingModel, Grid
+from ..inputs.grid import DEFAULT_MAX_MEMORY_GB, check_grid_budget
 from ..provenance import jsonable as _jsonable, provenance
 from .si import fill_model_options, seam_angle_text
 
@@ -70,9 +71,27 @@ def add_operating_point(sub: argparse.ArgumentParser) -> None:
                      help="full film force, or Gümbel: sub-ambient pressure dropped")
     sub.add_argument("--compression-only", action="store_true",
                      help="bumps cannot pull the foil inward (W >= 0)")
+    add_grid(sub)
+    sub.add_argument("--json", action="store_true", help="print one JSON object")
+
+
+def add_grid(sub: argparse.ArgumentParser) -> None:
+    """--grid and the memory limit that refuses a grid too large to build."""
     sub.add_argument("--grid", default=str(DEFAULT_GRID),
                      help=f"NTHETAxNZ (default {DEFAULT_GRID})")
-    sub.add_argument("--json", action="store_true", help="print one JSON object")
+    sub.add_argument("--max-memory-gb", type=number("max-memory-gb"),
+                     default=DEFAULT_MAX_MEMORY_GB, help="refuse a grid whose estimated "
+                     f"memory exceeds this [GB] (default {DEFAULT_MAX_MEMORY_GB:g}; the "
+                     "estimate is printed)")
+
+
+def grid_of(args) -> Grid:
+    """The grid of --grid, refused (one line, nothing built) when its estimated memory exceeds
+    --max-memory-gb."""
+    limit = args.max_memory_gb
+    if not limit > 0:
+        raise ParameterError("--max-memory-gb", limit, "must be > 0")
+    return check_grid_budget(Grid.parse(args.grid), limit)
 
 
 @dataclass(frozen=True)
@@ -139,9 +158,9 @@ def operating_point(args) -> OperatingPoint:
     _refuse_ignored_options(args)
     common = dict(film=args.film, deflection_law=args.deflection_law,
                   subambient=args.subambient, compression_only=args.compression_only,
-                  seam_angle=None if args.seam_angle is None else math.radians(args.seam_angle),
+                  seam_angle_deg=args.seam_angle,
                   loss_factor=args.loss_factor)
-    grid = Grid.parse(args.grid)
+    grid = grid_of(args)
     extra: dict = {}
     if args.bearing is not None:
         from ..inputs import load_bearing
@@ -190,9 +209,35 @@ def emit(out: dict, as_json: bool, report: Callable[[], str], options: dict) -> 
         print(report())
 
 
+class FractionProgress:
+    """A ``progress(fraction)`` callback (0 … 1, what the transient engines report) shown by
+    :func:`gfbopt.progress.progress`: a tqdm bar with an ETA on a terminal, a status line to
+    stderr every 10 s otherwise (stdout, and so ``--json``, is untouched).  Use as a context
+    manager: the last line is written when the work completes (not after an error, which is
+    one line of its own)."""
+
+    def __init__(self, label: str):
+        from ..progress import progress
+
+        self._bar = progress(total=100, desc=label, unit="%")
+
+    def __call__(self, fraction: float) -> None:
+        done = min(100, max(0, int(100 * fraction)))
+        if done > self._bar.n:
+            self._bar.update(done - self._bar.n)
+
+    def __enter__(self) -> "FractionProgress":
+        return self
+
+    def __exit__(self, kind, *exc) -> None:
+        if kind is None:             # an error is one line of its own: no status after it
+            self._bar.close()
+
+
 def progress_bar(label: str, enabled: bool = True):
-    """A one-line progress bar on a terminal; nothing when stderr is not a TTY (CI, pipes)
-    or when ``enabled`` is False (e.g. with --json)."""
+    """The 0.2 hand-drawn bar, kept for ``gfbopt run`` (gfbopt/cli/run.py) until it moves to
+    :class:`FractionProgress`: a one-line bar on a terminal; nothing when stderr is not a TTY
+    or when ``enabled`` is False."""
     if not enabled or not sys.stderr.isatty():
         return None
 

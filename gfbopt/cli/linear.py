@@ -13,6 +13,12 @@ from ..errors import ParameterError
 from .common import add_operating_point, describe, emit, number, operating_point
 
 
+#: largest whirl ratio of a K, C table [-]
+MAX_WHIRL_RATIO = 100.0
+#: largest rotor mass parameter M̄ [-] (the thresholds of gfbopt's studies are below 100)
+MAX_MASS_PARAMETER = 1e6
+
+
 def register(subparsers) -> None:
     sub = subparsers.add_parser("linear", help="stiffness, damping and linear stability "
                                 "threshold")
@@ -35,8 +41,12 @@ def run(args) -> int:
     from ..static import solve_static, solver_for
 
     op = operating_point(args)
-    if args.mass is not None and not args.mass > 0:
-        raise ParameterError("--mass", args.mass, "must be > 0")
+    if args.mass is not None and not 0 < args.mass <= MAX_MASS_PARAMETER:
+        raise ParameterError("--mass", args.mass, f"must lie in (0, {MAX_MASS_PARAMETER:g}]")
+    for gamma in args.whirl_ratio:
+        if not 0 <= gamma <= MAX_WHIRL_RATIO:
+            raise ParameterError("--whirl-ratio", gamma, f"must lie in [0, {MAX_WHIRL_RATIO:g}]"
+                                 " (the rotor's roots lie below 3 times the shaft speed)")
     t0 = time.perf_counter()
     solver = solver_for(op.model, op.grid)
     sol = solve_static(op.model, eccentricity=op.eccentricity, load=op.load, solver=solver)

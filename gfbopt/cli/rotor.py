@@ -19,6 +19,7 @@ from pathlib import Path
 
 from ..errors import ParameterError
 from ..inputs.grid import DEFAULT_GRID
+from . import rotor_time
 from .common import emit, number
 
 
@@ -27,7 +28,7 @@ def register(subparsers) -> None:
                                 "each mode, Campbell diagram, imbalance response (SI)")
     sub.add_argument("rotor_file", metavar="ROTOR.toml", help="rotor file (SI; "
                      "docs/formats/rotor_file.md)")
-    sub.add_argument("--speed-range", type=number("speed-range"), nargs=2, required=True,
+    sub.add_argument("--speed-range", type=number("speed-range"), nargs=2, default=None,
                      metavar=("LOW", "HIGH"), help="speeds searched [rpm]")
     sub.add_argument("--speed-rpm", type=number("speed-rpm"), default=None,
                      help="also report the modes and each bearing's equilibrium at this speed "
@@ -47,10 +48,14 @@ def register(subparsers) -> None:
                      "files in DIR")
     sub.add_argument("--plot", default=None, metavar="DIR", help="write the figures (PNG) "
                      "in DIR")
+    rotor_time.add_arguments(sub)      # --orbit, --run-up, --coast-down (issue 18)
     sub.set_defaults(handler=run)
 
 
 def _check(args) -> None:
+    if args.speed_range is None:
+        raise ParameterError("--speed-range", None, "is required (or --orbit, --run-up, "
+                             "--coast-down for a transient)")
     low, high = args.speed_range
     if not (math.isfinite(low) and math.isfinite(high) and 0 < low < high):
         raise ParameterError("--speed-range", args.speed_range,
@@ -71,6 +76,8 @@ def run(args) -> int:
     from ..inputs.rotor_system import load_rotor
     from ..rotor.analyse import analyse_rotor
 
+    if rotor_time.requested(args):
+        return rotor_time.handle(args)
     _check(args)
     grid = Grid.parse(args.grid)
     system = load_rotor(args.rotor_file)
@@ -142,6 +149,8 @@ def _report(out: dict) -> str:
                  else m["status"])
         lines.append(f"    {m['label']:<22} {speed:>28}, whirl {m['whirl_frequency_hz']:.4g}"
                      f" Hz, B/A phase {m['shape']['phase_b_from_a_deg']:+.0f}°")
+        if m.get("note"):
+            lines.append(f"      {m['note']}")
     for c in out["load_capacity_exceeded"]:
         lines.append(f"  bearing {c['bearing']} over capacity at {c['speed_rpm']:,.0f} rpm: "
                      f"{c['message']}")

@@ -65,7 +65,7 @@ def register(subparsers) -> None:
     run.add_argument("--force", action="store_true",
                      help="overwrite files in RESULTS/NAME/ that gfbopt did not write")
     run.add_argument("--resume", action="store_true",
-                     help="sampled studies: keep the points already stored in "
+                     help="sampled and design studies: keep the points already stored in "
                      "RESULTS/NAME/store/ and compute only the others (refused when the "
                      "store holds other inputs)")
     run.add_argument("--max-points", type=_positive("max-points"), default=None,
@@ -140,9 +140,12 @@ def _check_options(args, loaded) -> int:
         from ..cluster import check_address
 
         check_address(args.scheduler)          # "" and ucx:// refused whatever the kinds
-    if args.resume and not sampled:
-        raise ParameterError("--resume", True, "applies to sampled studies (kind = "
-                             "\"sweep\") only; none is given")
+    from ..studies.rotor_design import KINDS as DESIGNS      # design runs resume too
+
+    if args.resume and not sampled and not any(s.study.kind in DESIGNS for s in loaded):
+        raise ParameterError("--resume", True, "applies to sampled and design studies "
+                             "(kind = \"sweep\" or \"rotor_bearing_design\") only; none "
+                             "is given")
     return workers
 
 
@@ -158,7 +161,8 @@ def run_studies(args) -> int:
     loaded = [_load(path, args) for path in args.problems]      # all validated first
     workers = _check_options(args, loaded)
     client = None
-    if args.scheduler is not None and any(s.study.kind in SAMPLED for s in loaded):
+    if args.scheduler is not None and any(s.study.kind in SAMPLED or s.study.kind ==
+                                          "rotor_bearing_design" for s in loaded):
         from ..cluster import quiet_logs
         from ..parallel import connect_scheduler
 
@@ -179,7 +183,13 @@ def run_studies(args) -> int:
                 current = study.study.name
                 show = _Progress(current)
                 try:
-                    if study.study.kind in SAMPLED:
+                    if study.study.kind == "rotor_bearing_design":    # resumable design
+                        from ..studies.rotor_design import run_design
+
+                        result = run_design(study, results, workers=workers,
+                                            client=client, resume=args.resume,
+                                            progress=show, force=args.force)
+                    elif study.study.kind in SAMPLED:
                         result = run_sampled(study, results, workers=workers, client=client,
                                              scheduler=args.scheduler, resume=args.resume,
                                              progress=show, force=args.force)

@@ -45,13 +45,10 @@ def stated_options(args) -> ModelOptions:
     """
     angle = getattr(args, "seam_angle", None)
     if angle is not None and angle != MAX_FILM:
-        if not 0.0 <= angle < 360.0:
-            from ..errors import ParameterError
+        from ..inputs.checks import check_seam_angle_deg
 
-            raise ParameterError("--seam-angle", angle, "must lie in [0, 360) degrees from the "
-                                 "load line in the direction of rotation")
-        angle = math.radians(angle)
-    return ModelOptions(film=getattr(args, "film", None), seam_angle=angle,
+        angle = check_seam_angle_deg("--seam-angle", angle, allow_max_film=False)
+    return ModelOptions(film=getattr(args, "film", None), seam_angle_deg=angle,
                         foil=getattr(args, "foil", None),
                         deflection_law=getattr(args, "deflection_law", None),
                         loss_factor=getattr(args, "loss_factor", None))
@@ -68,7 +65,7 @@ def fill_model_options(args) -> ModelOptions:
 
         resolved = merge_options(cli, load_bearing_file(args.bearing)[1])
     else:
-        resolved = ModelOptions(film=cli.film or "periodic", seam_angle=cli.seam_angle,
+        resolved = ModelOptions(film=cli.film or "periodic", seam_angle_deg=cli.seam_angle_deg,
                                 foil=cli.foil, deflection_law=cli.deflection_law or "mean",
                                 loss_factor=0.0 if cli.loss_factor is None else cli.loss_factor)
     args.film = resolved.film
@@ -76,8 +73,8 @@ def fill_model_options(args) -> ModelOptions:
     args.loss_factor = resolved.loss_factor
     if getattr(args, "bearing", None) is not None:
         args.foil = resolved.foil
-        args.seam_angle = (None if resolved.seam_angle in (None, MAX_FILM)
-                           else math.degrees(resolved.seam_angle))
-    elif cli.seam_angle == MAX_FILM:
+        args.seam_angle = (None if resolved.seam_angle_deg in (None, MAX_FILM)
+                           else resolved.seam_angle_deg)
+    elif cli.seam_angle_deg == MAX_FILM:
         args.seam_angle = None
     return resolved

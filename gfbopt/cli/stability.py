@@ -19,8 +19,7 @@ from __future__ import annotations
 import sys
 
 from ..errors import ParameterError
-from ..inputs.grid import DEFAULT_GRID
-from .common import emit, number
+from .common import add_grid, emit, number
 from .si import seam_angle_text, stated_options
 
 #: --onset without --speed-range searches (N/4, 2N) around the operating speed N [rpm]
@@ -62,10 +61,11 @@ def register(subparsers) -> None:
     sub.add_argument("--frequency-hz", type=number("frequency-hz"), nargs="+", default=None,
                      help="excitation frequencies of the K, C table [Hz] (default: 0.1 … 1.0 "
                      "times the shaft frequency, plus the matched whirl)")
-    sub.add_argument("--csv", default=None, help="write K, C against frequency to this CSV")
-    sub.add_argument("--grid", default=str(DEFAULT_GRID),
-                     help=f"NTHETAxNZ (default {DEFAULT_GRID})")
-    sub.add_argument("--json", action="store_true", help="print one JSON object")
+    sub.add_argument("--csv", default=None, help="write K [N/m], C [N s/m] against frequency "
+                     "to this CSV (columns kxx_N_per_m … cyy_Ns_per_m, gfbopt.glossary)")
+    add_grid(sub)
+    sub.add_argument("--json", action="store_true", help="print one JSON object (the same "
+                     "fields whatever the flags; null when not computed)")
     sub.set_defaults(handler=run)
 
 
@@ -101,16 +101,41 @@ def _check(args) -> None:
                                  "must be two speeds 0 < LOW < HIGH [rpm]")
 
 
+#: the fields of the operating-point answer (StabilityResult.to_dict without conventions)
+POINT_FIELDS = (
+    "stable", "verdict", "critical_mass_kg", "mass_margin", "whirl_frequency_hz",
+    "growth_rate_per_s", "log_decrement", "threshold_whirl_frequency_hz", "eccentricity",
+    "attitude_angle_deg", "min_film_thickness_um", "bearing_number", "load_parameter",
+    "mass_parameter", "critical_mass_parameter", "threshold_whirl_ratio", "mode_whirl_ratio",
+    "growth_rate", "speed_rpm", "load_newton", "wall_time_s")
+#: one JSON schema for ``gfbopt stability --json``, whatever the flags: every field present,
+#: null when not computed (the operating point without --speed-rpm, the onset without
+#: --onset/--speed-range, the CSV path without --csv)
+SCHEMA = ("bearing", "rotor_mass_kg", "grid", "conventions", *POINT_FIELDS, "coefficients",
+          "csv", "onset", "onset_speed_rpm", "onset_whirl_frequency_hz", "success", "message",
+          "warnings")
+
+
+def _span(args) -> tuple:
+    """The onset search range [rpm]: --speed-range, or (N/4, 2N) around --speed-rpm."""
+    return (tuple(args.speed_range) if args.speed_range is not None
+            else tuple(f * args.speed_rpm for f in ONSET_RANGE))
+
+
 def run(args) -> int:
-    from ..inputs import Grid, OperatingPoint, Rotor
+    from ..inputs import OperatingPoint, Rotor
     from ..inputs.bearing_file import load_bearing_file
     from ..inputs.conversions import mass_from_parameter, rpm_to_rad_per_s
     from ..inputs.options import merge_options
+    from ..progress import progress
     from ..rotor import coefficient_table, onset_speed, stability
+    from ..rotor.analysis import resolve_case
+    from ..rotor.onset import check_speed_range
     from ..static import SolverCache
+    from .common import grid_of
 
     _check(args)
-    grid = Grid.parse(args.grid)
+    grid = grid_of(args)
     bearing, file_options = load_bearing_file(args.bearing)
     options = merge_options(stated_options(args), file_options)
     if args.mass is not None:      # M = M̄ W0/(c ω²): the same rotor, in kg
@@ -121,30 +146,47 @@ def run(args) -> int:
     rotor = Rotor(mass)
     cache = SolverCache(grid)
     common = dict(options=options, grid=grid, cache=cache)
-    out = {"bearing": bearing.name, "rotor_mass_kg": mass, "grid": str(grid),
-           "conventions": options.to_dict()}
+    out = dict.fromkeys(SCHEMA)
+    out.update(bearing=bearing.name, rotor_mass_kg=mass, grid=str(grid),
+               conventions=options.to_dict(), warnings=[])
     result = table = onset = None
+    wants_onset = args.onset or args.speed_range is not None
+    resolve_case(bearing, rotor, args.load_newton, **common)    # bad input: before any solve
+    if wants_onset:
+        check_speed_range(_span(args))
+    # the operating point's two steps have a status of their own; the onset search reports its
+    # own progress (one line per speed when stderr is not a terminal).  A bar is closed on
+    # success only: an error is one line of its own, with no status after it
     if args.speed_rpm is not None:
-        result = stability(bearing, rotor, OperatingPoint(args.speed_rpm, args.load_newton),
-                           **common)
-        out.update({k: v for k, v in result.to_dict().items() if k != "conventions"})
-        out["conventions"] = result.conventions
+        bar = progress(total=2, desc="stability", unit="step")
+        bar.set_postfix_str(f"operating point {args.speed_rpm:.6g} rpm")
+        result = stability(bearing, rotor, OperatingPoint(args.speed_rpm,
+                                                          args.load_newton), **common)
+        answer = result.to_dict()
+        out.update({k: answer[k] for k in POINT_FIELDS}, conventions=result.conventions,
+                   warnings=list(result.warnings))
+        bar.update(1)
+        bar.set_postfix_str("K and C against frequency")
         table = coefficient_table(result.linearisation, bearing, args.speed_rpm,
                                   args.frequency_hz, result.threshold_whirl_ratio)
         out["coefficients"] = table.to_dict()
         if args.csv:
             table.write_csv(args.csv)
             out["csv"] = str(args.csv)
-    if args.onset or args.speed_range is not None:
-        span = (tuple(args.speed_range) if args.speed_range is not None
-                else tuple(f * args.speed_rpm for f in ONSET_RANGE))
-        onset = onset_speed(bearing, rotor, args.load_newton, span, **common)
+        bar.update(1)
+        bar.close()
+    if wants_onset:
+        span = _span(args)
+        onset = onset_speed(bearing, rotor, args.load_newton, span, **common, progress=True)
         out["onset"] = {k: v for k, v in onset.to_dict().items() if k != "conventions"}
         out["onset_speed_rpm"] = onset.onset_speed_rpm
         out["onset_whirl_frequency_hz"] = onset.whirl_frequency_hz
-        out.setdefault("conventions", onset.conventions)
-    success = all(r.success for r in (result, onset) if r is not None)
+        if result is None:
+            out["conventions"] = onset.conventions
+    done = [r for r in (result, onset) if r is not None]
+    success = all(r.success for r in done)
     out["success"] = success
+    out["message"] = "; ".join(r.message for r in done if r.message)
     emit(out, args.json, lambda: _report(out, result, onset, table, args.csv),
          {"command": "stability", "grid": str(grid), **options.to_dict()})
     if not success:
@@ -171,7 +213,7 @@ def _report(out, result, onset, table, csv) -> str:
             f", M̄c = {r.critical_mass_parameter:.4g}",
             f"  verdict: {r.verdict.upper()} — critical mass {r.critical_mass_kg:.4g} kg, "
             f"mass margin {r.mass_margin:+.1%}",
-            f"  least-stable mode: whirl {r.whirl_frequency_hz:.4g} Hz, growth rate "
+            f"  least-damped mode: whirl {r.whirl_frequency_hz:.4g} Hz, growth rate "
             f"{r.growth_rate_per_s:.4g} 1/s, log decrement {r.log_decrement:.4g}",
             f"  threshold whirl (matched whirl for K, C): "
             f"{r.threshold_whirl_frequency_hz:.4g} Hz (γ = {r.threshold_whirl_ratio:.3f})"]
@@ -182,4 +224,5 @@ def _report(out, result, onset, table, csv) -> str:
                          f"({len(table.table)} rows; frame: {table.frame})")
     if onset is not None:
         lines.append(f"  onset: {onset.answer}")
+    lines += [f"  WARNING: {w}" for w in out["warnings"]]
     return "\n".join(lines)

@@ -3,20 +3,36 @@ from __future__ import annotations
 
 import sys
 
-from .common import add_operating_point, describe, emit, operating_point
+from ..errors import ParameterError
+from .common import add_operating_point, describe, emit, number, operating_point
+
+#: default CPU-time budget of one IPOPT solve [s] (``--time-limit``); the iteration budget is
+#: IPOPT's max_iter of gfbopt.static.build.default_ipopt_options (60 per solve)
+TIME_LIMIT_S = 600.0
 
 
 def register(subparsers) -> None:
     sub = subparsers.add_parser("static", help="static equilibrium at one operating point")
     add_operating_point(sub)
+    sub.add_argument("--time-limit", type=number("time-limit"), default=TIME_LIMIT_S,
+                     help=f"CPU-time budget of each IPOPT solve [s] (default {TIME_LIMIT_S:g}; "
+                     "with the iteration budget of 60 per solve): a solve that exceeds it "
+                     "fails with IPOPT's status, exit 1")
     sub.set_defaults(handler=run)
 
 
 def run(args) -> int:
-    from ..static import solve_static
+    from ..static import solve_static, solver_for
+    from ..static.build import default_ipopt_options
 
+    if not 0 < args.time_limit <= 1e6:
+        raise ParameterError("--time-limit", args.time_limit, "must lie in (0, 1e6] s")
     op = operating_point(args)
-    sol = solve_static(op.model, eccentricity=op.eccentricity, load=op.load, grid=op.grid)
+    solver = solver_for(op.model, op.grid,
+                        ipopt_options={"ipopt.max_cpu_time": float(args.time_limit)})
+    sol = solve_static(op.model, eccentricity=op.eccentricity, load=op.load, solver=solver)
+    budget = (f"budget per IPOPT solve: {default_ipopt_options()['ipopt.max_iter']} "
+              f"iterations, {args.time_limit:g} s CPU (--time-limit)")
     out = {**describe(op), **sol.to_dict(), "message": sol.message}
     if op.geometry is not None:
         from ..physics.torque import drag_torque_and_power
@@ -27,7 +43,8 @@ def run(args) -> int:
             sol.torque_ratio, op.model.bearing_number, op.geometry)
     emit(out, args.json, lambda: _report(out), describe(op))
     if not sol.success:
-        print(f"gfbopt: solve did not converge: {sol.message}", file=sys.stderr)
+        print(f"gfbopt: solve did not converge: {sol.message} (status {sol.status}, residual "
+              f"{sol.residual:.3g}; {budget})", file=sys.stderr)
         return 1
     return 0
 

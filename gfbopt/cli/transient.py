@@ -20,7 +20,8 @@ from __future__ import annotations
 
 import math
 
-from .common import add_operating_point, describe, emit, number, operating_point, progress_bar
+from .common import (FractionProgress, add_operating_point, describe, emit, number,
+                     operating_point)
 
 #: One line of evidence for the default method (benchmarks/bench_critical_mass.py).
 METHOD_EVIDENCE = ("At the default 144×36 grid (ε = 0.4, Λ = 2, S = 1, one core) the same "
@@ -31,6 +32,17 @@ METHOD_HELP = ("integration method: rkc (default; damped Runge–Kutta–Chebysh
                "reference), bdf (implicit; rigid and simple foil only, axial-mean law). "
                + METHOD_EVIDENCE)
 METHODS = ("rkc", "rk4", "bdf")
+#: default largest number of time steps of one orbit (``--max-steps`` raises it): about an
+#: hour at 144 × 36 with rkc
+MAX_STEPS = 2e6
+#: largest automatic time step of any method [rad] (rkc: min(0.1, …)); with it the number of
+#: steps of a run is at least revolutions · 2π / this
+LARGEST_AUTOMATIC_STEP = 0.1
+#: most rotors integrated together in one round of the critical-mass search (each one is a
+#: copy of the film state; the round's masses are spread by the tolerance around the centre)
+MAX_BATCH = 64
+#: most RKC stages (the stiffness bound needs far fewer at any grid gfbopt accepts)
+MAX_STAGES = 1000
 
 
 DAMPING_HELP = ("structural loss factor η of the bump foundation, 0–1 (default 0, or the "
@@ -50,9 +62,15 @@ def register(subparsers) -> None:
     orb = subparsers.add_parser("orbit", help="journal-centre orbit of a rigid rotor "
                                 "(transient)")
     add_operating_point(orb)
-    orb.add_argument("--mass", type=number("mass"), required=True, help="M̄ = M c ω²/W0 [-]")
+    orb.add_argument("--mass", type=number("mass"), default=None, help="the rotor as "
+                     "M̄ = M c ω²/W0 [-] (non-dimensional input, without --bearing)")
+    orb.add_argument("--rotor-mass-kg", type=number("rotor-mass-kg"), default=None,
+                     help="rotor mass carried by the bearing [kg] (with --bearing and "
+                     "--speed-rpm; M̄ = M c ω²/W0 is derived with W0 = --load-newton or the "
+                     "equilibrium's load, and printed)")
     orb.add_argument("--revolutions", type=number("revolutions"), default=20.0,
-                     help="shaft revolutions to integrate (default 20)")
+                     help=f"shaft revolutions to integrate (default 20; refused when the "
+                     f"integration would take more than --max-steps steps)")
     orb.add_argument("--kick", type=number("kick"), default=1e-3,
                      help="initial journal speed dX/dτ = dY/dτ = kick/√2 (default 1e-3)")
     orb.add_argument("--time-step", type=number("time-step"), default=None,
@@ -64,6 +82,10 @@ def register(subparsers) -> None:
     orb.add_argument("--plot", default=None, help="write the polar orbit plot to this PNG")
     orb.add_argument("--method", default="rkc", choices=METHODS, help=METHOD_HELP)
     orb.add_argument("--csv", default=None, help="write the orbit table to this CSV")
+    orb.add_argument("--max-steps", type=number("max-steps"), default=MAX_STEPS,
+                     help=f"largest number of time steps a run may take (default "
+                     f"{MAX_STEPS:.0e}; estimated from --revolutions and --time-step, or the "
+                     "method's largest automatic step)")
     _add_damping(orb)
     orb.set_defaults(handler=run_orbit)
 
@@ -75,8 +97,9 @@ def register(subparsers) -> None:
     crit.add_argument("--revolutions", type=number("revolutions"), default=None,
                       help="revolutions per transient (default: one whirl period + 10 %% "
                       "from the linear mode, 5 from a kick)")
-    crit.add_argument("--batch", type=int, default=None, help="rotors per round (default 2 "
-                      "bracketing the linear threshold, 8 without it)")
+    crit.add_argument("--batch", type=number("batch"), default=None, help="rotors per round "
+                      f"(default 2 bracketing the linear threshold, 8 without it; at most "
+                      f"{MAX_BATCH})")
     crit.add_argument("--method", default="rkc", choices=METHODS, help=METHOD_HELP)
     crit.add_argument("--start", default=None, choices=("mode", "kick"),
                       help="start each transient from the least-stable linear mode shape "
@@ -100,8 +123,40 @@ def _refuse_method_options(args) -> None:
             raise ParameterError(option, value, f"applies to --method {users} only, not to "
                                  f"--method {args.method}")
     if getattr(args, "stages", None) is not None and (not float(args.stages).is_integer()
-                                                      or args.stages < 2):
-        raise ParameterError("--stages", args.stages, "must be an integer >= 2")
+                                                      or not 2 <= args.stages <= MAX_STAGES):
+        raise ParameterError("--stages", args.stages, f"must be an integer in [2, {MAX_STAGES}]")
+    _check_run_length(args)
+
+
+def _check_run_length(args) -> None:
+    """--revolutions, --time-step and --kick within bounds, and the number of steps the run
+    would take within --max-steps (one line with the estimate, before anything is built)."""
+    from ..errors import ParameterError
+
+    revolutions = getattr(args, "revolutions", None)
+    if revolutions is not None and not revolutions > 0:
+        raise ParameterError("--revolutions", revolutions, "must be > 0")
+    step = getattr(args, "time_step", None)
+    if step is not None and not 0 < step <= LARGEST_AUTOMATIC_STEP * 10:
+        raise ParameterError("--time-step", step, f"must lie in (0, "
+                             f"{LARGEST_AUTOMATIC_STEP * 10:g}] rad (a step of about a "
+                             "revolution/60 or less resolves the whirl)")
+    kick = getattr(args, "kick", None)
+    if kick is not None and not 0 < kick < 1:
+        raise ParameterError("--kick", kick, "must lie in (0, 1) (a journal speed in "
+                             "clearances per radian)")
+    limit = getattr(args, "max_steps", None) or MAX_STEPS
+    if revolutions is None:
+        return
+    if not limit >= 1:
+        raise ParameterError("--max-steps", limit, "must be >= 1")
+    steps = revolutions * 2 * math.pi / (step or LARGEST_AUTOMATIC_STEP)
+    if steps > limit:
+        option, value = (("--time-step", step) if step else ("--revolutions", revolutions))
+        raise ParameterError(option, value, f"{revolutions:.6g} revolutions would take at least "
+                             f"{steps:.3g} time steps, above the limit of {limit:.3g}: "
+                             "shorten the run" + (", or raise --max-steps"
+                                                  if hasattr(args, "max_steps") else ""))
 
 
 def _check_damping(args, op) -> None:
@@ -149,19 +204,59 @@ def _damping_text(result) -> str:
             f"{d['reference_whirl_source']})")
 
 
+def _check_orbit_mass(args) -> None:
+    """The rotor in kg with --bearing (SI), as M̄ without it; never both (before any solve)."""
+    from ..errors import ParameterError
+
+    if args.bearing is not None:
+        if args.mass is not None:
+            raise ParameterError("--mass", args.mass, "is the non-dimensional M̄; with "
+                                 "--bearing give the rotor in kg (--rotor-mass-kg): M̄ = "
+                                 "M c ω²/W0 is derived and printed")
+        if args.rotor_mass_kg is None:
+            raise ParameterError("--rotor-mass-kg", None, "is required with --bearing (rotor "
+                                 "mass carried by the bearing [kg])")
+        value, option = args.rotor_mass_kg, "--rotor-mass-kg"
+    else:
+        if args.rotor_mass_kg is not None:
+            raise ParameterError("--rotor-mass-kg", args.rotor_mass_kg, "needs --bearing "
+                                 "FILE.toml and --speed-rpm (a mass in kg means nothing "
+                                 "without the bearing's dimensions); give --mass M̄")
+        if args.mass is None:
+            raise ParameterError("--mass", None, "is required (M̄ = M c ω²/W0), or give "
+                                 "--bearing with --rotor-mass-kg")
+        value, option = args.mass, "--mass"
+    if not value > 0:
+        raise ParameterError(option, value, "must be > 0")
+
+
+def _orbit_mass(args, op, sol) -> float:
+    """M̄ of the run: --mass, or M c ω²/W0 from --rotor-mass-kg with W0 the stated load or the
+    equilibrium's (:mod:`gfbopt.inputs.conversions`)."""
+    if args.mass is not None:
+        return args.mass
+    from ..inputs.conversions import mass_parameter, rpm_to_rad_per_s
+
+    load = op.load_newton if op.load_newton is not None else op.geometry.load_newton(sol.load)
+    return mass_parameter(args.rotor_mass_kg, op.geometry.radial_clearance,
+                          rpm_to_rad_per_s(op.speed_rpm), load)
+
+
 def run_orbit(args) -> int:
     from ..transient import integrate_orbits, transient_model
 
     _refuse_method_options(args)
+    _check_orbit_mass(args)
     op = _operating_point(args)
     solver, sol = _solve(op)
+    mass = _orbit_mass(args, op, sol)
     tm = transient_model(sol, args.reference_whirl_ratio, solver)
     options = {"time_step": args.time_step,
                "stages": None if args.stages is None else int(args.stages)}
-    orbit = integrate_orbits(tm, [args.mass], args.revolutions, kick=args.kick,
-                             progress=progress_bar("orbit", not args.json),
-                             method=args.method,
-                             **{k: v for k, v in options.items() if v is not None})
+    with FractionProgress("orbit") as bar:
+        orbit = integrate_orbits(tm, [mass], args.revolutions, kick=args.kick,
+                                 progress=bar, method=args.method,
+                                 **{k: v for k, v in options.items() if v is not None})
     table = orbit.to_frame(0)
     if args.csv:
         table.to_csv(args.csv, index=False, float_format="%.8g")
@@ -169,15 +264,21 @@ def run_orbit(args) -> int:
         from ..plotting import plot_orbits, save_figure
 
         model = op.model
-        ax = plot_orbits({f"M̄ = {args.mass:g}: {orbit.verdict[0]}": table},
+        label = (f"M = {args.rotor_mass_kg:g} kg (M̄ = {mass:.4g})" if args.mass is None
+                 else f"M̄ = {mass:g}")
+        ax = plot_orbits({f"{label}: {orbit.verdict[0]}": table},
                          title=f"{model.foil} foil, ε0 = {sol.eccentricity:.3g}, "
-                         f"Λ = {model.bearing_number:g}, S = {model.compliance:g}")
+                         f"Λ = {model.bearing_number:.4g}, S = {model.compliance:.4g}",
+                         clearance=True)
         save_figure(ax.figure, args.plot)
-    settings = describe(op, method=args.method, kick=args.kick)
+    settings = describe(op, method=args.method, kick=args.kick, mass=mass,
+                        rotor_mass_kg=args.rotor_mass_kg)
     out = {**settings, **orbit.to_dict(0), "eccentricity": sol.eccentricity,
            "load": sol.load, "attitude_angle_deg": math.degrees(sol.attitude_angle)}
     emit(out, args.json, lambda: (
-        f"gfbopt orbit — M̄ = {args.mass:g}: {out['verdict']}, growth rate "
+        f"gfbopt orbit — M̄ = {mass:.6g}"
+        + (f" ({args.rotor_mass_kg:g} kg)" if args.mass is None else "")
+        + f": {out['verdict']}, growth rate "
         f"{out['growth_rate']:.3g} per rad, whirl ratio {out['whirl_ratio']:.4g}, "
         f"min film {out['min_film']:.4g}, {out['revolutions']:.1f} revolutions "
         f"({args.method}, Δτ = {orbit.time_step:.3g}) in {orbit.wall_time_s:.1f} s"
@@ -194,12 +295,24 @@ def run_critical_mass(args) -> int:
     if args.start == "mode" and args.no_linear_start:
         raise ParameterError("--start", "mode", "needs the linear threshold; drop "
                              "--no-linear-start")
-    if args.batch is not None and args.batch < 1:
-        raise ParameterError("--batch", args.batch, "must be an integer >= 1")
+    if args.batch is not None and not (float(args.batch).is_integer()
+                                       and 1 <= args.batch <= MAX_BATCH):
+        raise ParameterError("--batch", args.batch, f"must be an integer in [1, {MAX_BATCH}] "
+                             "(rotors integrated together per round)")
+    if not 0 < args.tolerance < 0.5:
+        raise ParameterError("--tolerance", args.tolerance, "must lie in (0, 0.5) (relative)")
+    if args.batch is not None and args.tolerance * (args.batch - 1) >= 1:
+        raise ParameterError("--batch", args.batch, f"spreads the masses of a round by "
+                             f"±{args.tolerance * (args.batch - 1) / 2:.0%} of the centre "
+                             f"with --tolerance {args.tolerance:g}: (batch − 1) × tolerance "
+                             "must be < 1 so that every mass is > 0")
+    _check_run_length(args)
     op = _operating_point(args)
     solver, sol = _solve(op)
     lin = linearise(sol, solver)
     linear = linear_threshold(lin)
+    if linear.critical_mass == 0.0:
+        return _unstable_at_any_mass(args, op, sol, linear)
     tm = transient_model(sol, args.reference_whirl_ratio, solver, threshold=linear)
     usable = math.isfinite(linear.critical_mass)
     estimate = None if args.no_linear_start or not usable else linear.critical_mass
@@ -207,10 +320,11 @@ def run_critical_mass(args) -> int:
     mode = None
     if start == "mode" and usable:
         mode = linear_mode(lin, linear.critical_mass, 1j * linear.whirl_ratio)
-    result = find_critical_mass(tm, tolerance=args.tolerance, linear_estimate=estimate,
-                                batch=args.batch, revolutions=args.revolutions,
-                                progress=progress_bar("critical mass", not args.json),
-                                method=args.method, initial_mode=mode)
+    with FractionProgress("critical mass") as bar:
+        result = find_critical_mass(tm, tolerance=args.tolerance, linear_estimate=estimate,
+                                    batch=None if args.batch is None else int(args.batch),
+                                    revolutions=args.revolutions,
+                                    progress=bar, method=args.method, initial_mode=mode)
     settings = describe(op, method=args.method, tolerance=args.tolerance,
                         revolutions_per_transient=args.revolutions, batch=args.batch,
                         start=result.start)
@@ -229,3 +343,21 @@ def run_critical_mass(args) -> int:
         + _damping_text(result)
         + ("" if result.success else f"  ** FAILED: {result.message}")), settings)
     return 0 if result.success else 1
+
+
+def _unstable_at_any_mass(args, op, sol, linear) -> int:
+    """A linear threshold of 0: the massless journal already whirls, so every rotor mass is
+    unstable (an answer, not an error): reported without a transient search, exit 0."""
+    settings = describe(op, method=args.method, tolerance=args.tolerance,
+                        revolutions_per_transient=args.revolutions, batch=args.batch,
+                        start="none")
+    out = {**settings, "critical_mass": 0.0, "bracket": [0.0, 0.0],
+           "whirl_ratio": linear.whirl_ratio, "transients": 0, "rotor_revolutions": 0.0,
+           "success": True, "message": linear.message, "linear_critical_mass": 0.0,
+           "linear_whirl_ratio": linear.whirl_ratio, "eccentricity": sol.eccentricity,
+           "load": sol.load, "attitude_angle_deg": math.degrees(sol.attitude_angle),
+           "history": [], "verdict": "unstable at every rotor mass"}
+    emit(out, args.json, lambda: (
+        f"gfbopt critical-mass — unstable at every rotor mass: M̄_crit = 0 (linear threshold "
+        f"0: {linear.message}); no transient search"), settings)
+    return 0

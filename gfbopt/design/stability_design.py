@@ -27,6 +27,7 @@ import time
 from dataclasses import dataclass, field
 from typing import Callable, Optional, Sequence
 
+import numpy as np
 import pandas as pd
 
 from ..errors import ParameterError
@@ -181,6 +182,26 @@ def geometry_columns(geometry: BumpDesignSpec, compliance: float) -> dict:
             "geometry_message": "" if d.success else d.message}
 
 
+def meets_film_limit(row: dict, limit_um: float) -> bool:
+    """The minimum film at the film-check speed is at least ``limit_um`` [µm]."""
+    return bool(row.get("min_film_thickness_um", -1.0) >= limit_um)
+
+
+def realised(row: dict) -> bool:
+    """A bump foil with a whole number of bumps realises the row's S within the geometric
+    limits (no ``geometry_message``, a pitch)."""
+    pitch, message = row.get("bump_pitch_mm", math.nan), row.get("geometry_message")
+    stated = isinstance(message, str) and message != ""          # NaN in a table: none
+    return not stated and pitch is not None and math.isfinite(pitch)
+
+
+def feasible(row: dict, limit_um: float) -> bool:
+    """A design value is feasible when it meets every limit: the film limit
+    (:func:`meets_film_limit`) AND a realisable bump foil (:func:`realised`).  (0.2.0 marked
+    rows feasible on the film alone, also where no bump foil realises S.)"""
+    return meets_film_limit(row, limit_um) and realised(row)
+
+
 def _serial(function: Callable, points: Sequence[dict]) -> list[dict]:
     return [function(**p) for p in points]
 
@@ -211,9 +232,12 @@ def search_compliance(spec: StabilityDesignSpec, bounds: tuple, law: str, eta: f
         rows = run_points(evaluate_compliance,
                           [{"spec": spec, "compliance": float(v), "law": law, "eta": eta}
                            for v in values])
+        # the search ranks S by the physics under the film limit: an S the bump count cannot
+        # realise exactly is reached by the design inside the near-best band (BAND), so the
+        # geometry enters the table's `feasible` column, not the ranking
         return [Evaluation(float(v), float(r.get("onset_speed_rpm", math.nan)),
-                           bool(r.get("min_film_thickness_um", -1.0) >= limit_um),
-                           bool(r.get("success", False)), r) for v, r in zip(values, rows)]
+                           meets_film_limit(r, limit_um), bool(r.get("success", False)), r)
+                for v, r in zip(values, rows)]
 
     result = maximise_on_interval(batch, bounds, n_scan=spec.n_scan, log=True, band=BAND)
     return LawOptimum(law, eta, result.best, result.merit, result.band, result.on_bound,
@@ -226,6 +250,9 @@ def tradeoff_frame(optima: Sequence[LawOptimum]) -> pd.DataFrame:
     for opt in optima:
         frame = evaluations_frame(opt.search, "compliance")
         frame = frame.drop(columns=[c for c in ("merit",) if c in frame])
+        frame["meets_film_limit"] = frame["feasible"]
+        frame["feasible"] = frame["feasible"].astype(bool) & np.array(
+            [realised(r) for r in frame.to_dict(orient="records")], dtype=bool)
         frame["deflection_law"] = opt.deflection_law
         frame["loss_factor"] = opt.loss_factor
         frames.append(frame)

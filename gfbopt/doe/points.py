@@ -22,7 +22,6 @@ analysis               what one point computes
 from __future__ import annotations
 
 import dataclasses
-import math
 import time
 from dataclasses import dataclass
 
@@ -124,9 +123,6 @@ def _model(inputs: dict):
     from ..inputs import BearingModel
 
     kwargs = {k: inputs[k] for k in (*MODEL_NUMBERS, *FORMULATION) if k in inputs}
-    if "seam_angle_deg" in kwargs:
-        seam = kwargs.pop("seam_angle_deg")
-        kwargs["seam_angle"] = None if seam in (None, "max_film") else math.radians(seam)
     if float(kwargs.get("compliance", 0.0)) == 0.0 and "foil" not in kwargs:
         kwargs["foil"] = "rigid"
     return BearingModel(**kwargs)

@@ -1,17 +1,20 @@
 """A gas foil journal bearing described in SI units, and its non-dimensional groups."""
 from __future__ import annotations
 
-from dataclasses import dataclass, replace
+import math
+from dataclasses import dataclass, field, replace
 from typing import Optional
 
 from ..errors import ParameterError
 from ..physics.bump import bump_compliance
 from .bore_si import BearingBuild
-from .checks import check_finite, check_positive
+from .checks import check_positive
+from .file_schema import BEARING, check_value
 from .conversions import (bearing_number_from_speed, compliance_from_alpha,
                           load_to_newton, load_to_nondimensional, rpm_to_rad_per_s,
                           top_foil_coefficient_from_geometry)
 from .model import BearingModel
+from .options import ModelOptions
 
 
 @dataclass(frozen=True)
@@ -33,9 +36,16 @@ class BearingGeometry:
     viscosity : gas dynamic viscosity μ [Pa s]
     ambient_pressure : ambient pressure p_a [Pa]
     name : label used in reports
+    options : the formulation the bearing is analysed with (a bearing file's ``[model]``
+        table; nothing stated by default), used by :func:`gfbopt.rotor.stability` and
+        :func:`gfbopt.rotor.onset_speed` unless told otherwise
     build : the bearing as built (:class:`gfbopt.inputs.bore.BearingBuild`: bore profile,
         pads, bump zones, SI and degrees), or None for a round bore, one top foil and a
         uniform foundation
+
+    Every value is checked against the bearing file's schema
+    (:data:`gfbopt.inputs.file_schema.BEARING`: bounds and the rules between dimensions), so
+    a geometry that cannot be built is refused with the rule, whatever the route.
     """
 
     radius: float
@@ -51,24 +61,49 @@ class BearingGeometry:
     viscosity: float
     ambient_pressure: float = 101325.0
     name: str = "bearing"
+    options: ModelOptions = field(default_factory=ModelOptions)
     build: Optional[BearingBuild] = None
 
     def __post_init__(self) -> None:
-        for key in ("radius", "length", "radial_clearance", "bump_pitch", "bump_half_length",
-                    "bump_thickness", "bump_youngs_modulus", "top_foil_youngs_modulus",
-                    "top_foil_thickness", "viscosity", "ambient_pressure"):
-            object.__setattr__(self, key, check_positive(key, getattr(self, key)))
-        nu = check_finite("poisson_ratio", self.poisson_ratio)
-        if not -1.0 < nu < 0.5:
-            raise ParameterError("poisson_ratio", self.poisson_ratio, "must lie in (-1, 0.5)")
-        object.__setattr__(self, "poisson_ratio", nu)
-        if self.radial_clearance > 0.01 * self.radius:
-            raise ParameterError(
-                "radial_clearance", self.radial_clearance,
-                f"must be small against the radius (c/R <= 0.01; R = {self.radius!r} m) "
-                "for the thin-film Reynolds equation to hold")
+        for f in BEARING.fields:
+            object.__setattr__(self, f.name, check_value(f, getattr(self, f.name), f.name))
+        if not isinstance(self.options, ModelOptions):
+            raise ParameterError("options", self.options, "must be ModelOptions")
+        self._check_rules()
         if self.build is not None:
             self.build.nondimensional(self)       # bore, pads and zones checked here
+
+    def _check_rules(self) -> None:
+        """The rules between dimensions (:data:`gfbopt.inputs.file_schema.BEARING` rules)."""
+        r, s, l0, tb = self.radius, self.bump_pitch, self.bump_half_length, self.bump_thickness
+        rules = (
+            ("radial_clearance", self.radial_clearance, self.radial_clearance <= 0.01 * r,
+             f"must be small against the radius (c/R <= 0.01; R = {r!r} m) for the "
+             "thin-film Reynolds equation to hold"),
+            ("length", self.length, 0.05 <= self.length / (2 * r) <= 10.0,
+             f"must give 0.05 <= L/D <= 10 (D = {2 * r!r} m)"),
+            ("bump_half_length", l0, 2 * l0 <= s, f"must satisfy 2 l0 <= s (a bump spans 2 l0 "
+             f"and must fit in its pitch s = {s!r} m)"),
+            ("bump_thickness", tb, tb < l0, f"must be < the half bump length l0 = {l0!r} m "
+             "(each half bump is a slender beam in Heshmat's compliance formula)"),
+            ("bump_pitch", s, s <= math.pi * r, f"must be <= π R = {math.pi * r:.6g} m (at "
+             "least two bumps round the bearing)"),
+            ("top_foil_thickness", self.top_foil_thickness, self.top_foil_thickness <= 0.1 * r,
+             f"must be <= R/10 = {0.1 * r:.6g} m (a thin top foil)"))
+        for name, value, holds, rule in rules:
+            if not holds:
+                raise ParameterError(name, value, rule)
+        from .model import MAX_COMPLIANCE, MAX_TOP_FOIL_COEFFICIENT
+
+        if not self.compliance <= MAX_COMPLIANCE:
+            raise ParameterError("bump_thickness", tb, f"gives a bump compliance S = "
+                                 f"{self.compliance:.3g} above {MAX_COMPLIANCE:g} (a foundation "
+                                 "1000 times softer than the thesis's S = 1): a thicker or "
+                                 "shorter bump")
+        if not self.top_foil_coefficient <= MAX_TOP_FOIL_COEFFICIENT:
+            raise ParameterError("top_foil_thickness", self.top_foil_thickness, f"gives a "
+                                 f"top-foil coefficient C = {self.top_foil_coefficient:.3g} "
+                                 f"above {MAX_TOP_FOIL_COEFFICIENT:g}")
 
     # Derived non-dimensional groups --------------------------------------------
     @property

@@ -1,25 +1,30 @@
-"""Read a dimensional bearing description from a TOML file.
+"""Read a bearing file: the bearing in SI units and the formulation it is analysed with.
 
-The file has a ``[bearing]`` table whose keys are the fields of
-:class:`gfbopt.parameters.BearingGeometry`, all in SI units (m, Pa, Pa s)::
+The file format (every key, unit, default and rule) is :data:`~gfbopt.inputs.file_schema.
+BEARING_FILE`, documented for users in ``docs/formats/bearing_file.md`` (generated from it)::
 
     [bearing]
     name = "Ruscitto et al. (1978) test bearing"
     radius = 19.05e-3            # m
     ...
 
-An optional ``[model]`` table states the formulation the bearing is meant to be analysed with
-(:class:`~gfbopt.inputs.options.ModelOptions`; defaults in
-:func:`~gfbopt.inputs.options.resolve_model_options`)::
-
-    [model]
+    [model]                     # optional
     film = "seam"               # "periodic" | "seam"
     seam_angle_deg = 180.0      # top-foil welded end from the load line, [0, 360), or "max_film"
     foil = "simple"             # "rigid" | "simple" | "beam"
     deflection_law = "mean"     # "mean" | "local"
     loss_factor = 0.0           # structural loss factor η of the bumps [-]
 
-Anything else (``source``, notes) is kept as metadata and not interpreted.
+The file is checked as strictly as a study file, before anything is built: an unknown table or
+key (``[modle]``) is refused with "did you mean", and a geometry that cannot be built (a bump
+thicker than its half length, 2 l0 > s, a clearance of 1e-300 m) is refused with the rule.
+
+One resolution of the ``[model]`` table for every route: :func:`load_bearing` returns the
+:class:`~gfbopt.inputs.BearingGeometry` carrying the file's options (``geometry.options``), and
+:func:`gfbopt.rotor.stability` / :func:`gfbopt.rotor.onset_speed` use them unless told
+otherwise, exactly as ``gfbopt stability --bearing FILE`` and studies naming the file do
+(:func:`~gfbopt.inputs.options.merge_options`: stated options over the file's, then the
+defaults).
 """
 from __future__ import annotations
 
@@ -34,59 +39,98 @@ except ModuleNotFoundError:  # pragma: no cover - Python 3.10
 from ..errors import ParameterError
 from .bearing import BearingGeometry
 from .bore_si import build_from_tables
+from .file_schema import BEARING, BEARING_FILE, check_file, check_table
 from .options import ModelOptions
 
-_FIELDS = {f.name: f for f in dataclasses.fields(BearingGeometry)
-           if f.name != "build"}          # the as-built tables are [bore], [[pads]], [[zones]]
-_OPTIONAL = {name for name, f in _FIELDS.items()
-             if f.default is not dataclasses.MISSING}
+#: largest TOML file read [bytes] (a bearing or study file is a few kB)
+MAX_FILE_BYTES = 1_000_000
 
 
 def read_toml(path: str | Path) -> dict:
-    """Parse a TOML file; a missing or malformed file raises ParameterError."""
+    """Parse a TOML file; a missing, huge, deeply nested or malformed file raises
+    ParameterError (one line)."""
     path = Path(path)
-    if not path.is_file():
-        raise ParameterError("file", str(path), "must be an existing TOML file")
     try:
-        return tomllib.loads(path.read_text())
-    except (tomllib.TOMLDecodeError, UnicodeDecodeError) as exc:
+        if not path.is_file():
+            raise ParameterError("file", str(path), "must be an existing TOML file")
+        size = path.stat().st_size
+        if size > MAX_FILE_BYTES:
+            raise ParameterError("file", str(path), f"is {size} bytes: an input file must be "
+                                 f"at most {MAX_FILE_BYTES} bytes")
+        text = path.read_text()
+    except OSError as exc:
+        raise ParameterError("file", str(path), f"cannot be read ({exc.strerror})") from None
+    except UnicodeDecodeError:
+        raise ParameterError("file", str(path), "must be UTF-8 text") from None
+    try:
+        return tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
         raise ParameterError("file", str(path), f"must be valid TOML ({exc})") from None
+    except RecursionError:
+        raise ParameterError("file", str(path), "must be valid TOML (nested too deeply)") \
+            from None
 
 
-def bearing_from_dict(table: dict, where: str = "bearing") -> BearingGeometry:
-    """A validated :class:`BearingGeometry` from a dict of SI values."""
-    if not isinstance(table, dict):
-        raise ParameterError(where, table, "must be a table of bearing quantities")
-    unknown = sorted(set(table) - set(_FIELDS))
-    if unknown:
-        raise ParameterError(f"{where}.{unknown[0]}", table[unknown[0]],
-                             f"is not a bearing quantity (known: {', '.join(_FIELDS)})")
-    missing = [k for k in _FIELDS if k not in table and k not in _OPTIONAL]
-    if missing:
-        raise ParameterError(f"{where}.{missing[0]}", None, "is required but missing")
-    for key, value in table.items():
-        if key != "name" and (isinstance(value, bool) or not isinstance(value, (int, float))):
-            raise ParameterError(f"{where}.{key}", value, "must be a number in SI units")
-    return BearingGeometry(**table)
+def bearing_from_dict(table: dict, where: str = "bearing",
+                      options: ModelOptions = ModelOptions()) -> BearingGeometry:
+    """A validated :class:`BearingGeometry` from a dict of SI values (the ``[bearing]``
+    table), carrying ``options``."""
+    checked = check_table(table, BEARING, where)
+    try:
+        return BearingGeometry(**checked, options=options)
+    except ParameterError as exc:
+        raise ParameterError(f"{where}.{exc.name}", exc.value, exc.rule) from None
+
+
+def read_bearing_file(path: str | Path) -> dict:
+    """The file checked against :data:`~gfbopt.inputs.file_schema.BEARING_FILE`: {table or
+    key: checked value} (defaults not filled).  ParameterError names the file and key."""
+    name = Path(path).name
+    return check_file(read_toml(path), BEARING_FILE, name)
 
 
 def load_bearing(path: str | Path) -> BearingGeometry:
-    """The bearing described in the TOML file ``path`` (``[bearing]`` table, SI units)."""
+    """The bearing described in the TOML file ``path`` (``[bearing]``, SI units), carrying
+    the options of its ``[model]`` table (``.options``; nothing stated when there is none)
+    and the bearing as built (``.build``: ``[bore]``, ``[[pads]]``, ``[[zones]]``)."""
+    name = Path(path).name
     data = read_toml(path)
-    if "bearing" not in data:
-        raise ParameterError(f"{path}: [bearing]", None, "table is required but missing")
-    geometry = bearing_from_dict(data["bearing"], where=f"{Path(path).name}: bearing")
-    build = build_from_tables(data, where=Path(path).name)      # [bore], [[pads]], [[zones]]
-    return geometry if build is None else dataclasses.replace(geometry, build=build)
+    tables = check_file(data, BEARING_FILE, name)              # every table and key checked
+    options = _options(tables.get("model"), name)
+    build = build_from_tables(data, where=name)                # [bore], [[pads]], [[zones]]
+    bearing = bearing_from_dict(tables["bearing"], where=f"{name}: bearing", options=options)
+    if build is not None:
+        bearing = dataclasses.replace(bearing, build=build)
+    try:                              # the combination, on a model of this bearing
+        from .options import resolve_model_options
+
+        bearing.model(1000.0, **resolve_model_options(options).model_kwargs())
+    except ParameterError as exc:
+        raise ParameterError(f"{name}: model.{exc.name}", exc.value, exc.rule) from None
+    return bearing
 
 
 def load_bearing_file(path: str | Path) -> tuple[BearingGeometry, ModelOptions]:
-    """The bearing (``[bearing]``, SI) and the model options its ``[model]`` table states
-    (options not stated are None; fill them with
-    :func:`~gfbopt.inputs.options.resolve_model_options`)."""
-    data = read_toml(path)
-    geometry = load_bearing(path)
-    name = Path(path).name
-    options = (ModelOptions.from_table(data["model"], where=f"{name}: model")
-               if "model" in data else ModelOptions())
-    return geometry, options
+    """(the bearing, the options its ``[model]`` table states) — options not stated are None;
+    fill them with :func:`~gfbopt.inputs.options.merge_options`.  The same options are
+    ``bearing.options``."""
+    bearing = load_bearing(path)
+    return bearing, bearing.options
+
+
+def _options(table, name: str) -> ModelOptions:
+    if table is None:
+        return ModelOptions()
+    try:
+        options = ModelOptions(**table)
+        from .options import resolve_model_options
+
+        resolve_model_options(options)          # contradictions refused now, with the file
+        return options
+    except ParameterError as exc:
+        raise ParameterError(f"{name}: model.{exc.name}", exc.value, exc.rule) from None
+
+
+#: the fields of [bearing] (for callers that list them)
+FIELDS = tuple(f.name for f in dataclasses.fields(BearingGeometry)
+               if f.name not in ("options", "build"))

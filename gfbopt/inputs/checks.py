@@ -62,3 +62,50 @@ def check_loss_factor(value) -> float:
         raise ParameterError("loss_factor", value, "must be <= 1 (a fraction: 0.2 means "
                              "20 %; bump foils are usually quoted at 0.1–0.5)")
     return eta
+
+
+def check_seam_angle_deg(name: str, value, allow_max_film: bool = True):
+    """A welded-end angle in degrees from the load line, in [0, 360), returned as float; or
+    ``'max_film'`` (the seam on the maximum-film line) when ``allow_max_film``."""
+    if allow_max_film and value == "max_film":
+        return value
+    if isinstance(value, bool):
+        raise ParameterError(name, value, 'must be a number of degrees or "max_film"')
+    angle = check_finite(name, value)
+    if not 0.0 <= angle < 360.0:
+        raise ParameterError(name, value, "must lie in [0, 360) degrees from the load line in "
+                             "the direction of rotation")
+    return angle
+
+
+_ABSENT = object()
+
+
+def refuse_radian_seam_angle(cls):
+    """Class decorator: the keyword ``seam_angle`` (radians before gfbopt 0.3) is refused
+    with the migration, so ``seam_angle=3.0`` can never silently mean 171.9°; the angle is
+    ``seam_angle_deg`` (degrees) at every public edge."""
+    init = cls.__init__
+
+    def __init__(self, *args, seam_angle=_ABSENT, **kwargs):
+        if seam_angle is not _ABSENT:
+            raise ParameterError("seam_angle", seam_angle, seam_angle_migration(seam_angle))
+        init(self, *args, **kwargs)
+
+    __init__.__doc__ = init.__doc__
+    __init__.__wrapped__ = init
+    cls.__init__ = __init__
+    return cls
+
+
+def seam_angle_migration(value) -> str:
+    """The rule shown for the old radian keyword ``seam_angle``."""
+    text = ("is no longer accepted: the welded-end angle is given in degrees as "
+            "seam_angle_deg (from the load line in the direction of rotation, [0, 360), or "
+            "'max_film'), as on the command line and in files")
+    if isinstance(value, (int, float)) and not isinstance(value, bool) and math.isfinite(value):
+        text += (f"; if {value!r} was meant in radians (gfbopt <= 0.2), write "
+                 f"seam_angle_deg={math.degrees(value):.6g}")
+    elif value is None or value == "max_film":
+        text += "; for the seam on the maximum-film line write seam_angle_deg='max_film'"
+    return text

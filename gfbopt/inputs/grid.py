@@ -47,3 +47,39 @@ class Grid:
 #: cases up to ε = 0.9 (results/grid_convergence).  72 × 20 is 4× cheaper and within 0.5 % up
 #: to ε ≈ 0.6, 1.7 % at ε = 0.9.
 DEFAULT_GRID = Grid()
+
+
+#: memory of a static build and solve per grid node [bytes], above a base of
+#: :data:`BASE_MEMORY_BYTES`: measured 7.3–9.7 kB per node at 144 × 36 and 288 × 72 (the
+#: sparse LU's fill-in grows faster than the node count, so this is a lower bound further up)
+MEMORY_PER_NODE_BYTES = 10e3
+#: memory of an idle gfbopt process with CasADi loaded [bytes] (measured: 68 MB)
+BASE_MEMORY_BYTES = 70e6
+#: wall time of one static solve per grid node [s] (measured 0.5–1.5 ms per node at
+#: 144 × 36 and 288 × 72 on a shared 2-core machine)
+SOLVE_SECONDS_PER_NODE = 1e-3
+#: default largest estimated memory of a run [GB]; the command-line option
+#: ``--max-memory-gb`` raises it
+DEFAULT_MAX_MEMORY_GB = 4.0
+
+
+def grid_estimate(grid: Grid) -> tuple[float, float]:
+    """(memory [bytes], seconds per static solve) estimated from the node count."""
+    nodes = (grid.n_theta + 1) * (grid.n_z + 1)
+    return BASE_MEMORY_BYTES + MEMORY_PER_NODE_BYTES * nodes, SOLVE_SECONDS_PER_NODE * nodes
+
+
+def check_grid_budget(grid: Grid, max_memory_gb: float = DEFAULT_MAX_MEMORY_GB,
+                      option: str = "--max-memory-gb") -> Grid:
+    """``grid`` unless its estimated memory exceeds ``max_memory_gb``: then ParameterError
+    with the estimate and the option that raises the limit (nothing is built)."""
+    memory, seconds = grid_estimate(grid)
+    if memory > max_memory_gb * 1e9:
+        nodes = (grid.n_theta + 1) * (grid.n_z + 1)
+        raise ParameterError("grid", str(grid), (
+            f"{nodes:,} nodes: estimated {memory / 1e9:.3g} GB of memory and about "
+            f"{seconds / 60:.3g} min per static solve ({MEMORY_PER_NODE_BYTES / 1e3:g} kB and "
+            f"{SOLVE_SECONDS_PER_NODE * 1e3:g} ms per node, measured up to 288x72), above the "
+            f"limit of {max_memory_gb:g} GB: use a coarser grid (the default {DEFAULT_GRID} is "
+            f"within 0.5 % of grid convergence) or raise {option}"))
+    return grid

@@ -7,35 +7,43 @@ from typing import Optional
 
 from ..errors import ParameterError
 from .bore import AsBuilt, check_as_built
-from .checks import (check_choice, check_finite, check_flag, check_loss_factor,
-                     check_nonnegative, check_positive)
+from .checks import (check_choice, check_flag, check_loss_factor, check_nonnegative,
+                     check_positive, check_seam_angle_deg, refuse_radian_seam_angle)
 
 FOIL_MODELS = ("rigid", "simple", "beam")
 FILM_MODELS = ("periodic", "seam")
 DEFLECTION_LAWS = ("mean", "local")
 SUBAMBIENT_TREATMENTS = ("full", "gumbel")
+#: largest top-foil coefficient C [-] accepted (BearingModel)
+MAX_TOP_FOIL_COEFFICIENT = 1e4
+#: largest bearing number Λ [-] accepted: real gas bearings run below Λ ≈ 100, and the
+#: solver's scaling is checked up to Λ = 40 in the test suite
+MAX_BEARING_NUMBER = 1e4
+#: largest compliance S [-] accepted: a foundation 1000 times softer than the thesis's S = 1
+MAX_COMPLIANCE = 1e3
 
 
-def film_convention(film: str, seam_angle: Optional[float], foil: str = "simple") -> str:
+def film_convention(film: str, seam_angle_deg: Optional[float], foil: str = "simple") -> str:
     """One line naming the film convention (docs/PHYSICS.md §4), for every output.
 
-    film : 'periodic' or 'seam'; seam_angle : the welded end from the load line [rad], or
+    film : 'periodic' or 'seam'; seam_angle_deg : the welded end from the load line [deg], or
     None for the seam on the maximum-film line; foil : the foil model.
     """
     if film == "periodic":
         text = "periodic film: full 360° film, no seam (plain gas bearing idealisation)"
         if foil == "beam":
-            text += ("; the beam's welded end on the maximum-film line" if seam_angle is None
-                     else f"; the beam's welded end {math.degrees(seam_angle):.4g}° from the "
+            text += ("; the beam's welded end on the maximum-film line" if seam_angle_deg is None
+                     else f"; the beam's welded end {seam_angle_deg:.4g}° from the "
                      "load line")
         return text
-    if seam_angle is None:
+    if seam_angle_deg is None:
         return ("seam on the maximum-film line (thesis convention: the seam follows the "
                 "attitude angle in the static solution and is frozen for the dynamics)")
-    return (f"seam at a fixed housing angle: top-foil welded end {math.degrees(seam_angle):.4g}°"
+    return (f"seam at a fixed housing angle: top-foil welded end {seam_angle_deg:.4g}°"
             " from the load line in the direction of rotation")
 
 
+@refuse_radian_seam_angle
 @dataclass(frozen=True)
 class BearingModel:
     """The non-dimensional bearing model solved by gfbopt.
@@ -48,10 +56,13 @@ class BearingModel:
     foil : 'rigid', 'simple' (W = S (P̄ − 1)) or 'beam' (1D FE top foil on the bumps)
     top_foil_coefficient : C [-], ≥ 0, used by the beam model only
     film : 'periodic' (no seam) or 'seam' (P = 1 at the top-foil ends)
-    seam_angle : angle of the welded (fixed) end of the top foil measured from the load line
-        in the direction of rotation [rad]; ``None`` puts the seam at the maximum-film line
-        (the thesis's convention: θ measured from the line of centres, P = 1 at θ = 0, 2π).
-        For a periodic film it only places the fixed end of the beam foil.
+    seam_angle_deg : angle of the welded (fixed) end of the top foil measured from the load
+        line in the direction of rotation [deg], in [0, 360); ``None`` (or ``'max_film'``)
+        puts the seam at the maximum-film line (the thesis's convention: θ measured from the
+        line of centres, P = 1 at θ = 0, 2π).  For a periodic film it only places the fixed
+        end of the beam foil.  Degrees, as on the command line and in files; the old radian
+        keyword ``seam_angle`` is refused with the conversion (the solvers read the angle in
+        radians from the :attr:`seam_angle` property).
     compression_only : if True the bumps cannot pull the foil towards the journal (W ≥ 0
         for the simple model; the bump reaction acts only where W > 0 for the beam).
     deflection_law : 'mean' — the foil deflects with the axially averaged pressure,
@@ -79,7 +90,7 @@ class BearingModel:
     foil: str = "simple"
     top_foil_coefficient: float = 0.0
     film: str = "periodic"
-    seam_angle: Optional[float] = None
+    seam_angle_deg: Optional[float] = None
     compression_only: bool = False
     deflection_law: str = "mean"
     subambient: str = "full"
@@ -90,9 +101,20 @@ class BearingModel:
         object.__setattr__(self, "bearing_number",
                            check_positive("bearing_number", self.bearing_number))
         object.__setattr__(self, "compliance", check_nonnegative("compliance", self.compliance))
+        for key, top, why in (("bearing_number", MAX_BEARING_NUMBER, "real gas bearings run "
+                               "below Λ ≈ 100"),
+                              ("compliance", MAX_COMPLIANCE, "a foundation 1000 times softer "
+                               "than the thesis's S = 1")):
+            if getattr(self, key) > top:
+                raise ParameterError(key, getattr(self, key), f"must be <= {top:g} ({why})")
         object.__setattr__(self, "length_ratio", check_positive("length_ratio", self.length_ratio))
         object.__setattr__(self, "top_foil_coefficient",
                            check_nonnegative("top_foil_coefficient", self.top_foil_coefficient))
+        if self.top_foil_coefficient > MAX_TOP_FOIL_COEFFICIENT:
+            raise ParameterError("top_foil_coefficient", self.top_foil_coefficient,
+                                 f"must be <= {MAX_TOP_FOIL_COEFFICIENT:g} (10^4 times the "
+                                 "thesis's C = 1; beyond it the beam's stiffness matrix is "
+                                 "singular in double precision)")
         check_choice("foil", self.foil, FOIL_MODELS)
         check_choice("film", self.film, FILM_MODELS)
         check_choice("deflection_law", self.deflection_law, DEFLECTION_LAWS)
@@ -107,8 +129,9 @@ class BearingModel:
             raise ParameterError("compliance", self.compliance,
                                  "must be 0 with foil='rigid' (a rigid bearing has no bump "
                                  "foundation); use foil='simple' or 'beam' for S > 0")
-        if self.seam_angle is not None:
-            object.__setattr__(self, "seam_angle", check_finite("seam_angle", self.seam_angle))
+        if self.seam_angle_deg is not None:
+            angle = check_seam_angle_deg("seam_angle_deg", self.seam_angle_deg)
+            object.__setattr__(self, "seam_angle_deg", None if angle == "max_film" else angle)
         if self.length_ratio > 10.0:
             raise ParameterError("length_ratio", self.length_ratio, "must be <= 10")
         object.__setattr__(self, "loss_factor", check_loss_factor(self.loss_factor))
@@ -120,6 +143,12 @@ class BearingModel:
                 "there is nothing for its structural damping to act on)"))
         if self.as_built is not None:
             check_as_built(self)
+
+    @property
+    def seam_angle(self) -> Optional[float]:
+        """The welded end from the load line in radians (the solvers' internal unit), or None
+        for the seam on the maximum-film line.  Read-only: give ``seam_angle_deg``."""
+        return None if self.seam_angle_deg is None else math.radians(self.seam_angle_deg)
 
     @property
     def is_rigid(self) -> bool:
@@ -140,12 +169,12 @@ class BearingModel:
         """The formulation options, as every output states them (angles in degrees)."""
         no_seam = self.film == "periodic" and self.foil != "beam"   # nothing to place
         return {"foil": self.foil, "foil_law": self.foil_law, "film": self.film,
-                "seam_angle_deg": (None if no_seam else "max_film" if self.seam_angle is None
-                                   else math.degrees(self.seam_angle)),
+                "seam_angle_deg": (None if no_seam else "max_film" if self.seam_angle_deg is None
+                                   else self.seam_angle_deg),
                 "deflection_law": self.deflection_law,
                 "compression_only": self.compression_only, "subambient": self.subambient,
                 "loss_factor": self.loss_factor,
-                "film_convention": film_convention(self.film, self.seam_angle, self.foil),
+                "film_convention": film_convention(self.film, self.seam_angle_deg, self.foil),
                 **({} if self.as_built is None else self.as_built.describe())}
 
     def groups(self) -> dict:

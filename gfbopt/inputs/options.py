@@ -24,33 +24,24 @@ seam on the maximum-film line          the thesis's convention (Mohan 2010): the
 """
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 from typing import Optional, Union
 
 from ..errors import ParameterError
-from .checks import check_choice, check_finite, check_loss_factor
+from .checks import (check_choice, check_loss_factor, check_seam_angle_deg,
+                     refuse_radian_seam_angle)
 from .model import DEFLECTION_LAWS, FILM_MODELS, FOIL_MODELS, film_convention
 
-#: ``seam_angle`` value of the thesis's convention: the seam on the maximum-film line
+#: ``seam_angle_deg`` value of the thesis's convention: the seam on the maximum-film line
 MAX_FILM = "max_film"
-#: default welded-end angle of a bump-foil bearing's top foil, from the load line [rad]
-DEFAULT_SEAM_ANGLE = math.pi
+#: default welded-end angle of a bump-foil bearing's top foil, from the load line [deg]
+DEFAULT_SEAM_ANGLE_DEG = 180.0
 
-_TABLE_KEYS = ("film", "seam_angle_deg", "foil", "deflection_law", "loss_factor")
-
-
-def check_seam_angle(value, name: str = "seam_angle") -> Union[float, str]:
-    """A welded-end angle [rad] in [0, 2π), or :data:`MAX_FILM`; ParameterError otherwise."""
-    if value == MAX_FILM:
-        return MAX_FILM
-    angle = check_finite(name, value)
-    if not 0.0 <= angle < 2.0 * math.pi:
-        raise ParameterError(name, value, "must lie in [0, 2π) rad, i.e. [0, 360) degrees from "
-                             "the load line in the direction of rotation")
-    return angle
+#: the options of a ``[model]`` table, in the order outputs state them
+OPTION_NAMES = ("film", "seam_angle_deg", "foil", "deflection_law", "loss_factor")
 
 
+@refuse_radian_seam_angle
 @dataclass(frozen=True)
 class ModelOptions:
     """Formulation options of a bearing model; each is None when not stated.
@@ -58,17 +49,18 @@ class ModelOptions:
     Attributes
     ----------
     film : 'periodic' (no seam) or 'seam' (the top foil's ends, open to ambient)
-    seam_angle : welded end of the top foil, measured from the load line in the direction of
-        rotation [rad] in [0, 2π); or ``'max_film'`` (:data:`MAX_FILM`), the thesis's seam on
-        the maximum-film line.  (Note: ``None`` here means *not stated*, whereas in
-        :class:`~gfbopt.inputs.model.BearingModel` ``seam_angle=None`` is the max-film seam.)
+    seam_angle_deg : welded end of the top foil, measured from the load line in the
+        direction of rotation [deg] in [0, 360); or ``'max_film'`` (:data:`MAX_FILM`), the
+        thesis's seam on the maximum-film line.  (Note: ``None`` here means *not stated*,
+        whereas in :class:`~gfbopt.inputs.model.BearingModel` ``seam_angle_deg=None`` is the
+        max-film seam.)  The old radian keyword ``seam_angle`` is refused.
     foil : 'rigid', 'simple' or 'beam'
     deflection_law : 'mean' (W = S(P̄ − 1)) or 'local' (W = S(P − 1))
     loss_factor : structural loss factor η of the bump foundation [-], 0 ≤ η ≤ 1
     """
 
     film: Optional[str] = None
-    seam_angle: Union[float, str, None] = None
+    seam_angle_deg: Union[float, str, None] = None
     foil: Optional[str] = None
     deflection_law: Optional[str] = None
     loss_factor: Optional[float] = None
@@ -80,41 +72,24 @@ class ModelOptions:
             check_choice("foil", self.foil, FOIL_MODELS)
         if self.deflection_law is not None:
             check_choice("deflection_law", self.deflection_law, DEFLECTION_LAWS)
-        if self.seam_angle is not None:
-            object.__setattr__(self, "seam_angle", check_seam_angle(self.seam_angle))
+        if self.seam_angle_deg is not None:
+            object.__setattr__(self, "seam_angle_deg",
+                               check_seam_angle_deg("seam_angle_deg", self.seam_angle_deg))
         if self.loss_factor is not None:
             object.__setattr__(self, "loss_factor", check_loss_factor(self.loss_factor))
 
     @classmethod
     def from_table(cls, table: dict, where: str = "model") -> "ModelOptions":
-        """Options from a ``[model]`` TOML table: keys film, seam_angle_deg (degrees in
-        [0, 360), or "max_film"), foil, deflection_law, loss_factor."""
-        if not isinstance(table, dict):
-            raise ParameterError(where, table, "must be a table of model options")
-        unknown = sorted(set(table) - set(_TABLE_KEYS))
-        if unknown:
-            raise ParameterError(f"{where}.{unknown[0]}", table[unknown[0]],
-                                 f"is not a model option (known: {', '.join(_TABLE_KEYS)})")
-        angle = table.get("seam_angle_deg")
-        if angle is not None and angle != MAX_FILM:
-            if isinstance(angle, bool) or not isinstance(angle, (int, float)):
-                raise ParameterError(f"{where}.seam_angle_deg", angle,
-                                     'must be a number of degrees or "max_film"')
-            if not 0.0 <= angle < 360.0:
-                raise ParameterError(f"{where}.seam_angle_deg", angle,
-                                     "must lie in [0, 360) degrees")
-            angle = math.radians(angle)
-        for key in ("film", "foil", "deflection_law"):
-            if key in table and not isinstance(table[key], str):
-                raise ParameterError(f"{where}.{key}", table[key], "must be a string")
-        return cls(film=table.get("film"), seam_angle=angle, foil=table.get("foil"),
-                   deflection_law=table.get("deflection_law"),
-                   loss_factor=table.get("loss_factor"))
+        """Options from a ``[model]`` TOML table (keys :data:`OPTION_NAMES`; the table's
+        schema, with units and allowed values, is :data:`gfbopt.inputs.file_schema.MODEL`)."""
+        from .file_schema import MODEL, check_table
+
+        return cls(**check_table(table, MODEL, where))
 
     def over(self, base: "ModelOptions") -> "ModelOptions":
         """These options where stated, else ``base``'s (e.g. command line over file)."""
         pick = {k: (getattr(self, k) if getattr(self, k) is not None else getattr(base, k))
-                for k in ("film", "seam_angle", "foil", "deflection_law", "loss_factor")}
+                for k in OPTION_NAMES}
         return ModelOptions(**pick)
 
     @property
@@ -122,29 +97,27 @@ class ModelOptions:
         """True when every option that the film and foil need is stated."""
         needs_seam = self.film == "seam" or self.foil == "beam"
         return (None not in (self.film, self.foil, self.deflection_law, self.loss_factor)
-                and (self.seam_angle is not None or not needs_seam))
+                and (self.seam_angle_deg is not None or not needs_seam))
 
     def model_kwargs(self) -> dict:
         """Keyword arguments of :meth:`BearingGeometry.model` (options must be complete)."""
         if not self.complete:
             raise ParameterError("options", self, "are not complete: apply "
                                  "resolve_model_options first")
-        seam = None if self.seam_angle in (None, MAX_FILM) else self.seam_angle
-        return dict(foil=self.foil, film=self.film, seam_angle=seam,
+        seam = None if self.seam_angle_deg in (None, MAX_FILM) else self.seam_angle_deg
+        return dict(foil=self.foil, film=self.film, seam_angle_deg=seam,
                     deflection_law=self.deflection_law, loss_factor=self.loss_factor)
 
     def convention(self) -> str:
         """One line naming the film convention, for every output."""
-        if self.film is None or (self.film == "seam" and self.seam_angle is None):
+        if self.film is None or (self.film == "seam" and self.seam_angle_deg is None):
             return "film convention not stated"
-        return film_convention(self.film, None if self.seam_angle == MAX_FILM
-                               else self.seam_angle, self.foil or "simple")
+        return film_convention(self.film, None if self.seam_angle_deg == MAX_FILM
+                               else self.seam_angle_deg, self.foil or "simple")
 
     def to_dict(self) -> dict:
         """The options as outputs state them (angles in degrees)."""
-        angle = self.seam_angle
-        return {"film": self.film, "seam_angle_deg": (angle if angle in (None, MAX_FILM)
-                                                      else math.degrees(angle)),
+        return {"film": self.film, "seam_angle_deg": self.seam_angle_deg,
                 "foil": self.foil, "deflection_law": self.deflection_law,
                 "loss_factor": self.loss_factor, "film_convention": self.convention()}
 
@@ -186,7 +159,7 @@ def resolve_model_options(stated: Optional[ModelOptions] = None) -> ModelOptions
     * *Fixed in the housing.*  The foil is welded to the sleeve, so the seam does not follow
       the journal when the load or speed changes.  The thesis's seam on the maximum-film line
       moves with the attitude angle in the static solution, which no installed foil does; it
-      stays available as ``seam_angle='max_film'`` for the thesis's results.
+      stays available as ``seam_angle_deg='max_film'`` for the thesis's results.
     * *180° from the load.*  It puts the ambient gap in the unloaded arc, where the film is
       thickest (θ ≈ π + φ) and the gauge pressure small, so it cuts least into the
       load-carrying film; keeping the weld away from the load is what designers aim for and
@@ -207,15 +180,15 @@ def resolve_model_options(stated: Optional[ModelOptions] = None) -> ModelOptions
     s = stated or ModelOptions()
     foil = s.foil or "simple"
     film = s.film or ("periodic" if foil == "rigid" else "seam")
-    seam = s.seam_angle
+    seam = s.seam_angle_deg
     if film == "periodic" and seam == MAX_FILM:
-        raise ParameterError("seam_angle", seam, "'max_film' needs film = 'seam'")
+        raise ParameterError("seam_angle_deg", seam, "'max_film' needs film = 'seam'")
     if film == "periodic" and seam is not None and foil != "beam":
-        raise ParameterError("seam_angle_deg", round(math.degrees(seam), 10), "is not used "
+        raise ParameterError("seam_angle_deg", seam, "is not used "
                              "with a periodic film (no seam) unless the beam foil needs its "
                              "welded end; state film = 'seam'")
     if seam is None and (film == "seam" or foil == "beam"):
-        seam = DEFAULT_SEAM_ANGLE
-    return ModelOptions(film=film, seam_angle=seam, foil=foil,
+        seam = DEFAULT_SEAM_ANGLE_DEG
+    return ModelOptions(film=film, seam_angle_deg=seam, foil=foil,
                         deflection_law=s.deflection_law or "mean",
                         loss_factor=0.0 if s.loss_factor is None else s.loss_factor)

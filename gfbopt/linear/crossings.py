@@ -247,3 +247,68 @@ def _crossing_here(lin: Linearisation, direct: DirectImpedance) -> Optional[Cros
     if not u.real > 0:
         return None
     return Crossing(u.real / (g**2 * lin.load), g, (lu, x, z))
+
+
+#: a Newton step on the whirl ratio below this ends the local search: γ and u corrected by
+#: it are exact to its square times the curvature (~1e-8).  A local crossing only steers the
+#: onset search's secant: its answer is confirmed on a full threshold [-]
+LOCAL_STEP = 1e-4
+#: Newton steps (one sparse LU each) the local search may take
+LOCAL_STEPS = 6
+
+
+@dataclass(frozen=True)
+class LocalCrossing:
+    """A crossing found by Newton's method on the whirl ratio from a nearby one: mass M̄ [-],
+    whirl γ [-], the real root u = M̄ W̄0 γ² [-] (to follow the branch at the next call) and
+    ``factorisations`` (sparse LUs spent)."""
+
+    mass: float
+    whirl: float
+    root: complex
+    factorisations: int
+
+
+def local_crossing(lin: Linearisation, whirl: float, root: complex,
+                   whirl_range: tuple = (0.02, 1.2),
+                   max_steps: int = LOCAL_STEPS) -> Optional[LocalCrossing]:
+    """The crossing Im u(γ) = 0 of the root branch through ``root`` near ``whirl``, by
+    Newton's method on γ with the exact derivative, or None.
+
+    For a neighbour of an operating point whose threshold is known (the onset search's
+    speed line): the branch is the root u of u² − u tr Z + det Z = 0 nearest ``root`` (the
+    real root there), followed from step to step by continuity.  Z(iγ) comes from its own
+    LU of A + iγB, as :class:`DirectImpedance`, and with the same LU dZ/dγ = −i F (A+iγB)⁻¹
+    B X (one more solve); then du/dγ = (u tr Z′ − (det Z)′)/(2u − tr Z).  The search ends when
+    the Newton step falls below :data:`LOCAL_STEP`; γ and u are then corrected by that
+    step (their error is its square).  None when it does not converge in ``max_steps``
+    steps, leaves ``whirl_range``, or ends on a root with u ≤ 0: the caller then computes
+    the full threshold (:func:`gfbopt.linear.linear_threshold`), which also decides between
+    branches — this search follows one.
+    """
+    low, high = whirl_range
+    gamma, ref = float(whirl), complex(root)
+    for k in range(1, max_steps + 1):
+        s = 1j * gamma
+        a, b = lin.system(s)
+        lu = factor((a + s * b).astype(complex))
+        x = lu.solve(lin.c_xi.astype(complex))
+        z = lin.force @ x
+        dz = -1j * (lin.force @ lu.solve((b @ x).astype(complex)))
+        roots = mass_roots(z)
+        u = roots[np.argmin(np.abs(roots - ref))]
+        tr, dtr = z[0, 0] + z[1, 1], dz[0, 0] + dz[1, 1]
+        ddet = dz[0, 0] * z[1, 1] + z[0, 0] * dz[1, 1] - dz[0, 1] * z[1, 0] - z[0, 1] * dz[1, 0]
+        du = (u * dtr - ddet) / (2 * u - tr)
+        if not (math.isfinite(du.imag) and du.imag != 0):
+            return None
+        step = -u.imag / du.imag
+        gamma, ref = gamma + step, u
+        if not low <= gamma <= high:
+            return None
+        if abs(step) <= LOCAL_STEP:
+            u_star = (u + du * step).real
+            if not u_star > 0:
+                return None
+            return LocalCrossing(u_star / (gamma**2 * lin.load), gamma, complex(u_star), k)
+    return None

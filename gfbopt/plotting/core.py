@@ -192,14 +192,21 @@ def plot_coefficients(frame, which: str = "stiffness", ax=None, title: str = "")
     return ax
 
 
-def plot_orbits(orbits: dict, ax=None, title: str = ""):
+def plot_orbits(orbits: dict, ax=None, title: str = "", clearance: bool = False):
     """Journal-centre orbits in polar form (ε against attitude angle), thesis Figs 3.9–3.11.
 
     ``orbits`` maps a legend label to a table with columns ``eccentricity`` [-] and
-    ``attitude_angle_deg`` [deg]; ``ax`` a polar Axes (a new figure when None).  Returns the
-    Axes.
+    ``attitude_angle_deg`` [deg]; ``ax`` a polar Axes (a new figure when None);
+    ``clearance`` draws the clearance circle ε = e/c = 1 (the undeflected foil; a compliant
+    foil lets the journal beyond it).  Returns the Axes.
     """
     ax = new_axes(figsize=(5.8, 6.4), polar=True) if ax is None else ax
+    if clearance:
+        angle = np.linspace(0.0, 2 * np.pi, 361)
+        ax.plot(angle, np.ones_like(angle), color="0.35", lw=1.0, ls="--",
+                label="clearance circle ε = 1 (undeflected foil)")
+        top = max([1.0] + [float(np.nanmax(t["eccentricity"])) for t in orbits.values()])
+        ax.set_rmax(1.1 * top)
     for label, table in orbits.items():
         ax.plot(np.radians(table["attitude_angle_deg"]), table["eccentricity"], lw=0.8,
                 label=label)

@@ -121,7 +121,8 @@ def modes_at_speed(line: SpeedLine, speed_rpm: float) -> dict:
             "thresholds": [{"label": c.label, "inertia_scale": c.inertia_scale,
                             "inertia_margin": c.inertia_scale - 1.0,
                             "whirl_frequency_hz": c.whirl_frequency_hz,
-                            "whirl_ratio": c.whirl_ratio} for c in line.crossings(speed_rpm)]}
+                            "whirl_ratio": c.whirl_ratio, "note": c.note}
+                           for c in line.crossings(speed_rpm)]}
 
 
 def analyse_rotor(system: RotorSystem, speed_range, *, speed_rpm: Optional[float] = None,
@@ -147,7 +148,7 @@ def analyse_rotor(system: RotorSystem, speed_range, *, speed_rpm: Optional[float
     onsets = rotor_onsets(system, (low, high), line=line, show_progress=show_progress)
     at = modes_at_speed(line, float(speed_rpm)) if speed_rpm is not None else None
     cd = (campbell_diagram(line, list(np.linspace(low, high, campbell_speeds)),
-                           show_progress) if campbell else None)
+                           show_progress, onsets=onsets.modes) if campbell else None)
     ir = (imbalance_response(line, list(np.linspace(low, high, imbalance_speeds)),
                              show_progress) if imbalance else None)
     hm = half_mass_onsets(line, (low, high)) if half_mass else None

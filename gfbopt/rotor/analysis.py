@@ -70,13 +70,20 @@ class Case:
 
 
 def resolve_case(bearing: BearingGeometry, rotor: Rotor, load_newton: Optional[float], *,
-                 film: Optional[str] = None, seam_angle: Union[float, str, None] = None,
+                 film: Optional[str] = None, seam_angle_deg: Union[float, str, None] = None,
                  foil: Optional[str] = None, deflection_law: Optional[str] = None,
                  loss_factor: Optional[float] = None, options: Optional[ModelOptions] = None,
-                 grid: Grid = DEFAULT_GRID, cache: Optional[SolverCache] = None) -> Case:
-    """Check every input and fill the options: stated here, else ``options`` (e.g. a bearing
-    file's ``[model]`` table), else the defaults (:func:`~gfbopt.inputs.options.merge_options`).
-    Raises ParameterError before any solver is built."""
+                 grid: Grid = DEFAULT_GRID, cache: Optional[SolverCache] = None,
+                 seam_angle=None) -> Case:
+    """Check every input and fill the options: stated here, else ``options``, else the
+    bearing's own (``bearing.options``: its file's ``[model]`` table), else the defaults
+    (:func:`~gfbopt.inputs.options.merge_options`) — the one resolution every route uses.
+    ``seam_angle`` (radians in gfbopt <= 0.2) is refused with the conversion to
+    ``seam_angle_deg``.  Raises ParameterError before any solver is built."""
+    if seam_angle is not None:
+        from ..inputs.checks import seam_angle_migration
+
+        raise ParameterError("seam_angle", seam_angle, seam_angle_migration(seam_angle))
     if not isinstance(bearing, BearingGeometry):
         raise ParameterError("bearing", bearing, "must be a BearingGeometry (SI)")
     if not isinstance(rotor, Rotor):
@@ -84,9 +91,11 @@ def resolve_case(bearing: BearingGeometry, rotor: Rotor, load_newton: Optional[f
     if not isinstance(grid, Grid):
         raise ParameterError("grid", grid, "must be a Grid")
     point = OperatingPoint(1.0, load_newton)          # validates the load
-    stated = ModelOptions(film=film, seam_angle=seam_angle, foil=foil,
+    if options is not None and not isinstance(options, ModelOptions):
+        raise ParameterError("options", options, "must be ModelOptions")
+    stated = ModelOptions(film=film, seam_angle_deg=seam_angle_deg, foil=foil,
                           deflection_law=deflection_law, loss_factor=loss_factor)
-    resolved = merge_options(stated, options or ModelOptions())
+    resolved = merge_options(stated, bearing.options if options is None else options)
     case = Case(bearing, rotor, point.load_on(rotor), point.load_source(), resolved, grid,
                 cache if cache is not None else SolverCache(grid))
     case.model(1000.0)                                 # validates the combination (e.g. η, foil)
@@ -171,6 +180,10 @@ class StabilityResult:
     growth_rate [per radian of shaft rotation]
     speed_rpm, load_newton [N], rotor_mass_kg [kg], conventions (the options used)
     success, message, wall_time_s [s]
+    warnings : plausibility flags, each one sentence with the limit it breaks
+        (:func:`plausibility`): a film thinner than :data:`MIN_FILM_UM`, a load above the
+        rule-of-thumb capacity of the best bump-foil bearings, a least-damped mode whirling
+        above running speed.  Empty when nothing looks doubtful.
     """
 
     stable: bool
@@ -198,6 +211,7 @@ class StabilityResult:
     message: str
     wall_time_s: float
     linearisation: Optional[Linearisation] = field(default=None, repr=False, compare=False)
+    warnings: tuple = ()
 
     @property
     def verdict(self) -> str:
@@ -207,15 +221,66 @@ class StabilityResult:
         """Every field but the linearisation, plus ``verdict`` (JSON-ready; inf stays inf)."""
         out = {k: getattr(self, k) for k in self.__dataclass_fields__ if k != "linearisation"}
         out["verdict"] = self.verdict
+        out["warnings"] = list(self.warnings)
         return out
 
 
+#: a minimum film thinner than this is flagged [µm]: the order of the surface roughness,
+#: foil manufacturing tolerances and thermal/centrifugal growth of a foil bearing, where the
+#: smooth-film model is doubtful (the limit the bump design study uses too)
+MIN_FILM_UM = 5.0
+#: load capacity coefficient of the rule of thumb W = D (L D)(D N) [lbf/(in³ krpm)], with L and
+#: D in inches and N in krpm (DellaCorte, C. & Valco, M. J. (2000), Load capacity estimation
+#: of foil air journal bearings for oil-free turbomachinery applications, Tribol. Trans.
+#: 43(4):795–801, NASA/TM-2000-209782): about 1 for the best (third-generation) bump-foil
+#: bearings, 0.1–0.5 for earlier ones.  A load above it with D = 1 is flagged: even the best
+#: bearings of this size are not known to carry it at this speed.
+CAPACITY_COEFFICIENT = 1.0
+#: the rule of thumb's unit in SI: 1 lbf/(in³ krpm) in N/(m³ rpm)
+_LBF_PER_IN3_KRPM = 4.4482216152605 / 0.0254**3 / 1000.0
+
+
+def rule_of_thumb_capacity_newton(bearing: BearingGeometry, speed_rpm: float,
+                                  coefficient: float = CAPACITY_COEFFICIENT) -> float:
+    """W = D (L D)(D N) [N]: DellaCorte & Valco's load capacity of a foil journal bearing of
+    length L and diameter D [m] at N [rpm] (:data:`CAPACITY_COEFFICIENT`)."""
+    diameter = 2.0 * bearing.radius
+    return (coefficient * _LBF_PER_IN3_KRPM * bearing.length * diameter * diameter
+            * speed_rpm)
+
+
+def plausibility(case: Case, sol: StaticSolution, speed_rpm: float,
+                 mode_whirl_ratio: float) -> tuple:
+    """Flags on a result an engineer would question (see :class:`StabilityResult`): a film
+    thinner than :data:`MIN_FILM_UM`, a load above the rule-of-thumb capacity of the best
+    bump-foil bearings (:func:`rule_of_thumb_capacity_newton`; the model itself still finds an
+    equilibrium far beyond it, the foil deflecting by several clearances), a least-damped mode
+    above running speed."""
+    flags = []
+    film = film_thickness_um(sol.min_film, case.bearing.radial_clearance)
+    if film < MIN_FILM_UM:
+        flags.append(f"minimum film h_min = {film:.3g} µm is below {MIN_FILM_UM:g} µm: the "
+                     "order of surface roughness, foil tolerances and thermal/centrifugal "
+                     "growth, where the smooth-film model is doubtful")
+    capacity = rule_of_thumb_capacity_newton(case.bearing, speed_rpm)
+    if case.load_newton > capacity:
+        flags.append(f"load W0 = {case.load_newton:.4g} N is above the rule-of-thumb load "
+                     f"capacity of the best bump-foil bearings at {speed_rpm:.6g} rpm, "
+                     f"D (L D)(D N) = {capacity:.4g} N with D = {CAPACITY_COEFFICIENT:g} "
+                     "lbf/(in³ krpm) (DellaCorte & Valco 2000)")
+    if math.isfinite(mode_whirl_ratio) and mode_whirl_ratio > 1.0:
+        flags.append(f"the least-damped mode whirls above running speed (whirl ratio "
+                     f"{mode_whirl_ratio:.3g}): a rigid-rotor mode; a real rotor's flexible "
+                     "modes in that range are not modelled")
+    return tuple(flags)
+
+
 def stability(bearing: BearingGeometry, rotor: Rotor, operating_point: OperatingPoint, *,
-              film: Optional[str] = None, seam_angle: Union[float, str, None] = None,
+              film: Optional[str] = None, seam_angle_deg: Union[float, str, None] = None,
               foil: Optional[str] = None, deflection_law: Optional[str] = None,
               loss_factor: Optional[float] = None, options: Optional[ModelOptions] = None,
               grid: Grid = DEFAULT_GRID, cache: Optional[SolverCache] = None,
-              initial: Optional[StaticSolution] = None) -> StabilityResult:
+              initial: Optional[StaticSolution] = None, seam_angle=None) -> StabilityResult:
     """Is the rotor stable at this operating point, and with what margin?
 
     Parameters
@@ -223,10 +288,12 @@ def stability(bearing: BearingGeometry, rotor: Rotor, operating_point: Operating
     bearing : the bearing in SI (:class:`~gfbopt.inputs.bearing.BearingGeometry`)
     rotor : the rotor mass per bearing (:class:`~gfbopt.inputs.rotor.Rotor`) [kg]
     operating_point : speed [rpm] and static load per bearing [N] (None: W0 = M g)
-    film, seam_angle, foil, deflection_law, loss_factor : formulation options; None means not
-        stated, and then ``options`` (e.g. a bearing file's ``[model]`` table) or the default
+    film, seam_angle_deg, foil, deflection_law, loss_factor : formulation options; None means
+        not stated, and then ``options``, else ``bearing.options`` (the bearing file's
+        ``[model]`` table, as ``gfbopt stability --bearing FILE`` uses it), else the default
         of :func:`~gfbopt.inputs.options.resolve_model_options` applies (a seam with the
-        welded end 180° from the load).  seam_angle [rad] in [0, 2π), or 'max_film'.
+        welded end 180° from the load).  seam_angle_deg [deg] in [0, 360), or 'max_film'
+        (the old radian keyword ``seam_angle`` is refused).
     grid : the finite-difference grid; cache : a :class:`~gfbopt.static.SolverCache` to reuse
         builds across calls; initial : a previous equilibrium to warm-start from
 
@@ -241,7 +308,7 @@ def stability(bearing: BearingGeometry, rotor: Rotor, operating_point: Operating
         raise ParameterError("operating_point", operating_point,
                              "must be an OperatingPoint (speed in rpm, load in N)")
     case = resolve_case(bearing, rotor, operating_point.load_newton, film=film,
-                        seam_angle=seam_angle, foil=foil, deflection_law=deflection_law,
+                        seam_angle_deg=seam_angle_deg, seam_angle=seam_angle, foil=foil, deflection_law=deflection_law,
                         loss_factor=loss_factor, options=options, grid=grid, cache=cache)
     return assess(case, operating_point.speed_rpm, initial, t0)
 
@@ -281,4 +348,5 @@ def assess(case: Case, speed_rpm: float, initial: Optional[StaticSolution] = Non
         threshold_whirl_ratio=thr.whirl_ratio, mode_whirl_ratio=whirl, growth_rate=growth,
         speed_rpm=speed_rpm, load_newton=case.load_newton, rotor_mass_kg=case.rotor.mass_kg,
         conventions=case.conventions(), success=bool(thr.success and math.isfinite(growth)),
-        message="; ".join(notes), wall_time_s=time.perf_counter() - t0, linearisation=lin)
+        message="; ".join(notes), wall_time_s=time.perf_counter() - t0, linearisation=lin,
+        warnings=plausibility(case, sol, speed_rpm, whirl))

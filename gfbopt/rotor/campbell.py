@@ -31,7 +31,7 @@ each bearing's K and C frozen at the whirl ratio of the estimate (two fixed-poin
 γ = 1/2), so that every rigid-body root is found whatever its ratio to the shaft speed.
 Around each shift the eigenvalue whose eigenvector carries the most rotor motion is the
 rotor's mode; modes are labelled (:mod:`.modes`) and tracked over speed by continuity
-(:func:`track`).
+(:mod:`.tracking`).
 """
 from __future__ import annotations
 
@@ -234,7 +234,9 @@ def _unique(values: np.ndarray, tol: float = 1e-6) -> np.ndarray:
 
 def characteristic(rotor: RotorCase, states: SpeedStates, full: "FullSystem"):
     """s ↦ det of the scaled dynamic stiffness Λ D(s) Λ (per radian; each bearing's exact
-    Z̄_k(s) at complex s, with the Kelvin–Voigt foundation 1 + τ_f s when η > 0)."""
+    Z̄_k(s) at complex s: from its Krylov space where that has converged at s, else a direct
+    LU (:meth:`~gfbopt.rotor.supports.BearingState.at`); with the Kelvin–Voigt foundation
+    1 + τ_f s when η > 0, by a direct LU)."""
     body = rotor.system.body
     omega = states.omega
     lam = full.lam
@@ -244,10 +246,11 @@ def characteristic(rotor: RotorCase, states: SpeedStates, full: "FullSystem"):
                                                + s * gyroscopic_matrix(body))
         for st, t in zip(states.states, rotor.transforms):
             lin = st.linearisation
-            k = None
             if lin.loss_factor > 0 and lin.compliance is not None:
-                k = 1.0 + lin.loss_factor / full.reference_whirl * s
-            mat = mat + st.scale * (t.T @ impedance(lin, s, k) @ t)
+                z = impedance(lin, s, 1.0 + lin.loss_factor / full.reference_whirl * s)
+            else:                       # analytic in s: the Krylov space's value (.reduced)
+                z = st.at(s)
+            mat = mat + st.scale * (t.T @ z @ t)
         return complex(np.linalg.det(lam @ mat @ lam))
 
     return d
@@ -267,12 +270,14 @@ def _secant(f, guess: complex, tol: float = 1e-11, max_iter: int = 40) -> Option
 
 
 def system_modes(rotor: RotorCase, states: SpeedStates, inertia_scale: float = 1.0,
-                 reference_whirl: Optional[float] = None) -> list:
+                 reference_whirl: Optional[float] = None, guesses=()) -> list:
     """The rotor's modes at one speed, lowest whirl ratio first.
 
-    Each estimate (:func:`rotor_estimates`) is followed to a root of the exact characteristic
+    Each starting point — ``guesses`` first (per radian; in a Campbell diagram the previous
+    speed's modes at the same frequency in Hz, :mod:`.tracking`), then the estimates
+    (:func:`rotor_estimates`) — is followed to a root of the exact characteristic
     equation det D(s) = 0 (secant iteration, deflated by the roots already found so that two
-    estimates do not land on one root), and the root is then taken from the full sparse
+    starts do not land on one root), and the root is then taken from the full sparse
     system: the eigenvalue nearest it by shift-invert Arnoldi, whose eigenvector gives the
     shape.  ``reference_whirl``: ν_ref of the Kelvin–Voigt foil states (needed when η > 0)."""
     full = FullSystem(rotor, states, inertia_scale, reference_whirl)
@@ -280,7 +285,9 @@ def system_modes(rotor: RotorCase, states: SpeedStates, inertia_scale: float = 1
     names = rotor.names
     positions = [b.position for b in rotor.system.bearings]
     roots: list = []
-    for est in sorted(rotor_estimates(rotor, states, inertia_scale), key=lambda z: z.imag):
+    starts = [complex(g) for g in guesses] + sorted(
+        rotor_estimates(rotor, states, inertia_scale), key=lambda z: z.imag)
+    for est in starts:
         def deflated(s, found=tuple(roots)):
             value = d(s)
             for r in found:
@@ -304,42 +311,3 @@ def system_modes(rotor: RotorCase, states: SpeedStates, inertia_scale: float = 1
             -2 * math.pi * s.real / s.imag, -s.real / abs(s), sh["label"], sh,
             full.rotor_share(vec[:, j]), q))
     return sorted(modes, key=lambda m: m.whirl_ratio)
-
-
-def track(speeds: list, per_speed: list) -> list:
-    """Modes tracked over speed by continuity: a list of tracks, each a list of (speed,
-    SystemMode) — each speed's modes matched to the previous speed's by the shape correlation
-    |q̂ᵢᴴ q̂ⱼ|/(|q̂ᵢ| |q̂ⱼ|) less the relative frequency change (optimal assignment)."""
-    from scipy.optimize import linear_sum_assignment
-
-    tracks: list = []
-    last: list = []
-    for speed, modes in zip(speeds, per_speed):
-        if not last:
-            tracks = [[(speed, m)] for m in modes]
-            last = list(range(len(tracks)))
-            continue
-        prev = [tracks[t][-1][1] for t in last]
-        cost = np.array([[_distance(p, m) for m in modes] for p in prev])
-        rows, cols = linear_sum_assignment(cost) if cost.size else ((), ())
-        matched = set()
-        new_last = []
-        for r, c in zip(rows, cols):
-            tracks[last[r]].append((speed, modes[c]))
-            matched.add(c)
-            new_last.append(last[r])
-        for c, m in enumerate(modes):
-            if c not in matched:
-                tracks.append([(speed, m)])
-                new_last.append(len(tracks) - 1)
-        last = new_last
-    return tracks
-
-
-def _distance(a: SystemMode, b: SystemMode) -> float:
-    mac = abs(np.vdot(a.vector, b.vector)) / (np.linalg.norm(a.vector) *
-                                             np.linalg.norm(b.vector))
-    # whirl frequencies in Hz are continuous over speed (ratios are not at low speed)
-    df = abs(a.whirl_frequency_hz - b.whirl_frequency_hz) / max(a.whirl_frequency_hz,
-                                                                 b.whirl_frequency_hz)
-    return (1.0 - mac) + df

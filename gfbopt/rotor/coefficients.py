@@ -7,7 +7,10 @@ bearing at the running speed (γ = 1) misses it; the coefficients must be taken 
 frequency ("matched whirl", docs/PHYSICS.md §8).  The table below gives one row per frequency,
 in the layout such codes read (e.g. ROSS, Timbó et al. 2020, doi:10.21105/joss.02120):
 
-    frequency_hz, kxx, kxy, kyx, kyy [N/m], cxx, cxy, cyx, cyy [N s/m]
+    frequency_hz, kxx_N_per_m, kxy_N_per_m, kyx_N_per_m, kyy_N_per_m,
+    cxx_Ns_per_m, cxy_Ns_per_m, cyx_Ns_per_m, cyy_Ns_per_m
+
+(the names of :mod:`gfbopt.glossary`, the same in the CSV, the JSON and the DataFrame).
 
 Frame: x along the static load (the direction the load pushes the journal), y 90° ahead of it
 in the direction of rotation; k_ij = −∂F_i/∂x_j, c_ij = −∂F_i/∂ẋ_j for the film force F on the
@@ -26,12 +29,15 @@ import numpy as np
 import pandas as pd
 
 from ..errors import ParameterError
+from ..glossary import describe
 from ..inputs.bearing import BearingGeometry
 from ..inputs.conversions import (damping_scale, rpm_to_rad_per_s, stiffness_scale,
                                   whirl_frequency_hz, whirl_ratio_from_frequency)
 from ..linear import Linearisation, coefficients
 
-COLUMNS = ("frequency_hz", "kxx", "kxy", "kyx", "kyy", "cxx", "cxy", "cyx", "cyy")
+#: the glossary's names: stiffness [N/m] and damping [N s/m] in the load frame
+COLUMNS = ("frequency_hz", *(f"k{a}{b}_N_per_m" for a in "xy" for b in "xy"),
+           *(f"c{a}{b}_Ns_per_m" for a in "xy" for b in "xy"))
 FRAME = ("x along the static load, y 90 degrees ahead of it in the direction of rotation; "
          "k_ij = -dF_i/dx_j [N/m], c_ij = -dF_i/d(dx_j/dt) [N s/m]; frequency-dependent: take "
          "them at the whirl frequency (matched whirl)")
@@ -63,7 +69,7 @@ class CoefficientTable:
         """Column lists, the frame and the matched-whirl frequency (JSON-ready)."""
         return {"frame": self.frame, "speed_rpm": self.speed_rpm,
                 "matched_whirl_hz": self.matched_whirl_hz,
-                "units": {"frequency_hz": "Hz", "k": "N/m", "c": "N s/m"},
+                "units": {c: describe(c)[0] for c in ("whirl_ratio", *COLUMNS)},
                 **{c: self.table[c].tolist() for c in ("whirl_ratio", *COLUMNS)}}
 
 
@@ -98,9 +104,10 @@ def coefficient_table(lin: Linearisation, bearing: BearingGeometry, speed_rpm: f
     c_scale = damping_scale(bearing.ambient_pressure, bearing.radius, bearing.radial_clearance,
                             omega)
     frame = {"frequency_hz": whirl_frequency_hz(coeffs.whirl_ratio, omega)}
-    for name, values, scale in (("k", coeffs.stiffness, k_scale), ("c", coeffs.damping, c_scale)):
+    for name, unit, values, scale in (("k", "N_per_m", coeffs.stiffness, k_scale),
+                                      ("c", "Ns_per_m", coeffs.damping, c_scale)):
         for i, a in enumerate("xy"):
             for j, b in enumerate("xy"):
-                frame[f"{name}{a}{b}"] = values[:, i, j] * scale
+                frame[f"{name}{a}{b}_{unit}"] = values[:, i, j] * scale
     frame["whirl_ratio"] = coeffs.whirl_ratio
     return CoefficientTable(pd.DataFrame(frame), speed_rpm, matched)

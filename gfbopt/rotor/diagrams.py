@@ -4,9 +4,12 @@ modes tracked over speed), the linear imbalance response (Bode) and the per-bear
 answer.
 
 * :func:`campbell_diagram` — at each speed the rotor's modes from :func:`gfbopt.rotor.
-  campbell.system_modes`, tracked by continuity (:func:`~gfbopt.rotor.campbell.track`); the
-  table has the damped natural frequency [Hz], whirl ratio, log decrement, damping ratio and
-  growth rate of every mode.  With a loss factor the foil's Kelvin–Voigt states use at each
+  campbell.system_modes`, tracked by continuation and continuity (:mod:`gfbopt.rotor.
+  tracking`: MAC of the orbits at the bearings plus frequency continuity), each row with its
+  own shape's label and the track's name (``track_label``: the matched-whirl onset's label
+  where the track crosses zero damping, :func:`name_tracks`); the table has the damped
+  natural frequency [Hz], whirl ratio, log decrement, damping ratio and growth rate of every
+  mode.  With a loss factor the foil's Kelvin–Voigt states use at each
   speed the reference whirl ratio of the least-stable matched-whirl crossing there (stated in
   the column ``reference_whirl_ratio``; 1/2 when no mode crosses).
 * :func:`imbalance_response` — the synchronous response q̂ = D(iω)⁻¹ Q̂ (Ω = ω, γ = 1: the
@@ -29,13 +32,18 @@ from scipy.optimize import minimize_scalar
 from ..errors import ParameterError
 from ..inputs.conversions import rpm_to_rad_per_s
 from ..progress import progress
-from .campbell import system_modes, track
+from .campbell import system_modes
+from .tracking import assign, guesses, track_name
 from .onset import onset_speed
 from .rigid import dynamic_stiffness, imbalance_forces, station_matrix
 from .system import SpeedLine
 
 #: ν_ref of the Kelvin–Voigt foil states when no mode crosses at a speed [-]
 FALLBACK_REFERENCE_WHIRL = 0.5
+#: a track is the matched-whirl onset's mode when its frequency interpolated to the onset
+#: speed is within this of the onset's whirl frequency [-] (two modes crossing zero in one
+#: diagram interval are further apart than this, and a Campbell line is smooth in Hz)
+SAME_FREQUENCY = 0.05
 
 
 @dataclass(frozen=True)
@@ -58,10 +66,16 @@ def reference_whirl(line: SpeedLine, speed: float) -> float:
     return found[0].whirl_ratio if found else FALLBACK_REFERENCE_WHIRL
 
 
-def campbell_diagram(line: SpeedLine, speeds, show_progress: bool = True) -> CampbellDiagram:
-    """The Campbell diagram at ``speeds`` [rpm] (module docstring)."""
+def campbell_diagram(line: SpeedLine, speeds, show_progress: bool = True,
+                     onsets=None) -> CampbellDiagram:
+    """The Campbell diagram at ``speeds`` [rpm] (module docstring).  ``onsets``: the
+    matched-whirl onsets (:class:`~gfbopt.rotor.mode_search.ModeOnset`) that name the tracks
+    crossing zero damping next to them (:func:`name_tracks`)."""
     damped = any(c.options.loss_factor for c in line.rotor.cases)
-    done, per_speed, refs, skipped = [], [], [], []
+    positions = [b.position for b in line.rotor.system.bearings]
+    tracks: list = []
+    active: list = []
+    refs, skipped = {}, []
     with progress(total=len(speeds), desc="Campbell diagram", unit="speed",
                   enabled=show_progress) as bar:
         for speed in speeds:
@@ -71,26 +85,50 @@ def campbell_diagram(line: SpeedLine, speeds, show_progress: bool = True) -> Cam
                 skipped.append(states.failure)
                 continue
             ref = reference_whirl(line, speed) if damped else math.nan
-            per_speed.append(system_modes(line.rotor, states,
-                                          reference_whirl=ref if damped else None))
-            done.append(speed)
-            refs.append(ref)
+            start = guesses(tracks, active, speed, states.omega)
+            modes = system_modes(line.rotor, states, reference_whirl=ref if damped else None,
+                                 guesses=start)
+            active = assign(tracks, active, speed, states.omega, modes, positions, start)
+            refs[speed] = ref
     rows = []
-    for number, tr in enumerate(track(done, per_speed), 1):
-        for speed, m in tr:
+    names = name_tracks([[(s, m) for s, m, _ in tr] for tr in tracks], onsets or ())
+    for number, (tr, (name, zero)) in enumerate(zip(tracks, names), 1):
+        for speed, m, _ in tr:
             rows.append({"speed_rpm": speed, "mode": number, "label": m.label,
+                         "track_label": name, "track_zero_rpm": zero,
                          "whirl_frequency_hz": m.whirl_frequency_hz,
                          "whirl_ratio": m.whirl_ratio, "log_decrement": m.log_decrement,
                          "damping_ratio": m.damping_ratio,
                          "growth_rate_per_s": m.growth_rate_per_s,
-                         "reference_whirl_ratio": refs[done.index(speed)]})
+                         "reference_whirl_ratio": refs[speed]})
     table = pd.DataFrame(rows)
     if not table.empty:
-        # each track named by its most frequent label
-        names = table.groupby("mode")["label"].agg(lambda s: s.value_counts().index[0])
-        table["track_label"] = table["mode"].map(names)
         table = table.sort_values(["mode", "speed_rpm"]).reset_index(drop=True)
     return CampbellDiagram(table, skipped)
+
+
+def name_tracks(tracks: list, onsets) -> list:
+    """(name, zero-damping speed [rpm]) per track (:func:`gfbopt.rotor.tracking.track_name`);
+    a track whose log decrement falls through zero in the diagram interval that holds a
+    matched-whirl onset, at that onset's whirl frequency (within :data:`SAME_FREQUENCY`), is
+    named by the onset's label (the same mode: at the threshold the full system's
+    eigenvector is the matched-whirl one)."""
+    out = []
+    for rows in tracks:
+        name, zero = track_name(rows)
+        for (s0, m0), (s1, m1) in zip(rows, rows[1:]):
+            if not m0.log_decrement > 0 >= m1.log_decrement:
+                continue
+            for o in onsets:
+                if not (s0 <= o.onset_speed_rpm <= s1 and math.isfinite(o.whirl_frequency_hz)):
+                    continue
+                f = m0.whirl_frequency_hz + (m1.whirl_frequency_hz - m0.whirl_frequency_hz) * (
+                    (o.onset_speed_rpm - s0) / (s1 - s0))
+                if abs(f / o.whirl_frequency_hz - 1.0) <= SAME_FREQUENCY:
+                    name = o.label
+            break
+        out.append((name, zero))
+    return out
 
 
 @dataclass(frozen=True)

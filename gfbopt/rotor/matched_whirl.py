@@ -28,14 +28,15 @@ LU and one Krylov space per bearing for all modes and frequencies).
 """
 from __future__ import annotations
 
+import itertools
 import math
 from dataclasses import dataclass, field
 
 import numpy as np
-import scipy.linalg as sla
 from scipy.optimize import brentq, linear_sum_assignment
 
 from .modes import shape
+from .probe import probe, probe_scale
 from .rigid import gyroscopic_matrix, mass_matrix
 from .supports import WHIRL_RANGE, RotorCase, SpeedStates
 
@@ -59,7 +60,9 @@ class ModeCrossing:
 
     inertia_scale μ_c [-] (the rotor whirls in this mode when its inertias are μ_c times
     the real ones; μ_c > 1 stable), whirl_ratio γ = Ω/ω [-], whirl_frequency_hz [Hz],
-    label ('forward conical', …), shape (:func:`gfbopt.rotor.modes.shape`), vector q̂."""
+    label ('forward conical', …), shape (:func:`gfbopt.rotor.modes.shape`), vector q̂;
+    note: why μ_c = 0 when the probe found the rotor unstable below every crossing
+    (:mod:`.probe`), else empty."""
 
     inertia_scale: float
     whirl_ratio: float
@@ -67,6 +70,7 @@ class ModeCrossing:
     label: str
     shape: dict
     vector: np.ndarray = field(repr=False, compare=False)
+    note: str = ""
 
 
 def bearing_stiffness(rotor: RotorCase, states: SpeedStates, whirl_ratio: float) -> np.ndarray:
@@ -84,53 +88,92 @@ def inertia_roots(rotor: RotorCase, states: SpeedStates, whirl_ratio: float
     big = whirl_ratio * omega
     body = rotor.system.body
     a = big**2 * mass_matrix(body) - 1j * big * omega * gyroscopic_matrix(body)
-    nu, vec = sla.eig(a, bearing_stiffness(rotor, states, whirl_ratio))
+    # K_b is the bearings' dynamic stiffness, regular wherever Z_k is: the standard problem
+    # K_b⁻¹A v = ν v has the pencil's eigenpairs (numpy's driver costs a third of scipy's)
+    nu, vec = np.linalg.eig(np.linalg.solve(bearing_stiffness(rotor, states, whirl_ratio), a))
     return nu, vec
 
 
-def _branches(values: np.ndarray) -> np.ndarray:
-    """Reorder each row of ``values`` (samples, 4) to continue the previous row's roots."""
-    out = values.copy()
-    for k in range(1, len(out)):
-        cost = np.abs(out[k - 1][:, None] - values[k][None, :])
-        _, cols = linear_sum_assignment(cost)
-        out[k] = values[k][cols]
-    return out
+def inertia_roots_many(rotor: RotorCase, states: SpeedStates, whirl_ratios) -> np.ndarray:
+    """ν (n, 4) of :func:`inertia_roots` at every whirl ratio of an array, in one batch."""
+    gammas = np.asarray(whirl_ratios, dtype=float)
+    omega = states.omega
+    body = rotor.system.body
+    big = gammas * omega
+    a = (big[:, None, None] ** 2 * mass_matrix(body)[None]
+         - 1j * (big * omega)[:, None, None] * gyroscopic_matrix(body)[None])
+    kb = np.zeros((gammas.size, 4, 4), dtype=complex)
+    for t, st in zip(rotor.transforms, states.states):
+        kb += t.T[None] @ (st.scale * st.nondimensional_many(gammas)) @ t[None]
+    return np.linalg.eigvals(np.linalg.solve(kb, a))
 
 
-def _ambiguous(a: np.ndarray, b: np.ndarray) -> bool:
-    """True when continuing roots ``a`` to ``b`` is unsafe: some root moves by more than
-    :data:`FOLLOW_FRACTION` of its distance to the nearest other root."""
-    sep = np.abs(a[:, None] - a[None, :]) + np.diag(np.full(a.size, np.inf))
-    return bool(np.any(np.abs(b - a) > FOLLOW_FRACTION * sep.min(axis=1)))
+#: every ordering of four roots (rows), for the optimal assignment of :func:`_assignments`
+_ORDERINGS = np.array(list(itertools.permutations(range(4))))
+
+
+def _assignments(values: np.ndarray) -> np.ndarray:
+    """For each interval of the scan ``values`` (samples, 4; roots in any order): perm (n − 1,
+    4) such that root perm[k, i] of point k + 1 continues root i of point k — the assignment
+    with the least total move (optimal, by enumeration; the continuation of a root does not
+    depend on how the roots of point k are ordered)."""
+    a, b = values[:-1], values[1:]
+    if values.shape[1] != 4:
+        return np.array([linear_sum_assignment(np.abs(x[:, None] - y[None, :]))[1]
+                         for x, y in zip(a, b)], dtype=int).reshape(len(a), values.shape[1])
+    cost = np.abs(b[:, _ORDERINGS] - a[:, None, :]).sum(axis=2)        # (n − 1, 24)
+    return _ORDERINGS[np.argmin(cost, axis=1)]
+
+
+def _ambiguous(values: np.ndarray, perm: np.ndarray) -> np.ndarray:
+    """For each interval: True when continuing its roots is unsafe — some root moves by more
+    than :data:`FOLLOW_FRACTION` of its distance to the nearest other root."""
+    a = values[:-1]
+    b = np.take_along_axis(values[1:], perm, axis=1)
+    sep = np.abs(a[:, :, None] - a[:, None, :])
+    sep[:, np.arange(a.shape[1]), np.arange(a.shape[1])] = np.inf
+    return np.any(np.abs(b - a) > FOLLOW_FRACTION * sep.min(axis=2), axis=1)
+
+
+def _branches(values: np.ndarray, perm: np.ndarray) -> np.ndarray:
+    """``values`` with each row reordered to continue the previous row's roots (branches)."""
+    order = np.empty(values.shape, dtype=int)
+    order[0] = np.arange(values.shape[1])
+    for k in range(len(perm)):
+        order[k + 1] = perm[k][order[k]]
+    return np.take_along_axis(values, order, axis=1)
 
 
 def _adaptive_scan(roots, gammas: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """The scan with midpoints inserted wherever following the branches is ambiguous
     (:func:`_ambiguous`), until it is not or :data:`MAX_SAMPLES` points are reached; the
-    roots of each point ordered by branch."""
-    pts = {float(g): roots(g) for g in gammas}
-    while len(pts) < MAX_SAMPLES:
+    roots of each point ordered by branch.  ``roots`` maps an array of whirl ratios to their
+    roots (n, 4)."""
+    pts = dict(zip((float(g) for g in gammas), roots(np.asarray(gammas, dtype=float))))
+    while True:
         g = np.array(sorted(pts))
-        vals = _branches(np.array([pts[x] for x in g]))
-        split = [0.5 * (g[k] + g[k + 1]) for k in range(len(g) - 1)
-                 if g[k + 1] - g[k] > MIN_SPACING and _ambiguous(vals[k], vals[k + 1])]
+        vals = np.array([pts[x] for x in g])
+        perm = _assignments(vals)
+        if len(pts) >= MAX_SAMPLES:
+            break
+        wide = (np.diff(g) > MIN_SPACING) & _ambiguous(vals, perm)
+        split = [float(x) for x in 0.5 * (g[:-1] + g[1:])[wide]][:MAX_SAMPLES - len(pts)]
         if not split:
-            return g, vals
-        for x in split[:MAX_SAMPLES - len(pts)]:
-            pts[x] = roots(x)
-    g = np.array(sorted(pts))
-    return g, _branches(np.array([pts[x] for x in g]))
+            break
+        pts.update(zip(split, roots(np.array(split))))
+    return g, _branches(vals, perm)
 
 
 def crossings(rotor: RotorCase, states: SpeedStates, whirl_range=WHIRL_RANGE,
               samples: int = SAMPLES) -> list:
     """Every mode crossing (:class:`ModeCrossing`) with μ_c > 0 at this speed, lowest μ_c
-    first (module docstring).  ``states`` must be complete (no bearing over capacity)."""
+    first (module docstring), preceded by one with μ_c = 0 when the probe below the first
+    crossing finds a growing mode (:mod:`.probe`: the massless journal is unstable).
+    ``states`` must be complete (no bearing over capacity)."""
     gammas = np.linspace(whirl_range[0], whirl_range[1], samples)
     for st in states.states:
         st.prepare(gammas)
-    gammas, values = _adaptive_scan(lambda g: inertia_roots(rotor, states, g)[0], gammas)
+    gammas, values = _adaptive_scan(lambda g: inertia_roots_many(rotor, states, g), gammas)
     samples = len(gammas)
     names = rotor.names
     positions = [b.position for b in rotor.system.bearings]
@@ -144,7 +187,26 @@ def crossings(rotor: RotorCase, states: SpeedStates, whirl_range=WHIRL_RANGE,
                                values[k + 1, branch], positions, names)
             if crossing is not None and not any(_same(crossing, c) for c in found):
                 found.append(crossing)
-    return sorted(found, key=lambda c: (c.inertia_scale, c.whirl_ratio))
+    found.sort(key=lambda c: (c.inertia_scale, c.whirl_ratio))
+    low_scale = _probed(rotor, states, found, whirl_range, positions, names)
+    return ([low_scale] if low_scale is not None else []) + found
+
+
+def _probed(rotor, states, found, whirl_range, positions, names):
+    """The probe below the smallest crossing (:mod:`.probe`): a crossing with μ_c = 0 (the
+    rotor whirls at every inertia scale below the first crossing) when it is unstable."""
+    mu = probe_scale([c.inertia_scale for c in found])
+    p = probe(rotor, states, mu, whirl_range)
+    if not p.unstable:
+        return None
+    sh = shape(p.vector, positions, names)
+    after = (f"; a crossing at μ_c = {found[0].inertia_scale:.4g} ({found[0].label}) may "
+             "bound a stable range above it" if found else "")
+    note = (f"unstable for every inertia scale: already at μ = {mu:.3g} a {sh['label']} "
+            f"mode whirling at γ = {p.whirl_ratio:.3f} grows at {p.growth_rate:.3g} per "
+            f"radian (the massless journal is unstable){after}")
+    return ModeCrossing(0.0, p.whirl_ratio, float(p.whirl_ratio * states.omega / (2 * math.pi)),
+                        sh["label"], sh, p.vector, note)
 
 
 def _refine(rotor, states, low, high, nu_low, nu_high, positions, names):

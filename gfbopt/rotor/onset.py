@@ -5,23 +5,56 @@ groups: Λ = 6 μ ω R²/(p_a c²) grows as ω and M̄ = M c ω²/W0 as ω², wh
 fixed.  The rotor whirls where M̄(ω) reaches the threshold M̄c(Λ(ω), W̄0); the onset speed is the
 lowest such speed in the range asked (docs/PHYSICS.md §8, "Onset speed").
 
-Search: the threshold is computed on a scan of speeds spaced geometrically by a ratio of at
-most :data:`SCAN_RATIO` = 1.25 (M̄ grows by at most 1.56× from one scan speed to the next),
-lowest speed first; the first scan interval where the sign of (M̄c − M̄) changes from + to − is
-refined by Brent's method to :data:`SPEED_TOLERANCE` (relative).  At every scan speed the
+Scan.  Both searches bracket the onset the same way: the threshold is computed on a scan of
+speeds spaced geometrically by a ratio of at most :data:`SCAN_RATIO` = 1.25 (M̄ grows by at
+most 1.56× from one scan speed to the next), lowest speed first, and the onset lies in the
+first scan interval where the sign of (M̄c − M̄) changes from + to −.  At every scan speed the
 threshold is the least-stable one over all root branches (:func:`gfbopt.linear.linear_threshold`
-scans whirl ratios 0.02–1.2 and keeps the smallest critical mass, including the extra low-whirl
-crossings, and 0 when the massless journal is already unstable), so the least-stable root
-wins.  Inside the bracket, when both ends whirl at nearly the same ratio (within
-:data:`SAME_BRANCH`), the refinement scans only a window of ±0.1 around it (8 whirl ratios
-instead of 24; with the one-LU Krylov scan of :mod:`gfbopt.linear.krylov` the saving is
-small); otherwise it scans the full range.  An unstable window narrower than
-one scan interval can be missed; give a narrower range to look closer.  One static build
-serves the whole line (Λ is a parameter of the CasADi model), and each speed warm-starts from
-the previous equilibrium.
+scans whirl ratios 0.02–1.2 and keeps the smallest critical mass, including the extra
+low-whirl crossings, and 0 when the massless journal is already unstable).  An unstable
+window narrower than one scan interval can be missed; give a narrower range to look closer.
+One static build serves the whole line (Λ is a parameter of the CasADi model).
+
+``method="secant"`` (default; :mod:`.speed_line`).  Inside the bracket, secant steps on
+g = ln(M̄c/M̄) against ln N (nearly linear: M̄ ∝ N², M̄c varies slowly), safeguarded by
+bisection, to :data:`SECANT_TOLERANCE`; each step's threshold is local — Newton's method on
+the whirl ratio from the previous crossing (:func:`gfbopt.linear.crossings.local_crossing`,
+~2 sparse LUs) — and each static solve starts from the nearest speed with the Newton fast
+path (:mod:`gfbopt.static.newton`).  The answer is confirmed by a full threshold at the
+secant's converged point: it must put the root within :data:`CONFIRM_TOLERANCE` of it
+(otherwise another branch took over, and Brent's method on full thresholds refines the
+bracket, as the reference does).
+
+Coarse guide (``coarse_grid``; "auto" uses :data:`COARSE_GRID` on grids with at least
+:data:`GUIDE_FACTOR` times its cells).  The scan runs on the coarse grid (thresholds there
+are ~15× cheaper at 144 × 36); the lowest speed is always solved on the fine grid too (it is
+the result's first row and decides "unstable at the lower end").  The coarse onset starts the
+fine secant (its static from the coarse equilibrium interpolated onto the fine grid, a first
+Newton step with the coarse slope).  The first scan speed above the fine onset is then solved
+on the fine grid: it must be unstable there, as the end of the fine scan's bracket would be
+(otherwise the search goes on as a fine scan); it is also where the scan method finds its
+smallest margin.  Risk and check: the fine and coarse thresholds differ by the grid error, so
+a coarse scan speed could have the wrong sign.  Every scan speed below the fine onset (every
+one, when the coarse scan finds no onset) whose coarse mass margin is below
+:data:`COARSE_MARGIN` is recomputed on the fine grid, and a fine sign change there restarts the
+refinement in that interval on the fine grid.  What is not checked: a scan speed whose coarse
+margin exceeds :data:`COARSE_MARGIN` but whose fine threshold is unstable — a grid error of
+M̄c larger than that margin, several times the largest difference measured (the constant's
+comment).  When the coarse scan finds no onset, the smallest margin is taken on the fine grid
+at the coarse scan's smallest-margin speed.  The result says the guide was used
+(``coarse_grid``, the answer's text; every scan row names its grid and threshold).  When the
+guide itself fails (e.g. the coarse grid cannot carry a load the fine grid carries, its
+capacity differing by the grid error), the search goes on without it and ``notes`` says so.
+
+``method="scan"``: the reference search of gfbopt 0.2 — IPOPT warm starts, full thresholds,
+Brent's method on f = (M̄c − M̄)/(M̄c + M̄) to :data:`SPEED_TOLERANCE` (relative), the whirl
+window narrowed to ±0.1 (8 ratios) when both bracket ends are on one branch.  The two agree to
+≤ 1e-6 (tests/verification/test_onset_search.py); their cost is compared in
+benchmarks/bench_onset.py.
 """
 from __future__ import annotations
 
+import dataclasses
 import math
 import time
 from dataclasses import dataclass, field
@@ -36,15 +69,40 @@ from ..inputs.conversions import rpm_to_rad_per_s, whirl_frequency_hz
 from ..inputs.grid import DEFAULT_GRID, Grid
 from ..inputs.options import ModelOptions
 from ..inputs.rotor import Rotor
+from ..progress import progress as progress_bar
 from ..static import SolverCache
-from .analysis import Case, resolve_case, threshold_at
+from .analysis import resolve_case
+from .speed_line import Guide, GuideFailed, SpeedLine, secant_root
 
 #: largest ratio between successive scan speeds [-]
 SCAN_RATIO = 1.25
-#: relative tolerance of the refined onset speed [-] (the grid's own error on M̄c is ~1e-3)
+#: relative tolerance of the reference (``method="scan"``) onset speed [-]
 SPEED_TOLERANCE = 1e-4
 #: bracket ends whose threshold whirl ratios differ by less than this are on one branch [-]
 SAME_BRANCH = 0.05
+#: ways to search (module docstring)
+METHODS = ("secant", "scan")
+#: the secant refinement stops after a step on ln N of at most this [-]; the error of its
+#: last point is then of the order of this times the step before (superlinear convergence;
+#: measured ≤ 1e-9 against the reference at a tight tolerance).  Steps much smaller would
+#: only resolve the noise of g (~1e-10: the static and threshold tolerances)
+SECANT_TOLERANCE = 1e-6
+#: the full threshold at the secant's onset must put the root within this of it, in ln N
+#: (relative speed; one Newton step on g) [-]
+CONFIRM_TOLERANCE = 1e-7
+#: tolerance of the coarse guide's secant (its onset only starts the fine one) [-]
+COARSE_TOLERANCE = 1e-5
+#: the coarse guide's grid for ``coarse_grid="auto"``
+COARSE_GRID = Grid(36, 10)
+#: "auto" uses the guide on grids with at least this many times its cells
+GUIDE_FACTOR = 8
+#: a coarse scan speed with a mass margin below this is recomputed on the fine grid [-]: a
+#: coarse margin of 0.15 stays positive on the fine grid unless M̄c(coarse)/M̄c(fine) − 1 >
+#: 0.15 (about 13 % of M̄c).  Measured |M̄c(36 × 10)/M̄c(144 × 36) − 1| ≤ 3.0 % (Ruscitto,
+#: 2 kg, 20 N: periodic, max-film, seam 180°, local law η = 0.3; 5,000–20,000 rpm), and
+#: against 72 × 20 below a third of this margin on 50 random cases
+#: (tests/verification/test_onset_search.py, slow tier)
+COARSE_MARGIN = 0.15
 
 
 def check_speed_range(speed_range) -> tuple[float, float]:
@@ -60,6 +118,22 @@ def check_speed_range(speed_range) -> tuple[float, float]:
     return low, high
 
 
+def check_coarse_grid(coarse_grid, grid: Grid) -> Optional[Grid]:
+    """The guide's grid: None or "none" (no guide), "auto" (:data:`COARSE_GRID` when ``grid``
+    has at least :data:`GUIDE_FACTOR` times its cells), a Grid or 'NTHETAxNZ' coarser than
+    ``grid``; ParameterError otherwise."""
+    if coarse_grid is None or coarse_grid == "none":
+        return None
+    if coarse_grid == "auto":
+        cells = COARSE_GRID.n_theta * COARSE_GRID.n_z
+        return COARSE_GRID if grid.n_theta * grid.n_z >= GUIDE_FACTOR * cells else None
+    guide = coarse_grid if isinstance(coarse_grid, Grid) else Grid.parse(coarse_grid)
+    if not (guide.n_theta <= grid.n_theta and guide.n_z <= grid.n_z and guide != grid):
+        raise ParameterError("coarse_grid", str(guide), f"must be coarser than the grid "
+                             f"{grid} (or None, or 'auto')")
+    return guide
+
+
 @dataclass(frozen=True)
 class OnsetResult:
     """The onset speed of whirl of a rotor along its mass–speed line (SI, per bearing).
@@ -69,12 +143,17 @@ class OnsetResult:
     whirl_frequency_hz : whirl frequency at the onset [Hz]; whirl_ratio γ there [-]
     stable_over_range : True when the rotor is stable at every scanned speed
     unstable_at_lower_end : True when it is already unstable at the lowest speed
-    smallest_margin : smallest M_crit/M − 1 over the speeds evaluated [-], and
+    smallest_margin : smallest M_crit/M − 1 over the speeds evaluated on the grid [-], and
         smallest_margin_speed_rpm where it occurs [rpm]
-    speed_range_rpm : the range searched; scan : one row per speed evaluated (speed_rpm,
-        mass_parameter, critical_mass_parameter, mass_margin, whirl_ratio)
+    speed_range_rpm : the range searched; scan : one row per speed evaluated on the grid
+        (speed_rpm, mass_parameter, critical_mass_parameter, mass_margin, whirl_ratio,
+        bearing_number, eccentricity, min_film_thickness_um [µm], grid, threshold "full" | "local", static_solver
+        "ipopt" | "newton", message), lowest speed first; coarse_scan : the same for the
+        coarse guide's evaluations (empty without one)
+    method : "secant" or "scan"; coarse_grid : the guide's grid ("" when none was used)
     rotor_mass_kg, load_newton [N], conventions (options used), evaluations (threshold
-    computations), success, message, wall_time_s [s]
+    computations on the grid), success, message (empty on success), notes (remarks of the
+    thresholds, e.g. "stable for every rotor mass" at a speed), wall_time_s [s]
     """
 
     onset_speed_rpm: float
@@ -93,20 +172,26 @@ class OnsetResult:
     success: bool = True
     message: str = ""
     wall_time_s: float = 0.0
+    method: str = "secant"
+    coarse_grid: str = ""
+    coarse_scan: list = field(default_factory=list, repr=False)
+    notes: str = ""
 
     @property
     def answer(self) -> str:
         """The answer in one line."""
         low, high = self.speed_range_rpm
+        guide = f" (scan guided by a {self.coarse_grid} grid)" if self.coarse_grid else ""
         if self.unstable_at_lower_end:
             return (f"unstable already at {low:.6g} rpm: the onset lies below the range "
                     f"(mass margin there {self.scan[0]['mass_margin']:+.3g})")
         if self.stable_over_range:
             return (f"stable over the whole range {low:.6g}–{high:.6g} rpm (smallest mass "
                     f"margin {self.smallest_margin:+.3g} at {self.smallest_margin_speed_rpm:.6g}"
-                    " rpm)")
+                    f" rpm){guide}")
         return (f"onset of whirl at {self.onset_speed_rpm:.6g} rpm, whirling at "
-                f"{self.whirl_frequency_hz:.4g} Hz (whirl ratio {self.whirl_ratio:.3f})")
+                f"{self.whirl_frequency_hz:.4g} Hz (whirl ratio {self.whirl_ratio:.3f})"
+                f"{guide}")
 
     def to_dict(self) -> dict:
         out = {k: getattr(self, k) for k in self.__dataclass_fields__}
@@ -116,10 +201,12 @@ class OnsetResult:
 
 def onset_speed(bearing: BearingGeometry, rotor: Rotor, load_newton: Optional[float],
                 speed_range, *, film: Optional[str] = None,
-                seam_angle: Union[float, str, None] = None, foil: Optional[str] = None,
+                seam_angle_deg: Union[float, str, None] = None, foil: Optional[str] = None,
                 deflection_law: Optional[str] = None, loss_factor: Optional[float] = None,
                 options: Optional[ModelOptions] = None, grid: Grid = DEFAULT_GRID,
-                cache: Optional[SolverCache] = None) -> OnsetResult:
+                cache: Optional[SolverCache] = None, method: str = "secant",
+                coarse_grid: Union[Grid, str, None] = "auto",
+                progress: bool = False, seam_angle=None) -> OnsetResult:
     """The lowest speed in ``speed_range`` [rpm] at which the rotor whirls (module docstring).
 
     Parameters
@@ -127,8 +214,13 @@ def onset_speed(bearing: BearingGeometry, rotor: Rotor, load_newton: Optional[fl
     bearing : the bearing in SI; rotor : mass per bearing [kg]
     load_newton : static load per bearing W0 [N], fixed along the line (None: W0 = M g)
     speed_range : (low, high) [rpm]
-    film, seam_angle, foil, deflection_law, loss_factor, options, grid, cache : as for
+    film, seam_angle_deg, foil, deflection_law, loss_factor, options, grid, cache : as for
         :func:`gfbopt.rotor.stability`
+    method : "secant" (default) or "scan" (the reference search of gfbopt 0.2)
+    coarse_grid : with "secant", the grid of a coarse scan that guides the search: "auto"
+        (default: :data:`COARSE_GRID` on grids with ≥ :data:`GUIDE_FACTOR`× its cells), None
+        (none), or a coarser Grid / 'NTHETAxNZ'; refused with "scan"
+    progress : report progress on stderr (:mod:`gfbopt.progress`); off for studies/workers
 
     Returns
     -------
@@ -137,84 +229,203 @@ def onset_speed(bearing: BearingGeometry, rotor: Rotor, load_newton: Optional[fl
     """
     t0 = time.perf_counter()
     low, high = check_speed_range(speed_range)
-    case = resolve_case(bearing, rotor, load_newton, film=film, seam_angle=seam_angle,
+    if method not in METHODS:
+        raise ParameterError("method", method, f"must be one of: {', '.join(METHODS)}")
+    if not isinstance(grid, Grid):
+        raise ParameterError("grid", grid, "must be a Grid")
+    guide_grid = check_coarse_grid(coarse_grid, grid)
+    if method == "scan" and coarse_grid not in (None, "auto", "none"):
+        raise ParameterError("coarse_grid", coarse_grid, "is used by method 'secant' only")
+    guide_grid = guide_grid if method == "secant" else None
+    case = resolve_case(bearing, rotor, load_newton, film=film, seam_angle_deg=seam_angle_deg,
+                        seam_angle=seam_angle,
                         foil=foil, deflection_law=deflection_law, loss_factor=loss_factor,
                         options=options, grid=grid, cache=cache)
-    line = _SpeedLine(case)
     count = max(2, math.ceil(math.log(high / low) / math.log(SCAN_RATIO) - 1e-9) + 1)
     speeds = [low * (high / low) ** (k / (count - 1)) for k in range(count)]
-    common = dict(speed_range_rpm=(low, high), rotor_mass_kg=rotor.mass_kg,
-                  load_newton=case.load_newton, conventions=case.conventions())
+    line = SpeedLine(case, fast_path=(method == "secant"))
+    guide, note = None, ""
+    if guide_grid is not None:
+        guide = Guide(dataclasses.replace(case, grid=guide_grid))
+        line.guide = guide
+    with progress_bar(total=count, desc="onset speed", unit="speed",
+                      enabled=progress) as bar:
+        if method == "scan":
+            kind, onset = _scan_search(line, speeds, bar)
+        else:
+            try:
+                kind, onset = _secant_search(line, speeds, guide, bar)
+            except GuideFailed as exc:          # e.g. the coarse grid cannot carry the load
+                note = f"the {guide_grid} guide failed ({exc}): searched on {grid} alone"
+                guide = line.guide = None
+                kind, onset = _secant_search(line, speeds, None, bar)
+        bar.set_postfix_str("done")
+        bar.update(max(0, count - bar.n))
+    return _result(line, guide, kind, onset, method, t0, note, speed_range_rpm=(low, high),
+                   rotor_mass_kg=rotor.mass_kg, load_newton=case.load_newton,
+                   conventions=case.conventions())
+
+
+# ------------------------------------------------------------------- the reference
+def _scan_search(line: SpeedLine, speeds: list, bar) -> tuple:
+    """gfbopt 0.2's search: scan, then Brent's method on f with full thresholds."""
     previous = None
     for speed in speeds:
-        value = line(speed)
+        value = line.f(speed)
+        bar.update(1)
         if value > 0:
             previous = speed
             continue
         if previous is None:
-            return line.result(math.nan, None, unstable_at_lower_end=True, t0=t0, **common)
-        line.narrow(previous, speed)
-        root = brentq(line, previous, speed, xtol=SPEED_TOLERANCE * previous,
+            return "unstable", math.nan
+        _narrow(line, previous, speed)
+        bar.set_postfix_str("refining")
+        root = brentq(line.f, previous, speed, xtol=SPEED_TOLERANCE * previous,
                       rtol=SPEED_TOLERANCE)
-        return line.result(root, line.nearest(root), t0=t0, **common)
-    return line.result(math.nan, None, stable_over_range=True, t0=t0, **common)
+        return "onset", root
+    return "stable", math.nan
 
 
-class _SpeedLine:
-    """f(N) = (M̄c − M̄)/(M̄c + M̄) along the rotor's mass–speed line (> 0 stable), in [−1, 1]
-    even when M̄c is 0 or infinite; remembers every evaluation and warm-starts each static
-    solve from the equilibrium at the nearest speed already solved."""
+def _narrow(line: SpeedLine, low: float, high: float) -> None:
+    """Refine between scan speeds ``low`` and ``high``: scan whirl ratios near the
+    threshold's branch only, when both ends are on the same one."""
+    ends = [r["whirl_ratio"] for r in line.rows if r["speed_rpm"] in (low, high)]
+    if len(ends) == 2 and all(map(math.isfinite, ends)) and abs(
+            ends[0] - ends[1]) < SAME_BRANCH:
+        line.threshold_options = dict(whirl_range=(max(0.02, min(ends) - 0.1),
+                                                   max(ends) + 0.1), samples=8)
 
-    def __init__(self, case: Case):
-        self.case = case
-        self.rows: list[dict] = []
-        self._solutions: dict = {}
-        self._values: dict = {}
-        self._threshold_options: dict = {}
 
-    def narrow(self, low: float, high: float) -> None:
-        """Refine between scan speeds ``low`` and ``high``: scan whirl ratios near the
-        threshold's branch only, when both ends are on the same one."""
-        ends = [r["whirl_ratio"] for r in self.rows if r["speed_rpm"] in (low, high)]
-        if len(ends) == 2 and all(map(math.isfinite, ends)) and abs(
-                ends[0] - ends[1]) < SAME_BRANCH:
-            self._threshold_options = dict(whirl_range=(max(0.02, min(ends) - 0.1),
-                                                        max(ends) + 0.1), samples=8)
+# --------------------------------------------------------------- the secant search
+def _secant_search(line: SpeedLine, speeds: list, guide: Optional[SpeedLine], bar) -> tuple:
+    """Scan (on the guide when there is one), then the secant refinement (module doc)."""
+    scan = guide if guide is not None else line
+    bracket, first = None, True
+    for k, speed in enumerate(speeds):
+        value = scan.f(speed)
+        bar.update(1)
+        if value <= 0:
+            bracket = (speeds[k - 1], speed) if k else None
+            break
+        first = False
+    if guide is not None and line.f(speeds[0]) > 0 and first:
+        # unstable at the low end on the guide only: search without it
+        return _secant_search(line, speeds, None, bar)
+    if line.f(speeds[0]) <= 0:
+        return "unstable", math.nan
+    bar.set_postfix_str("refining")
+    if guide is None:
+        return ("stable", math.nan) if bracket is None else ("onset", _refine(line, *bracket))
+    onset = None
+    if bracket is not None:
+        onset = _guided(line, guide, *bracket, speeds[0], speeds[-1])
+    unstable = _confirm(line, guide, speeds, onset if onset is not None else math.inf)
+    if unstable is not None:                 # the fine grid disagrees with the coarse sign
+        below = max(s for s in speeds if s < unstable)
+        if line.f(below) <= 0:               # and below it too: the plain fine scan
+            return _secant_search(line, speeds, None, bar)
+        return "onset", _refine(line, below, unstable)
+    if onset is None and bracket is not None:    # the guided refinement did not converge
+        return _secant_search(line, speeds, None, bar)
+    if onset is None:
+        worst = min(guide.rows, key=lambda r: r["mass_margin"])["speed_rpm"]
+        line.f(worst)                        # the smallest margin, on the fine grid
+        return "stable", math.nan
+    above = [s for s in speeds if s > onset]
+    if above and line.f(above[0]) > 0:       # the fine scan would not bracket it: scan on
+        return _secant_search(line, speeds, None, bar)
+    return "onset", onset
 
-    def __call__(self, speed: float) -> float:
-        if speed in self._values:           # Brent's method starts with the bracket's ends
-            return self._values[speed]
-        nearest = min(self._solutions, key=lambda s: abs(math.log(s / speed)), default=None)
-        sol, _, thr = threshold_at(self.case, speed, self._solutions.get(nearest),
-                                   **self._threshold_options)
-        self._solutions[speed] = sol
-        mbar, mcrit = self.case.mass_parameter(speed), thr.critical_mass
-        value = 1.0 if math.isinf(mcrit) else (mcrit - mbar) / (mcrit + mbar)
-        self._values[speed] = value
-        self.rows.append({"speed_rpm": speed, "mass_parameter": mbar,
-                          "critical_mass_parameter": mcrit,
-                          "mass_margin": mcrit / mbar - 1.0, "whirl_ratio": thr.whirl_ratio,
-                          "bearing_number": sol.model.bearing_number,
-                          "eccentricity": sol.eccentricity, "message": thr.message})
-        return value
 
-    def nearest(self, speed: float) -> dict:
-        """The evaluation closest to ``speed``."""
-        return min(self.rows, key=lambda r: abs(r["speed_rpm"] - speed))
+def _confirm(line: SpeedLine, guide: SpeedLine, speeds: list, upto: float) -> Optional[float]:
+    """The first scan speed below ``upto`` where the fine grid is unstable, among those whose
+    coarse mass margin is below :data:`COARSE_MARGIN` (recomputed on the fine grid); None
+    when every scan speed below ``upto`` is stable on the fine grid by that test."""
+    for speed in speeds[1:]:
+        if speed >= upto:
+            break
+        coarse = guide.full(speed)
+        if coarse["mass_margin"] >= COARSE_MARGIN:
+            continue
+        if line.f(speed) <= 0:
+            return speed
+    return None
 
-    def result(self, onset: float, row: Optional[dict], t0: float,
-               stable_over_range: bool = False, unstable_at_lower_end: bool = False,
-               **common) -> OnsetResult:
-        rows = sorted(self.rows, key=lambda r: r["speed_rpm"])
-        worst = min(rows, key=lambda r: r["mass_margin"])
-        gamma = row["whirl_ratio"] if row is not None else math.nan
-        frequency = (whirl_frequency_hz(gamma, rpm_to_rad_per_s(onset)) if row is not None
-                     else math.nan)
-        notes = sorted({r["message"] for r in rows if r["message"]})
-        return OnsetResult(onset_speed_rpm=onset, whirl_frequency_hz=frequency,
-                           whirl_ratio=gamma, stable_over_range=stable_over_range,
-                           unstable_at_lower_end=unstable_at_lower_end,
-                           smallest_margin=worst["mass_margin"],
-                           smallest_margin_speed_rpm=worst["speed_rpm"], scan=rows,
-                           evaluations=len(rows), message="; ".join(notes),
-                           wall_time_s=time.perf_counter() - t0, **common)
+
+def _guided(line: SpeedLine, guide: SpeedLine, low: float, high: float, lowest: float,
+            highest: float) -> Optional[float]:
+    """The fine onset from the coarse one: the coarse secant in [low, high], then the fine
+    secant from there with a first Newton step on the coarse slope; None if it fails."""
+    coarse = secant_root(guide, low, high, COARSE_TOLERANCE)
+    if coarse is None:
+        return None
+    u0, slope = coarse
+    row = line.local(math.exp(u0))
+    if not (math.isfinite(row["g"]) and slope < 0):
+        return None
+    u1 = u0 - row["g"] / slope
+    found = secant_root(line, lowest, highest, SECANT_TOLERANCE, start=[(u0, row["g"])],
+                    first=u1)
+    return _confirmed(line, found)
+
+
+def _refine(line: SpeedLine, low: float, high: float) -> float:
+    """The onset in the fine bracket [low, high] (f(low) > 0 ≥ f(high), full thresholds)."""
+    found = _confirmed(line, secant_root(line, low, high, SECANT_TOLERANCE))
+    if found is not None:
+        return found
+    # another branch took over, or the secant did not converge: the reference refinement
+    stable = max(r["speed_rpm"] for r in line.rows if r["f"] > 0 and r["threshold"] == "full"
+                 and r["speed_rpm"] < high)
+    unstable = min(r["speed_rpm"] for r in line.rows if r["f"] <= 0 and r["speed_rpm"] > stable
+                   and r["threshold"] == "full")
+    return brentq(line.f, stable, unstable, xtol=SECANT_TOLERANCE * stable,
+                  rtol=4 * 2.2e-16)
+
+
+def _confirmed(line: SpeedLine, found) -> Optional[float]:
+    """The converged speed if the full threshold there puts the root within
+    :data:`CONFIRM_TOLERANCE` of it (one Newton step on g with the secant's slope), else None
+    (another branch took over, or the secant failed)."""
+    if found is None:
+        return None
+    u, slope = found
+    speed = math.exp(u)
+    full = line.full(speed)["g"]
+    if not (math.isfinite(full) and math.isfinite(slope) and slope != 0):
+        return None
+    return speed if abs(full / slope) <= CONFIRM_TOLERANCE else None
+
+
+# --------------------------------------------------------------------- the result
+#: scan-row keys kept for the search only
+_INTERNAL = ("f", "g", "root")
+
+
+def _rows(line: Optional[SpeedLine]) -> list:
+    if line is None:
+        return []
+    return [{k: v for k, v in r.items() if k not in _INTERNAL}
+            for r in sorted(line.rows, key=lambda r: r["speed_rpm"])]
+
+
+def _result(line: SpeedLine, guide: Optional[SpeedLine], kind: str, onset: float,
+            method: str, t0: float, note: str = "", **common) -> OnsetResult:
+    rows = _rows(line)
+    worst = min(rows, key=lambda r: r["mass_margin"])
+    gamma = frequency = math.nan
+    if kind == "onset":
+        row = min(rows, key=lambda r: abs(r["speed_rpm"] - onset))
+        gamma = row["whirl_ratio"]
+        frequency = whirl_frequency_hz(gamma, rpm_to_rad_per_s(onset))
+    notes = sorted({r["message"] for r in rows + _rows(guide) if r["message"]})
+    notes += [note] if note else []
+    return OnsetResult(onset_speed_rpm=onset, whirl_frequency_hz=frequency, whirl_ratio=gamma,
+                       stable_over_range=kind == "stable",
+                       unstable_at_lower_end=kind == "unstable",
+                       smallest_margin=worst["mass_margin"],
+                       smallest_margin_speed_rpm=worst["speed_rpm"], scan=rows,
+                       evaluations=len(rows), message="", notes="; ".join(notes),
+                       wall_time_s=time.perf_counter() - t0, method=method,
+                       coarse_grid=str(guide.case.grid) if guide is not None else "",
+                       coarse_scan=_rows(guide), **common)

@@ -161,12 +161,12 @@ def bearing_loads(system: RotorSystem) -> tuple[BearingLoad, BearingLoad]:
 def seam_from_load(options: ModelOptions, away_from_gravity_deg: float) -> ModelOptions:
     """The options with a stated seam angle re-measured from the bearing's own load: the seam
     is fixed in the housing, stated from gravity; the load is α − α_g from gravity."""
-    angle = options.seam_angle
+    angle = options.seam_angle_deg
     if angle is None or angle == MAX_FILM or away_from_gravity_deg == 0.0:
         return options
-    shifted = (angle - math.radians(away_from_gravity_deg)) % (2.0 * math.pi)
-    shifted = 0.0 if shifted >= 2.0 * math.pi else shifted
-    return ModelOptions(film=options.film, seam_angle=shifted, foil=options.foil,
+    shifted = (angle - away_from_gravity_deg) % 360.0
+    shifted = 0.0 if shifted >= 360.0 else shifted
+    return ModelOptions(film=options.film, seam_angle_deg=shifted, foil=options.foil,
                         deflection_law=options.deflection_law, loss_factor=options.loss_factor)
 
 

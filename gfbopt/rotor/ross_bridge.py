@@ -17,6 +17,9 @@ ROSS: the bearing force on the shaft is −K u − C u̇.
 """
 from __future__ import annotations
 
+import os
+import sys
+import warnings
 from typing import Sequence
 
 import numpy as np
@@ -60,13 +63,78 @@ def bearing_tables(line: SpeedLine, bearing: int, speeds_rpm: Sequence[float],
     return out
 
 
+def import_ross():
+    """The ``ross`` module, imported quietly: its import prints a REFPROP banner on file
+    descriptor 1 from C code (which would corrupt JSON output) and raises a UserWarning from
+    ccp (an error under pytest's ``filterwarnings = error``); both are silenced for the import
+    only.  ParameterError (with the reason of :func:`ross_available`) when it is missing."""
+    ok, why = ross_available()
+    if not ok:
+        raise ParameterError("ross", None, why)
+    sys.stdout.flush()
+    saved = os.dup(1)
+    try:
+        with open(os.devnull, "w") as null:
+            os.dup2(null.fileno(), 1)
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore")
+                import ross
+    finally:
+        os.dup2(saved, 1)
+        os.close(saved)
+    return ross
+
+
 def bearing_element(node: int, tables: dict, **kwargs):
     """A ROSS ``BearingElement`` at ``node`` from :func:`bearing_tables` (needs ROSS ≥ 3.0,
     which takes speed × frequency tables)."""
-    import ross  # optional extra: ParameterError below names it when missing
-
+    ross = import_ross()
     return ross.BearingElement(node, **{n: tables[n] for n in NAMES},
                                speed=tables["speed"], frequency=tables["frequency"], **kwargs)
+
+
+#: Young's modulus of the "rigid" shaft of :func:`ross_rotor` [Pa] (10⁴ × steel: its first
+#: bending mode lies far above the rigid-body modes) and its density [kg/m³] (its mass,
+#: ~1e-5 kg, is negligible against the disk's)
+RIGID_MODULUS = 2.1e15
+MASSLESS_DENSITY = 1.0
+
+
+def ross_rotor(line: SpeedLine, speeds_rpm: Sequence[float], frequencies_hz: Sequence[float],
+               shaft_modulus: float = RIGID_MODULUS, shaft_diameter: float = 0.02):
+    """A ROSS shaft-and-disk rotor of the gfbopt rotor on ``line``: nodes at the two bearings
+    and the centre of gravity, one disk at the CG with the rotor's m, I_t and I_p, a
+    massless shaft (modulus ``shaft_modulus`` [Pa], outer diameter [m]: rigid by default, a
+    steel modulus makes it flexible), and at each bearing node a :func:`bearing_element` on
+    the bearing's speed × frequency tables (:func:`bearing_tables`)."""
+    ross = import_ross()
+    system = line.rotor.system
+    positions = sorted({b.position for b in system.bearings} | {0.0})
+    material = ross.Material(name="gfbopt_shaft", rho=MASSLESS_DENSITY, E=shaft_modulus,
+                             G_s=shaft_modulus / 2.6)
+    shaft = [ross.ShaftElement(L=b - a, idl=0.0, odl=shaft_diameter, material=material, n=k)
+             for k, (a, b) in enumerate(zip(positions, positions[1:]))]
+    body = system.body
+    disk = ross.DiskElement(n=positions.index(0.0), m=body.mass, Id=body.transverse_inertia,
+                            Ip=body.polar_inertia)
+    bearings = [bearing_element(positions.index(b.position),
+                                bearing_tables(line, k, speeds_rpm, frequencies_hz))
+                for k, b in enumerate(system.bearings)]
+    return ross.Rotor(shaft, [disk], bearings)
+
+
+def ross_modes(rotor, speed_rpm: float, num_modes: int = 8) -> list:
+    """ROSS's matched-whirl modes at ``speed_rpm`` (``run_modal(speed, matched_whirl=True)``;
+    its warnings, e.g. a whirl frequency that did not converge, are kept): dicts of
+    whirl_frequency_hz, log_decrement, whirl ('Forward', 'Backward', 'Mixed')."""
+    omega = rpm_to_rad_per_s(speed_rpm)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        modal = rotor.run_modal(omega, num_modes=num_modes, matched_whirl=True)
+    notes = sorted({str(w.message) for w in caught})
+    return [{"whirl_frequency_hz": float(wd / (2 * np.pi)), "log_decrement": float(ld),
+             "whirl": str(direction), "warnings": notes}
+            for wd, ld, direction in zip(modal.wd, modal.log_dec, modal.whirl_direction())]
 
 
 def ross_available() -> tuple[bool, str]:
@@ -74,9 +142,15 @@ def ross_available() -> tuple[bool, str]:
     try:
         import importlib.util
 
+        import importlib.metadata
+
         if importlib.util.find_spec("ross") is None:
             return False, ("ROSS is not installed (optional extra: pip install -e \".[ross]\","
                            " ross-rotordynamics >= 3.0 needs Python >= 3.12)")
+        version = importlib.metadata.version("ross-rotordynamics")
     except (ImportError, ValueError) as exc:  # pragma: no cover
         return False, f"ROSS cannot be located ({exc})"
+    if int(version.split(".")[0]) < 3:
+        return False, (f"ROSS {version} is installed; the speed x frequency bearing tables "
+                       "and matched whirl need ross-rotordynamics >= 3.0 (Python >= 3.12)")
     return True, ""

@@ -11,14 +11,22 @@ crash: :func:`support_states` returns the states it could build and the message 
 largest load the bearing carries) for the one it could not.
 
 The impedance at a speed comes from one sparse LU per bearing and a block Krylov space
-(:class:`gfbopt.linear.krylov.ShiftedImpedance`) over the whirl ratios scanned; a whirl
-ratio where the space has not converged (or outside it) gets a direct LU
-(:func:`gfbopt.linear.impedance`).  Values are cached per whirl ratio.
+(:class:`gfbopt.linear.krylov.ShiftedImpedance`) over the whirl ratios scanned, read in Schur
+form (:class:`gfbopt.rotor.reduced.ReducedImpedance`: a triangular solve per value, at whirl
+ratios on the axis and at complex s near it alike); a value where the space has not
+converged (or a whirl ratio outside it) gets a direct LU (:func:`gfbopt.linear.impedance`).
+Values on the axis are cached per whirl ratio.
+
+Statics: each speed's equilibrium starts from the nearest speed already solved with the Newton
+fast path (:mod:`gfbopt.static.newton`, a few sparse LUs on the build's own equations); when it
+does not converge, :func:`gfbopt.rotor.analysis.equilibrium` solves with IPOPT (warm, then
+cold) and reports a load beyond capacity.  Both give the same state (≤ 1e-10,
+tests/verification/test_static_newton.py).
 """
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Optional
 
 import numpy as np
@@ -31,10 +39,16 @@ from ..inputs.rotor import Rotor
 from ..inputs.rotor_system import RotorSystem
 from ..linear import Linearisation, impedance, linearise
 from ..linear.krylov import ShiftedImpedance
-from ..static import SolverCache, StaticSolution
+from ..static import SolverCache, StaticSolution, solve_static
 from .analysis import Case, LoadCapacityError, equilibrium, resolve_case
+from .reduced import ReducedImpedance
 from .rigid import BearingLoad, bearing_loads, seam_from_load, transformations
+from .speed_line import transferred_start
 
+#: the grid of a fine grid's first (cold) equilibrium, interpolated as its start, and the
+#: cell ratio from which it is used [-]
+COLD_GRID = Grid(36, 10)
+COLD_FACTOR = 4
 #: whirl ratios the threshold scans by default (those of gfbopt.linear.linear_threshold) [-]
 WHIRL_RANGE = (0.02, 1.2)
 
@@ -124,6 +138,7 @@ class BearingState:
                                                                             case.grid))
         self.whirl_range = tuple(whirl_range)
         self._model: Optional[ShiftedImpedance] = None
+        self._reduced: Optional[ReducedImpedance] = None
         self._values: dict = {}
         self.direct_solves = 0
 
@@ -131,29 +146,71 @@ class BearingState:
         if self._model is None:
             try:
                 self._model = ShiftedImpedance(self.linearisation, self.whirl_range)
+                self._reduced = ReducedImpedance(self._model)
             except RuntimeError:          # A + s0 B exactly singular: direct solves only
                 self._model = False
         return self._model or None
 
     def prepare(self, whirl_ratios) -> None:
         """Converge the Krylov space at these whirl ratios (the threshold's scan)."""
-        model = self._krylov()
-        if model is not None:
-            model.converge(np.asarray(whirl_ratios, dtype=float))
+        if self._krylov() is not None:
+            self._reduced.converge(1j * np.asarray(whirl_ratios, dtype=float))
 
     def nondimensional(self, whirl_ratio: float) -> np.ndarray:
         """Z̄(iγ) (2 × 2, bearing load frame) [-]."""
         g = float(whirl_ratio)
         if g in self._values:
             return self._values[g]
-        model = self._krylov()
         low, high = self.whirl_range
-        if model is not None and low <= g <= high and model.converged(g):
-            z = model.evaluate(g)[0]
-        else:
+        z = self._from_space(1j * g) if low <= g <= high else None
+        if z is None:
             z = impedance(self.linearisation, 1j * g)
             self.direct_solves += 1
         self._values[g] = z
+        return z
+
+    def nondimensional_many(self, whirl_ratios) -> np.ndarray:
+        """Z̄(iγ) at every whirl ratio of an array (n, 2, 2) [-]: the values of
+        :meth:`nondimensional`, those of the Krylov space in one batch."""
+        gammas = [float(g) for g in whirl_ratios]
+        new = [g for g in dict.fromkeys(gammas) if g not in self._values]
+        low, high = self.whirl_range
+        inside = [g for g in new if low <= g <= high]
+        if inside and self._krylov() is not None:
+            z, ok = self._reduced.evaluate_many(1j * np.array(inside))
+            for g, zg, good in zip(inside, z, ok):
+                if good:
+                    self._values[g] = zg
+        return np.array([self.nondimensional(g) for g in gammas])
+
+    def _from_space(self, s: complex) -> Optional[np.ndarray]:
+        return self._reduced.value(s) if self._krylov() is not None else None
+
+    def schur_model(self):
+        """The Krylov space in Schur form (:meth:`gfbopt.rotor.reduced.ReducedImpedance.
+        schur`), or None without one."""
+        return self._reduced.schur() if self._krylov() is not None else None
+
+    def converged_at(self, s: complex) -> bool:
+        """True when the Krylov space gives Z̄(s) to its tolerance as it is."""
+        return self._krylov() is not None and self._reduced.evaluate(complex(s))[1]
+
+    def extend_at(self, s: complex) -> bool:
+        """Extend the Krylov space until it gives Z̄(s); True when it grew."""
+        if self._krylov() is None:
+            return False
+        before = self._model.blocks
+        self._reduced.value(complex(s))
+        return self._model.blocks > before
+
+    def at(self, s: complex) -> np.ndarray:
+        """Z̄(s) at complex s [-] (per radian; s = iγ on the axis) with the hysteretic
+        foundation of the upper half plane (exact for η = 0): from the Krylov space where it
+        has converged (:mod:`.reduced`), else a direct LU."""
+        z = self._from_space(complex(s))
+        if z is None:
+            z = impedance(self.linearisation, complex(s))
+            self.direct_solves += 1
         return z
 
     def impedance(self, whirl_ratio: float) -> np.ndarray:
@@ -189,16 +246,19 @@ class SpeedStates:
 
 
 def support_states(rotor: RotorCase, speed_rpm: float, initial: Optional[tuple] = None,
-                   whirl_range=WHIRL_RANGE) -> SpeedStates:
-    """Each bearing's equilibrium and linearisation at ``speed_rpm`` [rpm]; ``initial``: the
-    previous speed's (warm starts).  A bearing loaded beyond its capacity is reported in
-    ``failure`` (bearing, message with the largest load it carries), not raised."""
+                   whirl_range=WHIRL_RANGE, guesses: Optional[tuple] = None) -> SpeedStates:
+    """Each bearing's equilibrium and linearisation at ``speed_rpm`` [rpm]; warm starts from
+    ``guesses`` (StaticSolution per bearing, e.g. :func:`predicted_starts`) or else from
+    ``initial`` (a nearby speed's BearingState per bearing).  A bearing loaded beyond its
+    capacity is reported in ``failure`` (bearing, message with the largest load it carries),
+    not raised."""
     states = []
     failure = None
     for k, (case, load) in enumerate(zip(rotor.cases, rotor.loads)):
         guess = initial[k].solution if initial and initial[k] is not None else None
+        guess = guesses[k] if guesses and guesses[k] is not None else guess
         try:
-            sol = equilibrium(case, speed_rpm, guess)
+            sol = _equilibrium(case, speed_rpm, guess)
         except LoadCapacityError as exc:
             states.append(None)
             failure = failure or {"bearing": load.name, "speed_rpm": speed_rpm,
@@ -206,6 +266,50 @@ def support_states(rotor: RotorCase, speed_rpm: float, initial: Optional[tuple] 
             continue
         states.append(BearingState(case, load, speed_rpm, sol, whirl_range))
     return SpeedStates(speed_rpm, tuple(states), failure)
+
+
+def predicted_starts(near: SpeedStates, other: Optional[SpeedStates], speed_rpm: float
+                     ) -> tuple:
+    """Each bearing's warm start at ``speed_rpm``: the equilibrium at the nearest speed solved
+    (``near``), extrapolated (or interpolated) linearly in ln N through ``other``'s when given
+    — the Newton fast path then needs fewer steps.  None for a bearing ``near`` lacks."""
+    out = []
+    for k, st in enumerate(near.states):
+        if st is None:
+            out.append(None)
+            continue
+        sol = st.solution
+        two = other.states[k] if other is not None else None
+        span = math.log(near.speed_rpm / other.speed_rpm) if two is not None else 0.0
+        if two is None or span == 0.0 or two.solution.state.shape != sol.state.shape:
+            out.append(sol)
+            continue
+        step = math.log(speed_rpm / near.speed_rpm) / span
+        out.append(replace(sol, state=sol.state + step * (sol.state - two.solution.state)))
+    return tuple(out)
+
+
+def _equilibrium(case: Case, speed_rpm: float, guess: Optional[StaticSolution]
+                 ) -> StaticSolution:
+    """The Newton fast path from ``guess`` (IPOPT from ``guess`` when it does not converge),
+    else a cold :func:`~gfbopt.rotor.analysis.equilibrium` (module docstring).  Without a
+    guess on a grid of at least :data:`COLD_FACTOR` times :data:`COLD_GRID`'s cells, the
+    guess is the equilibrium on that coarse grid interpolated onto this one
+    (:func:`gfbopt.rotor.speed_line.transferred_start`): a cold IPOPT solve on the fine grid
+    costs several seconds at 144 × 36."""
+    model = case.model(speed_rpm)
+    if guess is None and (case.grid.n_theta * case.grid.n_z
+                          >= COLD_FACTOR * COLD_GRID.n_theta * COLD_GRID.n_z):
+        try:
+            coarse = equilibrium(replace(case, grid=COLD_GRID), speed_rpm)
+            guess = transferred_start(coarse, case.cache(model, case.grid), model)
+        except LoadCapacityError:
+            guess = None
+    if guess is None:
+        return equilibrium(case, speed_rpm)
+    sol = solve_static(model, load=case.load, solver=case.cache(model, case.grid),
+                       initial=guess, continuation=False, fast_path=True)
+    return sol if sol.success else equilibrium(case, speed_rpm)
 
 
 def weight_note(system: RotorSystem) -> str:

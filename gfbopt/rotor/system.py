@@ -12,9 +12,20 @@ Along the speed line the rotor, its bearings' loads and its imbalance are fixed;
 the rotor whirls in that mode when its inertias are μ_c times the real ones).  A mode's onset
 speed is where μ_c(ω) falls through 1.  Speeds are scanned geometrically with a ratio of at
 most 1.25 (as the one-bearing :func:`gfbopt.rotor.onset_speed`), and the first scan interval of
-each mode where μ_c − 1 changes sign from + to − is refined by Brent's method to a relative
-:data:`SPEED_TOLERANCE`, following that mode (same label, nearest whirl ratio) inside the
-bracket.  An unstable window narrower than a scan interval can be missed.
+each mode where μ_c − 1 changes sign from + to − is refined, following that mode (same label,
+nearest whirl ratio) inside the bracket:
+
+* ``method="secant"`` (default): secant steps on g = ln μ_c against ln N (nearly linear: the
+  inertia terms grow as N², the bearings' impedance slowly), safeguarded by bisection inside the
+  bracket, until the next step from the latest point would be at most
+  :data:`SECANT_TOLERANCE` on ln N (the latest point, whose error that step estimates, is the
+  onset; 2–3 speeds per mode); Brent's method as below if it has not converged in
+  :data:`SECANT_STEPS` steps;
+* ``method="scan"`` (the reference of gfbopt 0.2): Brent's method on (μ_c − 1)/(μ_c + 1) to a
+  relative :data:`SPEED_TOLERANCE` (5–7 speeds per mode).
+
+The two agree to the reference's tolerance (a test).  An unstable window narrower than a scan
+interval can be missed.
 
 A speed at which a bearing's share exceeds its load capacity is reported (``capacity`` rows,
 with the largest load it carries), not raised; the modes are searched over the other speeds.
@@ -26,46 +37,23 @@ import time
 from dataclasses import dataclass, field, replace
 from typing import Optional
 
-from scipy.optimize import brentq
-
+from ..errors import ParameterError
 from ..inputs.grid import DEFAULT_GRID, Grid
 from ..inputs.options import ModelOptions
 from ..inputs.rotor_system import RotorSystem
 from ..progress import progress
 from ..static import SolverCache
-from .matched_whirl import ModeCrossing, by_mode, crossings
-from .onset import SCAN_RATIO, check_speed_range
-from .supports import WHIRL_RANGE, RotorCase, SpeedStates, resolve_rotor, support_states
+from .matched_whirl import ModeCrossing, crossings
+from .mode_search import (ONSET, SECANT_TOLERANCE, STABLE, UNSTABLE_LOW,  # noqa: F401
+                          ModeOnset, guided_onset, mode_onset)
+from .onset import SCAN_RATIO, check_coarse_grid, check_speed_range
+from .supports import (WHIRL_RANGE, RotorCase, SpeedStates, predicted_starts, resolve_rotor,
+                       support_states)
 
-#: relative tolerance of each mode's onset speed [-] (as gfbopt.rotor.onset)
+#: relative tolerance of each mode's onset speed with method "scan" [-] (Brent)
 SPEED_TOLERANCE = 1e-4
-
-
-@dataclass(frozen=True)
-class ModeOnset:
-    """The onset of one mode along the speed line.
-
-    label ('forward conical', …); onset_speed_rpm [rpm] (nan: none in the range, see
-    status); whirl_ratio, whirl_frequency_hz [Hz] at the onset; shape at the onset
-    (:func:`gfbopt.rotor.modes.shape`); status: 'onset', 'unstable at the lowest speed' or
-    'stable over the range'; smallest_inertia_margin: the least μ_c − 1 over the scan [-]."""
-
-    label: str
-    onset_speed_rpm: float
-    whirl_ratio: float
-    whirl_frequency_hz: float
-    shape: dict
-    status: str
-    smallest_inertia_margin: float
-
-    def to_dict(self) -> dict:
-        return {"label": self.label, "onset_speed_rpm": self.onset_speed_rpm,
-                "whirl_ratio": self.whirl_ratio,
-                "whirl_frequency_hz": self.whirl_frequency_hz, "status": self.status,
-                "smallest_inertia_margin": self.smallest_inertia_margin, "shape": self.shape}
-
-
-ONSET, UNSTABLE_LOW, STABLE = "onset", "unstable at the lowest speed", "stable over the range"
+#: ways to refine each mode's onset (module docstring)
+METHODS = ("secant", "scan")
 
 
 @dataclass(frozen=True)
@@ -119,11 +107,13 @@ class SpeedLine:
 
     def states(self, speed: float) -> SpeedStates:
         if speed not in self._states:
-            ok = [s for s, st in self._states.items() if st.ok]
-            near = min(ok, key=lambda s: abs(math.log(s / speed)), default=None)
-            self._states[speed] = support_states(
-                self.rotor, speed, self._states[near].states if near else None,
-                self.whirl_range)
+            ok = sorted((s for s, st in self._states.items() if st.ok),
+                        key=lambda s: abs(math.log(s / speed)))
+            guesses = (predicted_starts(self._states[ok[0]],
+                                        self._states[ok[1]] if len(ok) > 1 else None, speed)
+                       if ok else None)
+            self._states[speed] = support_states(self.rotor, speed, None, self.whirl_range,
+                                                 guesses=guesses)
         return self._states[speed]
 
     def crossings(self, speed: float) -> list:
@@ -146,18 +136,32 @@ class SpeedLine:
         c = self.follow(speed, label, whirl)
         return 1.0 if c is None else (c.inertia_scale - 1) / (c.inertia_scale + 1)
 
+    def scan_rows(self) -> list:
+        """One row per (speed, crossing) evaluated (speed_rpm, label, inertia_scale, whirl
+        ratio, whirl frequency [Hz], grid)."""
+        grid = str(self.rotor.grid)
+        return [{"speed_rpm": s, "label": c.label, "inertia_scale": c.inertia_scale,
+                 "whirl_ratio": c.whirl_ratio, "whirl_frequency_hz": c.whirl_frequency_hz,
+                 "grid": grid}
+                for s in sorted(self._crossings) if self._crossings[s]
+                for c in self._crossings[s]]
+
     def equilibria(self) -> list:
+        """One row per (speed, bearing) solved: the equilibrium (:meth:`~gfbopt.rotor.
+        supports.BearingState.summary`) or the load-capacity message, with the grid."""
+        grid = str(self.rotor.grid)
         rows = []
         for speed in sorted(self._states):
             st = self._states[speed]
             for k, s in enumerate(st.states):
                 if s is not None:
-                    rows.append(s.summary())
+                    rows.append(s.summary() | {"grid": grid})
                 else:
                     load = self.rotor.loads[k]
                     rows.append({"bearing": load.name, "speed_rpm": speed,
                                  "load_newton": load.magnitude, "load_exceeds_capacity": True,
-                                 "message": (st.failure or {}).get("message", "")})
+                                 "message": (st.failure or {}).get("message", ""),
+                                 "grid": grid})
         return rows
 
 
@@ -170,75 +174,88 @@ def scan_speeds(low: float, high: float) -> list:
 def rotor_onsets(system: RotorSystem, speed_range, *, grid: Grid = DEFAULT_GRID,
                  options: Optional[ModelOptions] = None, cache: Optional[SolverCache] = None,
                  whirl_range=WHIRL_RANGE, speed_tolerance: float = SPEED_TOLERANCE,
-                 show_progress: bool = True, line: Optional[SpeedLine] = None) -> RotorOnsets:
+                 show_progress: bool = True, line: Optional[SpeedLine] = None,
+                 method: str = "secant", coarse_grid="auto") -> RotorOnsets:
     """The onset speed of each mode of ``system`` in ``speed_range`` = (low, high) [rpm]
     (module docstring).  ``options`` stated here override every bearing's formulation;
-    ``line`` reuses a :class:`SpeedLine` (e.g. the Campbell diagram's)."""
+    ``line`` reuses a :class:`SpeedLine` (e.g. the Campbell diagram's); ``method``: "secant"
+    or "scan" (the reference refinement); ``coarse_grid``: the grid of the scan's guide
+    with "secant" — "auto" (:data:`gfbopt.rotor.onset.COARSE_GRID` on grids with at least
+    :data:`~gfbopt.rotor.onset.GUIDE_FACTOR` times its cells, as the one-bearing onset),
+    None, or a coarser Grid / 'NTHETAxNZ'."""
     t0 = time.perf_counter()
     low, high = check_speed_range(speed_range)
+    if method not in METHODS:
+        raise ParameterError("method", method, f"must be one of: {', '.join(METHODS)}")
     rotor = line.rotor if line is not None else resolve_rotor(system, grid, cache, options)
+    guide_grid = check_coarse_grid(coarse_grid, rotor.grid) if method == "secant" else None
     line = line or SpeedLine(rotor, whirl_range)
+    guide = (SpeedLine(replace(rotor, grid=guide_grid,
+                               cases=tuple(replace(c, grid=guide_grid) for c in rotor.cases)),
+                       line.whirl_range) if guide_grid is not None else None)
+    scan_line = guide or line
     speeds = scan_speeds(low, high)
     with progress(total=len(speeds), desc="rotor onset scan", unit="speed",
                   enabled=show_progress) as bar:
         for speed in speeds:
-            line.crossings(speed)
+            scan_line.crossings(speed)
             bar.update(1)
-    valid = [s for s in speeds if line.crossings(s) is not None]
-    labels = sorted({c.label for s in valid for c in line.crossings(s)})
-    modes = [_mode_onset(line, valid, label, speed_tolerance) for label in labels]
+    modes = _modes(line, guide, speeds, speed_tolerance, method)
     modes.sort(key=lambda m: (math.isnan(m.onset_speed_rpm), m.onset_speed_rpm, m.label))
     first = next((m for m in modes if m.status == ONSET), None)
     low_unstable = [m.label for m in modes if m.status == UNSTABLE_LOW]
-    capacity = [line.states(s).failure for s in speeds if not line.states(s).ok]
+    lines = [x for x in (line, guide) if x is not None]
+    capacity = [x.states(s).failure for x in lines for s in sorted(x._states)
+                if not x.states(s).ok]
     if low_unstable:
+        notes = sorted({m.note for m in modes if m.status == UNSTABLE_LOW and m.note})
         reason = (f"unstable already at the lowest valid speed in mode(s) "
-                  f"{', '.join(low_unstable)}: the onset lies below the range")
+                  f"{', '.join(low_unstable)}: the onset lies below the range"
+                  + "".join(f" ({n})" for n in notes))
         first = None
     elif first is None:
         reason = ("no onset in the range: every mode is stable from "
-                  f"{low:.6g} to {high:.6g} rpm" if valid else
+                  f"{low:.6g} to {high:.6g} rpm" if modes else
                   "no speed in the range where both bearings carry their loads")
     else:
         reason = ""
-    scan = [{"speed_rpm": s, "label": c.label, "inertia_scale": c.inertia_scale,
-             "whirl_ratio": c.whirl_ratio, "whirl_frequency_hz": c.whirl_frequency_hz}
-            for s in sorted(line._crossings) if line._crossings[s]
-            for c in line._crossings[s]]
+    conventions = rotor.conventions() | {
+        "onset_search": method, "coarse_grid": str(guide_grid) if guide_grid else ""}
     return RotorOnsets(
         modes=tuple(modes), onset_speed_rpm=first.onset_speed_rpm if first else math.nan,
         first_mode=first.label if first else None,
         onset_whirl_frequency_hz=first.whirl_frequency_hz if first else math.nan,
-        onset_reason=reason, bearing_loads=rotor.loads, scan=scan,
-        equilibria=line.equilibria(), capacity=capacity, conventions=rotor.conventions(),
-        speed_range_rpm=(low, high), wall_time_s=time.perf_counter() - t0)
+        onset_reason=reason, bearing_loads=rotor.loads,
+        scan=[row for x in lines for row in x.scan_rows()],
+        equilibria=[row for x in lines for row in x.equilibria()], capacity=capacity,
+        conventions=conventions, speed_range_rpm=(low, high),
+        wall_time_s=time.perf_counter() - t0)
 
 
-def _mode_onset(line: SpeedLine, speeds: list, label: str, tol: float) -> ModeOnset:
-    """One mode's onset on the scanned ``speeds`` (those with both bearings solved)."""
-    rows = []                                    # (speed, crossing or None)
-    for s in speeds:
-        own = [c for c in line.crossings(s) if c.label == label]
-        rows.append((s, min(own, key=lambda c: c.inertia_scale) if own else None))
-    present = [c for _, c in rows if c is not None]
-    margin = min(c.inertia_scale for c in present) - 1.0
-    previous = None
-    for s, c in rows:
-        if c is None or c.inertia_scale > 1.0:
-            previous = (s, c)
-            continue
-        if previous is None:
-            return ModeOnset(label, math.nan, c.whirl_ratio, c.whirl_frequency_hz, c.shape,
-                             UNSTABLE_LOW, margin)
-        whirl = c.whirl_ratio
-        root = brentq(lambda x: line.margin(x, label, whirl), previous[0], s,
-                      xtol=tol * previous[0], rtol=tol)
-        at = line.follow(root, label, whirl)
-        return ModeOnset(label, root, at.whirl_ratio, at.whirl_frequency_hz,
-                         at.shape, ONSET, margin)
-    best = min(present, key=lambda c: c.inertia_scale)
-    return ModeOnset(label, math.nan, best.whirl_ratio, best.whirl_frequency_hz, best.shape,
-                     STABLE, margin)
+def _modes(line: SpeedLine, guide: Optional[SpeedLine], speeds: list, tol: float,
+           method: str) -> list:
+    """Every mode's onset: on ``line`` alone, or guided by the coarse ``guide``'s scan (a
+    mode the fine grid contradicts is searched on ``line`` alone; a bearing over capacity
+    on either grid: everything on ``line`` alone)."""
+    def fine_alone(label):
+        valid = [s for s in speeds if line.crossings(s) is not None]
+        return mode_onset(line, valid, label, tol, method)
+
+    if guide is not None and all(guide.crossings(s) is not None for s in speeds) and \
+            line.crossings(speeds[0]) is not None:
+        labels = sorted({c.label for s in speeds for c in guide.crossings(s)}
+                        | {c.label for c in line.crossings(speeds[0])})
+        out = []
+        for label in labels:
+            found = guided_onset(line, guide, speeds, label, tol)
+            out.append(found if found is not None else fine_alone(label))
+        if not any(line.states(s).failure for s in line._states):
+            return out
+    for speed in speeds:
+        line.crossings(speed)
+    valid = [s for s in speeds if line.crossings(s) is not None]
+    labels = sorted({c.label for s in valid for c in line.crossings(s)})
+    return [fine_alone(label) for label in labels]
 
 
 def without_gyroscopics(system: RotorSystem) -> RotorSystem:

@@ -140,7 +140,16 @@ class StaticSolver:
         lbx[lay.attitude] = -0.5 * math.pi
         ubx[lay.attitude] = math.pi
         self._lbx, self._ubx = lbx, ubx
+        self._newton = None
         self.build_time_s = time.perf_counter() - t0
+
+    def newton_system(self):
+        """The equations as numpy arrays for the Newton fast path (:mod:`.newton`), built on
+        first use and kept with this build."""
+        if self._newton is None:
+            from .newton import NewtonSystem
+            self._newton = NewtonSystem(self)
+        return self._newton
 
     def jacobian_function(self) -> ca.Function:
         """(x, p) ↦ (g, dg/dx): IPOPT's own sparse constraint Jacobian (no rebuild)."""

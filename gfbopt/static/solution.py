@@ -53,6 +53,8 @@ class StaticSolution:
     message: str = ""
     couette_torque_ratio: float = math.nan
     pressure_torque_ratio: float = math.nan
+    #: which method solved it: "ipopt", or "newton" (the warm fast path, gfbopt.static.newton)
+    solver: str = "ipopt"
 
     @property
     def torque_ratio(self) -> float:

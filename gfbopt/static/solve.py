@@ -23,6 +23,7 @@ from ..inputs.model import BearingModel
 from ..physics.closed_forms import first_order_pressure, small_eccentricity_limit
 from ..physics.bore import first_order_bore_pressure
 from ..physics.film import force_gauge, rigid_film_polar
+from . import newton
 from .build import StaticSolver, fixed_origin, row_values, solver_for
 from .solution import StaticSolution, foil_parameters
 
@@ -178,7 +179,8 @@ def solve_static(model: BearingModel, *, eccentricity: Optional[float] = None,
                  grid: Grid = DEFAULT_GRID,
                  solver: Optional[StaticSolver] = None,
                  initial: Optional[StaticSolution] = None,
-                 continuation: bool = True, raise_on_failure: bool = False) -> StaticSolution:
+                 continuation: bool = True, raise_on_failure: bool = False,
+                 fast_path: bool = False) -> StaticSolution:
     """Static equilibrium at a given eccentricity ratio or a given load.
 
     Parameters
@@ -194,6 +196,9 @@ def solve_static(model: BearingModel, *, eccentricity: Optional[float] = None,
     continuation : on failure from a cold start, step the eccentricity/load up from a small
         value, warm-starting each step
     raise_on_failure : raise :class:`ConvergenceError` instead of returning success=False
+    fast_path : with ``initial``, try Newton's method on the same equations first
+        (:mod:`gfbopt.static.newton`, for warm-started solves inside searches); IPOPT solves
+        whenever it does not converge in a few steps.  ``solver`` on the result says which.
 
     Returns
     -------
@@ -220,12 +225,28 @@ def solve_static(model: BearingModel, *, eccentricity: Optional[float] = None,
         # there, so the film force is found at the position (0, 0)
         sol = _solve_with_continuation(solver, model, False, 0.0, initial, False, t0, 0.0)
     else:
-        sol = _solve_with_continuation(solver, model, load_mode, target, initial,
-                                       continuation, t0, attitude_angle)
+        sol = (_fast_path(solver, model, load_mode, target, initial, t0, attitude_angle)
+               if fast_path and initial is not None else None)
+        if sol is None:
+            sol = _solve_with_continuation(solver, model, load_mode, target, initial,
+                                           continuation, t0, attitude_angle)
     if raise_on_failure and not sol.success:
         raise ConvergenceError("static equilibrium did not converge", sol.status,
                                max(sol.residual, sol.force_residual))
     return sol
+
+
+def _fast_path(solver, model, load_mode, target, initial, t0, attitude=None):
+    """The Newton fast path from ``initial`` (None when it does not converge)."""
+    if initial.state.size != solver.layout.size:
+        return None
+    p = solver.parameters(model, load_mode, target, attitude)
+    outcome = newton.warm_solve(solver, initial.state, p)
+    if not outcome.converged:
+        return None
+    sol = postprocess(solver, model, outcome.x, outcome.stats(), load_mode, target,
+                      time.perf_counter() - t0, attitude is not None)
+    return replace(sol, solver="newton") if sol.success else None
 
 
 def _concentric(solver: StaticSolver, model: BearingModel, t0: float) -> StaticSolution:

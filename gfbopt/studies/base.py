@@ -70,6 +70,8 @@ class StudyResult:
     options: dict = field(default_factory=dict)
     notes: list = field(default_factory=list)
     wall_time_s: float = 0.0
+    #: the answer in words, written as the README's first line (design studies)
+    verdict: str = ""
 
     @property
     def passed(self) -> bool:
@@ -85,16 +87,8 @@ class StudyResult:
 
 
 # ------------------------------------------------------------------ model building
-def seam_angle(value) -> Optional[float]:
-    """``seam_angle_deg`` of a study file → BearingModel's ``seam_angle`` [rad] or None."""
-    return None if value in (None, "max_film") else math.radians(value)
-
-
 def _model_kwargs(options: dict) -> dict:
-    kwargs = {k: v for k, v in options.items() if k not in ("label", "seam_angle_deg")}
-    if "seam_angle_deg" in options:
-        kwargs["seam_angle"] = seam_angle(options["seam_angle_deg"])
-    return kwargs
+    return {k: v for k, v in options.items() if k != "label"}   # seam_angle_deg in degrees
 
 
 def build_model(options: dict, where: Where, *, rigid_when_no_compliance: bool = False

@@ -91,7 +91,7 @@ def plan_onset_as_built(study: Study) -> dict:
         raise study.where("seam_angle_deg").error(seam, "must lie in [0, 360) degrees")
     common = {"rotor_mass_kg": spec["rotor_mass_kg"], "load_newton": spec["load_newton"],
               "speed_range": (float(low), float(high)), "film": "seam",
-              "seam_angle": math.radians(seam), "foil": "simple", "deflection_law": "mean",
+              "seam_angle_deg": seam, "foil": "simple", "deflection_law": "mean",
               "loss_factor": 0.0, "grid": study.grid}
     points, tags = [], []
     c_um = bearing.radial_clearance * 1e6

@@ -132,7 +132,7 @@ def plan_loss_factor_map(study: Study) -> dict:
         film = base.get("film", "seam")
         seam = _seam(base.get("seam_angle_deg", 180.0)) if film == "seam" else None
         common = {"rotor_mass_kg": o["rotor_mass_kg"], "load_newton": o["load_newton"],
-                      "speed_range": speed_range, "film": film, "seam_angle": seam, "grid": study.grid}
+                      "speed_range": speed_range, "film": film, "seam_angle_deg": seam, "grid": study.grid}
         points = [({"deflection_law": "rigid", "compliance": 0.0, "loss_factor": 0.0},
                    {**common, "bearing": geometry, "foil": "rigid", "deflection_law": "mean",
                     "loss_factor": 0.0})]

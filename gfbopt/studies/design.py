@@ -12,18 +12,17 @@ confirmation and a figure of onset speed against S and against pitch with the li
 from __future__ import annotations
 
 import functools
-import math
 import time
 
 from ..design.spec import BumpDesignSpec
 from ..design.stability_design import StabilityDesignSpec, design_for_stability
 from ..inputs import Grid
-from ..inputs.options import ModelOptions
+from ..inputs.options import ModelOptions, merge_options
 from ..inputs.rotor import Rotor
 from ..parallel import run_points
 from .base import Kind, RunContext, Study, StudyResult, load_geometry
 from .checks import check
-from .spec import GRID, opt, req
+from .spec import GRID, UNSET, opt, req
 
 SCHEMAS = {
     "pitch_design": {**GRID,
@@ -42,9 +41,10 @@ SCHEMAS = {
                             "searched [-]"),
         "deflection_laws": opt("strings", ["mean", "local"], "foundation laws searched",
                                choices=("mean", "local")),
-        "film": opt("string", "seam", "film convention", choices=("periodic", "seam")),
-        "seam_angle_deg": opt("number", 180.0, "top-foil welded end from the load [deg]",
-                              minimum=0.0),
+        "film": opt("string", UNSET, "film convention (default: the bearing file's [model], "
+                    "else a seam)", choices=("periodic", "seam")),
+        "seam_angle_deg": opt("number", UNSET, "top-foil welded end from the load [deg] "
+                              "(default: the bearing file's [model], else 180)", minimum=0.0),
         "scan_points": opt("integer", 7, "scan points of S per (law, η)", minimum=3),
         "pitch_range_mm": req("numbers", "bump pitch range [mm]", length=2),
         "half_length_range_mm": req("numbers", "half bump length range [mm]", length=2),
@@ -77,7 +77,11 @@ def plan_pitch_design(study: Study) -> StabilityDesignSpec:
             half_length_range=tuple(v * 1e-3 for v in s["half_length_range_mm"]),
             thickness_range=tuple(v * 1e-6 for v in s["thickness_range_um"]),
             gap=s["gap_mm"] * 1e-3)
-        seam = None if s["film"] == "periodic" else math.radians(s["seam_angle_deg"])
+        # what the study states, then the bearing file's [model] table, then the defaults:
+        # the resolution every route uses (gfbopt.inputs.options.merge_options)
+        film = s.get("film")
+        stated = ModelOptions(film=film, foil="simple", seam_angle_deg=None
+                              if film == "periodic" else s.get("seam_angle_deg"))
         return StabilityDesignSpec(
             bearing=bearing, rotor=Rotor(s["rotor_mass_kg"]), load_newton=s["load_newton"],
             speed_range_rpm=tuple(s["speed_range_rpm"]),
@@ -85,12 +89,23 @@ def plan_pitch_design(study: Study) -> StabilityDesignSpec:
             film_check_speed_rpm=s["film_check_speed_rpm"],
             loss_factors=tuple(s["loss_factors"]),
             deflection_laws=tuple(s["deflection_laws"]),
-            options=ModelOptions(film=s["film"], seam_angle=seam, foil="simple"),
+            options=merge_options(stated, bearing.options),
             grid=Grid.parse(s["grid"]), n_scan=s["scan_points"])
     except Exception as exc:          # ParameterError from any input: name the file
         name = getattr(exc, "name", "design")
         raise study.where(name).error(getattr(exc, "value", None),
                                       getattr(exc, "rule", str(exc))) from None
+
+
+def load_in_g(mass_kg: float, load_newton: float) -> str:
+    """The static load per bearing as a multiple of the rotor's weight (computed, so that a
+    note cannot misstate it): 20 N on 2 kg is 1.02 g."""
+    from ..inputs.conversions import STANDARD_GRAVITY, rotor_weight_newton
+
+    weight = rotor_weight_newton(mass_kg)
+    return (f"Load: W0 = {load_newton:g} N per bearing on {mass_kg:g} kg per bearing, i.e. "
+            f"{load_newton / weight:.2f} g (the rotor's weight is {weight:.3g} N at g = "
+            f"{STANDARD_GRAVITY} m/s²).")
 
 
 def _summary(spec: StabilityDesignSpec, result) -> list:
@@ -145,6 +160,7 @@ def _summary(spec: StabilityDesignSpec, result) -> list:
                  + (", ".join(inside) if inside else "none of the other cases")
                  + ": the honest answer to 'which pitch is best' depends on the foundation "
                  "law and the damping one believes in, as the table shows.")
+    lines.append(load_in_g(spec.rotor.mass_kg, spec.load_newton))
     conf = result.confirmation
     if conf.get("success"):
         lines.append(f"Nonlinear check at {conf['speed_rpm']:,.0f} rpm: transient critical "

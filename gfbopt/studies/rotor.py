@@ -10,7 +10,8 @@
 
 Checks: the Campbell diagram (eigenvalues of the full system) and the matched-whirl onsets
 must agree where they should — below the first onset every mode of the diagram has a positive
-log decrement, above it at least one is negative.
+log decrement, above it at least one is negative — and each onset's mode is the diagram's
+track (named by it) that loses its damping next to it.
 """
 from __future__ import annotations
 
@@ -87,7 +88,7 @@ def run_rotor(study: Study, plan: dict, ctx: RunContext) -> StudyResult:
     ax = plot_onsets([m.to_dict() for m in result.onsets.modes], result.half_mass, top,
                      title=f"Onset of each mode against the half-mass rule: {name}")
     figs["onsets.png"] = ax.figure
-    checks = [_campbell_check(result)]
+    checks = [_campbell_check(result), _tracking_check(result)]
     notes = _notes(result, plain, out, top)
     notes.append(f"computed in {time.perf_counter() - t0:.1f} s, grid {study.grid}")
     options = {"grid": str(study.grid), "rotor_file": spec["rotor"],
@@ -113,6 +114,29 @@ def _campbell_check(result) -> dict:
         wrong = int((worst < 0).sum())
     return checks.check("Campbell diagram (full system) agrees with the matched-whirl onset: "
                         "speeds where the least log decrement has the wrong sign", wrong, 0)
+
+
+def _tracking_check(result) -> dict:
+    """Each matched-whirl onset inside the diagram has one Campbell track named by its mode
+    whose log decrement falls through zero in the diagram interval holding the onset (a count
+    of onsets without one, 0 expected)."""
+    from . import checks
+
+    table = result.campbell.table
+    speeds = np.sort(table["speed_rpm"].unique())
+    missing = 0
+    for m in result.onsets.modes:
+        s = m.onset_speed_rpm
+        if not (math.isfinite(s) and speeds[0] < s < speeds[-1]):
+            continue
+        k = int(np.searchsorted(speeds, s))
+        lo, hi = speeds[k - 1], speeds[k]
+        named = table[(table["track_label"] == m.label) & (table["track_zero_rpm"] >= lo)
+                      & (table["track_zero_rpm"] <= hi)]
+        missing += int(named["mode"].nunique() != 1)
+    return checks.check("Campbell tracks named by the onset's mode, losing damping in the "
+                        "diagram interval of each matched-whirl onset: onsets without one",
+                        missing, 0)
 
 
 def _notes(result, plain, out: dict, top: float) -> list:

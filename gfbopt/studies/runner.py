@@ -22,6 +22,7 @@ from . import doe
 from . import damping, stability
 from . import rotor
 from . import bearing_as_built
+from . import rotor_design
 from .base import DEFAULT_RESULTS, Kind, LoadedStudy, RunContext, Study, StudyResult
 from .output import check_name
 from .report import prepare_output, write_result
@@ -65,6 +66,7 @@ def register(family) -> None:
 for _family in (design, doe, stability, damping, rotor):
     register(_family)
 register(bearing_as_built)
+register(rotor_design)
 assert set(KINDS) == set(SCHEMAS), "every schema has a runner and vice versa"
 
 
@@ -130,3 +132,8 @@ def run_study(path: Union[str, Path, LoadedStudy],
     result = compute(loaded, workers=workers, progress=progress, results_root=results_root)
     write_result(result, Path(results_root), force=force)
     return result
+
+
+from . import rotor_transient  # noqa: E402  (rotor transients, issue 18)
+
+register(rotor_transient)

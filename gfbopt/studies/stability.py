@@ -64,11 +64,15 @@ SCHEMAS: dict[str, dict] = {
     "onset_conventions": {**GRID, **_ROTOR,
         "seam_angles_deg": req("numbers", "welded-end angles from the load line [deg], in "
                                "[0, 360)"),
-        "model": opt("table", {}, "foil formulation (film and seam are swept)", keys={
-            "foil": opt("string", "simple", "foil model", choices=("simple", "beam")),
-            "deflection_law": opt("string", "mean", "foil deflection law",
+        "model": opt("table", {}, "foil formulation (film and seam are swept); what it does "
+                     "not state comes from the bearing file's [model], else the defaults",
+                     keys={
+            "foil": opt("string", UNSET, "foil model (default simple)",
+                        choices=("simple", "beam")),
+            "deflection_law": opt("string", UNSET, "foil deflection law (default mean)",
                                   choices=DEFLECTION_LAWS),
-            "loss_factor": opt("number", 0.0, "structural loss factor η [-]", minimum=0.0)}),
+            "loss_factor": opt("number", UNSET, "structural loss factor η [-] (default 0)",
+                               minimum=0.0)}),
         "fine_grid": opt("grid", "144x36", "grid of the reference onsets"),
         "fine_grid_onset_rpm": opt("mapping", {}, "onset speeds [rpm] at fine_grid per "
                                    "convention: periodic, max_film, seam_<deg> (e.g. "
@@ -81,7 +85,7 @@ SCHEMAS: dict[str, dict] = {
 # ------------------------------------------------------------------ points (module level:
 # they are pickled to the workers)
 def onset_point(bearing, rotor_mass_kg: float, load_newton: float, speed_range, *,
-                film: str, seam_angle, foil: str, deflection_law: str, loss_factor: float,
+                film: str, seam_angle_deg, foil: str, deflection_law: str, loss_factor: float,
                 grid: Grid, cache=None) -> dict:
     """The onset speed of one rotor on one formulation, as a row with ``onset_status``."""
     from ..inputs.rotor import Rotor
@@ -93,7 +97,8 @@ def onset_point(bearing, rotor_mass_kg: float, load_newton: float, speed_range, 
            "critical_mass_kg_at_low_speed": math.nan}
     try:
         res = onset_speed(bearing, Rotor(rotor_mass_kg), load_newton, speed_range, film=film,
-                          seam_angle=seam_angle, foil=foil, deflection_law=deflection_law,
+                          seam_angle_deg=seam_angle_deg, foil=foil,
+                          deflection_law=deflection_law,
                           loss_factor=loss_factor, grid=grid, cache=cache)
     except ParameterError as exc:
         overload = "load capacity" in str(exc)
@@ -176,8 +181,8 @@ def confirmation_point(model: BearingModel, load: float, grid: Grid, method: str
 
 # ------------------------------------------------------------------ helpers
 def _seam(value):
-    """seam_angle_deg of a study file → the rotor API's seam_angle (rad or 'max_film')."""
-    return "max_film" if value == "max_film" else math.radians(value)
+    """seam_angle_deg of a study file → the rotor API's seam_angle_deg (deg or 'max_film')."""
+    return "max_film" if value == "max_film" else float(value)
 
 
 def _convention_label(film: str, seam) -> str:
@@ -208,7 +213,19 @@ def plan_onset_conventions(study: Study) -> dict:
     for k, angle in enumerate(spec["seam_angles_deg"]):
         if not 0.0 <= angle < 360.0:
             raise study.where("seam_angles_deg", k).error(angle, "must lie in [0, 360) degrees")
-    model = {"foil": "simple", "deflection_law": "mean", "loss_factor": 0.0, **spec["model"]}
+    # the study's [model], then the bearing file's, then the defaults (the one resolution of
+    # gfbopt.inputs.options.merge_options; film and seam are swept, so not taken from the file)
+    from ..inputs.options import ModelOptions, merge_options
+
+    file_options = bearing.options
+    resolved = merge_options(ModelOptions(foil=spec["model"].get("foil"),
+                                          deflection_law=spec["model"].get("deflection_law"),
+                                          loss_factor=spec["model"].get("loss_factor")),
+                             ModelOptions(foil=file_options.foil,
+                                          deflection_law=file_options.deflection_law,
+                                          loss_factor=file_options.loss_factor))
+    model = {"foil": resolved.foil, "deflection_law": resolved.deflection_law,
+             "loss_factor": resolved.loss_factor}
     if model["foil"] == "beam" and model["loss_factor"] > 0:
         raise study.where("model", "loss_factor").error(model["loss_factor"],
                                                         "is not supported with the beam foil")
@@ -224,7 +241,7 @@ def plan_onset_conventions(study: Study) -> dict:
                   "load_newton": spec["load_newton"], "speed_range": speed_range,
                   "foil": model["foil"], "deflection_law": model["deflection_law"],
                   "loss_factor": model["loss_factor"], "grid": study.grid}
-    points = [{**common, "film": f, "seam_angle": None if s is None else _seam(s)}
+    points = [{**common, "film": f, "seam_angle_deg": None if s is None else _seam(s)}
               for f, s in conventions]
     tags = [{"convention": _convention_label(f, s), "film": f,
              "seam_angle_deg": s if s is not None else "none"} for f, s in conventions]

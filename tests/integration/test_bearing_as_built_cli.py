@@ -58,7 +58,7 @@ end_deg = 360.0
 """
     path = _file(tmp_path, text)
     geometry = load_bearing(path)
-    model = geometry.model(45000, film="seam", seam_angle=math.pi)
+    model = geometry.model(45000, film="seam", seam_angle_deg=180.0)
     built = model.as_built
     assert built.bore.preload == pytest.approx(0.25, rel=1e-12)        # 5 µm / 20 µm
     assert [round(math.degrees(p.leading_end), 9) for p in built.pads] == [60, 180, 300]
@@ -96,7 +96,7 @@ def test_bad_as_built_input_is_refused_before_solving(tmp_path, extra, name, wor
     """Each rule: one ParameterError naming the parameter, value and rule, raised while the
     file is read or the model built (before any solver exists)."""
     with pytest.raises(ParameterError) as err:
-        load_bearing(_file(tmp_path, extra)).model(30000.0, film="seam", seam_angle=math.pi)
+        load_bearing(_file(tmp_path, extra)).model(30000.0, film="seam", seam_angle_deg=180.0)
     assert name in str(err.value) and words in str(err.value), str(err.value)
 
 

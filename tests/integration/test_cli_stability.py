@@ -9,6 +9,8 @@ from pathlib import Path
 
 import pytest
 
+from gfbopt.glossary import describe
+
 REPO = Path(__file__).resolve().parents[2]
 RUSCITTO = "problems/bearings/ruscitto.toml"
 POINT = ["--bearing", RUSCITTO, "--load-newton", "20", "--speed-rpm", "45000", "--grid",
@@ -41,7 +43,12 @@ def test_stability_json_and_csv_contract(tmp_path):
     assert "welded end 180°" in conventions["film_convention"]
     assert data["provenance"]["options"]["film_convention"] == conventions["film_convention"]
     lines = csv.read_text().splitlines()
-    assert lines[0] == "frequency_hz,kxx,kxy,kyx,kyy,cxx,cxy,cyx,cyy"
+    # the glossary's names with their units, as in the shipped results/*/coefficients CSVs
+    assert lines[0] == ("frequency_hz,kxx_N_per_m,kxy_N_per_m,kyx_N_per_m,kyy_N_per_m,"
+                        "cxx_Ns_per_m,cxy_Ns_per_m,cyx_Ns_per_m,cyy_Ns_per_m")
+    assert [describe(c)[0] for c in lines[0].split(",")] == ["Hz", *["N/m"] * 4,
+                                                              *["N s/m"] * 4]
+    assert data["coefficients"]["units"]["kxy_N_per_m"] == "N/m"
     assert len(lines) == 1 + len(data["coefficients"]["frequency_hz"]) == 12   # 10 + matched
     assert "matched whirl" in data["coefficients"]["frame"]
 
@@ -68,7 +75,7 @@ def test_onset_from_the_command_line():
                  "20", "--speed-range", "5000", "20000", "--grid", "72x20")
     assert data["onset_speed_rpm"] == pytest.approx(13098.5, rel=5e-3)
     assert data["onset"]["answer"].startswith("onset of whirl at 13")
-    assert "critical_mass_kg" not in data          # no --speed-rpm: the onset only
+    assert data["critical_mass_kg"] is None        # no --speed-rpm: the onset only (null)
 
 
 def test_text_report_states_the_default_convention(tmp_path):
@@ -108,7 +115,8 @@ def test_a_damped_bearing_file_reaches_the_transient_with_its_loss_factor(tmp_pa
     damped.write_text((REPO / RUSCITTO).read_text().replace("loss_factor = 0.0",
                                                             "loss_factor = 0.2"))
     out = gfbopt("orbit", "--bearing", str(damped), "--speed-rpm", "20000", "--load-newton",
-                 "20", "--mass", "1", "--revolutions", "1", "--grid", "24x8", "--json")
+                 "20", "--rotor-mass-kg", "0.23", "--revolutions", "1", "--grid", "24x8",  # M̄ ≈ 1
+                 "--json")
     assert out.returncode == 0, out.stderr
     data = json.loads(out.stdout)
     assert data["loss_factor"] == pytest.approx(0.2)

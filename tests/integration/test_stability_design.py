@@ -24,7 +24,7 @@ def _spec(**kw):
                                         pitch_range=(3e-3, 6e-3),
                                         half_length_range=(1e-3, 2.5e-3),
                                         thickness_range=(50e-6, 150e-6)),
-                options=ModelOptions(film="seam", seam_angle=math.pi, foil="simple"),
+                options=ModelOptions(film="seam", seam_angle_deg=180.0, foil="simple"),
                 grid=Grid(24, 8), loss_factors=(0.0,), deflection_laws=("mean",), n_scan=4)
     base.update(kw)
     return StabilityDesignSpec(**base)

@@ -30,7 +30,7 @@ STATIC_CASES = {
                                      film="seam", subambient="gumbel", compression_only=True),
                                 {"eccentricity": 0.6}, "36x10"),
     "seam_fixed_angle": (dict(bearing_number=2.0, compliance=1.0, foil="simple", film="seam",
-                              seam_angle=math.radians(200.0)), {"eccentricity": 0.4}, "36x10"),
+                              seam_angle_deg=200.0), {"eccentricity": 0.4}, "36x10"),
     "simple_mean_periodic_72": (dict(bearing_number=2.0, compliance=1.0, foil="simple"),
                                 {"eccentricity": 0.4}, "72x20"),
 }

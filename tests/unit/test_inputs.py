@@ -39,7 +39,8 @@ def test_ruscitto_groups_match_hand_calculation():
 
 def test_bearing_file_matches_reference_values():
     b = load_bearing(RUSCITTO_FILE)
-    assert b == BearingGeometry(**RUSCITTO, name="Ruscitto et al. (1978)")
+    assert b == BearingGeometry(**RUSCITTO, name="Ruscitto et al. (1978)", options=b.options)
+    assert b.options.film == "seam" and b.options.seam_angle_deg == 180.0   # its [model]
 
 
 def test_rpm_conversion():
@@ -47,12 +48,15 @@ def test_rpm_conversion():
 
 
 @pytest.mark.parametrize("field, value, rule", [
-    ("radius", 0.0, "must be > 0"),
-    ("length", -1.0, "must be > 0"),
-    ("radial_clearance", -2e-5, "must be > 0"),
+    ("radius", 0.0, "must be >= 0.001 m"),
+    ("length", -1.0, "must be >= 0.0001 m"),
+    ("radial_clearance", -2e-5, "must be >= 1e-06 m"),
+    ("radial_clearance", 1e-300, "must be >= 1e-06 m .below 1 µm"),
+    ("bump_thickness", 5e-3, "must be < the half bump length"),
+    ("bump_half_length", 3e-3, r"must satisfy 2 l0 <= s"),
     ("radial_clearance", 1e-3, "small against the radius"),
     ("viscosity", float("nan"), "finite"),
-    ("poisson_ratio", 0.7, r"\(-1, 0.5\)"),
+    ("poisson_ratio", 0.7, r"-1 < ν < 0.5"),
 ])
 def test_bad_geometry_names_parameter_value_and_rule(field, value, rule):
     values = dict(RUSCITTO)
@@ -90,7 +94,7 @@ def test_bad_grid(text, match):
 def test_bad_bearing_files(tmp_path):
     missing = tmp_path / "missing.toml"
     missing.write_text("[bearing]\nradius = 0.02\n")
-    with pytest.raises(ParameterError, match=r"bearing.length = None: is required but missing"):
+    with pytest.raises(ParameterError, match=r"missing.toml: bearing.length = None: is required"):
         load_bearing(missing)
     broken = tmp_path / "broken.toml"
     broken.write_text("[bearing\nradius = ")
@@ -100,7 +104,7 @@ def test_bad_bearing_files(tmp_path):
             .replace("radius = 19.05e-3", 'radius = "big"'))
     wrong = tmp_path / "wrong.toml"
     wrong.write_text(text)
-    with pytest.raises(ParameterError, match=r"bearing.radius = 'big': must be a number"):
+    with pytest.raises(ParameterError, match=r"bearing.radius = 'big': must be a finite number"):
         load_bearing(wrong)
     with pytest.raises(ParameterError, match=r"must be an existing TOML file"):
         load_bearing(tmp_path / "nope.toml")

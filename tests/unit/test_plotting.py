@@ -113,3 +113,13 @@ def test_import_neither_loads_pyplot_nor_chooses_a_backend():
             "assert 'matplotlib.pyplot' not in sys.modules, 'pyplot imported'; print('ok')")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
     assert out.returncode == 0 and out.stdout.strip() == "ok", out.stderr
+
+
+def test_orbit_figure_draws_the_clearance_circle():
+    """Issue 14 item 9: the orbit shows e/c against the clearance circle ε = 1, labelled."""
+    ax = plotting.plot_orbits({"M̄ = 2: stable": _orbit()}, title="orbits", clearance=True)
+    circle = [line for line in ax.get_lines() if "clearance circle" in line.get_label()]
+    assert len(circle) == 1
+    np.testing.assert_allclose(circle[0].get_ydata(), 1.0)
+    assert np.ptp(circle[0].get_xdata()) == pytest.approx(2 * np.pi)
+    assert ax.get_rmax() >= 1.0

@@ -93,7 +93,7 @@ def test_overhung_rotor_lifts_the_far_bearing_and_its_frame_rotates():
     assert b.away_from_gravity_deg == 180.0 and a.away_from_gravity_deg == 0.0
     # its seam, 180° from gravity in the housing, is at 0° from its own (reversed) load
     options = seam_from_load(hung.bearings[1].options, b.away_from_gravity_deg)
-    assert options.seam_angle == pytest.approx(0.0, abs=1e-15)
+    assert options.seam_angle_deg == pytest.approx(0.0, abs=1e-12)
     t = transformation(b.position, b.direction_rad)
     # the bearing's X axis points up (−x): a CG displacement +x is −X there
     assert t[0] @ np.array([1.0, 0, 0, 0]) == pytest.approx(-1.0, abs=1e-15)

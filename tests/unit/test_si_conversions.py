@@ -9,7 +9,7 @@ from gfbopt import BearingModel, ParameterError
 from gfbopt.inputs import (MAX_FILM, ModelOptions, OperatingPoint, Rotor, load_bearing,
                            load_bearing_file, resolve_model_options)
 from gfbopt.inputs import conversions as cv
-from gfbopt.inputs.options import DEFAULT_SEAM_ANGLE
+from gfbopt.inputs.options import DEFAULT_SEAM_ANGLE_DEG
 
 RUSCITTO_FILE = Path(__file__).resolve().parents[2] / "problems" / "bearings" / "ruscitto.toml"
 
@@ -92,22 +92,22 @@ def test_default_film_convention_is_a_seam_opposite_the_load():
     """The default a foil-bearing user gets: a seam fixed in the housing, welded end 180° from
     the load (docstring of resolve_model_options); a rigid bearing gets the periodic film."""
     options = resolve_model_options()
-    assert options.film == "seam" and options.seam_angle == DEFAULT_SEAM_ANGLE == math.pi
+    assert options.film == "seam" and options.seam_angle_deg == DEFAULT_SEAM_ANGLE_DEG == 180.0
     assert (options.foil, options.deflection_law, options.loss_factor) == ("simple", "mean", 0.0)
     assert options.to_dict()["seam_angle_deg"] == 180.0
     assert "fixed housing angle" in options.convention()
     assert resolve_model_options(ModelOptions(foil="rigid")).film == "periodic"
-    stated = ModelOptions(film="seam", seam_angle=MAX_FILM, loss_factor=0.2)
-    assert resolve_model_options(stated).seam_angle == MAX_FILM       # never overridden
+    stated = ModelOptions(film="seam", seam_angle_deg=MAX_FILM, loss_factor=0.2)
+    assert resolve_model_options(stated).seam_angle_deg == MAX_FILM       # never overridden
     assert "maximum-film line" in resolve_model_options(stated).convention()
     kwargs = resolve_model_options(stated).model_kwargs()
-    assert kwargs["seam_angle"] is None and kwargs["loss_factor"] == 0.2
+    assert kwargs["seam_angle_deg"] is None and kwargs["loss_factor"] == 0.2
 
 
 @pytest.mark.parametrize("options, match", [
-    (ModelOptions(film="periodic", seam_angle=math.radians(90)),
+    (ModelOptions(film="periodic", seam_angle_deg=90.0),
      r"^seam_angle_deg = 90.0: is not used with a periodic film"),
-    (ModelOptions(film="periodic", seam_angle=MAX_FILM), r"'max_film' needs film = 'seam'"),
+    (ModelOptions(film="periodic", seam_angle_deg=MAX_FILM), r"'max_film' needs film = 'seam'"),
 ])
 def test_contradictory_options_are_refused(options, match):
     with pytest.raises(ParameterError, match=match):
@@ -115,8 +115,9 @@ def test_contradictory_options_are_refused(options, match):
 
 
 @pytest.mark.parametrize("kwargs, match", [
-    (dict(seam_angle=2 * math.pi), r"^seam_angle = .*: must lie in \[0, 2π\) rad"),
-    (dict(seam_angle=-0.1), r"^seam_angle = -0.1: must lie in \[0, 2π\)"),
+    (dict(seam_angle_deg=360.0), r"^seam_angle_deg = 360.0: must lie in \[0, 360\) degrees"),
+    (dict(seam_angle_deg=-0.1), r"^seam_angle_deg = -0.1: must lie in \[0, 360\)"),
+    (dict(seam_angle=3.0), r"^seam_angle = 3.0: is no longer accepted.*seam_angle_deg=171.887"),
     (dict(film="open"), r"^film = 'open': must be one of periodic, seam"),
     (dict(loss_factor=-1.0), r"^loss_factor = -1.0: must be >= 0"),
 ])
@@ -128,7 +129,7 @@ def test_bad_model_options(kwargs, match):
 def test_ruscitto_file_states_its_conventions():
     geometry, options = load_bearing_file(RUSCITTO_FILE)
     assert geometry == load_bearing(RUSCITTO_FILE)
-    assert options == ModelOptions(film="seam", seam_angle=math.pi, foil="simple",
+    assert options == ModelOptions(film="seam", seam_angle_deg=180.0, foil="simple",
                                    deflection_law="mean", loss_factor=0.0)
 
 
@@ -142,24 +143,24 @@ def _file(tmp_path, model_table: str):
 def test_bearing_file_without_model_table_gets_the_default(tmp_path):
     _, options = load_bearing_file(_file(tmp_path, ""))
     assert options == ModelOptions()
-    assert resolve_model_options(options).seam_angle == math.pi
+    assert resolve_model_options(options).seam_angle_deg == 180.0
 
 
 def test_bearing_file_model_table_max_film_and_degrees(tmp_path):
     _, options = load_bearing_file(_file(tmp_path, '[model]\nseam_angle_deg = "max_film"\n'))
-    assert options.seam_angle == MAX_FILM and options.film is None
+    assert options.seam_angle_deg == MAX_FILM and options.film is None
     _, options = load_bearing_file(_file(tmp_path, "[model]\nseam_angle_deg = 90\n"
                                                    "loss_factor = 0.25\n"))
-    assert options.seam_angle == pytest.approx(math.pi / 2) and options.loss_factor == 0.25
+    assert options.seam_angle_deg == 90.0 and options.loss_factor == 0.25
 
 
 @pytest.mark.parametrize("table, match", [
     ("[model]\nseam_angle_deg = 360.0\n", r"b.toml: model.seam_angle_deg = 360.0: must lie in "
                                           r"\[0, 360\) degrees"),
-    ("[model]\nseam_angle_deg = \"north\"\n", r"seam_angle_deg = 'north': must be a number"),
-    ("[model]\nloss_factor = -0.2\n", r"^loss_factor = -0.2: must be >= 0"),
-    ("[model]\nfilm = \"open\"\n", r"^film = 'open': must be one of"),
-    ("[model]\ngrid = \"72x20\"\n", r"b.toml: model.grid = '72x20': is not a model option"),
+    ("[model]\nseam_angle_deg = \"north\"\n", r"seam_angle_deg = 'north': must be degrees in \[0, 360\)"),
+    ("[model]\nloss_factor = -0.2\n", r"b.toml: model.loss_factor = -0.2: must be >= 0"),
+    ("[model]\nfilm = \"open\"\n", r"b.toml: model.film = 'open': must be one of"),
+    ("[model]\ngrid = \"72x20\"\n", r"b.toml: model.grid = '72x20': is not a key of \[model\]"),
 ])
 def test_bad_model_table(tmp_path, table, match):
     with pytest.raises(ParameterError, match=match):

@@ -37,12 +37,12 @@ THREE_SHIMS = BoreProfile("shims", 3, 0.25, math.radians(60.0))
 
 def _base(**kw):
     return BearingModel(**{**dict(bearing_number=2.0, compliance=1.0, film="seam",
-                                  seam_angle=SEAM), **kw})
+                                  seam_angle_deg=math.degrees(SEAM)), **kw})
 
 
 @pytest.mark.parametrize("kw", [dict(), dict(deflection_law="local"),
                                 dict(foil="beam", top_foil_coefficient=1.0),
-                                dict(film="periodic", seam_angle=None),
+                                dict(film="periodic", seam_angle_deg=None),
                                 dict(compression_only=True, subambient="gumbel")])
 def test_trivial_as_built_is_todays_bearing(kw):
     """Zero preload (shims and lobes), one pad spanning the bore at the seam and uniform

@@ -44,18 +44,18 @@ ETA = 0.3
 MODELS = {
     "simple": BearingModel(bearing_number=2.0, compliance=1.0, loss_factor=ETA),
     "simple_co_seam": BearingModel(bearing_number=2.0, compliance=1.0, loss_factor=ETA,
-                                   film="seam", seam_angle=math.pi, compression_only=True),
+                                   film="seam", seam_angle_deg=180.0, compression_only=True),
     "local": BearingModel(bearing_number=2.0, compliance=1.0, loss_factor=ETA,
                           deflection_law="local"),
     "local_co_seam": BearingModel(bearing_number=2.0, compliance=1.0, loss_factor=ETA,
-                                  deflection_law="local", film="seam", seam_angle=math.pi,
+                                  deflection_law="local", film="seam", seam_angle_deg=180.0,
                                   compression_only=True),
 }
 #: the two agreement points (issue #9): ε = 0.4, Λ = 2, S = 1, η = 0.3
 AGREEMENT = {
     "mean_periodic": MODELS["simple"],
     "local_seam_180": BearingModel(bearing_number=2.0, compliance=1.0, loss_factor=ETA,
-                                   deflection_law="local", film="seam", seam_angle=math.pi),
+                                   deflection_law="local", film="seam", seam_angle_deg=180.0),
 }
 
 

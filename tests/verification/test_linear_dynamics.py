@@ -18,7 +18,7 @@ CASES = {
     "local": BearingModel(bearing_number=2.0, compliance=1.0, foil="simple",
                           deflection_law="local"),
     "beam": BearingModel(bearing_number=5.0, compliance=1.0, foil="beam", film="seam",
-                         top_foil_coefficient=1.0, seam_angle=math.radians(200)),
+                         top_foil_coefficient=1.0, seam_angle_deg=200),
 }
 
 
@@ -229,7 +229,7 @@ def test_unstable_massless_journal_gives_zero_critical_mass(seam_deg, unstable):
     0.020 and 0.037 per rad at M̄ = 0.2 and 1 on this grid).  With the welded end opposite the
     load (180°) small rotors are stable and M̄c > 0."""
     model = BearingModel(bearing_number=3.4, compliance=1.05, film="seam",
-                         seam_angle=math.radians(seam_deg))
+                         seam_angle_deg=seam_deg)
     lin = linearise(solve_static(model, load=0.55, grid=GRID))
     thr = linear_threshold(lin)
     assert bool(thr.critical_mass == 0.0) == unstable

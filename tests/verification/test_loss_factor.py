@@ -30,12 +30,12 @@ GRID = Grid(36, 10)
 CASES = {
     "simple": BearingModel(bearing_number=2.0, compliance=1.0),
     "simple_co_seam": BearingModel(bearing_number=2.0, compliance=1.0, compression_only=True,
-                                   film="seam", seam_angle=math.pi),
+                                   film="seam", seam_angle_deg=180.0),
     "local": BearingModel(bearing_number=2.0, compliance=1.0, deflection_law="local"),
     "local_co_seam": BearingModel(bearing_number=2.0, compliance=1.0, deflection_law="local",
-                                  compression_only=True, film="seam", seam_angle=math.pi),
+                                  compression_only=True, film="seam", seam_angle_deg=180.0),
     "beam": BearingModel(bearing_number=5.0, compliance=1.0, foil="beam", film="seam",
-                         top_foil_coefficient=1.0, seam_angle=math.radians(200)),
+                         top_foil_coefficient=1.0, seam_angle_deg=200),
 }
 
 

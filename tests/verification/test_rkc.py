@@ -283,7 +283,7 @@ OP = ["--eccentricity", "0.4", "--bearing-number", "2", "--compliance", "1", "--
      "--stages = 3.0: applies to --method rkc only, not to --method rk4"),
     (["orbit", *OP, "--mass", "2", "--method", "bdf", "--time-step", "0.1"],
      "--time-step = 0.1: applies to --method rk4/rkc only, not to --method bdf"),
-    (["orbit", *OP, "--mass", "2", "--stages", "1"], "--stages = 1.0: must be an integer >= 2"),
+    (["orbit", *OP, "--mass", "2", "--stages", "1"], "--stages = 1.0: must be an integer in [2, 1000]"),
     (["orbit", *OP, "--mass", "2", "--time-step", "0.5", "--stages", "2"],
      "exceeds the RKC stability interval β(2)"),
     (["orbit", *OP, "--mass", "2", "--method", "rk4", "--time-step", "0.5"],
@@ -296,16 +296,19 @@ def test_cli_refuses_options_with_a_reason(capsys, args, message):
     assert code == 2 and message in err and out == ""
 
 
-def test_cli_defaults_to_rkc_and_is_silent_with_json(capsys):
+def test_cli_defaults_to_rkc_and_keeps_stdout_json(capsys):
+    """stdout is one JSON object; off a terminal stderr has one status line per command
+    (gfbopt.progress), nothing else."""
     import json
 
     code, out, err = _cli(capsys, "orbit", *OP, "--mass", "2.5", "--revolutions", "2",
                           "--json")
     data = json.loads(out)
-    assert code == 0 and err == "" and data["method"] == "rkc" and data["success"]
+    assert code == 0 and err.startswith("gfbopt: orbit 100/100 %") and err.count("\n") == 1
+    assert data["method"] == "rkc" and data["success"]
     code, out, err = _cli(capsys, "critical-mass", *OP, "--json")
     data = json.loads(out)
-    assert code == 0 and err == ""
+    assert code == 0 and err.startswith("gfbopt: critical mass") and err.count("\n") == 1
     assert data["method"] == "rkc" and data["start"] == "linear mode"
     assert data["transients"] == 2 and data["rounds"] == 1
     assert data["critical_mass"] == pytest.approx(data["linear_critical_mass"], rel=0.005)

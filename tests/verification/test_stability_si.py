@@ -31,7 +31,7 @@ C = 20e-6
 #: measured on 72 × 20
 CONVENTIONS = {
     "periodic": (dict(film="periodic"), 0.6353, 1.5963, 8856.5, 72.16),
-    "max_film": (dict(film="seam", seam_angle="max_film"), 3.3241, 2.9150, 11570.4, 95.76),
+    "max_film": (dict(film="seam", seam_angle_deg="max_film"), 3.3241, 2.9150, 11570.4, 95.76),
     "seam_180": ({}, 3.3100, 3.9090, 13098.5, 109.6),          # the file's [model] table
 }
 
@@ -103,11 +103,11 @@ def test_onset_speed_cross_checked_on_the_nondimensional_path(onsets, name):
     assert o.onset_speed_rpm == pytest.approx(expected_speed, rel=5e-3)
     assert o.whirl_frequency_hz == pytest.approx(expected_hz, rel=5e-3)
     omega = rpm_to_rad_per_s(o.onset_speed_rpm)
-    kwargs = dict(film="seam", seam_angle=math.pi, foil="simple")
+    kwargs = dict(film="seam", seam_angle_deg=180.0, foil="simple")
     if name == "periodic":
-        kwargs.update(film="periodic", seam_angle=None)
+        kwargs.update(film="periodic", seam_angle_deg=None)
     elif name == "max_film":
-        kwargs.update(seam_angle=None)
+        kwargs.update(seam_angle_deg=None)
     model = BEARING.model(o.onset_speed_rpm, **kwargs)
     sol = solve_static(model, load=BEARING.nondimensional_load(LOAD), grid=GRID)
     thr = linear_threshold(linearise(sol))
@@ -167,8 +167,8 @@ def test_coefficients_in_si(cache):
     row = table.table.iloc[(table.table.whirl_ratio - 0.5).abs().argmin()]
     nd = coefficients(r.linearisation, [row.whirl_ratio])
     scale = 1e5 * 19.05e-3**2 / C
-    assert row.kxy == pytest.approx(nd.stiffness[0, 0, 1] * scale, rel=1e-12)
-    assert row.cyx == pytest.approx(nd.damping[0, 1, 0] * scale / omega, rel=1e-12)
+    assert row.kxy_N_per_m == pytest.approx(nd.stiffness[0, 0, 1] * scale, rel=1e-12)
+    assert row.cyx_Ns_per_m == pytest.approx(nd.damping[0, 1, 0] * scale / omega, rel=1e-12)
     assert row.frequency_hz == pytest.approx(row.whirl_ratio * omega / (2 * math.pi))
     assert table.matched_whirl_hz == pytest.approx(r.threshold_whirl_frequency_hz)
     assert (table.table.frequency_hz - table.matched_whirl_hz).abs().min() < 1e-9
@@ -179,8 +179,9 @@ def test_coefficients_in_si(cache):
 @pytest.mark.parametrize("kwargs, match", [
     (dict(loss_factor=-0.1), r"^loss_factor = -0.1: must be >= 0"),
     (dict(foil="rigid", loss_factor=0.2), r"^loss_factor = 0.2: must be 0 with foil='rigid'"),
-    (dict(seam_angle=7.0), r"^seam_angle = 7.0: must lie in \[0, 2π\)"),
-    (dict(film="periodic", seam_angle=1.0), r"^seam_angle_deg = 57.29.*periodic film"),
+    (dict(seam_angle_deg=360.0), r"^seam_angle_deg = 360.0: must lie in \[0, 360\) degrees"),
+    (dict(seam_angle=3.0), r"^seam_angle = 3.0: is no longer accepted.*seam_angle_deg=171.887"),
+    (dict(film="periodic", seam_angle_deg=57.0), r"^seam_angle_deg = 57.0: .*periodic film"),
 ])
 def test_bad_options_are_refused_before_any_build(kwargs, match):
     cache = SolverCache(GRID)

@@ -51,7 +51,7 @@ def test_seam_following_max_film_equals_a_fixed_seam_at_the_same_place():
     grid = Grid(36, 10)
     follow = BearingModel(bearing_number=2.0, compliance=1.0, film="seam")
     a = solve_static(follow, eccentricity=0.5, grid=grid)
-    fixed = follow.replace(seam_angle=math.pi + a.attitude_angle)
+    fixed = follow.replace(seam_angle_deg=math.degrees(math.pi + a.attitude_angle))
     b = solve_static(fixed, eccentricity=0.5, grid=grid)
     assert b.load == pytest.approx(a.load, rel=1e-8)
     assert b.attitude_angle == pytest.approx(a.attitude_angle, abs=1e-8)
@@ -59,7 +59,7 @@ def test_seam_following_max_film_equals_a_fixed_seam_at_the_same_place():
 
 def test_seam_forces_ambient_pressure_at_the_foil_ends():
     sol = solve_static(BearingModel(bearing_number=2.0, compliance=1.0, film="seam",
-                                    seam_angle=math.radians(200)), eccentricity=0.5,
+                                    seam_angle_deg=200), eccentricity=0.5,
                        grid=Grid(36, 10))
     assert np.all(sol.pressure[0] == 1.0) and np.all(sol.pressure[-1] == 1.0)
     assert sol.theta_from_seam[0] == 0.0

@@ -31,23 +31,23 @@ CASES = {
     "local": (0.4, BearingModel(bearing_number=2.0, compliance=1.0, deflection_law="local")),
     "beam_seam_200": (0.4, BearingModel(bearing_number=5.0, compliance=1.0, foil="beam",
                                         film="seam", top_foil_coefficient=1.0,
-                                        seam_angle=math.radians(200))),
+                                        seam_angle_deg=200)),
     "beam_seam_max_film": (0.3, BearingModel(bearing_number=5.0, compliance=1.0, foil="beam",
                                              film="seam", top_foil_coefficient=1.0)),
     "simple_eta": (0.4, BearingModel(bearing_number=2.0, compliance=1.0, loss_factor=0.3)),
     "local_eta_co_seam": (0.4, BearingModel(bearing_number=2.0, compliance=1.0,
                                             deflection_law="local", compression_only=True,
-                                            film="seam", seam_angle=math.pi,
+                                            film="seam", seam_angle_deg=180.0,
                                             loss_factor=0.3)),
     # two crossings, the larger on a low-whirl branch (γ ≈ 0.14)
     "low_whirl_branch": (0.8, BearingModel(bearing_number=10.0, foil="rigid",
                                            length_ratio=0.5)),
     # seven crossings on several branches; the least stable is at γ ≈ 1.08
     "seven_crossings": (0.8, BearingModel(bearing_number=40.0, foil="rigid", film="seam",
-                                          length_ratio=1.5, seam_angle=math.radians(90))),
+                                          length_ratio=1.5, seam_angle_deg=90)),
     # welded end inside the loaded arc: the massless journal is unstable, M̄c = 0
     "unstable_every_mass": (("load", 0.55), BearingModel(
-        bearing_number=3.4, compliance=1.05, film="seam", seam_angle=math.radians(90))),
+        bearing_number=3.4, compliance=1.05, film="seam", seam_angle_deg=90)),
     # three crossings and still unstable for every mass
     "unstable_with_crossings": (0.8, BearingModel(bearing_number=40.0, foil="rigid",
                                                   length_ratio=0.5)),

@@ -1,0 +1,121 @@
+"""The design optimiser's own cost per evaluation against one real evaluation (issue 20:
+overhead ≤ 2 % of an evaluation), in one run.
+
+Measured (serial, one process, so nothing else hides in the numbers):
+
+* NSGA-II (pymoo) on ZDT1, 400 designs in generations of 20, every evaluation streamed into a
+  ResultStore as its own Parquet part: the driver's time per design (ask, tell, decoding,
+  store writes: ``driver_time_s``) and the residual wall − Σ evaluation time per design (the
+  same plus the executor's dispatch);
+* the Bayesian option (GP + EI, bayesian-optimization) on Hartmann-3, 32 designs (8 start):
+  driver time per design and the best value reached, with its acquisition search at the
+  library's default (10,000 random points, 10 L-BFGS-B starts) and at gfbopt's default
+  (5,000 random points, no L-BFGS-B polishing);
+* one real evaluation: a bearing-pair design of the blower rotor (problems/rotors/
+  blower.toml, two Ruscitto bearings) on the 36x10 search grid after the solver builds
+  (:func:`gfbopt.design.rotor_objectives.evaluate_rotor_design`).
+
+Run: ``PYTHONPATH=. python benchmarks/bench_optimiser.py`` → results/benchmarks/optimiser.json.
+The machine's load average is recorded: the 2 cores are shared, so absolute times vary; the
+ratios are taken within the run.
+"""
+from __future__ import annotations
+
+import json
+import os
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+import numpy as np
+
+ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT))
+
+from gfbopt.design import surrogates  # noqa: E402
+from gfbopt.design.optimiser import optimise, store_schema  # noqa: E402
+from gfbopt.design.problem import DesignProblem, Objective, Variable  # noqa: E402
+from gfbopt.design.search import SearchSettings  # noqa: E402
+from gfbopt.doe.store import ResultStore  # noqa: E402
+
+
+def nsga2_overhead() -> dict:
+    problem = DesignProblem(tuple(Variable(f"x{k}", 0.0, 1.0) for k in range(3)),
+                            (Objective("f1"), Objective("f2")))
+    with tempfile.TemporaryDirectory() as tmp:
+        store = ResultStore.create(Path(tmp) / "s", study="bench", study_hash="0" * 64,
+                                   schema=store_schema(problem, {"f1": "float64",
+                                                                 "f2": "float64"}))
+        r = optimise(problem, surrogates.zdt1, SearchSettings("nsga2", budget=400,
+                                                               population=20, seed=0),
+                     store=store, flush_rows=1)
+        parts = len(store.parts())
+    return {"designs": r.asked, "parquet_parts": parts,
+            "driver_time_per_design_s": r.driver_time_per_design_s,
+            "residual_per_design_s": (r.wall_time_s - r.evaluation_time_s) / r.asked}
+
+
+def bayes_overhead(samples: int, starts: int, seeds=(0, 1, 2)) -> dict:
+    problem = DesignProblem(tuple(Variable(f"x{k}", 0.0, 1.0) for k in range(3)),
+                            (Objective("merit", "max"),))
+    per, best = [], []
+    for seed in seeds:
+        r = optimise(problem, surrogates.hartmann3,
+                     SearchSettings("bayes", budget=32, startup=8, seed=seed,
+                                    acquisition_samples=samples, acquisition_starts=starts))
+        per.append(r.driver_time_per_design_s)
+        best.append(r.best["merit"] / surrogates.HARTMANN3_MAX)
+    return {"acquisition_samples": samples, "acquisition_starts": starts,
+            "seeds": list(seeds), "driver_time_per_design_s": float(np.mean(per)),
+            "fraction_of_optimum_after_32": [float(b) for b in best]}
+
+
+def real_evaluation() -> dict:
+    from gfbopt.design.rotor_objectives import EvaluationSettings, evaluate_rotor_design
+    from gfbopt.inputs.grid import Grid
+    from gfbopt.inputs.rotor_system import load_rotor
+    from gfbopt.static import SolverCache
+
+    system = load_rotor(ROOT / "problems" / "rotors" / "blower.toml")
+    settings = EvaluationSettings(4000.0, 45000.0, 56250.0, Grid.parse("36x10"),
+                                  heaviest_load_factor=2.0)
+    cache = SolverCache(settings.grid)
+    t0 = time.perf_counter()
+    evaluate_rotor_design(system, settings, cache)               # builds the solvers
+    cold = time.perf_counter() - t0
+    times = []
+    for clearance in (17.0, 23.0):
+        t0 = time.perf_counter()
+        row = evaluate_rotor_design(system, settings, cache, radial_clearance_um=clearance)
+        times.append(time.perf_counter() - t0)
+        assert row["success"], row["message"]
+    return {"grid": "36x10", "first_evaluation_s": cold, "evaluation_s": float(np.mean(times)),
+            "evaluations": len(times)}
+
+
+def main() -> None:
+    from gfbopt.provenance import provenance
+
+    load_before = os.getloadavg()
+    evaluation = real_evaluation()
+    nsga = nsga2_overhead()
+    bayes = [bayes_overhead(10_000, 10), bayes_overhead(5000, 0)]
+    e = evaluation["evaluation_s"]
+    out = {"load_average_before": load_before, "load_average_after": os.getloadavg(),
+           "cpu_count": os.cpu_count(), "real_evaluation": evaluation, "nsga2": nsga,
+           "bayes": bayes,
+           "nsga2_overhead_fraction_of_an_evaluation": nsga["residual_per_design_s"] / e,
+           "bayes_overhead_fraction_of_an_evaluation": {
+               f"{b['acquisition_samples']}/{b['acquisition_starts']}":
+               b["driver_time_per_design_s"] / e for b in bayes},
+           "limit_fraction": 0.02, "provenance": provenance()}
+    path = ROOT / "results" / "benchmarks" / "optimiser.json"
+    path.parent.mkdir(parents=True, exist_ok=True)
+    path.write_text(json.dumps(out, indent=2, default=str))
+    print(json.dumps({k: v for k, v in out.items() if k != "provenance"}, indent=2,
+                     default=str))
+
+
+if __name__ == "__main__":
+    main()

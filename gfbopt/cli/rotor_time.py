@@ -1,0 +1,290 @@
+"""The rotor in time: ``gfbopt rotor ROTOR.toml --orbit | --run-up A B | --coast-down A B``.
+
+::
+
+    gfbopt rotor rotor.toml --orbit --speed-rpm 45000 --revolutions 200 --grid 72x20
+    gfbopt rotor rotor.toml --run-up 5000 60000 --rate 20000 --imbalance-grade 2.5 --plot out/
+    gfbopt rotor rotor.toml --coast-down 60000 5000 --rate 20000 --json --csv out/
+
+One transient of the whole rigid rotor on the films of both bearings
+(:mod:`gfbopt.transient.rotor_analysis`): orbits at both journals [µm], the limit cycle at a
+constant speed, or the waterfall, 1× and subsynchronous components of a run-up/coast-down
+with the speed where the subsynchronous line appears beside the linear onset; the smallest
+film with its time, speed and bearing, and contact when it happens (the record up to there
+is kept).  Progress: a bar with an ETA on a terminal, a periodic status line otherwise.
+
+The ``gfbopt rotor`` command (:mod:`gfbopt.cli.rotor`, issue 16) owns the rotor file and the
+shared options ``--speed-rpm``, ``--grid``, ``--json``, ``--csv DIR``, ``--plot DIR``; this
+module adds the transient's options (:func:`add_arguments`) and runs them (:func:`handle`)
+when :func:`requested` says one of ``--orbit/--run-up/--coast-down`` was given.
+"""
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+from .common import number
+
+METHOD_HELP = ("integration method: rkc (default; damped Runge–Kutta–Chebyshev, stages from "
+               "the stiffness bound, step from accuracy) or rk4 (the reference)")
+
+
+def add_arguments(parser) -> None:
+    """The transient's options on the rotor command's parser (not the shared ones)."""
+    g = parser.add_argument_group("rotor transient (orbit, run-up, coast-down)")
+    mode = g.add_mutually_exclusive_group()
+    mode.add_argument("--orbit", action="store_true", help="orbit at a constant --speed-rpm "
+                      "for --revolutions, from the equilibrium (perturbed by --perturbation)")
+    mode.add_argument("--run-up", nargs=2, type=number("run-up"), metavar=("A", "B"),
+                      default=None, help="run up from A to B rpm at --rate")
+    mode.add_argument("--coast-down", nargs=2, type=number("coast-down"), metavar=("A", "B"),
+                      default=None, help="coast down from A to B rpm at --rate")
+    g.add_argument("--revolutions", type=number("revolutions"), default=None,
+                   help="shaft revolutions of an --orbit")
+    g.add_argument("--rate", type=number("rate"), default=None,
+                   help="speed ramp rate [rpm/s] of a run-up or coast-down (> 0)")
+    g.add_argument("--method", default="rkc", choices=("rkc", "rk4"), help=METHOD_HELP)
+    g.add_argument("--time-step", type=number("time-step"), default=None,
+                   help="Δτ [rad of rotation at the top speed] (default: from accuracy for "
+                   "rkc, 0.9 × the stability limit for rk4)")
+    g.add_argument("--stages", type=number("stages"), default=None,
+                   help="RKC stages (rkc only; default: the fewest that are stable)")
+    g.add_argument("--perturbation", default=None, choices=("none", "cylindrical", "conical"),
+                   help="starting kick of both journals (default: cylindrical for an orbit, "
+                   "none for a ramp)")
+    g.add_argument("--kick", type=number("kick"), default=1e-3,
+                   help="journal speed of the kick [clearances per rad] (default 1e-3)")
+    g.add_argument("--imbalance-grade", type=number("imbalance-grade"), default=None,
+                   help="balance grade G [mm/s] (ISO 21940-11): U = m G/ω_max split over two "
+                   "planes at the bearings by their static load shares, phase 0 (replaces "
+                   "the file's imbalance)")
+    g.add_argument("--imbalance-plane", nargs=3, action="append", type=number("imbalance-plane"),
+                   metavar=("G_MM", "PHASE_DEG", "POSITION_M"), default=None,
+                   help="an imbalance plane: amount [g mm], phase [deg], axial position [m] "
+                   "from the CG (repeat; replaces the file's imbalance)")
+    g.add_argument("--reference-whirl-ratio", type=number("reference-whirl-ratio"),
+                   default=None, help="ν_ref of a damped foil (η > 0; default each bearing's "
+                   "linear threshold whirl ratio)")
+    g.add_argument("--foil-travel-um", type=number("foil-travel-um"), default=None,
+                   help="bump travel [µm] before the foil is exhausted (contact); default: "
+                   "not checked")
+    g.add_argument("--window-revolutions", type=number("window-revolutions"), default=20.0,
+                   help="waterfall window [revolutions at the mean speed; at most 1/10 of "
+                   "the record] (default 20)")
+    g.add_argument("--subsync-threshold-um", type=number("subsync-threshold-um"), default=None,
+                   help="amplitude [µm] from which the subsynchronous line counts as present "
+                   "(default 2 %% of the clearance)")
+    g.add_argument("--force", action="store_true", help="run more than the revolution limit "
+                   "(gfbopt.transient.rotor_analysis.MAX_REVOLUTIONS)")
+
+
+def add_shared_arguments(parser) -> None:
+    """The rotor command's own options, for using this module without it (tests)."""
+    parser.add_argument("rotor", help="rotor file (TOML)")
+    parser.add_argument("--speed-rpm", type=number("speed-rpm"), default=None)
+    parser.add_argument("--grid", default="72x20")
+    parser.add_argument("--json", action="store_true")
+    parser.add_argument("--csv", default=None)
+    parser.add_argument("--plot", default=None)
+
+
+def requested(args) -> bool:
+    """True when a transient was asked for."""
+    return bool(getattr(args, "orbit", False) or getattr(args, "run_up", None)
+                or getattr(args, "coast_down", None))
+
+
+def _rotor_path(args) -> str:
+    for name in ("rotor", "rotor_file", "file", "path"):
+        value = getattr(args, name, None)
+        if isinstance(value, (str, Path)):
+            return str(value)
+    from ..errors import ParameterError
+
+    raise ParameterError("ROTOR.toml", None, "a rotor file is required")
+
+
+#: the rotor command's options that a transient does not use (refused, not ignored)
+NOT_USED = {"speed_range": "--speed-range", "campbell": "--campbell",
+            "imbalance_response": "--imbalance-response", "half_mass": "--half-mass"}
+
+
+def _check(args):
+    """The speed profile from the options (ParameterError before anything is solved)."""
+    from ..errors import ParameterError
+    from ..transient.rotor_analysis import orbit_profile, ramp_profile
+
+    for key, option in NOT_USED.items():
+        value = getattr(args, key, None)
+        if value:
+            raise ParameterError(option, value, "is not used by --orbit/--run-up/--coast-down "
+                                 "(a transient); run it separately")
+    if getattr(args, "campbell_speeds", 20) != 20:
+        raise ParameterError("--campbell-speeds", args.campbell_speeds, "needs --campbell")
+
+    if args.orbit:
+        if args.speed_rpm is None:
+            raise ParameterError("--speed-rpm", None, "is required with --orbit")
+        if args.revolutions is None:
+            raise ParameterError("--revolutions", None, "is required with --orbit")
+        if args.rate is not None:
+            raise ParameterError("--rate", args.rate, "is used by --run-up/--coast-down only")
+        return orbit_profile(args.speed_rpm, args.revolutions, args.force)
+    kind = "run-up" if args.run_up else "coast-down"
+    start, end = args.run_up or args.coast_down
+    if args.rate is None:
+        raise ParameterError("--rate", None, f"is required with --{kind} (rpm/s, > 0)")
+    if args.rate <= 0:
+        raise ParameterError("--rate", args.rate, "must be > 0 rpm/s (the direction comes "
+                             "from --run-up or --coast-down)")
+    if args.revolutions is not None:
+        raise ParameterError("--revolutions", args.revolutions, f"is used by --orbit only "
+                             f"(a {kind}'s length follows from its speeds and rate)")
+    if args.speed_rpm is not None:
+        raise ParameterError("--speed-rpm", args.speed_rpm, f"is used by --orbit only (the "
+                             f"{kind} gives its speeds)")
+    return ramp_profile(start, end, args.rate, kind, args.force)
+
+
+def _imbalance(args, system, profile):
+    """The imbalance planes the options ask for (None: the file's)."""
+    from ..errors import ParameterError
+    from ..inputs.rotor_system import ImbalancePlane
+    from ..rotor.rigid import bearing_loads
+    from ..transient.rotor_setup import iso_g_imbalance
+
+    if args.imbalance_grade is not None and args.imbalance_plane:
+        raise ParameterError("--imbalance-grade", args.imbalance_grade, "give either a grade "
+                             "or --imbalance-plane entries, not both")
+    if args.imbalance_plane:
+        planes = []
+        for k, (amount, phase, position) in enumerate(args.imbalance_plane):
+            if not amount > 0:
+                raise ParameterError(f"--imbalance-plane[{k + 1}] amount", amount,
+                                     "must be > 0 g mm")
+            planes.append(ImbalancePlane(amount * 1e-6, position, phase, f"plane {k + 1}"))
+        return tuple(planes)
+    if args.imbalance_grade is None:
+        return None
+    total = iso_g_imbalance(args.imbalance_grade, system.body.mass, profile.top_rpm)
+    loads = bearing_loads(system)
+    share = [w.magnitude for w in loads]
+    return tuple(ImbalancePlane(total * s / sum(share), b.position, 0.0, f"at {b.name}")
+                 for s, b in zip(share, system.bearings))
+
+
+def handle(args) -> int:
+    """Run the transient the options ask for; 0 on success (contact is a result), 1 when the
+    integration failed."""
+    from dataclasses import replace
+
+    from ..errors import ParameterError
+    from ..inputs import Grid
+    from ..inputs.rotor_system import load_rotor
+    from ..progress import progress
+    from ..transient.rotor_analysis import progress_units, run_profile
+
+    profile = _check(args)
+    if args.stages is not None and args.method != "rkc":
+        raise ParameterError("--stages", args.stages, "applies to --method rkc only")
+    grid = Grid.parse(args.grid)
+    system = load_rotor(_rotor_path(args))
+    planes = _imbalance(args, system, profile)
+    if planes is not None:
+        system = replace(system, imbalance=planes)
+    perturbation = args.perturbation or ("cylindrical" if profile.kind == "orbit" else "none")
+    scale = 1.0 if system.imbalance else 0.0
+    total, unit = progress_units(profile)
+    with progress(total=total, desc=f"rotor {profile.kind}", unit=unit) as bar:
+        result = run_profile(
+            system, profile, grid=grid, method=args.method, perturbation=perturbation,
+            kick=args.kick, imbalance_scale=scale, time_step=args.time_step,
+            stages=None if args.stages is None else int(args.stages),
+            reference_whirl_ratio=args.reference_whirl_ratio,
+            foil_travel_m=None if args.foil_travel_um is None else args.foil_travel_um * 1e-6,
+            progress=bar, system=system, window_revolutions=args.window_revolutions,
+            subsync_threshold_um=args.subsync_threshold_um)
+    out = result.to_dict()
+    if args.csv:
+        folder = Path(args.csv)
+        folder.mkdir(parents=True, exist_ok=True)
+        for name, table in result.tables().items():
+            table.to_csv(folder / name, index=False, float_format="%.8g")
+    if args.plot:
+        _figures(result, Path(args.plot))
+    _emit(out, args.json, result)
+    return 0 if result.success else 1
+
+
+def _figures(result, folder: Path) -> None:
+    from ..plotting import save_figure
+    from ..plotting.waterfall import plot_components, plot_journal_orbits, plot_waterfall
+
+    folder.mkdir(parents=True, exist_ok=True)
+    p = result.profile
+    what = (f"orbit at {p.start_rpm:,.0f} rpm" if p.kind == "orbit" else
+            f"{p.kind} {p.start_rpm:,.0f} → {p.end_rpm:,.0f} rpm at {p.rate_rpm_per_s:,.0f} rpm/s")
+    c_um = result.run.model.bearings[0].clearance * 1e6
+    ax = plot_journal_orbits(result.orbit_frame(), result.names, clearance_um=c_um,
+                             title=f"Journal orbits, {what}")
+    save_figure(ax.figure, folder / "orbits.png")
+    if p.kind == "orbit":
+        return
+    lin = result.onset.get("linear_onset_speed_rpm", math.nan)
+    tables = {}
+    for k, name in enumerate(result.names):
+        w = result.waterfalls[0][k]
+        ax = plot_waterfall(w, bearing=name, linear_onset_rpm=lin,
+                            appearance_rpm=result.onset.get(f"subsync_appearance_{name}_rpm",
+                                                            math.nan),
+                            title=f"Waterfall at bearing {name}, {what}")
+        save_figure(ax.figure, folder / f"waterfall_{name}.png")
+        if w.time_s.size:
+            tables[name] = w.table()
+    if tables:
+        axes = plot_components(tables, linear_onset_rpm=lin,
+                               threshold_um=result.onset.get("subsync_threshold_um", math.nan),
+                               title=f"1× and subsynchronous components, {what}")
+        save_figure(axes[0].figure, folder / "components.png")
+
+
+def _rpm(value) -> str:
+    """A speed for the text report ('none' for a missing one: JSON null / NaN)."""
+    return "none in the record" if value is None or value != value else f"{value:,.0f} rpm"
+
+
+def _emit(out: dict, as_json: bool, result) -> None:
+    import json
+
+    from ..provenance import jsonable, provenance
+
+    if as_json:
+        print(json.dumps(jsonable({**out, "provenance": provenance(**result.settings)})))
+        return
+    p = result.profile
+    lines = [f"gfbopt rotor — {p.kind} {p.start_rpm:,.0f}"
+             + (f" → {p.end_rpm:,.0f} rpm at {p.rate_rpm_per_s:,.0f} rpm/s" if p.kind != "orbit"
+                else " rpm") + f", {out['revolutions_integrated']:.1f} revolutions "
+             f"({out['method']}, grid {out['grid']}) in {out['wall_time_s']:.1f} s"]
+    for b in out["bearings"]:
+        text = (f"  bearing {b['bearing']}: load {b['load_newton']:.4g} N, min film "
+                f"{b['min_film_um']:.3g} µm at {b['min_film_speed_rpm']:,.0f} rpm "
+                f"(t = {b['min_film_time_s']:.4g} s)")
+        if "limit_cycle_amplitude_um" in b:
+            text += (f"; whirl {b['limit_cycle_amplitude_um']:.3g} µm at "
+                     f"{b['limit_cycle_frequency_hz']:.4g} Hz ("
+                     + ("settled" if b["limit_cycle_settled"] else
+                        f"not settled: {100 * b['limit_cycle_change']:+.2g} % over the last "
+                        "window") + ")")
+        lines.append(text)
+    if p.kind != "orbit":
+        lines.append(f"  subsynchronous line (≥ {out['subsync_threshold_um']:.3g} µm) appears "
+                     f"at {_rpm(out['subsync_appearance_rpm'])}; linear onset "
+                     f"{_rpm(out['linear_onset_speed_rpm'])} ({out['linear_onset_source']})")
+    if out["contact"]:
+        lines.append(f"  CONTACT ({out['contact_kind']}) at bearing {out['contact_bearing']}, "
+                     f"{out['contact_speed_rpm']:,.0f} rpm, t = {out['contact_time_s']:.4g} s; "
+                     "the record up to there is kept")
+    if not out["success"]:
+        lines.append(f"  ** FAILED: {out['message']}")
+    print("\n".join(lines))

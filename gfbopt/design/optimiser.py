@@ -1,0 +1,307 @@
+"""Design optimisation driven by ask/tell, every evaluation streamed into the results store.
+
+    from gfbopt.design.optimiser import optimise
+    from gfbopt.design.problem import Constraint, DesignProblem, Objective, Variable
+    from gfbopt.design.search import SearchSettings
+    problem = DesignProblem((Variable("x", 0, 1), Variable("y", 0, 1)),
+                            (Objective("f1"), Objective("f2")), (Constraint("g", upper=0),))
+    result = optimise(problem, my_module.evaluate, SearchSettings("nsga2", budget=200),
+                      store=store)          # a gfbopt.doe.ResultStore (resume: reopen it)
+    result.front                            # non-dominated feasible designs
+
+How a run goes:
+
+1. the search method (:mod:`.search`: pymoo NSGA-II, or GP Bayesian optimisation for one
+   objective) *asks* a batch of designs in the unit cube; they are decoded to values
+   (:class:`~gfbopt.design.problem.DesignProblem`);
+2. a design already in the store (an earlier, killed run; or the same design asked again,
+   e.g. after rounding a discrete variable) is answered from it; the others are evaluated by
+   ``evaluate(**fixed, **design)`` (a module-level function returning one row: a dict with
+   the objective and constraint columns), through an executor — serial, a process pool
+   or a Dask cluster (:func:`executor`, over :func:`gfbopt.parallel.stream_tasks`; inside
+   ``with gfbopt.parallel.WorkerPool(n):`` every batch of the run reuses one pool and its
+   workers' solvers, and a task whose worker died is retried on a fresh pool); each task runs
+   :func:`gfbopt.parallel.run_points` on its point with the worker's solver cache, so a failed
+   evaluation is a row with ``success = False`` and its message, never a crash;
+3. every finished row is appended to the store as it arrives (``flush_rows`` rows per part;
+   a Parquet part is written atomically, so ``kill -9`` loses at most the rows in flight);
+4. the batch's objectives and constraint violations are *told* to the method.
+
+The proposals depend only on the seed and on the values told, and the values of a stored
+design are read back bit for bit, so a resumed run asks the same designs, answers the stored
+ones from the store and evaluates only the rest: every design is evaluated once, and the
+resumed result equals an uninterrupted run's.  Row order is the order of first asking
+(``evaluation``), whatever the executor's completion order.
+
+The Pareto front is taken over every evaluation (:func:`gfbopt.design.pareto.pareto_front`).
+"""
+from __future__ import annotations
+
+import math
+import time
+from collections.abc import Callable
+from dataclasses import dataclass
+from typing import Optional
+
+import numpy as np
+import pandas as pd
+
+from ..errors import ParameterError
+from .pareto import feasible_rows, pareto_front
+from .problem import DesignProblem
+from .search import SearchSettings, proposer
+
+#: columns every optimisation table has besides the variables and the outputs
+BOOK_KEEPING = {"point": "string", "evaluation": "int64", "batch": "int64",
+                "success": "bool", "message": "string", "wall_time_s": "float64",
+                "worker": "string"}
+
+
+def store_schema(problem: DesignProblem, outputs: dict) -> dict:
+    """The fixed column schema of an optimisation's store: book-keeping, one float64 column
+    per design variable, then ``outputs`` (name → type; objectives and constraints must be
+    among them)."""
+    missing = [n for n in [o.name for o in problem.objectives]
+               + [c.name for c in problem.constraints] if n not in outputs]
+    if missing:
+        raise ParameterError("outputs", missing[0], "is an objective or constraint but not "
+                             "an output column of the evaluation")
+    return {**BOOK_KEEPING, **{n: "float64" for n in problem.names}, **outputs}
+
+
+@dataclass(frozen=True)
+class OptimisationResult:
+    """An optimisation run.
+
+    table : every design asked, in the order of first asking (variables, outputs,
+        ``evaluation``, ``batch``, ``success``, ``message``, ``wall_time_s``)
+    front : the non-dominated feasible designs (one objective: the best feasible)
+    best : the best feasible row for one objective (None for several, or none feasible)
+    evaluated : designs evaluated in this run; reused : designs answered from the store
+        (an earlier run's); repeated : designs asked again in this run (answered once)
+    evaluation_time_s : sum of the wall times of the evaluations of this run
+    driver_time_s : time in the method's ask/tell, decoding and the store writes
+    wall_time_s : the whole run
+    """
+
+    problem: DesignProblem
+    settings: SearchSettings
+    table: pd.DataFrame
+    front: pd.DataFrame
+    best: Optional[dict]
+    evaluated: int
+    reused: int
+    repeated: int
+    evaluation_time_s: float
+    driver_time_s: float
+    wall_time_s: float
+
+    @property
+    def asked(self) -> int:
+        return self.evaluated + self.reused + self.repeated
+
+    @property
+    def driver_time_per_design_s(self) -> float:
+        return self.driver_time_s / self.asked if self.asked else math.nan
+
+    @property
+    def feasible_count(self) -> int:
+        return len(feasible_rows(self.table, self.problem))
+
+    @property
+    def success(self) -> bool:
+        return self.feasible_count > 0
+
+    @property
+    def message(self) -> str:
+        if self.success:
+            return ""
+        failed = int((~self.table["success"].fillna(False).astype(bool)).sum())
+        return (f"no feasible design among {len(self.table)} evaluated ({failed} failed, "
+                "the others broke a constraint)")
+
+
+def _task(argument: dict) -> dict:
+    """One evaluation in a worker (or here): ``run_points`` on the point with this process's
+    solver cache; a failure is a row with ``success = False``."""
+    from ..parallel import run_points, worker_cache, worker_name
+
+    row = run_points(argument["function"], [argument["point"]], workers=1,
+                     cache=worker_cache())[0]
+    row["worker"] = worker_name()
+    return row
+
+
+def executor(workers: int = 1, client=None) -> Callable:
+    """The ``run_tasks`` of :func:`optimise`: this process (``workers <= 1``), a pool of
+    ``workers`` spawn processes (the run's :class:`gfbopt.parallel.WorkerPool` when one is
+    open) or a Dask cluster (``client``), through :func:`gfbopt.parallel.stream_tasks`."""
+    from functools import partial
+
+    from ..parallel import stream_tasks
+
+    return partial(stream_tasks, workers=workers, client=client)
+
+
+def evaluate_points(function: Callable, points: list, run_tasks: Optional[Callable] = None
+                    ) -> list:
+    """``function(**point)`` for every point through an executor (``run_tasks``, default
+    this process), the rows in the order of ``points``; a task the executor lost is a row
+    with ``success = False`` and ``executor:`` in its message."""
+    run_tasks = run_tasks or _serial
+    rows: list = [None] * len(points)
+    for k, result in run_tasks(_task, [{"function": function, "point": p} for p in points]):
+        if k is None:
+            continue
+        rows[k] = (result if not isinstance(result, BaseException) else
+                   {"success": False, "message": f"executor: {type(result).__name__}: "
+                    f"{result}"})
+    return rows
+
+
+def _serial(function, arguments):
+    return executor(1)(function, arguments)
+
+
+def _number(value) -> float:
+    try:
+        return float(value)
+    except (TypeError, ValueError):
+        return math.nan
+
+
+def _stored(store) -> dict:
+    """key → row of the designs already in the store."""
+    if store is None:
+        return {}
+    frame = store.read()
+    frame = frame.astype(object).where(frame.notna(), None)
+    return {str(r["point"]): r for r in frame.to_dict(orient="records")}
+
+
+class _Writer:
+    """Rows to the store in parts of ``flush_rows`` (or every ``flush_seconds``)."""
+
+    def __init__(self, store, schema: dict, flush_rows: int, flush_seconds: float):
+        self.store, self.schema = store, schema
+        self.flush_rows, self.flush_seconds = flush_rows, flush_seconds
+        self.buffer: list = []
+        self.last = time.monotonic()
+
+    def add(self, row: dict) -> None:
+        if self.store is None:
+            return
+        self.buffer.append({k: row[k] for k in self.schema if k in row})
+        if (len(self.buffer) >= self.flush_rows
+                or time.monotonic() - self.last > self.flush_seconds):
+            self.flush()
+
+    def flush(self) -> None:
+        if self.store is not None and self.buffer:
+            self.store.append(self.buffer)
+        self.buffer, self.last = [], time.monotonic()
+
+
+def optimise(problem: DesignProblem, evaluate: Callable, settings: SearchSettings, *,
+             fixed: Optional[dict] = None, store=None, run_tasks: Optional[Callable] = None,
+             initial: Optional[list] = None, flush_rows: int = 1,
+             flush_seconds: float = 10.0,
+             progress: Optional[Callable[[float], None]] = None) -> OptimisationResult:
+    """Search the design space of ``problem`` (module docstring).
+
+    Parameters
+    ----------
+    evaluate : module-level function ``evaluate(**fixed, **design) -> dict`` (picklable for
+        the workers; it may take ``cache=``, the worker's solver cache)
+    settings : method, budget, population/batch, seed (:class:`~.search.SearchSettings`)
+    fixed : keyword arguments passed to every evaluation unchanged
+    store : a :class:`gfbopt.doe.ResultStore` whose schema is :func:`store_schema` (None:
+        nothing is written); reopened with ``resume=True`` it answers the designs it holds
+    run_tasks : executor ``run_tasks(function, arguments)`` yielding ``(k, result)`` as each
+        task finishes (default: this process; :func:`executor` for a pool or Dask)
+    initial : designs (dicts) put first in the initial sample (e.g. the baseline)
+    flush_rows, flush_seconds : rows per Parquet part / longest time between writes
+    progress : called with the fraction of the budget asked
+    """
+    t_start = time.perf_counter()
+    fixed = dict(fixed or {})
+    run_tasks = run_tasks or _serial
+    clash = sorted(set(fixed) & set(problem.names))
+    if clash:
+        raise ParameterError("fixed", clash[0], "is also a design variable")
+    schema = store.schema if store is not None else None
+    if store is not None:
+        missing = [n for n in [*BOOK_KEEPING, *problem.names] if n not in schema]
+        if missing:
+            raise ParameterError("store", missing[0], "is not a column of the store's schema "
+                                 "(make it with store_schema)")
+    known = _stored(store)
+    writer = _Writer(store, schema or {}, flush_rows, flush_seconds)
+    init = (np.array([problem.encode(d) for d in initial]) if initial else None)
+    method = proposer(problem, settings, init)
+    order: list = []            # keys in the order of first asking
+    seen: set = set()
+    evaluated = reused = repeated = batch = 0
+    evaluation_time = 0.0
+    driver = time.perf_counter() - t_start
+    while True:
+        t0 = time.perf_counter()
+        X = method.ask()
+        if X is None:
+            driver += time.perf_counter() - t0
+            break
+        designs = [problem.decode(x) for x in X]
+        keys = [problem.key(d) for d in designs]
+        todo = []
+        for key, design in zip(keys, designs):
+            if key in seen:
+                repeated += 1
+                continue
+            seen.add(key)
+            order.append(key)
+            if key in known:
+                reused += 1
+            else:
+                todo.append((key, design, len(order) - 1))
+        driver += time.perf_counter() - t0
+        if todo:
+            arguments = [{"function": evaluate, "point": {**fixed, **d}} for _, d, _ in todo]
+            for k, result in run_tasks(_task, arguments):
+                if k is None:                   # an executor's tick: nothing finished
+                    continue
+                t1 = time.perf_counter()
+                key, design, index = todo[k]
+                lost = isinstance(result, BaseException)
+                if lost:        # the executor lost the task (a worker died): not a result
+                    result = {"success": False, "message": f"executor: {type(result).__name__}"
+                              f": {result}", "wall_time_s": math.nan}
+                row = {**{n: v for n, v in result.items() if n not in fixed}, **design,
+                       "point": key, "evaluation": index, "batch": batch}
+                spent = _number(row.get("wall_time_s"))
+                evaluation_time += spent if math.isfinite(spent) else 0.0
+                known[key] = row
+                if not lost:    # a lost task stays out of the store: a resume retries it
+                    writer.add(row)
+                evaluated += 1
+                driver += time.perf_counter() - t1
+        t2 = time.perf_counter()
+        writer.flush()
+        rows = [known[key] for key in keys]
+        F = np.array([problem.objective_vector(r) for r in rows])
+        G = np.array([problem.violation_vector(r) for r in rows])
+        method.tell(F, G)
+        batch += 1
+        if progress is not None:
+            progress(min(1.0, len(order) / settings.budget))
+        driver += time.perf_counter() - t2
+    table = pd.DataFrame.from_records([known[k] for k in order])
+    for column in [*problem.names, *(o.name for o in problem.objectives),
+                   *(c.name for c in problem.constraints), "success", "message"]:
+        if column not in table:
+            table[column] = math.nan
+    table["success"] = table["success"].map(lambda v: bool(v) if v is not None and
+                                            v == v else False)
+    front = pareto_front(table, problem)
+    best = front.iloc[0].to_dict() if len(problem.objectives) == 1 and len(front) else None
+    return OptimisationResult(problem, settings, table, front, best, evaluated, reused,
+                              repeated, evaluation_time, driver, time.perf_counter() - t_start)

@@ -1,0 +1,336 @@
+"""One design of the bearing pair of a rotor, evaluated: the rotor-level figures of merit and
+limits a designer weighs (SI; speeds in rpm).
+
+A *design* is a dict of design-variable values (names of :data:`DESIGN_VARIABLES`, optionally
+prefixed by a bearing's name, ``"A:radial_clearance_um"``, to change that bearing only;
+unprefixed names change both).  :func:`apply_design` turns it into a new
+:class:`~gfbopt.inputs.rotor_system.RotorSystem`; :func:`evaluate_rotor_design` computes
+
+* the onset of every mode of the rotor on its two bearings along the speed line
+  (:func:`gfbopt.rotor.system.rotor_onsets`: matched whirl, each bearing at its own load) —
+  ``first_onset_speed_rpm`` is the first onset over all modes, censored at the top of the
+  search range when every mode is stable there (``onset_status`` says which);
+* the power lost in both films at the top speed (``total_power_loss_w``, from the drag torque of
+  :mod:`gfbopt.physics.torque`) and the minimum film there;
+* the minimum film at the lowest speed under the heaviest load (the static loads times
+  ``heaviest_load_factor``), the smaller of the two bearings;
+* optionally the lift-off speed (the larger of the two bearings) and the load-capacity
+  margin (capacity at the lowest speed over the static load, the smaller)
+  (:mod:`gfbopt.rotor.capacity`);
+* the bump foil's bending stress, the top-foil sag over the clearance and the bump closing
+  ratio (2 l0 + gap)/s, with the formulas of :mod:`gfbopt.physics.bump` that the geometric
+  program limits; a ``compliance`` variable is realised by the geometric program
+  (:func:`gfbopt.design.geometry_program.design_bump_foil`, least stress) instead.
+
+A failure of the physics (a load beyond the capacity at every speed, a geometry the GP cannot
+make) is a row with ``success = False`` and the message, never an exception.
+"""
+from __future__ import annotations
+
+import dataclasses
+import math
+import time
+from dataclasses import dataclass
+from typing import Optional
+
+from ..errors import ParameterError
+from ..inputs.grid import Grid
+
+#: design variables a study may name: unit, and what it changes
+DESIGN_VARIABLES = {
+    "radial_clearance_um": ("µm", "radial clearance c"),
+    "length_mm": ("mm", "bearing length L"),
+    "bump_pitch_mm": ("mm", "bump pitch s"),
+    "bump_half_length_mm": ("mm", "half bump length l0"),
+    "bump_thickness_um": ("µm", "bump foil thickness t_b"),
+    "compliance": ("-", "compliance S, realised by the geometric program (least stress)"),
+    "preload_depth_um": ("µm", "mechanical preload depth (shim thickness or lobe depth)"),
+    "preload_count": ("-", "number of shims or lobes (whole)"),
+    "pads": ("-", "number of top-foil pads, evenly spaced (whole)"),
+}
+#: the bump-geometry variables that ``compliance`` replaces
+BUMP_GEOMETRY = ("bump_pitch_mm", "bump_half_length_mm", "bump_thickness_um")
+#: output columns of one evaluation and their store types
+OUTPUTS = {
+    "first_onset_speed_rpm": "float64", "first_mode": "string", "onset_status": "string",
+    "onset_whirl_frequency_hz": "float64", "stable_to_top_speed": "bool",
+    "total_power_loss_w": "float64", "min_film_top_speed_um": "float64",
+    "min_film_lowest_speed_um": "float64", "lift_off_speed_rpm": "float64",
+    "capacity_margin": "float64", "bump_stress_mpa": "float64",
+    "top_foil_sag_ratio": "float64", "bump_closing_ratio": "float64",
+    "compliance_a": "float64", "compliance_b": "float64", "grid": "string",
+}
+
+
+@dataclass(frozen=True)
+class EvaluationSettings:
+    """What every design is evaluated with (SI, rpm).
+
+    speed_low_rpm, top_speed_rpm : lowest and top running speeds; search_high_rpm : top of
+    the onset search (≥ top speed: designs stable beyond the top speed are still ranked);
+    loss_factor : η of both bearings for the nominal evaluation; grid; heaviest_load_factor :
+    the heaviest load over the static one; lift_off_film_um : h_min limit of the lift-off
+    speed (None: not computed); capacity_film_um : h_min limit of the load capacity at the
+    lowest speed (None: not computed); design_pressure_pa, gap_m : of the bump stress and
+    closing; bore_kind, bore_width_deg, bore_offset_deg, preload_count : the preload's form
+    when ``preload_depth_um`` is a variable; pad_offset_deg : leading end of the first pad
+    from the load line; bump_spec : the geometric program's limits (``compliance`` variable).
+    """
+
+    speed_low_rpm: float
+    top_speed_rpm: float
+    search_high_rpm: float
+    grid: Grid
+    loss_factor: float = 0.0
+    heaviest_load_factor: float = 1.0
+    lift_off_film_um: Optional[float] = None
+    capacity_film_um: Optional[float] = None
+    design_pressure_pa: float = 1e5
+    gap_m: float = 0.2e-3
+    bore_kind: str = "shims"
+    bore_width_deg: float = 60.0
+    bore_offset_deg: float = 0.0
+    preload_count: int = 3
+    pad_offset_deg: float = 180.0
+    bump_spec: object = None
+
+
+def _split(name: str) -> tuple:
+    """("A", "radial_clearance_um") for "A:radial_clearance_um"; (None, name) otherwise."""
+    if ":" in name:
+        bearing, var = name.split(":", 1)
+        return bearing, var
+    return None, name
+
+
+def _bearing_design(geometry, values: dict, settings: EvaluationSettings):
+    """A BearingGeometry with the design values applied (see DESIGN_VARIABLES)."""
+    from ..inputs.bore_si import BearingBuild, BoreSpec, PadSpec
+
+    change = {}
+    if "radial_clearance_um" in values:
+        change["radial_clearance"] = values["radial_clearance_um"] * 1e-6
+    if "length_mm" in values:
+        change["length"] = values["length_mm"] * 1e-3
+    for var, key, scale in (("bump_pitch_mm", "bump_pitch", 1e-3),
+                            ("bump_half_length_mm", "bump_half_length", 1e-3),
+                            ("bump_thickness_um", "bump_thickness", 1e-6)):
+        if var in values:
+            change[key] = values[var] * scale
+    build = geometry.build or BearingBuild()
+    if "preload_depth_um" in values or "preload_count" in values:
+        count = int(round(values.get("preload_count", settings.preload_count)))
+        depth = values.get("preload_depth_um", 0.0) * 1e-6
+        bore = (BoreSpec() if depth == 0.0 or count == 0 else
+                BoreSpec(settings.bore_kind, count, preload_depth=depth,
+                         width_deg=settings.bore_width_deg if settings.bore_kind == "shims"
+                         else 0.0, offset_deg=settings.bore_offset_deg))
+        build = dataclasses.replace(build, bore=bore)
+    if "pads" in values:
+        n = int(round(values["pads"]))
+        build = dataclasses.replace(build, pads=tuple(
+            PadSpec((settings.pad_offset_deg + k * 360.0 / n) % 360.0, 360.0 / n)
+            for k in range(n)) if n > 1 else ())
+    if build != (geometry.build or BearingBuild()):
+        change["build"] = build
+    return dataclasses.replace(geometry, **change) if change else geometry
+
+
+def apply_design(system, design: dict, settings: EvaluationSettings) -> tuple:
+    """(the RotorSystem with the design applied, per-bearing GP results or {})."""
+    names = [b.name for b in system.bearings]
+    per = {n: {} for n in names}
+    for name, value in design.items():
+        bearing, var = _split(name)
+        if var not in DESIGN_VARIABLES:
+            raise ParameterError("design", name, f"is not a design variable (known: "
+                                 f"{', '.join(DESIGN_VARIABLES)})")
+        for n in ([bearing] if bearing else names):
+            if n not in per:
+                raise ParameterError("design", name, f"names no bearing of the rotor "
+                                     f"({', '.join(names)})")
+            per[n][var] = float(value)
+    gp = {}
+    supports = []
+    for support in system.bearings:
+        values = dict(per[support.name])
+        geometry = _bearing_design(support.geometry, values, settings)
+        if "compliance" in values:
+            geometry, gp[support.name] = _realise_compliance(geometry, values["compliance"],
+                                                             settings)
+        supports.append(dataclasses.replace(support, geometry=geometry))
+    return dataclasses.replace(system, bearings=tuple(supports)), gp
+
+
+def _realise_compliance(geometry, compliance: float, settings: EvaluationSettings):
+    """The least-stress bump foil with S = ``compliance`` (geometric program)."""
+    from .geometry_program import design_bump_foil
+
+    spec = dataclasses.replace(
+        settings.bump_spec, radial_clearance=geometry.radial_clearance,
+        radius=geometry.radius, ambient_pressure=geometry.ambient_pressure,
+        youngs_modulus=geometry.bump_youngs_modulus, poisson_ratio=geometry.poisson_ratio)
+    d = design_bump_foil(spec, compliance)
+    if not d.success:
+        raise ParameterError("compliance", compliance, f"no bump foil realises it: "
+                             f"{d.message}")
+    return dataclasses.replace(geometry, bump_pitch=d.pitch, bump_half_length=d.half_length,
+                               bump_thickness=d.thickness), d
+
+
+def structural_limits(geometry, settings: EvaluationSettings) -> dict:
+    """Bump stress [MPa], top-foil sag / c and bump closing (2 l0 + gap)/s of a bearing."""
+    from ..physics.bump import bump_bending_stress, top_foil_sag
+
+    g = geometry
+    dp = settings.design_pressure_pa
+    return {"bump_stress_mpa": bump_bending_stress(dp, g.bump_pitch, g.bump_half_length,
+                                                   g.bump_thickness) / 1e6,
+            "top_foil_sag_ratio": top_foil_sag(dp, g.bump_pitch, g.top_foil_thickness,
+                                               g.top_foil_youngs_modulus, g.poisson_ratio)
+            / g.radial_clearance,
+            "bump_closing_ratio": (2 * g.bump_half_length + settings.gap_m) / g.bump_pitch}
+
+
+def _static(case, speed_rpm: float, load_newton: float, grid: Grid, cache):
+    from ..static import solve_static
+
+    model = case.model(speed_rpm)
+    return solve_static(model, load=case.bearing.nondimensional_load(load_newton),
+                        solver=cache(model, grid), continuation=True)
+
+
+def _film_and_power(rotor, line, settings: EvaluationSettings, cache) -> dict:
+    from ..physics.torque import drag_torque_and_power
+
+    top = line.states(settings.top_speed_rpm)
+    power, film_top = 0.0, math.inf
+    if not top.ok:
+        power = film_top = math.nan
+    else:
+        for state in top.states:
+            sol = state.solution
+            power += drag_torque_and_power(sol.torque_ratio, sol.model.bearing_number,
+                                           state.case.bearing)[1]
+            film_top = min(film_top, sol.min_film * state.case.bearing.radial_clearance * 1e6)
+    film_low = math.inf
+    for case in rotor.cases:
+        sol = _static(case, settings.speed_low_rpm,
+                      case.load_newton * settings.heaviest_load_factor, settings.grid, cache)
+        film_low = min(film_low, sol.min_film * case.bearing.radial_clearance * 1e6
+                       if sol.success else 0.0)
+    return {"total_power_loss_w": power, "min_film_top_speed_um": film_top,
+            "min_film_lowest_speed_um": film_low}
+
+
+def _capacity_rows(rotor, settings: EvaluationSettings, cache) -> dict:
+    from ..rotor.capacity import lift_off_speed, load_capacity
+
+    out = {"lift_off_speed_rpm": math.nan, "capacity_margin": math.nan}
+    if settings.lift_off_film_um is not None:
+        speeds = [lift_off_speed(c.bearing, c.load_newton, settings.lift_off_film_um,
+                                 max_speed_rpm=settings.top_speed_rpm, options=c.options,
+                                 grid=settings.grid, cache=cache) for c in rotor.cases]
+        out["lift_off_speed_rpm"] = max(s.value if s.success else math.inf for s in speeds)
+    if settings.capacity_film_um is not None:
+        caps = [load_capacity(c.bearing, settings.speed_low_rpm, settings.capacity_film_um,
+                              options=c.options, grid=settings.grid, cache=cache)
+                for c in rotor.cases]
+        out["capacity_margin"] = min((r.value / c.load_newton) if r.success else 0.0
+                                     for r, c in zip(caps, rotor.cases))
+    return out
+
+
+#: relative tolerance of the first onset speed in a design search [-]: 1e-3 of the speed
+#: (≈ 15 rpm at 15 krpm), far below what separates designs worth comparing
+ONSET_TOLERANCE = 1e-3
+
+
+def _lowest(line, speed: float):
+    """The crossing with the least inertia scale μ_c over every mode at ``speed`` (None: no
+    crossing; the string 'capacity' when a bearing cannot carry its load there)."""
+    found = line.crossings(speed)
+    if found is None:
+        return "capacity"
+    return min(found, key=lambda c: c.inertia_scale, default=None)
+
+
+def first_onset(line, settings: EvaluationSettings) -> dict:
+    """The first onset over all modes along the speed line (an adapter over the rotor's
+    :class:`~gfbopt.rotor.system.SpeedLine`, cheaper than ``rotor_onsets`` for a search):
+    the speeds of ``rotor_onsets``'s scan are visited upwards only until some mode's μ_c
+    falls through 1, and that bracket is refined by Brent's method on the least μ_c over
+    all modes, m(ω) = min_k (μ_k − 1)/(μ_k + 1) (continuous whichever mode is least, so no
+    mode need be followed), to :data:`ONSET_TOLERANCE`.  The modes above the first onset,
+    which ``rotor_onsets`` refines too, do not change a design's merit."""
+    from scipy.optimize import brentq
+
+    from ..rotor.system import scan_speeds
+
+    def margin(speed: float) -> float:
+        c = _lowest(line, speed)
+        if c == "capacity":
+            raise ParameterError("load", speed, "exceeds a bearing's capacity at this speed")
+        return 1.0 if c is None else (c.inertia_scale - 1.0) / (c.inertia_scale + 1.0)
+
+    low, high = settings.speed_low_rpm, settings.search_high_rpm
+    previous = None
+    for speed in scan_speeds(low, high):
+        c = _lowest(line, speed)
+        if c == "capacity":
+            continue
+        if c is None or c.inertia_scale > 1.0:
+            previous = speed
+            continue
+        if previous is None:
+            return {"first_onset_speed_rpm": low, "onset_status": "unstable at the lowest "
+                    "speed", "first_mode": c.label, "onset_whirl_frequency_hz": math.nan,
+                    "stable_to_top_speed": False}
+        root = brentq(margin, previous, speed, xtol=ONSET_TOLERANCE * previous,
+                      rtol=ONSET_TOLERANCE)
+        at = _lowest(line, root)
+        return {"first_onset_speed_rpm": root, "onset_status": "onset",
+                "first_mode": at.label if at not in (None, "capacity") else c.label,
+                "onset_whirl_frequency_hz": (at.whirl_frequency_hz
+                                             if at not in (None, "capacity") else math.nan),
+                "stable_to_top_speed": bool(root >= settings.top_speed_rpm)}
+    if previous is None:
+        raise ParameterError("speed range", (low, high), "no speed where both bearings "
+                             "carry their loads")
+    return {"first_onset_speed_rpm": high, "onset_status": "stable over the range",
+            "first_mode": "", "onset_whirl_frequency_hz": math.nan,
+            "stable_to_top_speed": True}
+
+
+
+def evaluate_rotor_design(system, settings: EvaluationSettings, cache=None,
+                          **design) -> dict:
+    """Every output of :data:`OUTPUTS` for one design (module docstring); a physics failure
+    is a row with ``success = False`` and its message."""
+    from ..inputs.options import ModelOptions
+    from ..rotor.supports import resolve_rotor
+    from ..rotor.system import SpeedLine
+    from ..static import SolverCache
+
+    t0 = time.perf_counter()
+    cache = cache if cache is not None else SolverCache(settings.grid)
+    row: dict = {"grid": str(settings.grid)}
+    try:
+        designed, _ = apply_design(system, design, settings)
+        limits = [structural_limits(b.geometry, settings) for b in designed.bearings]
+        row.update({k: max(l[k] for l in limits) for k in limits[0]})
+        row["compliance_a"] = designed.bearings[0].geometry.compliance
+        row["compliance_b"] = designed.bearings[1].geometry.compliance
+        options = ModelOptions(loss_factor=settings.loss_factor)
+        rotor = resolve_rotor(designed, settings.grid, cache, options)
+        line = SpeedLine(rotor)
+        row.update(first_onset(line, settings))
+        row.update(_film_and_power(rotor, line, settings, cache))
+        row.update(_capacity_rows(rotor, settings, cache))
+        row["success"] = bool(math.isfinite(row["total_power_loss_w"]))
+        row["message"] = "" if row["success"] else ("a bearing cannot carry its load at the "
+                                                    "top speed")
+    except ParameterError as exc:
+        row.update(success=False, message=str(exc))
+    row["wall_time_s"] = time.perf_counter() - t0
+    return row

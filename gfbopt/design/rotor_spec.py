@@ -1,0 +1,227 @@
+"""The bearing-pair design study of a rotor: its file's keys and their validation, before any
+solve (every mistake is one ParameterError naming the file, the key, the value and the rule).
+
+A study file (``kind = "rotor_bearing_design"``, e.g. ``problems/rotor_bearing_design.toml``)
+names the rotor file, the speeds (lowest and top), the goal, the limits, the design variables
+with their ranges, the loss factor as an uncertain band, the search (method, budget, seed),
+the manufacturing tolerances of the robustness check, and two grids: the coarse grid the
+search runs on and the default grid the chosen and Pareto designs are evaluated again on.
+
+Goals:
+
+* ``front`` — two objectives, maximise the first onset over all modes and minimise the power
+  loss at the top speed (NSGA-II): the Pareto front;
+* ``max_onset`` — one objective, the first onset (Bayesian or NSGA-II);
+* ``stable_then_min_power`` — the rotor must be stable to the top speed (a constraint), then
+  the least power loss (one objective).
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from ..errors import ParameterError
+from .problem import Constraint, DesignProblem, Objective, Variable
+from .rotor_objectives import BUMP_GEOMETRY, DESIGN_VARIABLES, EvaluationSettings
+from .search import SearchSettings
+
+GOALS = ("front", "max_onset", "stable_then_min_power")
+BORE_KINDS = ("shims", "lobes")
+#: the design variables that take whole numbers
+WHOLE = ("preload_count", "pads")
+
+
+@dataclass(frozen=True)
+class RobustnessSpec:
+    """± tolerances of design variables (name → half-width, in the variable's unit), the
+    sample size and seed (Latin hypercube over the tolerances and the loss-factor band),
+    and how many of the best front designs are checked."""
+
+    tolerances: dict
+    samples: int
+    seed: int
+    designs: int
+
+
+@dataclass(frozen=True)
+class RotorDesignPlan:
+    """Everything a run needs, validated: the rotor, the problem, the search, the evaluation
+    settings on the search grid and on the default grid, the loss-factor band, the goal."""
+
+    system: object
+    problem: DesignProblem
+    search: SearchSettings
+    settings: EvaluationSettings
+    default_settings: EvaluationSettings
+    loss_factor_band: tuple
+    goal: str
+    robustness: RobustnessSpec
+    study_hash: str
+    regrid_designs: int = 3
+    limit_cycle_revolutions: float = 0.0
+    limit_cycle_grid: object = None
+
+
+def _variables(rows: list, where, bearings: tuple) -> tuple:
+    out, seen = [], set()
+    for k, row in enumerate(rows):
+        w = where / k
+        name = row["name"]
+        bearing, var = name.split(":", 1) if ":" in name else (None, name)
+        if var not in DESIGN_VARIABLES:
+            raise (w / "name").error(name, f"is not a design variable of the rotor's bearings "
+                                     f"(known: {', '.join(DESIGN_VARIABLES)})")
+        if bearing is not None and bearing not in bearings:
+            raise (w / "name").error(name, f"names no bearing of the rotor (bearings: "
+                                     f"{', '.join(bearings)})")
+        if name in seen:
+            raise (w / "name").error(name, "is given twice")
+        seen.add(name)
+        values = row["values"]
+        if var in WHOLE and values is None:
+            raise (w / "values").error(None, f"{var} is a whole number: give its values "
+                                       "(e.g. [1, 3])")
+        if values is not None and var in WHOLE and any(v != int(v) or v < 0 for v in values):
+            raise (w / "values").error(values, "must be whole numbers >= 0")
+        try:
+            out.append(Variable(name, low=row["low"], high=row["high"], scale=row["scale"],
+                                values=None if values is None else tuple(values)))
+        except ParameterError as exc:
+            raise w.error(exc.value, exc.rule) from None
+        low = min(values) if values is not None else row["low"]
+        if var not in ("preload_depth_um",) and var not in WHOLE and low <= 0:
+            raise w.error([row["low"], row["high"]], f"{var} must be > 0")
+        if var in ("preload_depth_um",) and low < 0:
+            raise w.error([row["low"], row["high"]], "a preload depth must be >= 0")
+    names = {v.name.split(":")[-1] for v in out}
+    if "compliance" in names and names & set(BUMP_GEOMETRY):
+        raise where.error(sorted(names & set(BUMP_GEOMETRY)), "give either compliance (the "
+                          "geometric program picks the bump foil) or the bump geometry, not "
+                          "both")
+    return tuple(out)
+
+
+def _tolerances(table: dict, where, variables: tuple) -> dict:
+    by_name = {v.name: v for v in variables}
+    out = {}
+    for name, half in table.items():
+        if name not in by_name:
+            raise (where / name).error(half, "has a tolerance but is not a design variable "
+                                       f"of this study ({', '.join(by_name)})")
+        v = by_name[name]
+        width = (max(v.values) - min(v.values)) if v.discrete else v.high - v.low
+        if v.discrete:
+            raise (where / name).error(half, "is a whole-number variable: it has no "
+                                       "manufacturing tolerance")
+        if 2.0 * half >= width:
+            raise (where / name).error(half, f"± tolerance spans {2 * half:g}, not smaller "
+                                       f"than the variable's range ({width:g})")
+        out[name] = float(half)
+    return out
+
+
+def _problem(spec: dict, where, variables: tuple) -> DesignProblem:
+    goal = spec["goal"]
+    top = spec["speed_range_rpm"][1]
+    constraints = [Constraint("min_film_lowest_speed_um", lower=spec["min_film_um"])]
+    if spec["max_lift_off_speed_rpm"] is not None:
+        constraints.append(Constraint("lift_off_speed_rpm",
+                                      upper=spec["max_lift_off_speed_rpm"]))
+    if spec["min_capacity_margin"] is not None:
+        constraints.append(Constraint("capacity_margin", lower=spec["min_capacity_margin"]))
+    if spec["allowable_stress_mpa"] is not None:
+        constraints.append(Constraint("bump_stress_mpa", upper=spec["allowable_stress_mpa"]))
+    if spec["sag_limit"] is not None:
+        constraints.append(Constraint("top_foil_sag_ratio", upper=spec["sag_limit"]))
+    if any(v.name.split(":")[-1] in BUMP_GEOMETRY for v in variables):
+        constraints.append(Constraint("bump_closing_ratio", upper=1.0))
+    if goal == "front":
+        objectives = (Objective("first_onset_speed_rpm", "max"), Objective("total_power_loss_w"))
+    elif goal == "max_onset":
+        objectives = (Objective("first_onset_speed_rpm", "max"),)
+    else:
+        objectives = (Objective("total_power_loss_w"),)
+        constraints.append(Constraint("first_onset_speed_rpm", lower=top))
+    if goal == "front" and spec["search"]["method"] == "bayes":
+        raise (where / "search" / "method").error("bayes", "optimises one objective; goal "
+                                                  "'front' has two (use 'nsga2')")
+    return DesignProblem(variables, objectives, tuple(constraints))
+
+
+def plan_rotor_design(study, study_hash: str = "") -> RotorDesignPlan:
+    """Validate a ``rotor_bearing_design`` study (:mod:`gfbopt.studies.rotor_design`) and
+    build its plan — no solve."""
+    from ..inputs.grid import Grid
+    from ..inputs.rotor_system import load_rotor
+
+    s = study.spec
+    try:
+        system = load_rotor(study.directory / s["rotor"])
+    except ParameterError as exc:
+        raise study.where("rotor").error(str(s["rotor"]), f"{exc.name}: {exc.rule}") from None
+    low, top = s["speed_range_rpm"]
+    if not 0 < low < top:
+        raise study.where("speed_range_rpm").error([low, top], "must be [lowest, top] with "
+                                                   "0 < lowest < top speed [rpm]")
+    high = s["search_high_rpm"] if s["search_high_rpm"] is not None else 1.25 * top
+    if high < top:
+        raise study.where("search_high_rpm").error(high, f"must be >= the top speed {top:g} "
+                                                   "rpm")
+    band = tuple(s["loss_factor_band"])
+    if not 0.0 <= band[0] <= band[1] <= 1.0:
+        raise study.where("loss_factor_band").error(list(band), "must be [low, high] with "
+                                                    "0 <= low <= high <= 1")
+    if s["min_film_um"] >= min(b.geometry.radial_clearance for b in system.bearings) * 1e6 \
+            and not any(v["name"].endswith("radial_clearance_um") for v in s["variables"]):
+        raise study.where("min_film_um").error(s["min_film_um"], "must be below the radial "
+                                               "clearance")
+    if not s["variables"]:
+        raise study.where("variables").error([], "must name at least one design variable")
+    bearings = tuple(b.name for b in system.bearings)
+    variables = _variables(s["variables"], study.where("variables"), bearings)
+    problem = _problem(s, study.where(), variables)
+    r = s["robustness"]
+    robustness = RobustnessSpec(_tolerances(r["tolerances"], study.where("robustness",
+                                                                          "tolerances"),
+                                            variables), r["samples"], r["seed"], r["designs"])
+    q = s["search"]
+    try:
+        search = SearchSettings(q["method"], q["budget"], q["population"], q["startup"],
+                                q["batch"], q["seed"])
+    except ParameterError as exc:
+        raise study.where("search", exc.name).error(exc.value, exc.rule) from None
+    bore = s["bore"]
+    bump_spec = None
+    if any(v.name.split(":")[-1] == "compliance" for v in variables):
+        from .spec import BumpDesignSpec
+
+        g = system.bearings[0].geometry
+        try:
+            bump_spec = BumpDesignSpec(
+                radial_clearance=g.radial_clearance,
+                allowable_stress=(None if s["allowable_stress_mpa"] is None
+                                  else s["allowable_stress_mpa"] * 1e6),
+                design_pressure=s["design_pressure_bar"] * 1e5, gap=s["gap_mm"] * 1e-3,
+                pitch_range=tuple(v * 1e-3 for v in s["pitch_range_mm"]),
+                half_length_range=tuple(v * 1e-3 for v in s["half_length_range_mm"]),
+                thickness_range=tuple(v * 1e-6 for v in s["thickness_range_um"]))
+        except ParameterError as exc:
+            raise study.where(exc.name).error(exc.value, exc.rule) from None
+    common = dict(speed_low_rpm=float(low), top_speed_rpm=float(top),
+                  search_high_rpm=float(high), loss_factor=band[0],
+                  heaviest_load_factor=s["heaviest_load_factor"],
+                  lift_off_film_um=s["lift_off_film_um"],
+                  capacity_film_um=s["capacity_film_um"],
+                  design_pressure_pa=s["design_pressure_bar"] * 1e5, gap_m=s["gap_mm"] * 1e-3,
+                  bore_kind=bore["kind"], bore_width_deg=bore["width_deg"],
+                  bore_offset_deg=bore["offset_deg"], preload_count=bore["count"],
+                  pad_offset_deg=s["pad_offset_deg"], bump_spec=bump_spec)
+    if s["max_lift_off_speed_rpm"] is not None and s["lift_off_film_um"] is None:
+        raise study.where("lift_off_film_um").error(None, "is needed by "
+                                                    "max_lift_off_speed_rpm")
+    if s["min_capacity_margin"] is not None and s["capacity_film_um"] is None:
+        raise study.where("capacity_film_um").error(None, "is needed by min_capacity_margin")
+    settings = EvaluationSettings(grid=Grid.parse(s["search_grid"]), **common)
+    default = EvaluationSettings(grid=Grid.parse(s["grid"]), **common)
+    return RotorDesignPlan(system, problem, search, settings, default, band, s["goal"],
+                           robustness, study_hash, s["regrid_designs"],
+                           s["limit_cycle_revolutions"], Grid.parse(s["limit_cycle_grid"]))

@@ -1,0 +1,372 @@
+"""The declarative schema of gfbopt's input files: one object per file format, read by the
+validator and by the generator of the user documentation (``docs/formats/``, written by
+:mod:`gfbopt.file_formats`), so that the two cannot drift.
+
+A :class:`FileFormat` is a list of top-level :class:`Field` s and of :class:`Table` s; a table
+is a list of fields (``array=True``: a list of tables, ``[[name]]`` in TOML).  Each field
+states its kind, unit, default, allowed values or bounds and meaning; each table may state
+rules between its fields (enforced by the object it builds, documented here).
+
+:func:`check_file` refuses an unknown top-level key or table and an unknown key in a table
+with "did you mean …?", a missing required one, a wrong type, a non-finite number and a
+number out of its bounds — one :class:`~gfbopt.errors.ParameterError` naming the file, the
+key, the value and the rule.
+
+Adding a table to the bearing file (e.g. ``[bore]``, ``[[pads]]``, ``[[zones]]``) is one entry:
+define ``Table("bore", "…", fields=(Field(...), ...))`` next to the code that builds it and add
+it to :data:`BEARING_TABLES` below; the validator then accepts and checks it and the generated
+docs describe it.  Its builder reads the checked table from
+:func:`gfbopt.inputs.bearing_file.read_bearing_file`'s ``tables``.
+"""
+from __future__ import annotations
+
+import difflib
+import math
+from dataclasses import dataclass
+from typing import Any, Optional
+
+from ..errors import ParameterError
+from .bore import BORE_KINDS
+from .model import DEFLECTION_LAWS, FILM_MODELS, FOIL_MODELS
+
+#: default of a required field
+REQUIRED = object()
+#: field kinds: a finite number, a string, a string out of ``choices``, an angle in
+#: degrees [0, 360) or "max_film", a list of strings
+KINDS = ("number", "integer", "numbers", "string", "choice", "seam_angle", "strings", "text")
+
+
+@dataclass(frozen=True)
+class Field:
+    """One key of a file or table.
+
+    name, kind (:data:`KINDS`), unit ("m", "Pa", "deg", "-", "text"), doc (meaning);
+    default (:data:`REQUIRED`: must be given; None: not stated); choices (kind "choice");
+    low / high: inclusive bounds of a number, or ``positive`` for > 0; why: the reason of the
+    bounds (shown in refusals and docs).
+    """
+
+    name: str
+    kind: str
+    unit: str
+    doc: str
+    default: Any = REQUIRED
+    choices: tuple = ()
+    low: Optional[float] = None
+    high: Optional[float] = None
+    positive: bool = False
+    why: str = ""
+
+    @property
+    def required(self) -> bool:
+        return self.default is REQUIRED
+
+    def rule(self) -> str:
+        """The allowed values in words."""
+        if self.kind == "choice":
+            return "one of " + ", ".join(f'"{c}"' for c in self.choices)
+        if self.kind == "seam_angle":
+            return 'degrees in [0, 360), or "max_film"'
+        if self.kind in ("string", "text"):
+            return "a string"
+        if self.kind == "strings":
+            return "a string or a list of strings"
+        if self.kind == "numbers":
+            return "a list of finite numbers"
+        parts = []
+        if self.positive:
+            parts.append("> 0")
+        if self.low is not None:
+            parts.append(f">= {self.low:g}")
+        if self.high is not None:
+            parts.append(f"<= {self.high:g}")
+        noun = "a whole number" if self.kind == "integer" else "a finite number"
+        return noun + (f", {' and '.join(parts)}" if parts else "")
+
+
+@dataclass(frozen=True)
+class Table:
+    """A TOML table ``[name]`` (or ``[[name]]`` with ``array=True``) of a file format.
+
+    rules : constraints between fields, in words (enforced by the object the table builds).
+    """
+
+    name: str
+    doc: str
+    fields: tuple
+    required: bool = False
+    array: bool = False
+    rules: tuple = ()
+
+    def field(self, name: str) -> Field:
+        return {f.name: f for f in self.fields}[name]
+
+
+@dataclass(frozen=True)
+class FileFormat:
+    """A whole input file: top-level fields, tables and a complete example."""
+
+    name: str
+    doc: str
+    top: tuple
+    tables: tuple
+    example: str
+
+    def table(self, name: str) -> Table:
+        return {t.name: t for t in self.tables}[name]
+
+
+def did_you_mean(name: str, known) -> str:
+    """" (did you mean 'x'?)" for a misspelt ``name``, or ""."""
+    close = difflib.get_close_matches(str(name), list(known), n=1, cutoff=0.6)
+    return f" (did you mean '{close[0]}'?)" if close else ""
+
+
+def check_value(f: Field, value, where: str):
+    """``value`` checked against field ``f`` (normalised: numbers as float) or
+    ParameterError naming ``where``."""
+    def refuse(rule):
+        return ParameterError(where, value, rule)
+    if f.kind in ("string", "text"):
+        if not isinstance(value, str):
+            raise refuse(f"must be a string ({f.doc})")
+        return value
+    if f.kind == "strings":
+        items = [value] if isinstance(value, str) else value
+        if not isinstance(items, list) or not all(isinstance(v, str) for v in items):
+            raise refuse("must be a string or a list of strings")
+        return value
+    if f.kind == "choice":
+        if not isinstance(value, str) or value not in f.choices:
+            raise refuse(f"must be {f.rule()}" + did_you_mean(value, f.choices))
+        return value
+    if f.kind == "seam_angle" and value == "max_film":
+        return value
+    if f.kind == "numbers":
+        if not isinstance(value, list):
+            raise refuse(f"must be {f.rule()} ({f.doc})")
+        item = Field(f.name, "number", f.unit, f.doc)
+        return [check_value(item, v, f"{where}[{k}]") for k, v in enumerate(value)]
+    if f.kind == "integer" and (isinstance(value, bool) or not isinstance(value, int)):
+        raise refuse(f"must be {f.rule()} ({f.doc})")
+    if isinstance(value, bool) or not isinstance(value, (int, float)):
+        raise refuse(f"must be {f.rule()} ({f.doc}" + (f" [{f.unit}])" if f.unit not in
+                                                        ("-", "text") else ")"))
+    try:
+        number = float(value)
+    except OverflowError:               # an integer beyond the float range
+        number = math.inf
+    if not math.isfinite(number):
+        raise refuse("must be finite (not NaN or infinite)")
+    if f.kind == "seam_angle":
+        if not 0.0 <= number < 360.0:
+            raise refuse("must lie in [0, 360) degrees from the load line in the direction "
+                         "of rotation, or be \"max_film\"")
+        return number
+    why = f" ({f.why})" if f.why else ""
+    if f.positive and number <= 0:
+        raise refuse(f"must be > 0{why}")
+    unit = "" if f.unit in ("-", "text") else f" {f.unit}"
+    if f.low is not None and number < f.low:
+        raise refuse(f"must be >= {f.low:g}{unit}{why}")
+    if f.high is not None and number > f.high:
+        raise refuse(f"must be <= {f.high:g}{unit}{why}")
+    return number
+
+
+def check_fields(data: dict, fields: tuple, where: str, what: str) -> dict:
+    """The keys of ``data`` checked against ``fields``: unknown keys refused (did you mean),
+    required keys demanded; returns the stated keys, checked (defaults not filled)."""
+    if not isinstance(data, dict):
+        raise ParameterError(where, data, f"must be a table ({what})")
+    schema = {f.name: f for f in fields}
+    prefix = f"{where}." if where else ""
+    for name in data:
+        if name not in schema:
+            raise ParameterError(f"{prefix}{name}", data[name], f"is not a key of {what}"
+                                 f"{did_you_mean(name, schema)} (known: {', '.join(schema)})")
+    for f in fields:
+        if f.required and f.name not in data:
+            raise ParameterError(f"{prefix}{f.name}", None, f"is required ({f.doc})")
+    return {name: check_value(schema[name], value, f"{prefix}{name}")
+            for name, value in data.items()}
+
+
+def check_table(data, table: Table, where: str) -> dict:
+    """One table (a dict) checked against ``table``; see :func:`check_fields`."""
+    return check_fields(data, table.fields, where, f"[{table.name}]")
+
+
+def check_file(data: dict, fmt: FileFormat, where: str) -> dict:
+    """A parsed file checked against ``fmt``: top-level keys and tables (unknown ones refused
+    with did-you-mean), each table key by key.  Returns {name: checked value}, a list of
+    checked tables for ``array`` tables."""
+    top = {f.name: f for f in fmt.top}
+    tables = {t.name: t for t in fmt.tables}
+    known = [*top, *tables]
+    out = {}
+    for name, value in data.items():
+        if name in tables:
+            t = tables[name]
+            if t.array:
+                if not isinstance(value, list) or not all(isinstance(v, dict) for v in value):
+                    raise ParameterError(f"{where}: {name}", value,
+                                         f"must be a list of tables ([[{name}]])")
+                out[name] = [check_table(v, t, f"{where}: {name}[{k}]")
+                             for k, v in enumerate(value)]
+            else:
+                out[name] = check_table(value, t, f"{where}: {name}")
+        elif name in top:
+            out[name] = check_value(top[name], value, f"{where}: {name}")
+        else:
+            kind = "table" if isinstance(value, dict) else "key"
+            raise ParameterError(f"{where}: {name}", "…" if kind == "table" else value,
+                                 f"is not a {kind} of a {fmt.name}{did_you_mean(name, known)}"
+                                 f" (known: {', '.join(known)})")
+    for t in fmt.tables:
+        if t.required and t.name not in data:
+            raise ParameterError(f"{where}: [{t.name}]", None,
+                                 f"table is required but missing ({t.doc})")
+    return out
+
+
+# ------------------------------------------------------------------ the bearing file
+_WHY_SIZE = "a journal bearing of 1 mm to 1 m radius"
+_WHY_MODULUS = "a metal foil: 1 MPa to 10 TPa"
+
+#: the ``[bearing]`` table: the bearing in SI units (:class:`~gfbopt.inputs.BearingGeometry`)
+BEARING = Table("bearing", "the bearing's dimensions and materials, SI units", required=True,
+                fields=(
+    Field("name", "string", "text", "label used in reports", default="bearing"),
+    Field("radius", "number", "m", "journal (bearing) radius R", low=1e-3, high=1.0,
+          why=_WHY_SIZE),
+    Field("length", "number", "m", "axial length L", low=1e-4,
+          why="0.05 <= L/D <= 10 is checked with the radius"),
+    Field("radial_clearance", "number", "m", "radial clearance c", low=1e-6,
+          why="below 1 µm the gas film is no longer a continuum; c/R <= 0.01 is checked with "
+              "the radius"),
+    Field("bump_pitch", "number", "m", "bump pitch s", low=1e-5,
+          why="2 l0 <= s and s <= π R are checked with the other dimensions"),
+    Field("bump_half_length", "number", "m", "half bump length l0", low=1e-6),
+    Field("bump_thickness", "number", "m", "bump foil thickness t_b", low=1e-6,
+          why="t_b < l0 is checked with the half length"),
+    Field("bump_youngs_modulus", "number", "Pa", "Young's modulus of the bump foil E_b",
+          low=1e6, high=1e13, why=_WHY_MODULUS),
+    Field("top_foil_youngs_modulus", "number", "Pa", "Young's modulus of the top foil E_t",
+          low=1e6, high=1e13, why=_WHY_MODULUS),
+    Field("poisson_ratio", "number", "-", "Poisson's ratio ν of the bump foil", low=-0.999,
+          high=0.499, why="an isotropic solid has -1 < ν < 0.5"),
+    Field("top_foil_thickness", "number", "m", "top foil thickness t_t", low=1e-6,
+          why="t_t <= R/10 is checked with the radius"),
+    Field("viscosity", "number", "Pa s", "gas dynamic viscosity μ", low=1e-7, high=1.0,
+          why="gases: about 1e-6 to 1e-4 Pa s"),
+    Field("ambient_pressure", "number", "Pa", "ambient pressure p_a", default=101325.0,
+          low=100.0, high=1e8, why="100 Pa to 1000 bar"),
+), rules=(
+    "c/R <= 0.01 (the thin-film Reynolds equation needs a clearance small against the radius)",
+    "0.05 <= L/D <= 10",
+    "2 l0 <= s (a bump spans 2 l0 and must fit in its pitch)",
+    "t_b < l0 (each half bump is a slender beam in Heshmat's compliance formula)",
+    "s <= π R (at least two bumps round the bearing)",
+    "t_t <= R/10 (a thin top foil)",
+    "the compliance S = p_a α/c <= 1000 and the top-foil coefficient C <= 10^4 (the "
+    "non-dimensional model's bounds)",
+))
+
+#: the optional ``[model]`` table: the formulation the bearing is analysed with
+#: (:class:`~gfbopt.inputs.options.ModelOptions`); what it does not state takes the defaults
+#: of :func:`~gfbopt.inputs.options.resolve_model_options`
+MODEL = Table("model", "the formulation the bearing is analysed with by every route (command "
+              "line, Python API, studies); options not stated take gfbopt's defaults, and an "
+              "option given on the command line or as a keyword argument wins", fields=(
+    Field("film", "choice", "text", "film convention: periodic (full 360° film, no seam) or "
+          "seam (the top foil's ends open to ambient)", default=None, choices=FILM_MODELS),
+    Field("seam_angle_deg", "seam_angle", "deg", "welded end of the top foil from the load "
+          "line in the direction of rotation, or \"max_film\" (the seam on the maximum-film "
+          "line, the thesis's convention); default 180 with a seam", default=None),
+    Field("foil", "choice", "text", "foil model: rigid (plain gas bearing), simple (elastic "
+          "foundation W = S(P − 1)), beam (1D top foil on the bumps); default simple",
+          default=None, choices=FOIL_MODELS),
+    Field("deflection_law", "choice", "text", "mean: W = S(P̄ − 1) (axially averaged "
+          "pressure); local: W = S(P − 1) (simple foil only); default mean", default=None,
+          choices=DEFLECTION_LAWS),
+    Field("loss_factor", "number", "-", "structural loss factor η of the bumps; default 0",
+          default=None, low=0.0, high=1.0, why="a fraction: 0.2 means 20 %"),
+))
+
+#: the bearing as built (helper "bore", :mod:`gfbopt.inputs.bore_si`, which builds them and
+#: checks the rules between their keys): a bore profile, top-foil pads and bump zones
+BORE = Table("bore", "the bore profile (shims, lobes or a measured table) that preloads the "
+             "bearing; a round bore when absent", fields=(
+    Field("kind", "choice", "text", "bore profile", choices=BORE_KINDS),
+    Field("count", "integer", "-", "number of shims or lobes (shims, lobes)", default=None,
+          low=1),
+    Field("preload_depth", "number", "m", "preload: depth of the shims or lobes (or "
+          "preload_ratio)", default=None, positive=True),
+    Field("preload_ratio", "number", "-", "preload over the radial clearance (or "
+          "preload_depth)", default=None),
+    Field("width_deg", "number", "deg", "shim width (shims: required)", default=None),
+    Field("offset_deg", "number", "deg", "centre of the first shim or lobe from the load "
+          "line", default=None),
+    Field("angle_deg", "numbers", "deg", "angles of a measured bore (kind table), in [0, 360)",
+          default=None),
+    Field("clearance_change", "numbers", "m", "change of the radial clearance at those angles "
+          "(kind table)", default=None)),
+    rules=("shims and lobes: count >= 1 and exactly one of preload_depth, preload_ratio",
+           "preload_depth < radial_clearance (the film must stay open with the journal "
+           "concentric)"))
+PADS = Table("pads", "one table per top foil (pad): a segmented bearing; one 360° top foil "
+             "when absent", array=True, fields=(
+    Field("leading_end_deg", "number", "deg", "welded (leading) end from the load line"),
+    Field("arc_deg", "number", "deg", "arc of the pad")),
+    rules=("pads need a seamed film; with a seam stated, it sits on a pad's leading end",))
+ZONES = Table("zones", "bump zones with their own bump geometry, covering 360° once; a "
+              "uniform foundation when absent", array=True, fields=(
+    Field("start_deg", "number", "deg", "start of the zone from the load line"),
+    Field("end_deg", "number", "deg", "end of the zone (> start; above 360 through 0°)"),
+    Field("bump_pitch", "number", "m", "bump pitch s (default: [bearing]'s)", default=None,
+          positive=True),
+    Field("bump_half_length", "number", "m", "half bump length l0 (default: [bearing]'s)",
+          default=None, positive=True),
+    Field("bump_thickness", "number", "m", "bump thickness t_b (default: [bearing]'s)",
+          default=None, positive=True)))
+
+#: the tables of a bearing file; adding a table is one entry here (module docstring)
+BEARING_TABLES = (BEARING, MODEL, BORE, PADS, ZONES)
+
+BEARING_EXAMPLE = '''\
+source = "Ruscitto, D., McCormick, J. & Gray, S. (1978), NASA CR-135368"
+
+[bearing]
+name = "Ruscitto et al. (1978)"
+radius = 19.05e-3              # R [m]
+length = 38.1e-3               # L [m]
+radial_clearance = 20e-6       # c [m]
+top_foil_thickness = 101.6e-6  # t_t [m]
+bump_thickness = 101.6e-6      # t_b [m]
+bump_pitch = 4.572e-3          # s [m]
+bump_half_length = 1.778e-3    # l0 [m]
+bump_youngs_modulus = 214e9    # E_b [Pa]
+top_foil_youngs_modulus = 214e9  # E_t [Pa]
+poisson_ratio = 0.29           # nu [-]
+ambient_pressure = 1.0e5       # p_a [Pa]
+viscosity = 2.98e-5            # mu [Pa s]
+
+[model]
+film = "seam"
+seam_angle_deg = 180.0
+foil = "simple"
+deflection_law = "mean"
+loss_factor = 0.0
+'''
+
+#: the bearing file (``problems/bearings/*.toml``, ``--bearing FILE``)
+BEARING_FILE = FileFormat(
+    "bearing file",
+    "A bump-type gas foil journal bearing in SI units, and optionally the formulation it is "
+    "analysed with.  Read by `gfbopt.load_bearing`, `--bearing FILE` of the commands, and "
+    "the `bearing =` key of study files; the same file gives the same answer by every route.",
+    top=(Field("source", "string", "text", "citation of where the dimensions come from",
+               default=None),
+         Field("notes", "strings", "text", "free notes (not interpreted)", default=None)),
+    tables=BEARING_TABLES, example=BEARING_EXAMPLE)

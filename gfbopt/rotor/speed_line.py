@@ -1,0 +1,271 @@
+"""The rotor's mass–speed line as a function to search: f(N) and g(N), full or local thresholds.
+
+:class:`SpeedLine` evaluates, at a speed N [rpm], the margin of the rotor along its line
+(:mod:`gfbopt.rotor.onset`): f = (M̄c − M̄)/(M̄c + M̄) in [−1, 1] (> 0 stable, finite even when
+M̄c is 0 or ∞, for the bracketing scan) and g = ln(M̄c/M̄) (for the secant refinement: M̄
+grows as N², M̄c slowly, so g is nearly linear in ln N).  Each evaluation
+
+* solves the equilibrium warm from the nearest speed already solved, with the Newton fast
+  path (:mod:`gfbopt.static.newton`; IPOPT when it does not converge in a few steps, a cold
+  IPOPT solve and the load-capacity check of :func:`~gfbopt.rotor.analysis.equilibrium` when
+  that fails too), or, on a fine grid guided by a coarse one, from the coarse equilibrium at
+  the same speed interpolated onto the fine grid (:func:`transferred_start`);
+* computes the threshold either in full (:func:`gfbopt.linear.linear_threshold`: every branch,
+  the least-stable one wins) or locally (:func:`gfbopt.linear.crossings.local_crossing`:
+  Newton's method on the whirl ratio from the crossing of a nearby evaluation, about two
+  sparse LUs instead of a Krylov scan, a check and an eigenvalue probe).  A local threshold
+  follows one branch; the search confirms its answer with a full one.
+
+Every evaluation is a row of the result's scan, with the grid it was made on and whether its
+threshold was full or local.  :class:`Guide` is the line of a coarse guide (its failures are
+:class:`GuideFailed`); :func:`secant_root` is the safeguarded secant on g.
+"""
+from __future__ import annotations
+
+import dataclasses
+import math
+from typing import Optional
+
+import numpy as np
+from scipy.interpolate import RegularGridInterpolator
+
+from ..errors import ConvergenceError, ParameterError
+from ..inputs.conversions import film_thickness_um
+from ..linear import linear_threshold, linearise
+from ..linear.crossings import local_crossing
+from ..static import StaticSolution, consistent_state, solve_static
+from .analysis import Case, equilibrium
+
+#: a coarse guide's equilibrium or crossing at a speed is preferred to this grid's own at
+#: another speed when it is nearer by more than this, in |ln(speed ratio)| [-]: the grid
+#: error of the guide (~1 %) is worth a few per cent of speed
+GUIDE_DISTANCE = 0.05
+#: secant steps before :func:`secant_root` gives up (the onset search then falls back to
+#: Brent's method on full thresholds)
+SECANT_STEPS = 16
+
+
+class SpeedLine:
+    """f and g along the mass–speed line of ``case`` on its grid (module docstring)."""
+
+    def __init__(self, case: Case, threshold_options: Optional[dict] = None,
+                 fast_path: bool = True):
+        self.case = case
+        self.fast_path = fast_path
+        self.rows: list[dict] = []
+        self.threshold_options = dict(threshold_options or {})
+        self._solutions: dict = {}
+        self._rows: dict = {}
+        self._last = None                            # (speed, equilibrium, linearisation)
+        self.guide: Optional["SpeedLine"] = None     # a coarse line whose solutions start ours
+
+    # ----------------------------------------------------------------- evaluations
+    def full(self, speed: float) -> dict:
+        """The row at ``speed`` with the full threshold (cached)."""
+        row = self._rows.get(speed)
+        if row is not None and row["threshold"] == "full":
+            return row
+        sol, lin = self._linearised(speed)
+        thr = linear_threshold(lin, **self.threshold_options)
+        root = (thr.critical_mass * thr.whirl_ratio**2 * lin.load
+                if math.isfinite(thr.critical_mass) and thr.critical_mass > 0 else math.nan)
+        return self._record(speed, sol, thr.critical_mass, thr.whirl_ratio, root, "full",
+                            thr.message)
+
+    def local(self, speed: float, near: Optional[dict] = None) -> dict:
+        """The row at ``speed`` with a local threshold from the crossing of ``near`` (default:
+        the nearest row with a finite crossing, on this grid or the guide's); the full
+        threshold when there is none or the local search fails."""
+        if speed in self._rows:
+            return self._rows[speed]
+        near = near or self._nearest_crossing(speed)
+        if near is None:
+            return self.full(speed)
+        sol, lin = self._linearised(speed)
+        found = local_crossing(lin, near["whirl_ratio"], near["root"])
+        if found is None:
+            return self.full(speed)
+        return self._record(speed, sol, found.mass, found.whirl, found.root.real, "local", "")
+
+    def f(self, speed: float) -> float:
+        """(M̄c − M̄)/(M̄c + M̄) at ``speed`` with the full threshold."""
+        return self.full(speed)["f"]
+
+    # -------------------------------------------------------------------- helpers
+    def _nearest_crossing(self, speed: float) -> Optional[dict]:
+        """The row with a crossing nearest ``speed``: on this grid, or on the guide's when
+        its speed is nearer by more than :data:`GUIDE_DISTANCE`."""
+        def distance(row, penalty):
+            return abs(math.log(row["speed_rpm"] / speed)) + penalty
+        rows = [(distance(r, 0.0), k, r) for k, r in enumerate(self.rows)
+                if math.isfinite(r["root"])]
+        if self.guide is not None:
+            rows += [(distance(r, GUIDE_DISTANCE), len(rows) + k, r)
+                     for k, r in enumerate(self.guide.rows) if math.isfinite(r["root"])]
+        return min(rows, default=(None, None, None))[2]
+
+    def _linearised(self, speed: float):
+        if self._last is not None and self._last[0] == speed:
+            return self._last[1:]
+        sol = self._equilibrium(speed)
+        self._solutions[speed] = sol
+        lin = linearise(sol, self.case.cache(sol.model, self.case.grid))
+        self._last = (speed, sol, lin)
+        return sol, lin
+
+    def _equilibrium(self, speed: float) -> StaticSolution:
+        case = self.case
+        model = case.model(speed)
+        solver = case.cache(model, case.grid)
+        start = self._start(speed, solver, model)
+        if not self.fast_path:                       # the reference: IPOPT from the start
+            return equilibrium(case, speed, start)
+        if start is not None:
+            sol = solve_static(model, load=case.load, solver=solver, initial=start,
+                               fast_path=True)
+            if sol.success:
+                return sol
+        return equilibrium(case, speed)              # cold; raises LoadCapacityError
+
+    def _start(self, speed: float, solver, model) -> Optional[StaticSolution]:
+        """The warm start: the nearest speed solved on this grid, else the guide's
+        equilibrium at the nearest speed interpolated onto this grid."""
+        def distance(other):
+            return abs(math.log(other / speed))
+        nearest = min(self._solutions, key=distance, default=None)
+        near = (min(self.guide._solutions, key=distance, default=None)
+                if self.guide is not None else None)
+        if near is not None and (nearest is None or
+                                 distance(near) + GUIDE_DISTANCE < distance(nearest)):
+            return transferred_start(self.guide._solutions[near], solver, model)
+        return self._solutions[nearest] if nearest is not None else None
+
+    def _record(self, speed, sol, mcrit, whirl, root, kind, message) -> dict:
+        mbar = self.case.mass_parameter(speed)
+        f = 1.0 if math.isinf(mcrit) else (mcrit - mbar) / (mcrit + mbar)
+        g = (math.inf if math.isinf(mcrit) else -math.inf if mcrit <= 0
+             else math.log(mcrit / mbar))
+        row = {"speed_rpm": speed, "mass_parameter": mbar, "critical_mass_parameter": mcrit,
+               "mass_margin": mcrit / mbar - 1.0, "whirl_ratio": whirl,
+               "bearing_number": sol.model.bearing_number, "eccentricity": sol.eccentricity,
+               "min_film_thickness_um": film_thickness_um(
+                   sol.min_film, self.case.bearing.radial_clearance),
+               "grid": str(self.case.grid), "threshold": kind, "static_solver": sol.solver,
+               "message": message, "f": f, "g": g, "root": root}
+        if speed in self._rows:
+            self.rows.remove(self._rows[speed])
+        self._rows[speed] = row
+        self.rows.append(row)
+        return row
+
+
+def transferred_start(coarse: StaticSolution, solver, model) -> StaticSolution:
+    """A start for ``solver`` (a finer grid) from a coarse equilibrium: its pressure
+    interpolated (bilinear in θ from the seam and Z) onto the fine nodes, ε and φ kept, every
+    lifted variable made consistent (:func:`~gfbopt.static.consistent_state`).  Only its
+    ``state`` is meant to be used (as ``initial`` of a solve)."""
+    st = solver.stencil
+    psi = coarse.theta - coarse.seam_angle            # θ from the grid origin, 0 first
+    psi[0] = 0.0
+    pressure = coarse.pressure
+    if st.periodic:                                   # close the period for interpolation
+        psi = np.append(psi, 2 * math.pi)
+        pressure = np.vstack([pressure, pressure[:1]])
+    z = st.z_nodes(model.length_ratio)
+    interp = RegularGridInterpolator((psi, coarse.z), pressure, bounds_error=False,
+                                     fill_value=None)
+    grid_psi, grid_z = np.meshgrid(st.psi, z, indexing="ij")
+    p_full = interp(np.column_stack([grid_psi.ravel(), grid_z.ravel()]))
+    x = consistent_state(solver, model, np.maximum(p_full, 1e-3), coarse.eccentricity,
+                         coarse.attitude_angle)
+    return dataclasses.replace(coarse, state=x, grid=solver.grid)
+
+
+class GuideFailed(Exception):
+    """An evaluation on the coarse guide failed (a load its grid cannot carry, a solver
+    failure): the search goes on without the guide."""
+
+
+class Guide(SpeedLine):
+    """The coarse guide's line: its failures are :class:`GuideFailed`, never the answer."""
+
+    def full(self, speed: float) -> dict:
+        try:
+            return super().full(speed)
+        except (ParameterError, ConvergenceError) as exc:
+            raise GuideFailed(str(exc)) from exc
+
+    def local(self, speed: float, near: Optional[dict] = None) -> dict:
+        try:
+            return super().local(speed, near)
+        except (ParameterError, ConvergenceError) as exc:
+            raise GuideFailed(str(exc)) from exc
+
+
+def secant_root(line: SpeedLine, low: float, high: float, tol: float, start=None,
+            first: Optional[float] = None) -> Optional[tuple]:
+    """(u*, dg/du) with g(u*) = 0, u = ln N [rpm], by secant steps safeguarded by bisection.
+
+    [lo, hi] = [ln ``low``, ln ``high``].  Without ``start``, it is a bracket whose ends are evaluated with full thresholds
+    (g(lo) > 0 ≥ g(hi)); with ``start`` = [(u0, g0)] and a ``first`` point, the secant starts
+    there and [lo, hi] only bounds it until a sign change brackets the root.  Interior points
+    use local thresholds.  Converged when the next secant step is at most ``tol``: that next
+    point is returned without evaluating it (the caller evaluates it in full); the secant
+    converges superlinearly, so its error is of the order of the product of the last two
+    steps.  None when it leaves the bounds without a bracket or does not converge in
+    :data:`SECANT_STEPS` steps."""
+    lo, hi = math.log(low), math.log(high)
+    ends = {lo: low, hi: high} if start is None else {}
+
+    def g(u, full=False):
+        speed = ends.get(u, math.exp(u))
+        return (line.full(speed) if full else line.local(speed))["g"]
+
+    if start is None:
+        points = [(lo, g(lo, True)), (hi, g(hi, True))]
+        a, b = lo, hi
+        u = None
+    else:
+        points = list(start)
+        a = b = None
+        u = first
+    for step in range(SECANT_STEPS):
+        (u0, g0), (u1, g1) = (points[-2], points[-1]) if len(points) > 1 else (
+            (None, None), points[-1])
+        predicted = u is not None or (g0 is not None and math.isfinite(g0)
+                                      and math.isfinite(g1) and g1 != g0)
+        if u is None and predicted:
+            u = u1 - g1 * (u1 - u0) / (g1 - g0)
+        if a is not None and (u is None or not a < u < b):
+            u, predicted = 0.5 * (a + b), False   # bisection inside the bracket
+        if u is None or not lo <= u <= hi:
+            return None
+        if predicted and (step > 0 or start is not None) and abs(u - u1) <= tol:
+            return u, slope(points)              # converged: u is the next secant point
+        gu = g(u)
+        if not math.isfinite(gu) and a is None:
+            return None
+        if a is None:
+            signs = [p for p in points + [(u, gu)] if math.isfinite(p[1])]
+            pos = [p[0] for p in signs if p[1] > 0]
+            neg = [p[0] for p in signs if p[1] <= 0]
+            if pos and neg and max(pos) < min(neg):
+                a, b = max(pos), min(neg)
+        elif gu > 0:
+            a = u
+        else:
+            b = u
+        points.append((u, gu))
+        if gu == 0:
+            return u, slope(points)
+        u = None
+    return None
+
+
+def slope(points: list) -> float:
+    """dg/du from the last two points (nan when one is not finite)."""
+    if len(points) < 2:
+        return math.nan
+    (v0, h0), (v1, h1) = points[-2], points[-1]
+    finite = math.isfinite(h0) and math.isfinite(h1) and v1 != v0
+    return (h1 - h0) / (v1 - v0) if finite else math.nan

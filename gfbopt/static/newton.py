@@ -1,0 +1,162 @@
+"""A fast path for warm-started static solves: Newton's method on the built CasADi equations.
+
+Inside a search (the onset speed along a rotor's mass–speed line, a continuation) each static
+solve starts from the equilibrium of a nearby operating point.  IPOPT then takes the same two
+to four iterations a plain Newton iteration takes on the same square system g(x, p) = 0, but
+each of its iterations costs several sparse LUs' worth of work (the KKT system is twice the
+size, MUMPS analyses it on every call, and the interior-point bookkeeping adds more):
+benchmarks/bench_onset.py measures it.  Here the equations and their sparse Jacobian are the
+build's own CasADi functions (:meth:`StaticSolver.jacobian_function`, the Jacobian IPOPT is
+given), evaluated through CasADi's zero-copy buffers, and each step is one SuperLU
+factorisation (columns ordered by minimum degree on A + Aᵀ, as :func:`gfbopt.linear.factor`).
+
+Steps.  Full Newton steps while the step is large; once the largest component of a step is
+below :data:`CHORD_STEP` the last LU is kept (chord steps: each multiplies the error by about
+the change of J since that LU, i.e. by ~ the size of the step that followed it) and only g is
+re-evaluated.  Converged
+when max |g| ≤ :data:`RESIDUAL_TOLERANCE`, or when max |g| is below IPOPT's own tolerance and
+the last step has stalled at round-off.  Refused (the caller falls back to IPOPT) when the
+iterate leaves IPOPT's bounds (P > 0, a total film H > 0, ε ≥ 0, −π/2 ≤ φ ≤ π), when a
+factorisation is singular, or when it has not converged in :data:`MAX_STEPS` steps.
+
+Because IPOPT's equilibrium is the root of the same g (the bounds are inactive at a solution,
+and a square nonsingular system fixes x whatever the barrier does to the multipliers), both
+give the same state to the conditioning of J times the residual tolerance:
+tests/verification/test_static_newton.py checks ≤ 1e-10.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Optional
+import numpy as np
+import scipy.sparse as sp
+import scipy.sparse.linalg as spla
+
+#: largest number of Newton (or chord) steps before the fast path gives up
+MAX_STEPS = 6
+#: max |g| accepted as converged [-] (IPOPT's tolerance is 1e-10)
+RESIDUAL_TOLERANCE = 1e-11
+#: IPOPT's constraint tolerance (ipopt.tol of :func:`~.build.default_ipopt_options`) [-]
+IPOPT_TOLERANCE = 1e-10
+#: a step whose largest component is below this has stalled at round-off [-]
+STALL_STEP = 1e-13
+#: below this largest step component the previous LU is reused (chord steps) [-]
+CHORD_STEP = 1e-3
+#: the status a converged fast path reports (StaticSolution.status)
+STATUS = "Newton_Converged"
+
+
+@dataclass(frozen=True)
+class NewtonOutcome:
+    """What the fast path did: the final iterate ``x``, ``converged``, ``steps`` taken,
+    ``factorisations`` (sparse LUs), the final max |g| ``residual`` and a ``reason`` when it
+    did not converge."""
+
+    x: np.ndarray
+    converged: bool
+    steps: int
+    factorisations: int
+    residual: float
+    reason: str = ""
+
+    def stats(self) -> dict:
+        """The outcome in the keys of IPOPT's stats (what :func:`~.solve.postprocess` reads)."""
+        return {"success": self.converged, "iter_count": self.steps,
+                "return_status": STATUS if self.converged else f"Newton: {self.reason}"}
+
+
+class NewtonSystem:
+    """g(x, p) and ∂g/∂x of one :class:`~gfbopt.static.StaticSolver` as numpy arrays.
+
+    One per solver and search: it holds CasADi evaluation buffers bound to its own arrays.
+    """
+
+    def __init__(self, solver):
+        function = solver.jacobian_function()
+        pattern = function.sparsity_out(1)
+        self.shape = pattern.shape
+        self._indices = np.asarray(pattern.row(), dtype=np.int32)
+        self._indptr = np.asarray(pattern.colind(), dtype=np.int32)
+        self._x = np.zeros(function.size1_in(0))
+        self._p = np.zeros(function.size1_in(1))
+        self._g = np.zeros(function.size1_out(0))
+        self._nz = np.zeros(pattern.nnz())
+        self._jac = _bound(function, self._x, self._p, self._g, self._nz)
+        self._gr = np.zeros(self._g.size)
+        self._res = _bound(solver.residual_function, self._x, self._p, self._gr)
+        self.lower, self.upper = solver._lbx, solver._ubx
+
+    def residual(self, x: np.ndarray, p: np.ndarray) -> np.ndarray:
+        """g(x, p) (a new array)."""
+        self._x[:], self._p[:] = x, p
+        self._res()
+        return self._gr.copy()
+
+    def residual_and_jacobian(self, x: np.ndarray, p: np.ndarray) -> tuple:
+        """(g, ∂g/∂x as CSC) at (x, p)."""
+        self._x[:], self._p[:] = x, p
+        self._jac()
+        jac = sp.csc_matrix((self._nz.copy(), self._indices, self._indptr), shape=self.shape)
+        return self._g.copy(), jac
+
+    def inside_bounds(self, x: np.ndarray) -> bool:
+        """True when x satisfies IPOPT's bounds (P > 0, a total film > 0, ε ≥ 0, φ range)."""
+        return bool(np.all(x >= self.lower) and np.all(x <= self.upper))
+
+
+def _bound(function, *arrays):
+    """Evaluate ``function`` in place on ``arrays`` (inputs then outputs) through CasADi's
+    buffer interface; returns the evaluation callable (the buffer stays referenced by it)."""
+    buffer, evaluate = function.buffer()
+    n_in = function.n_in()
+    for k, a in enumerate(arrays):
+        (buffer.set_arg if k < n_in else buffer.set_res)(k if k < n_in else k - n_in,
+                                                          memoryview(a))
+
+    def run():
+        evaluate()
+        return buffer
+    return run
+
+
+def solve(system: NewtonSystem, x0: np.ndarray, p: np.ndarray,
+          max_steps: Optional[int] = None) -> NewtonOutcome:
+    """Newton's method on g(x, p) = 0 from ``x0`` (module docstring); at most
+    ``max_steps`` steps (default :data:`MAX_STEPS`)."""
+    max_steps = MAX_STEPS if max_steps is None else max_steps
+    x = np.array(x0, dtype=float)
+    g = system.residual(x, p)
+    lu, last_step, steps, factorisations = None, np.inf, 0, 0
+    while True:
+        residual = float(np.abs(g).max()) if g.size else 0.0
+        if not np.isfinite(residual):
+            return NewtonOutcome(x, False, steps, factorisations, residual,
+                                 "the residual is not finite")
+        if residual <= RESIDUAL_TOLERANCE or (residual <= IPOPT_TOLERANCE
+                                              and last_step <= STALL_STEP):
+            return NewtonOutcome(x, True, steps, factorisations, residual)
+        if steps >= max_steps:
+            return NewtonOutcome(x, False, steps, factorisations, residual,
+                                 f"not converged in {max_steps} steps")
+        if lu is None or last_step > CHORD_STEP:
+            g, jac = system.residual_and_jacobian(x, p)
+            try:
+                lu = spla.splu(jac, permc_spec="MMD_AT_PLUS_A")
+            except RuntimeError:                      # exactly singular
+                return NewtonOutcome(x, False, steps, factorisations, residual,
+                                     "singular Jacobian")
+            factorisations += 1
+        step = lu.solve(-g)
+        x += step
+        steps += 1
+        last_step = float(np.abs(step).max())
+        if not system.inside_bounds(x):
+            return NewtonOutcome(x, False, steps, factorisations, residual,
+                                 "the iterate left IPOPT's bounds")
+        g = system.residual(x, p)
+
+
+def warm_solve(solver, x0: np.ndarray, p: np.ndarray) -> NewtonOutcome:
+    """The fast path from a warm start ``x0`` with the parameters ``p`` of
+    :meth:`StaticSolver.parameters`, on the solver's own :class:`NewtonSystem`."""
+    return solve(solver.newton_system(), x0, p)

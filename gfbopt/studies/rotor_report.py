@@ -1,0 +1,226 @@
+"""What a bearing-pair design study reports (:mod:`.rotor_design`): the chosen design and why,
+its robustness and its answer on the default grid, the verdict in words, tables, figures and
+checks."""
+from __future__ import annotations
+
+import dataclasses
+import math
+
+import numpy as np
+import pandas as pd
+
+from ..design.pareto import feasible_rows
+from ..plotting.design_front import variable_label
+from .base import StudyResult
+
+#: largest relative difference between a design's stored objectives and the same design
+#: evaluated again from scratch (a fresh solver cache): the evaluation is deterministic, so
+#: only round-off may differ
+REPRODUCE_TOLERANCE = 1e-6
+
+
+def choose(table: pd.DataFrame, problem, top_speed: float):
+    """(chosen row or None, why): stable to the top speed at the least power loss when some
+    feasible design is; otherwise the highest first onset (then the least power)."""
+    ok = feasible_rows(table, problem)
+    if ok.empty:
+        return None, "no evaluated design meets every limit"
+    stable = ok[ok["first_onset_speed_rpm"] >= top_speed]
+    if len(stable):
+        row = stable.sort_values("total_power_loss_w").iloc[0]
+        return row.to_dict(), (f"{len(stable)} of {len(ok)} feasible designs are stable to "
+                               f"the top speed; the chosen one loses the least power")
+    row = ok.sort_values(["first_onset_speed_rpm", "total_power_loss_w"],
+                         ascending=[False, True]).iloc[0]
+    return row.to_dict(), (f"none of the {len(ok)} feasible designs is stable to the top "
+                           "speed; the chosen one has the highest first onset")
+
+
+def describe(row: dict, names: list) -> str:
+    """The design's values for people, e.g. 'radial clearance c 18.3 µm, pads 3'."""
+    parts = []
+    for n in names:
+        label = variable_label(n)
+        unit = label[label.rfind("[") + 1:-1] if label.endswith("]") else ""
+        text = label[:label.rfind("[")].strip() if unit else label
+        value = float(row[n])
+        shown = f"{value:.0f}" if value == int(value) and unit in ("-", "") else f"{value:.3g}"
+        parts.append(f"{text} {shown}{'' if unit in ('-', '') else ' ' + unit}")
+    return ", ".join(parts)
+
+
+def _onset_text(row: dict, search_high: float) -> str:
+    if row["onset_status"] == "stable over the range":
+        return f"above {search_high:,.0f} rpm (every mode stable to the end of the search)"
+    if row["onset_status"] != "onset":
+        return f"below {row['first_onset_speed_rpm']:,.0f} rpm (unstable at the lowest speed)"
+    return f"{row['first_onset_speed_rpm']:,.0f} rpm ({row['first_mode']})"
+
+
+def verdict(chosen, why: str, plan, check, whirl=None) -> str:
+    """The answer in words, for the first line of the README."""
+    s = plan.settings
+    top, grid, default = s.top_speed_rpm, str(s.grid), str(plan.default_settings.grid)
+    if chosen is None:
+        return (f"No design in this space meets every limit ({why}); nothing is stable to "
+                f"{top:,.0f} rpm here. Searched on the {grid} grid.")
+    names = plan.problem.names
+    honest = ""
+    if check is not None and check.get("success"):
+        honest = (f"; on the default {default} grid the first onset is "
+                  f"{check['first_onset_speed_rpm_default_grid']:,.0f} rpm "
+                  f"({check['first_onset_speed_rpm_relative_change']:+.1%}) and the power "
+                  f"loss {check['total_power_loss_w_default_grid']:.0f} W")
+        if not check.get("feasible_default_grid", True):
+            honest += (f", but there the design breaks a limit (minimum film "
+                       f"{check['min_film_lowest_speed_um_default_grid']:.2f} µm against "
+                       f"{check['min_film_lowest_speed_um_search_grid']:.2f} µm on the search grid): the "
+                       "search grid is too coarse for this limit")
+    film = (f"minimum film {chosen['min_film_lowest_speed_um']:.2f} µm at {s.speed_low_rpm:,.0f} rpm under "
+            f"{s.heaviest_load_factor:g}× the static load")
+    if chosen["first_onset_speed_rpm"] >= top:
+        return (f"Stable to {top:,.0f} rpm with {describe(chosen, names)}: first onset "
+                f"{_onset_text(chosen, s.search_high_rpm)}, {chosen['total_power_loss_w']:.0f} W "
+                f"lost in both bearings at {top:,.0f} rpm, {film} — answer from the {grid} "
+                f"search grid{honest}.")
+    return (f"No design in this space is stable to {top:,.0f} rpm; the best first onset is "
+            f"{chosen['first_onset_speed_rpm']:,.0f} rpm (mode {chosen['first_mode']}) with "
+            f"{describe(chosen, names)}, {film}; {whirl_text(whirl, top)} — answer from the "
+            f"{grid} search grid{honest}.")
+
+
+def whirl_text(whirl, top: float) -> str:
+    """The whirl at the top speed in words (the rotor transient's orbit)."""
+    if whirl is None:
+        return f"the whirl at {top:,.0f} rpm was not computed (limit_cycle_revolutions = 0)"
+    if whirl["contact"]:
+        return (f"at {top:,.0f} rpm the whirl grows until the film closes at bearing "
+                f"{whirl['contact_bearing']} after {whirl['contact_time_s'] * 1e3:.0f} ms "
+                "(no limit cycle within the film)")
+    if not whirl["success"]:
+        return (f"the orbit at {top:,.0f} rpm on the {whirl['grid']} grid failed "
+                f"({whirl['message']}): no limit cycle to report")
+    cycles = " and ".join(f"{b['limit_cycle_um']:.2f} µm at bearing {b['bearing']}"
+                          for b in whirl["bearings"])
+    film = min(b["min_film_um"] for b in whirl["bearings"])
+    state = "settled" if all(b["settled"] for b in whirl["bearings"]) else "not yet settled"
+    return (f"at {top:,.0f} rpm the whirl limit cycle is {cycles} with minimum film "
+            f"{film:.2f} µm ({whirl['revolutions']:g} revolutions on the {whirl['grid']} "
+            f"grid, {state})")
+
+
+def _reproduce(plan, chosen: dict) -> float:
+    """Largest relative difference of the chosen design's objectives evaluated again from
+    scratch (new solver cache) against the stored ones."""
+    from ..design.rotor_objectives import evaluate_rotor_design
+
+    row = evaluate_rotor_design(plan.system, plan.settings, None,
+                                **{n: float(chosen[n]) for n in plan.problem.names})
+    worst = 0.0
+    for o in plan.problem.objectives:
+        a, b = float(chosen[o.name]), float(row.get(o.name, math.nan))
+        worst = max(worst, abs(b / a - 1.0) if a else abs(b))
+    return worst if row.get("success") else math.inf
+
+
+def report(study, plan, search, run_tasks, progress, elapsed: float) -> StudyResult:
+    """The StudyResult of a finished search (module docstring)."""
+    from ..design.robustness import regrid, robustness
+    from ..plotting.design_front import plot_design_front, plot_onset_against_variables
+
+    s, problem = plan.settings, plan.problem
+    table = search.table.copy()
+    table["feasible"] = [problem.feasible(r) for r in table.to_dict(orient="records")]
+    front = search.front
+    chosen, why = choose(table, problem, s.top_speed_rpm)
+    checked = []
+    if chosen is not None:
+        checked = [chosen] + [r for r in front.to_dict(orient="records")
+                              if r["point"] != chosen["point"]]
+    default = regrid(plan.system, plan.default_settings, checked[:plan.regrid_designs], problem,
+                     run_tasks) if checked else pd.DataFrame()
+    if progress:
+        progress(0.85)
+    robust = pd.DataFrame()
+    r = plan.robustness
+    if checked and (r.tolerances or plan.loss_factor_band[1] > plan.loss_factor_band[0]):
+        robust = robustness(plan.system, s, checked[:r.designs], r.tolerances,
+                            plan.loss_factor_band, r.samples, r.seed, problem, run_tasks)
+    if progress:
+        progress(0.97)
+    check = default.iloc[0].to_dict() if len(default) else None
+    whirl = None
+    if (chosen is not None and chosen["first_onset_speed_rpm"] < s.top_speed_rpm
+            and plan.limit_cycle_revolutions > 0):
+        from ..design.robustness import whirl_at_top_speed
+
+        whirl = whirl_at_top_speed(plan.system, {n: float(chosen[n]) for n in problem.names},
+                                   dataclasses.replace(s, grid=plan.limit_cycle_grid),
+                                   plan.limit_cycle_revolutions)
+    text = verdict(chosen, why, plan, check, whirl)
+    notes = [text, f"Why this design: {why}."]
+    mean = search.evaluation_time_s / search.evaluated if search.evaluated else math.nan
+    method = ("pymoo NSGA-II" if plan.search.method == "nsga2" else
+              "GP Bayesian optimisation, bayesian-optimization")
+    notes.append(
+        f"Search: {plan.search.method} ({method}), budget {plan.search.budget}, seed "
+        f"{plan.search.seed}, on the {s.grid} grid: {search.evaluated} designs evaluated, "
+        f"{search.reused} answered from the store (resume), {search.repeated} repeats; "
+        f"{len(feasible_rows(table, problem))} feasible, {len(front)} on the Pareto front; "
+        f"{search.evaluated / search.wall_time_s:.3g} evaluations per second of wall time "
+        f"(one evaluation {mean:.1f} s of its worker); the optimiser's own time "
+        f"{search.driver_time_per_design_s * 1e3:.0f} ms per design (imports included).")
+    if chosen is not None and len(default):
+        rel = default["first_onset_speed_rpm_relative_change"].abs()
+        notes.append(f"Grid honesty: {len(default)} designs re-evaluated on the default "
+                     f"{plan.default_settings.grid} grid; first onset changes by at most "
+                     f"{rel.max():.2%} (chosen design "
+                     f"{check['first_onset_speed_rpm_relative_change']:+.2%}).")
+    if len(robust):
+        c = robust.iloc[0]
+        notes.append(
+            f"Robustness of the chosen design ({r.samples} samples: ±"
+            + ", ±".join(f"{v:g} {variable_label(k).split('[')[-1].rstrip(']')} on {k}"
+                         for k, v in r.tolerances.items())
+            + f", loss factor {plan.loss_factor_band[0]:g}–{plan.loss_factor_band[1]:g}): "
+            f"first onset nominal {c['nominal_onset_speed_rpm']:,.0f} rpm, 5th percentile "
+            f"{c['p05_onset_speed_rpm']:,.0f} rpm, worst {c['worst_onset_speed_rpm']:,.0f} rpm"
+            f"; {c['stable_to_top_fraction']:.0%} of the samples stable to the top speed.")
+    tables = {"evaluations.csv": table, "pareto_front.csv": front}
+    if whirl is not None:
+        tables["whirl_at_top_speed.csv"] = pd.DataFrame(
+            [{**b, "speed_rpm": s.top_speed_rpm, "revolutions": whirl["revolutions"],
+              "contact": whirl["contact"], "success": whirl["success"],
+              "message": whirl["message"], "grid": whirl["grid"]}
+             for b in whirl["bearings"]])
+    if chosen is not None:
+        tables["chosen.csv"] = pd.DataFrame([chosen])
+    if len(default):
+        tables["default_grid_check.csv"] = default
+    if len(robust):
+        tables["robustness.csv"] = robust
+    title = study.spec["title"]
+    figures = {"design_front.png": plot_design_front(
+        table, front, chosen, s.top_speed_rpm, s.search_high_rpm, robust,
+        title=f"{title}: every design evaluated ({s.grid} grid)").figure}
+    axes = plot_onset_against_variables(table, problem.names, s.top_speed_rpm,
+                                        title="First onset against each design variable")
+    figures["onset_vs_variables.png"] = np.atleast_1d(axes).ravel()[0].figure
+    checks = [{"what": "every design asked is stored exactly once (rows)",
+               "value": float(len(table)), "limit": float(search.evaluated + search.reused),
+               "passed": bool(len(table) == search.evaluated + search.reused
+                              and table["point"].is_unique)}]
+    if chosen is not None:
+        diff = _reproduce(plan, chosen)
+        checks.append({"what": "chosen design evaluated again from scratch: largest "
+                       "relative change of its objectives", "value": diff,
+                       "limit": REPRODUCE_TOLERANCE, "passed": bool(diff <= REPRODUCE_TOLERANCE)})
+    options = {"variants": {"design": {"goal": plan.goal, "loss_factor_search":
+                                       plan.loss_factor_band[0],
+                                       "loss_factor_band": list(plan.loss_factor_band)}},
+               "grid": str(plan.default_settings.grid), "search_grid": str(s.grid),
+               "method": plan.search.method, "budget": plan.search.budget,
+               "seed": plan.search.seed, "top_speed_rpm": s.top_speed_rpm}
+    return StudyResult(study, tables=tables, figures=figures, checks=checks, options=options,
+                       notes=notes, wall_time_s=elapsed, verdict=text)
+

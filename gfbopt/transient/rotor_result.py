@@ -1,0 +1,271 @@
+"""The result of a rotor transient, post-processed for engineers (SI and µm at the edges).
+
+Per run of the batch and per bearing: the journal orbit [µm, global frame from the bearing
+centre], the smallest film over the run with the time and speed it happened, contact (film
+H ≤ ``contact_film`` or the foil's travel exhausted) with its time, speed and bearing, the
+waterfall, 1× and subsynchronous components against speed (:mod:`.spectra`), and at a
+constant speed the limit cycle with its settledness.  For a run-up the speed where the
+subsynchronous line appears is set beside the rotor's linear onset (gfbopt.rotor's
+matched-whirl threshold, when that is available in this build).
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Optional
+
+import numpy as np
+
+from ..provenance import jsonable
+from . import spectra
+from .rotor_run import RotorRun
+
+#: default window of the waterfall [shaft revolutions at the run's mean speed]
+WINDOW_REVOLUTIONS = 20.0
+#: default threshold of the subsynchronous line's appearance [fraction of the clearance]
+SUBSYNC_THRESHOLD = 0.02
+
+
+@dataclass(frozen=True, eq=False)
+class RotorTransientResult:
+    """What a rotor orbit or ramp computed (module docstring).
+
+    run : the raw record (:class:`.rotor_run.RotorRun`); profile : the speed profile;
+    names : bearing names; equilibria : per bearing at the start speed; films : per run, per
+    bearing {min_film_um, time_s, speed_rpm}; contacts : per run {contact, bearing, kind,
+    time_s, speed_rpm}; waterfalls, limit_cycles : per run, per bearing; onset : the
+    subsynchronous appearance against the linear onset (ramps); settings : the options;
+    notes : computed remarks."""
+
+    run: RotorRun
+    profile: object
+    names: tuple
+    equilibria: list
+    films: list
+    contacts: list
+    waterfalls: list
+    limit_cycles: list
+    onset: dict
+    settings: dict
+    description: dict = field(default_factory=dict)
+    notes: list = field(default_factory=list)
+
+    @property
+    def success(self) -> bool:
+        return self.run.success
+
+    def orbit_frame(self, run: int = 0):
+        """Time [s], speed [rpm], shaft angle [deg] and, per bearing, x, y [µm] and the
+        smallest film since the previous sample [µm]."""
+        import pandas as pd
+
+        r = self.run
+        out = {"time_s": r.time_s, "speed_rpm": r.speed_rpm(run),
+               "shaft_angle_deg": np.degrees(r.shaft_angle(run))}
+        for k, name in enumerate(self.names):
+            x, y = r.journal(run, k)
+            out[f"x_{name}_um"] = x * 1e6
+            out[f"y_{name}_um"] = y * 1e6
+            out[f"min_film_{name}_um"] = r.min_film[run, k] * r.model.bearings[k].clearance * 1e6
+        return pd.DataFrame(out)
+
+    def tables(self, run: int = 0) -> dict:
+        """CSV name → DataFrame: the orbit record and, per bearing, the components against
+        speed (the waterfall's windows)."""
+        out = {"orbit.csv": self.orbit_frame(run)}
+        for k, name in enumerate(self.names):
+            w = self.waterfalls[run][k]
+            if w.time_s.size:
+                out[f"components_{name}.csv"] = w.table()
+        return out
+
+    def to_dict(self, run: int = 0) -> dict:
+        """Scalar results of one run, JSON-ready."""
+        r = self.run
+        out = {**self.profile.to_dict(), **self.settings,
+               "success": r.success, "message": r.message, "method": r.method,
+               "time_step_rad": r.time_step, "rkc_stages": list(r.stages),
+               "evaluations": r.evaluations, "wall_time_s": r.wall_time_s,
+               "revolutions_integrated": r.revolutions,
+               "inertia_scale": float(r.runs.inertia_scale[run]),
+               "imbalance_scale": float(r.runs.imbalance_scale[run]),
+               "bearings": []}
+        for k, name in enumerate(self.names):
+            entry = {"bearing": name, **self.equilibria[k], **self.films[run][k]}
+            lc = self.limit_cycles[run][k]
+            if lc is not None:
+                entry.update(lc.to_dict("limit_cycle_"))
+            w = self.waterfalls[run][k]
+            if w.time_s.size:
+                sync = np.abs(w.synchronous).max(axis=1)
+                j = int(np.argmax(sync))
+                entry.update(peak_sync_amplitude_um=float(sync[j]),
+                             peak_sync_speed_rpm=float(w.speed_rpm[j]),
+                             final_sub_amplitude_um=float(w.sub_amplitude[-1]),
+                             final_sub_frequency_hz=float(w.sub_frequency_hz[-1]))
+            out["bearings"].append(entry)
+        out.update(self.contacts[run])
+        out.update(self.onset)
+        out["rotor"] = self.description
+        out["notes"] = list(self.notes)
+        return jsonable(out)
+
+
+def _equilibrium(sol, film, load_newton: float) -> dict:
+    c = film.clearance
+    return {"eccentricity": sol.eccentricity,
+            "attitude_angle_deg": math.degrees(sol.attitude_angle),
+            "min_film_thickness_um": sol.min_film * c * 1e6,
+            "load_newton": load_newton,
+            "load_direction_deg": math.degrees(film.frame_angle) + 0.0,
+            "bearing_number": sol.model.bearing_number}
+
+
+def summarise(run: RotorRun, profile, rotor, solutions, settings: dict, *, system=None,
+              linear_onset=None, window_revolutions: float = WINDOW_REVOLUTIONS,
+              subsync_threshold_um: Optional[float] = None, settle_periods: float = 10.0,
+              settle_tolerance: float = 0.01, max_order: float = 2.5) -> RotorTransientResult:
+    """Post-process ``run`` (module docstring).  ``linear_onset`` : a dict with
+    ``linear_onset_speed_rpm`` (and ``first_mode``, ``linear_onset_whirl_frequency_hz``) to
+    compare with, False to skip, or None to ask gfbopt.rotor (when available)."""
+    model = run.model
+    names = tuple(b.label for b in model.bearings)
+    clearances = [b.clearance for b in model.bearings]
+    threshold = (SUBSYNC_THRESHOLD * min(clearances) * 1e6 if subsync_threshold_um is None
+                 else float(subsync_threshold_um))
+    loads = [float(np.hypot(*l)) for l in _loads(rotor)]
+    equilibria = [_equilibrium(s, b, w) for s, b, w in zip(solutions, model.bearings, loads)]
+    # windows of ``window_revolutions`` at the record's mean speed, at least 10 per record
+    # (a ramp cut short by contact keeps its resolution)
+    span = float(run.time_s[-1] - run.time_s[0]) if run.tau.size > 1 else 0.0
+    mean_speed = (float(np.mean(run.speed_rpm(0))) if run.tau.size
+                  else 0.5 * (profile.start_rpm + profile.end_rpm))
+    window_s = window_revolutions * 60.0 / mean_speed
+    if profile.kind != "orbit" and span > 0:
+        window_s = min(window_s, span / 10.0)
+    films, contacts, falls, cycles = [], [], [], []
+    t = run.time_s
+    for b in range(run.runs.size):
+        speed = run.speed_rpm(b)
+        angle = run.shaft_angle(b)
+        per, fall, cyc = [], [], []
+        for k in range(len(names)):
+            tau = run.run_min_film_tau[b, k]
+            # a film that closed within the contact step is reported as 0 (closed), not < 0
+            per.append({"min_film_um": max(float(run.run_min_film[b, k] * clearances[k]
+                                                 * 1e6), 0.0),
+                        "min_film_time_s": float(tau / model.reference_speed),
+                        "min_film_speed_rpm": float(run.speed_rpm(b, tau))})
+            if math.isfinite(run.max_deflection[b, k]):
+                per[-1]["max_foil_deflection_um"] = float(run.max_deflection[b, k]
+                                                          * clearances[k] * 1e6)
+            x, y = run.journal(b, k)
+            fall.append(spectra.waterfall(t, x * 1e6, y * 1e6, angle, speed, window_s,
+                                          max_order=max_order))
+            cyc.append(spectra.limit_cycle(t, x * 1e6, y * 1e6, angle,
+                                           profile.start_rpm / 60.0, settle_periods,
+                                           settle_tolerance)
+                       if profile.kind == "orbit" and not run.contact[b] else None)
+        films.append(per)
+        falls.append(fall)
+        cycles.append(cyc)
+        contacts.append(_contact(run, b, names, clearances))
+    onset, notes = {}, []
+    if profile.kind != "orbit":
+        onset = _onset(falls[0], names, threshold, profile, system, settings, linear_onset)
+        notes.append(f"Subsynchronous line: the largest spectral peak between "
+                     f"{spectra.SUB_BAND[0]:g}× and {spectra.SUB_BAND[1]:g}× of the shaft "
+                     f"speed after the tracked 1× component is removed; it 'appears' at the "
+                     f"first window from which its amplitude stays ≥ {threshold:.3g} µm to "
+                     f"the end of the record; windows of {window_s * 1e3:.3g} ms "
+                     f"({window_revolutions:g} revolutions at the record's mean speed, at "
+                     f"most 1/10 of the record), 50 % overlap, Hann.")
+    else:
+        notes.append(f"Limit cycle: subsynchronous orbit (tracked 1× removed), largest "
+                     f"distance from its centre over the last {settle_periods:g} whirl "
+                     f"periods; settled when it differs from the previous "
+                     f"{settle_periods:g} periods by ≤ {100 * settle_tolerance:g} %.")
+    if settings.get("foil_travel_m") is None:
+        notes.append("Foil travel not checked (no bump travel given): contact is the film "
+                     f"reaching H ≤ {settings['contact_film']:g} c only.")
+    damping = [b.tm.foil_state.describe() for b in model.bearings if b.tm.foil_state]
+    if damping:
+        notes.append("Kelvin–Voigt foil state per bearing (time constant fixed in seconds "
+                     "over a ramp): " + "; ".join(
+                         f"η = {d['loss_factor']:g}, ν_ref = {d['reference_whirl_ratio']:.4g} "
+                         f"({d['reference_whirl_source']}) at {profile.start_rpm:g} rpm"
+                         for d in damping))
+    description = dict(rotor.description)
+    description["bearing_frames_deg"] = [math.degrees(b.frame_angle) for b in model.bearings]
+    return RotorTransientResult(run, profile, names, equilibria, films, contacts, falls,
+                                cycles, onset, settings, description, notes)
+
+
+def _loads(rotor) -> np.ndarray:
+    from .rotor_setup import bearing_loads
+
+    return bearing_loads(rotor)
+
+
+def _contact(run: RotorRun, b: int, names: tuple, clearances: list) -> dict:
+    if not run.contact[b]:
+        return {"contact": False, "contact_bearing": None, "contact_kind": "",
+                "contact_time_s": math.nan, "contact_speed_rpm": math.nan}
+    k = int(run.contact_bearing[b])
+    tau = run.contact_tau[b]
+    return {"contact": True, "contact_bearing": names[k], "contact_kind": run.contact_kind[b],
+            "contact_time_s": float(tau / run.model.reference_speed),
+            "contact_speed_rpm": float(run.speed_rpm(b, tau)),
+            "contact_min_film_um": max(float(run.run_min_film[b, k] * clearances[k] * 1e6),
+                                       0.0)}
+
+
+def _onset(falls: list, names: tuple, threshold: float, profile, system, settings,
+           linear_onset) -> dict:
+    out = {"subsync_threshold_um": threshold}
+    speeds = []
+    for k, name in enumerate(names):
+        w = falls[k]
+        speed, idx = (spectra.appearance(w.speed_rpm, w.sub_amplitude, threshold)
+                      if w.time_s.size else (math.nan, -1))
+        out[f"subsync_appearance_{name}_rpm"] = speed
+        out[f"subsync_frequency_{name}_hz"] = (float(w.sub_frequency_hz[idx]) if idx >= 0
+                                               else math.nan)
+        speeds.append(speed)
+    finite = [s for s in speeds if math.isfinite(s)]
+    out["subsync_appearance_rpm"] = (min(finite) if profile.kind == "run-up" else max(finite)) \
+        if finite else math.nan
+    linear = _linear_onset(system, profile, settings, linear_onset)
+    out.update(linear)
+    lin = linear.get("linear_onset_speed_rpm", math.nan)
+    out["appearance_over_linear_onset"] = (out["subsync_appearance_rpm"] / lin
+                                           if math.isfinite(lin) and lin > 0 else math.nan)
+    return out
+
+
+def _linear_onset(system, profile, settings, given) -> dict:
+    """The rotor's linear onset over the profile's speed range (gfbopt.rotor.system's
+    matched-whirl threshold), or NaN with the reason."""
+    if isinstance(given, dict):
+        return {"linear_onset_source": "given", **given}
+    if given is False:
+        return {"linear_onset_speed_rpm": math.nan, "linear_onset_source": "not computed"}
+    if system is None:
+        return {"linear_onset_speed_rpm": math.nan,
+                "linear_onset_source": "not computed (no rotor file: a RotorInput was given)"}
+    try:
+        from ..rotor.system import rotor_onsets
+    except ImportError:
+        return {"linear_onset_speed_rpm": math.nan, "linear_onset_source":
+                "not available in this build (gfbopt.rotor.system, issue 16)"}
+    from ..inputs.grid import Grid
+
+    low = min(profile.start_rpm, profile.end_rpm)
+    result = rotor_onsets(system, (low, profile.top_rpm), grid=Grid.parse(settings["grid"]),
+                          show_progress=False)
+    return {"linear_onset_speed_rpm": result.onset_speed_rpm,
+            "linear_first_mode": result.first_mode,
+            "linear_onset_whirl_frequency_hz": result.onset_whirl_frequency_hz,
+            "linear_onset_reason": result.onset_reason,
+            "linear_onset_source": "gfbopt.rotor.system.rotor_onsets (matched whirl)",
+            "linear_modes": [m.to_dict() for m in result.modes]}

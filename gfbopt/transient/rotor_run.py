@@ -1,0 +1,364 @@
+"""Integrating the rotor on both bearing films: RKC (default) or RK4 (the reference), batched.
+
+The system is :class:`.rotor_system.RotorRightHandSide`; the steps are those of the
+one-bearing engine (:func:`.rkc.rkc_step`, :func:`.rk4.rk4_step`), with the same rules:
+
+* rkc — Δτ from accuracy, min(0.1 rad of shaft rotation at the run's top speed, T_rotor/30,
+  T_film/4), T_rotor the shortest period of the rotor on the films' instantaneous stiffness
+  with its gyroscopic coupling (:func:`rotor_period`), T_film the slowest film relaxation
+  (:func:`.rkc.film_time`); stages the fewest with Δτ·ρ ≤ 0.9 β(s), ρ the Gershgorin bound
+  of every bearing's film and foil state at its current speed, re-checked every
+  ``check_every`` steps (stages raised when it grew);
+* rk4 — Δτ = 0.9 × 2.78/ρ, re-checked likewise; a given step above the limit is refused.
+
+Memory.  A run keeps, per stored sample (every ``sample_every`` rad of τ), τ, the four rotor
+coordinates and each bearing's smallest film since the previous sample — 4 + K floats per
+run per sample, never the films themselves — plus, per bearing, the smallest film of the
+whole run with the time it occurred.  Contact (film H ≤ ``contact_film``, or a foil
+deflection beyond ``foil_travel`` when that is given) ends that run at the step it happens;
+its record up to there is kept and the other runs go on.
+"""
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass, field
+from typing import Optional
+
+import numpy as np
+
+from ..errors import ConvergenceError, ParameterError
+from .rk4 import RK4_STABILITY_RADIUS, STEP_SAFETY, rk4_step
+from .rkc import (MAX_STAGES, MAX_STEP, STAGE_SAFETY, STEPS_PER_FILM_TIME,
+                  STEPS_PER_ROTOR_PERIOD, film_time, rkc_stability_interval, rkc_step,
+                  stages_for)
+from .rotor_system import RotorRightHandSide, RotorTransientModel, Runs, layout
+
+#: film H at which a bearing is in contact (the one-bearing engine's default: the film
+#: model — no asperities, no slip — says nothing closer than 2 % of the clearance)
+CONTACT_FILM = 0.02
+METHODS = ("rkc", "rk4")
+
+
+@dataclass(frozen=True, eq=False)
+class RotorRun:
+    """What a rotor transient kept (module docstring), for a batch of B runs, K bearings.
+
+    tau (n,) [rad of τ = ω_ref t]; q (B, n, 4): rotor coordinates x, y [m], slopes [rad]
+    (NaN after a run's contact); min_film (B, K, n): smallest film H of each bearing since
+    the previous sample [-]; run_min_film (B, K) and run_min_film_tau (B, K): the smallest
+    film of the whole run and when; max_deflection (B, K): largest foil deflection W [-];
+    contact (B,) bool, contact_tau (B,), contact_bearing (B,) (index, −1 none),
+    contact_kind (B,) ('film', 'foil travel' or ''); time_step Δτ (last); stages (the
+    counts used, rkc); evaluations; wall_time_s; method; success, message.
+    """
+
+    model: RotorTransientModel
+    runs: Runs
+    tau: np.ndarray
+    q: np.ndarray
+    min_film: np.ndarray
+    run_min_film: np.ndarray
+    run_min_film_tau: np.ndarray
+    max_deflection: np.ndarray
+    contact: np.ndarray
+    contact_tau: np.ndarray
+    contact_bearing: np.ndarray
+    contact_kind: tuple
+    time_step: float
+    stages: tuple
+    evaluations: int
+    wall_time_s: float
+    method: str
+    success: bool = True
+    message: str = ""
+    options: dict = field(default_factory=dict)
+
+    @property
+    def time_s(self) -> np.ndarray:
+        return self.tau / self.model.reference_speed
+
+    def speed_rpm(self, run: int = 0, tau=None) -> np.ndarray:
+        """Shaft speed [rpm] of ``run`` at the samples (or at ``tau``)."""
+        t = self.tau if tau is None else np.asarray(tau)
+        r = self.runs.speed[run] + self.runs.ramp[run] * t
+        return r * self.model.reference_speed * 30.0 / math.pi
+
+    def shaft_angle(self, run: int = 0) -> np.ndarray:
+        """ϑ [rad] of ``run`` at the samples (0 at the start: the imbalance phase origin)."""
+        return self.runs.speed[run] * self.tau + 0.5 * self.runs.ramp[run] * self.tau ** 2
+
+    def journal(self, run: int = 0, bearing: int = 0) -> tuple[np.ndarray, np.ndarray]:
+        """(x, y) of the journal at ``bearing`` [m], global frame, from the bearing centre."""
+        z = self.model.bearings[bearing].position
+        q = self.q[run]
+        return q[:, 0] + z * q[:, 2], q[:, 1] + z * q[:, 3]
+
+    @property
+    def revolutions(self) -> float:
+        """Shaft revolutions of run 0 over the stored record."""
+        return float(self.shaft_angle(0)[-1] / (2 * math.pi)) if self.tau.size else 0.0
+
+
+class _Rows:
+    """Packed rows with the ``axpy`` that :func:`.rk4.rk4_step` needs."""
+
+    __slots__ = ("z",)
+
+    def __init__(self, z: np.ndarray):
+        self.z = z
+
+    def axpy(self, alpha, d: "_Rows") -> "_Rows":
+        a = np.asarray(alpha, dtype=float)
+        return _Rows(self.z + (a[:, None, None] if a.ndim else a) * d.z)
+
+
+def rotor_period(rhs: RotorRightHandSide, z: np.ndarray, h: float = 1e-6) -> float:
+    """Shortest period [rad of τ] of the rotor on the films' instantaneous stiffness.
+
+    ∂q̃''/∂q̃ at fixed films (central differences, every run at once), with the gyroscopic
+    term: the largest |Im λ| of [[0, I], [∂q̃''/∂q̃, −r M⁻¹G]] over the runs; at least one
+    shaft revolution at the run's speed (as the one-bearing engine's rule).
+    """
+    lay = rhs.layout
+    cols = []
+    for j in range(4):
+        plus, minus = z.copy(), z.copy()
+        lay.rotor_of(plus)[:, j] += h
+        lay.rotor_of(minus)[:, j] -= h
+        cols.append((lay.rotor_of(rhs(plus))[:, 4:8] - lay.rotor_of(rhs(minus))[:, 4:8])
+                    / (2 * h))
+    stiff = np.stack(cols, axis=-1)                                   # (B, 4, 4)
+    rate = rhs.runs.speed_at(lay.rotor_of(z)[:, 8])
+    fastest = 0.0
+    for b in range(z.shape[0]):
+        comp = np.zeros((8, 8))
+        comp[:4, 4:] = np.eye(4)
+        comp[4:, :4] = stiff[b]
+        comp[4:, 4:] = -rate[b] * rhs.gyro
+        fastest = max(fastest, float(np.abs(np.linalg.eigvals(comp).imag).max()))
+    return 2 * math.pi / max(fastest, float(np.max(rate)))
+
+
+def accuracy_step(rhs: RotorRightHandSide, z: np.ndarray, top_speed: float,
+                  max_step: float = MAX_STEP) -> float:
+    """The default RKC step Δτ (module docstring); ``top_speed`` = max ω/ω_ref of the run;
+    ``max_step`` [rad of shaft rotation at the top speed]."""
+    films = min(film_time(b.tm) * rhs.model.reference_speed / b.model_speed
+                for b in rhs.model.bearings)
+    return min(max_step / top_speed, rotor_period(rhs, z) / STEPS_PER_ROTOR_PERIOD,
+               films / STEPS_PER_FILM_TIME)
+
+
+def _check_positive(name: str, value) -> float:
+    try:
+        v = float(value)
+    except (TypeError, ValueError):
+        raise ParameterError(name, value, "must be a number") from None
+    if not (math.isfinite(v) and v > 0):
+        raise ParameterError(name, value, "must be finite and > 0")
+    return v
+
+
+def integrate_rotor(model: RotorTransientModel, batch: Runs, duration: float,
+                    initial: np.ndarray, *, method: str = "rkc",
+                    time_step: Optional[float] = None, stages: Optional[int] = None,
+                    sample_every: float = 0.2, contact_film: float = CONTACT_FILM,
+                    foil_travel: Optional[float] = None, check_every: int = 5,
+                    max_step: float = MAX_STEP, progress=None,
+                    progress_total: int = 100, exact_end: bool = False) -> RotorRun:
+    """Advance a batch of rotor runs over ``duration`` rad of τ from the packed ``initial``
+    rows (:func:`.rotor_setup.equilibrium_states`).
+
+    method : 'rkc' (default) or 'rk4'; time_step Δτ [rad] and stages (rkc) : default from
+    accuracy and the stiffness bound (module docstring), refused when outside the stability
+    region; sample_every : Δτ between stored samples; contact_film : H at contact [-];
+    foil_travel : largest foil deflection W [clearances] before the bumps are exhausted
+    (None: not checked); max_step : rkc's accuracy limit [rad of shaft rotation at the top
+    speed] (default 0.1, the one-bearing engine's); progress : a
+    :func:`gfbopt.progress.progress` reporter, advanced in proportion to τ up to
+    ``progress_total`` (its total: revolutions of an orbit, milliseconds of a ramp);
+    exact_end : shorten the last step to end at ``duration`` exactly (a ramp ends at its end
+    speed); otherwise whole steps, the last one past the end by less than a step, as the
+    one-bearing engine does.
+    """
+    t0 = time.perf_counter()
+    if method not in METHODS:
+        raise ParameterError("method", method, f"must be one of {', '.join(METHODS)}")
+    if stages is not None and method != "rkc":
+        raise ParameterError("stages", stages, "applies to method='rkc' only")
+    duration = _check_positive("duration", duration)
+    sample_every = _check_positive("sample_every", sample_every)
+    contact_film = float(contact_film)
+    travel = math.inf if foil_travel is None else _check_positive("foil_travel", foil_travel)
+    lay = layout(model)
+    z = np.array(initial, dtype=float)
+    shape = (batch.size, len(model.bearings), lay.width)
+    if z.shape != shape:
+        raise ParameterError("initial", z.shape, f"must be {shape}, the packed states of "
+                             "the batch (rotor_setup.equilibrium_states)")
+    for b in model.bearings:
+        b.tm.law.check_engine(method, damped=b.tm.foil_state is not None)
+    lay.rotor_of(z)[:, 8] = 0.0
+    rhs = RotorRightHandSide(model, batch, track_deflection=foil_travel is not None)
+    top = float(np.max(np.maximum(batch.speed, batch.speed_at(duration))))
+    rho = rhs.stiffness(z)
+    dt, stages = _first_step(rhs, z, rho, top, method, time_step, stages, max_step)
+    fixed = time_step is not None
+    n_steps = int(math.ceil(duration / dt - 1e-9))
+    per_sample = max(1, int(round(sample_every / dt)))
+    nb, k = batch.size, len(model.bearings)
+    live = np.arange(nb)
+    q_now = np.full((nb, 4), np.nan)
+    h_low = np.full((nb, k), np.inf)                 # since the last sample
+    run_min = np.full((nb, k), np.inf)
+    run_min_tau = np.full((nb, k), np.nan)
+    max_defl = np.full((nb, k), -np.inf)
+    contact_tau = np.full(nb, np.nan)
+    contact_bearing = np.full(nb, -1)
+    kinds = [""] * nb
+    taus, qs, hs = [], [], []
+    c_ref = model.clearance_ref
+    evaluations, tau, step, failure, used = 0, 0.0, 0, "", {stages}
+    films0 = rhs.pressures(z)
+    for j, (_, h) in enumerate(films0):
+        run_min[:, j] = h.min(axis=tuple(range(1, h.ndim)))
+        run_min_tau[:, j] = 0.0
+    h_low[:] = run_min
+
+    def record() -> None:
+        q_now[:] = np.nan
+        q_now[live] = lay.rotor_of(z)[:, :4] * c_ref
+        taus.append(tau)
+        qs.append(q_now.copy())
+        hs.append(h_low.copy())
+        h_low[live] = np.inf
+
+    record()
+    h_low[:] = run_min
+    done_revs = 0
+    with np.errstate(invalid="ignore", over="ignore", divide="ignore"):
+        while step < n_steps:
+            step += 1
+            rhs.reset()
+            h = min(dt, duration - tau) if exact_end and step == n_steps else dt
+            try:
+                if method == "rkc":
+                    z = rkc_step(rhs, z, h, stages)
+                else:
+                    z = rk4_step(lambda r: _Rows(rhs(r.z)), _Rows(z), h).z
+            except ConvergenceError as err:
+                failure = f"the foil recovery failed at τ = {tau:.4g}: {err}"
+                break
+            tau += h
+            if not np.all(np.isfinite(lay.rotor_of(z)[:, :8])):
+                failure = (f"the integration blew up (non-finite state) at τ = {tau:.4g} "
+                           f"with Δτ = {dt:.4g}" + (f" and {stages} stages"
+                                                    if method == "rkc" else ""))
+                break
+            low = rhs.min_film
+            better = low < run_min[live]
+            sub_min, sub_tau = run_min[live], run_min_tau[live]
+            sub_min[better], sub_tau[better] = low[better], tau
+            run_min[live], run_min_tau[live] = sub_min, sub_tau
+            h_low[live] = np.minimum(h_low[live], low)
+            max_defl[live] = np.maximum(max_defl[live], rhs.max_deflection)
+            film_hit = low <= contact_film
+            foil_hit = rhs.max_deflection >= travel
+            touching = film_hit.any(axis=1) | foil_hit.any(axis=1)
+            if touching.any():
+                for i in np.flatnonzero(touching):
+                    run = live[i]
+                    contact_tau[run] = tau
+                    if film_hit[i].any():
+                        contact_bearing[run] = int(np.argmin(low[i]))
+                        kinds[run] = "film"
+                    else:
+                        contact_bearing[run] = int(np.argmax(rhs.max_deflection[i]))
+                        kinds[run] = "foil travel"
+            if step % per_sample == 0 or step == n_steps or touching.any():
+                record()
+            if touching.any():
+                if touching.all():
+                    break
+                keep = ~touching
+                evaluations += rhs.evaluations
+                live, z = live[keep], z[keep]
+                rhs = rhs.take(keep)
+            if step % check_every == 0:
+                rho = rhs.stiffness(z)
+                if method == "rk4":
+                    limit = RK4_STABILITY_RADIUS / rho
+                    if dt > limit:
+                        if fixed:
+                            failure = (f"time_step = {dt:.4g} exceeds the RK4 stability "
+                                       f"limit {limit:.4g} reached at τ = {tau:.3g}")
+                            break
+                        dt = STEP_SAFETY * limit
+                        per_sample = max(1, int(round(sample_every / dt)))
+                        n_steps = step + int(math.ceil((duration - tau) / dt - 1e-9))
+                elif dt * rho > STAGE_SAFETY * rkc_stability_interval(stages):
+                    stages = stages_for(dt * rho)
+                    if stages > MAX_STAGES:
+                        failure = (f"Δτ·ρ = {dt * rho:.4g} needs more than {MAX_STAGES} "
+                                   f"RKC stages at τ = {tau:.3g}")
+                        break
+                    used.add(stages)
+            if progress is not None:
+                revs = int(progress_total * min(tau / duration, 1.0))
+                if revs > done_revs:
+                    progress.update(revs - done_revs)
+                    done_revs = revs
+                    speed = batch.speed_at(tau)[0] * model.reference_speed * 30 / math.pi
+                    progress.set_postfix_str(f"{speed:,.0f} rpm, min film "
+                                             f"{np.nanmin(run_min) * c_ref * 1e6:.2f} µm")
+    evaluations += rhs.evaluations
+    q = np.transpose(np.array(qs), (1, 0, 2))
+    hmin = np.transpose(np.array(hs), (1, 2, 0))
+    hmin[~np.isfinite(hmin)] = np.nan
+    contact = np.isfinite(contact_tau)
+    options = {"method": method, "contact_film": contact_film,
+               "foil_travel": None if foil_travel is None else travel,
+               "sample_every": sample_every, "check_every": check_every}
+    return RotorRun(model, batch, np.array(taus), q, hmin, run_min, run_min_tau, max_defl,
+                    contact, contact_tau, contact_bearing, tuple(kinds), dt,
+                    tuple(sorted(used)) if method == "rkc" else (), evaluations,
+                    time.perf_counter() - t0, method, not failure, failure, options)
+
+
+def _first_step(rhs: RotorRightHandSide, z: np.ndarray, rho: float, top: float, method: str,
+                time_step, stages, max_step: float = MAX_STEP) -> tuple:
+    """(Δτ, stages) at the start; a given step or stage count outside the stability region
+    is refused with the bound it violates."""
+    if method == "rk4":
+        limit = RK4_STABILITY_RADIUS / rho
+        if time_step is None:
+            return STEP_SAFETY * limit, None
+        dt = _check_positive("time_step", time_step)
+        if dt > limit:
+            raise ParameterError("time_step", time_step, f"exceeds the RK4 stability limit "
+                                 f"{limit:.4g} of the discretised system (Gershgorin bound)")
+        return dt, None
+    if stages is not None:
+        if isinstance(stages, bool) or not float(stages).is_integer() \
+                or not 2 <= int(stages) <= MAX_STAGES:
+            raise ParameterError("stages", stages, f"must be an integer in [2, {MAX_STAGES}]")
+        stages = int(stages)
+    dt = (_check_positive("time_step", time_step) if time_step is not None
+          else accuracy_step(rhs, z, top, max_step))
+    if stages is None:
+        stages = stages_for(dt * rho)
+        if stages > MAX_STAGES:
+            if time_step is not None:
+                raise ParameterError("time_step", time_step, f"Δτ·ρ = {dt * rho:.4g} needs "
+                                     f"more than {MAX_STAGES} RKC stages")
+            stages = MAX_STAGES
+            dt = STAGE_SAFETY * rkc_stability_interval(stages) / rho
+    elif dt * rho > rkc_stability_interval(stages):
+        if time_step is None:
+            dt = STAGE_SAFETY * rkc_stability_interval(stages) / rho
+        else:
+            raise ParameterError("time_step", time_step, f"Δτ·ρ = {dt * rho:.4g} exceeds the "
+                                 f"RKC stability interval β({stages}) = "
+                                 f"{rkc_stability_interval(stages):.4g}")
+    return dt, stages

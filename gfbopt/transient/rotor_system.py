@@ -1,0 +1,480 @@
+"""The whole rigid rotor and the films of both its bearings as one method-of-lines system.
+
+Rotor (4 degrees of freedom, SI, the rotor issue's convention)
+--------------------------------------------------------------
+Global frame: x along gravity (the static load line by default), y 90° ahead of x in the
+direction of rotation, z along the shaft so that the spin ω is positive about +z.  The
+generalised coordinates are q = (x, y, a_x, a_y): the centre-of-gravity displacement [m] and
+the slopes of the shaft axis dx/dz, dy/dz [rad].  A station at axial position z (from the CG)
+moves by r = T(z) q, T(z) = [[1, 0, z, 0], [0, 1, 0, z]].  With the axis n ≈ (a_x, a_y, 1),
+the angular momentum about the CG is I_p ω n + I_t n × ṅ, and the moment of station forces
+F_k is Σ z_k e_z × F_k, so
+
+    M q̈ + ω G q̇ = Σ_k T_kᵀ F_k + Q_s + Q_u(t),
+    M = diag(m, m, I_t, I_t),   G = I_p [[0, 0, 0, 0], [0, 0, 0, 0], [0, 0, 0, 1], [0, 0, −1, 0]]
+
+(forward whirl of the tilt, a_x + i a_y ∝ e^{iΩt} with Ω > 0, has −I_t Ω² + I_p ω Ω: the
+gyroscopic term stiffens it).  Q_s is the static generalised force (gravity, side loads) and
+Q_u the imbalance: a plane at z_j with amount u_j = m_j e_j [kg m] and phase φ_j sits at
+shaft angle ϑ_j = ϑ(t) + φ_j, ϑ̇ = ω, and pushes the shaft with
+u_j [ω² (cos ϑ_j, sin ϑ_j) + ω̇ (sin ϑ_j, −cos ϑ_j)] (the second term: angular acceleration
+during a run-up).  Linearised, the rotor whirls where −Ω² M + iΩ ω G + Σ T_kᵀ Z_k(iΩ) T_k is
+singular (gfbopt.rotor).
+
+Bearings
+--------
+Each bearing k keeps the one-bearing transient model (:class:`.system.TransientModel`, its
+film Φ = P H and, with a loss factor, its Kelvin–Voigt foil state W; :mod:`.foil_state`), in
+its own load frame: X_k along the bearing's static load, at angle ψ_k from the global x in
+the direction of rotation, positions over its clearance c_k, forces over p_a R_k².  The
+engine calls that model's own functions (:func:`.system.pressure_and_film`,
+:func:`.system.flux_residual`, :func:`.system.film_force`, the foil state's ``rate``).
+
+Time and speed
+--------------
+τ = ω_ref t [rad of rotation at the reference speed ω_ref].  A bearing's model was built at a
+speed ω_m (its Λ_m); at speed ω(t) its bearing number is Λ_m ω/ω_m, and since
+dΦ/dt = (ω/(2Λ)) R(P, H; Λ) with ω/Λ fixed by the bearing, dΦ/dτ = R(P, H; Λ(τ)) ω_m/(2 Λ_m
+ω_ref): the speed enters only through the Couette term of R, passed to the same kernel as an
+argument — the film model is never rebuilt.  At constant speed ω_ref = ω_m = ω and these are
+the one-bearing engine's equations, operation for operation.  The Kelvin–Voigt foil keeps
+its time constant in seconds, t_f = τ_f/ω_m, through a run-up (a viscous element matched to
+the hysteretic loss at the reference whirl frequency ν_ref ω_m/2π of the model speed).  Each
+run of a batch has its own speed ω = ω_ref (r0 + a τ), shaft angle ϑ = r0 τ + a τ²/2.
+
+State of a batch of B runs, one row each:  [Φ_1 … Φ_K | W_1 … W_K | q̃ (4) | q̃' (4) | τ],
+q̃ = q/c_ref (c_ref the first bearing's clearance), primes d/dτ.  τ is carried as a state
+(τ' = 1) so that every Runge–Kutta stage sees its own time (both methods integrate it exactly).
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, replace
+from typing import Optional
+
+import numpy as np
+
+from ..errors import ParameterError
+from ..inputs.bearing import BearingGeometry
+from ..inputs.rotor_system import RotorBody
+from ..rotor.rigid import gyroscopic_matrix, mass_matrix, rotation, station_matrix
+from .foil_state import foil_bound
+from .rotor_batch import Runs, runs  # noqa: F401  (re-exported: the batch of runs)
+from .system import (State, TransientModel, film_force, flux_residual, pressure_and_film,
+                     rigid_film, stiffness_bound)
+
+#: names of the generalised coordinates, in order (gfbopt.rotor.rigid's q = (x, y, ψx, ψy))
+DOF = ("x", "y", "psi_x", "psi_y")
+
+
+def rigid_rotor_matrices(mass: float, transverse_inertia: float,
+                         polar_inertia: float) -> tuple[np.ndarray, np.ndarray]:
+    """(M, G) of a rigid rotor [kg, kg m²] in the coordinates :data:`DOF` (the rotor issue's
+    :func:`~gfbopt.rotor.rigid.mass_matrix` and :func:`~gfbopt.rotor.rigid.gyroscopic_matrix`;
+    the inputs are checked by :class:`~gfbopt.inputs.rotor_system.RotorBody`)."""
+    body = RotorBody(mass, transverse_inertia, polar_inertia)
+    return mass_matrix(body), gyroscopic_matrix(body)
+
+
+@dataclass(frozen=True, eq=False)
+class BearingFilm:
+    """One bearing of the rotor: its transient film model and where it sits.
+
+    tm : the one-bearing model (about the bearing's equilibrium at ``model_speed``);
+    geometry : the bearing in SI (R, c, p_a); position : z [m] from the CG;
+    frame_angle : ψ [rad], the bearing's load line (its X axis) from the global x, in the
+    direction of rotation; model_speed : ω_m [rad/s] at which ``tm`` was built;
+    label : for outputs.
+    """
+
+    tm: TransientModel
+    geometry: BearingGeometry
+    position: float
+    frame_angle: float
+    model_speed: float
+    label: str = ""
+
+    @property
+    def force_scale(self) -> float:
+        """p_a R² [N per unit non-dimensional force]."""
+        return self.geometry.ambient_pressure * self.geometry.radius ** 2
+
+    @property
+    def clearance(self) -> float:
+        return self.geometry.radial_clearance
+
+
+@dataclass(frozen=True)
+class ImbalancePlane:
+    """amount u = m e [kg m], > 0; phase φ [rad] from the shaft's reference mark in the
+    direction of rotation; position z [m] from the CG."""
+
+    amount: float
+    phase: float
+    position: float
+
+
+@dataclass(frozen=True, eq=False)
+class RotorTransientModel:
+    """The rotor and its bearing films (module docstring); everything in SI.
+
+    mass_matrix M, gyroscopic G (per unit spin speed) : (4, 4); bearings : BearingFilm per
+    bearing; static_force Q_s (4,) [N, N m]; imbalance : ImbalancePlane per plane;
+    reference_speed ω_ref [rad/s] (the time unit τ = ω_ref t).
+    """
+
+    mass_matrix: np.ndarray
+    gyroscopic: np.ndarray
+    bearings: tuple
+    static_force: np.ndarray
+    imbalance: tuple
+    reference_speed: float
+
+    @property
+    def clearance_ref(self) -> float:
+        return self.bearings[0].clearance
+
+    @property
+    def stations(self) -> np.ndarray:
+        """T_k of each bearing, (K, 2, 4)."""
+        return np.array([station_matrix(b.position) for b in self.bearings])
+
+    def to_local(self) -> np.ndarray:
+        """A_k (K, 2, 4): q̃ → (X_k, Y_k), the journal in bearing k's frame over c_k."""
+        c = self.clearance_ref
+        return np.array([rotation(-b.frame_angle) @ station_matrix(b.position) * (c / b.clearance)
+                         for b in self.bearings])
+
+    def from_local(self) -> np.ndarray:
+        """B_k (K, 4, 2): bearing k's non-dimensional film force → generalised force [N]."""
+        return np.array([station_matrix(b.position).T @ rotation(b.frame_angle) * b.force_scale
+                         for b in self.bearings])
+
+
+def rotor_transient_model(mass_matrix, gyroscopic, bearings, static_force, imbalance=(),
+                          reference_speed: Optional[float] = None) -> RotorTransientModel:
+    """Check and assemble a :class:`RotorTransientModel` (two bearings at distinct positions;
+    ``reference_speed`` defaults to the first bearing's model speed)."""
+    m = np.asarray(mass_matrix, dtype=float)
+    g = np.asarray(gyroscopic, dtype=float)
+    if m.shape != (4, 4) or g.shape != (4, 4) or not np.all(np.isfinite(m)) \
+            or not np.all(np.isfinite(g)):
+        raise ParameterError("mass_matrix", m.shape, "M and G must be finite 4 × 4 matrices")
+    if np.any(np.linalg.eigvalsh(0.5 * (m + m.T)) <= 0):
+        raise ParameterError("mass_matrix", np.diag(m).tolist(), "must be positive definite")
+    bearings = tuple(bearings)
+    if len(bearings) != 2:
+        raise ParameterError("bearings", len(bearings), "a rigid rotor on exactly two "
+                             "bearings is supported")
+    if bearings[0].position == bearings[1].position:
+        raise ParameterError("bearings.position", bearings[0].position,
+                             "the two bearings must sit at different axial positions")
+    q = np.asarray(static_force, dtype=float).ravel()
+    if q.shape != (4,) or not np.all(np.isfinite(q)):
+        raise ParameterError("static_force", static_force, "must be 4 finite numbers "
+                             "(generalised force of the coordinates x, y, slope_x, slope_y)")
+    for k, plane in enumerate(imbalance):
+        if not (math.isfinite(plane.amount) and plane.amount > 0):
+            raise ParameterError(f"imbalance[{k}].amount", plane.amount, "must be > 0 [kg m]")
+    omega = bearings[0].model_speed if reference_speed is None else float(reference_speed)
+    if not (math.isfinite(omega) and omega > 0):
+        raise ParameterError("reference_speed", reference_speed, "must be > 0 [rad/s]")
+    return RotorTransientModel(m, g, bearings, q, tuple(imbalance), omega)
+
+
+# ------------------------------------------------------------------------- layout
+@dataclass(frozen=True)
+class Layout:
+    """Where each part of a packed state sits.  A batch is one array (B, K, L): slot k
+    holds bearing k's Φ (first) and foil state W (next); the rotor's q̃, q̃' and τ are the
+    last 9 entries of slot 0 (the other slots' tails stay 0).  Bearings of one film structure
+    are then one contiguous (B·K, …) view, so the one-bearing kernel runs once for all."""
+
+    phi: tuple          # per bearing: shape of Φ
+    foil: tuple         # per bearing: shape of W, or None
+    width: int          # L
+    phi_size: tuple = ()    # per bearing: entries of Φ
+    foil_size: tuple = ()   # per bearing: entries of W (0 without a foil state)
+
+    @property
+    def rotor(self) -> int:
+        """Start of q̃ in slot 0 (then q̃' at +4, τ at +8)."""
+        return self.width - 9
+
+    @property
+    def filled(self) -> int:
+        """Entries every slot's film and foil state fill (the rest of a slot is padding)."""
+        return min(p + f for p, f in zip(self.phi_size, self.foil_size))
+
+    def phi_of(self, z: np.ndarray, k: int) -> np.ndarray:
+        return z[:, k, :self.phi_size[k]].reshape((z.shape[0],) + self.phi[k])
+
+    def foil_of(self, z: np.ndarray, k: int) -> Optional[np.ndarray]:
+        if self.foil[k] is None:
+            return None
+        n = self.phi_size[k]
+        return z[:, k, n:n + self.foil_size[k]].reshape((z.shape[0],) + self.foil[k])
+
+    def rotor_of(self, z: np.ndarray) -> np.ndarray:
+        """q̃, q̃' and τ of every run, (B, 9) (a view)."""
+        return z[:, 0, self.rotor:]
+
+
+def layout(model: RotorTransientModel) -> Layout:
+    phis, foils, width = [], [], 0
+    for b in model.bearings:
+        fs = b.tm.foil_state
+        phis.append(tuple(b.tm.shape))
+        foils.append(None if fs is None else tuple(fs.equilibrium.shape))
+        width = max(width, int(np.prod(b.tm.shape)) +
+                    (0 if fs is None else int(np.prod(fs.equilibrium.shape))))
+    sizes = tuple(int(np.prod(p)) for p in phis)
+    foil_sizes = tuple(0 if f is None else int(np.prod(f)) for f in foils)
+    return Layout(tuple(phis), tuple(foils), width + 9, sizes, foil_sizes)
+
+
+def empty_states(model: RotorTransientModel, batch: int) -> np.ndarray:
+    """Zero states of ``batch`` runs, (B, K, L)."""
+    return np.zeros((batch, len(model.bearings), layout(model).width))
+
+
+def stackable(model: RotorTransientModel) -> bool:
+    """True when every bearing has the same film structure (grid, film, law, S, Λ, foil
+    state, speed), so one call of the one-bearing kernel serves all of them at once."""
+    first = model.bearings[0]
+    a = first.tm
+    for b in model.bearings[1:]:
+        t = b.tm
+        fa, fb = a.foil_state, t.foil_state
+        same = (t.shape == a.shape and t.periodic == a.periodic and t.law.name == a.law.name
+                and t.compliance == a.compliance and t.bearing_number == a.bearing_number
+                and t.compression_only == a.compression_only and t.gumbel == a.gumbel
+                and t.dtheta == a.dtheta and t.dz == a.dz and t.foil_data is None
+                and a.foil_data is None and b.model_speed == first.model_speed
+                and np.array_equal(t.cos, a.cos) and np.array_equal(t.sin, a.sin)
+                and np.array_equal(t.theta_weight, a.theta_weight)
+                and np.array_equal(t.z_weight, a.z_weight)
+                and all(_same(getattr(t, name, None), getattr(a, name, None))
+                        for name in ("ambient", "bore", "compliance_rows"))
+                and (fa is None) == (fb is None)
+                and (fa is None or (fa.relaxation_time == fb.relaxation_time
+                                    and fa.layout == fb.layout)))
+        if not same:
+            return False
+    return True
+
+
+# ------------------------------------------------------------------ the system
+class RotorRightHandSide:
+    """dz/dτ for a batch of runs (states (B, K, L), :class:`Layout`), and the films it saw.
+
+    ``min_film`` (B, K): the smallest film H of each bearing over every evaluation since the
+    last reset; with ``track_deflection``, ``max_deflection`` (B, K): the largest foil
+    deflection W = H − H_r [clearances] (else −inf).
+    """
+
+    def __init__(self, model: RotorTransientModel, batch: Runs, stack: Optional[bool] = None,
+                 track_deflection: bool = False):
+        self.model = model
+        self.runs = batch
+        self.layout = layout(model)
+        self.stack = stackable(model) if stack is None else stack
+        self.track_deflection = track_deflection
+        k = len(model.bearings)
+        self.to_local = np.vstack(list(model.to_local())).T.copy()        # (4, 2K)
+        self.from_local = np.hstack(list(model.from_local())).T.copy()    # (2K, 4)
+        c, w = model.clearance_ref, model.reference_speed
+        minv = np.linalg.inv(model.mass_matrix) / (c * w * w)
+        scale = batch.inertia_scale
+        self.uniform_mass = bool(np.all(scale == scale[0])) if scale.size else True
+        self.accel = (minv / scale[0]).T.copy() if self.uniform_mass and scale.size else None
+        self.accel_each = minv[None] / scale[:, None, None]                # (B, 4, 4)
+        self.gyro = (np.linalg.inv(model.mass_matrix) @ model.gyroscopic).T.copy()
+        self.static = model.static_force
+        self.amounts = np.array([p.amount * w * w for p in model.imbalance])  # u ω_ref² [N]
+        self.moments = self.amounts * np.array([p.position for p in model.imbalance])
+        self.phases = np.array([p.phase for p in model.imbalance])
+        self.film_divisor = [2.0 * b.tm.bearing_number * (w / b.model_speed)
+                             for b in model.bearings]
+        self.foil_factor = [b.model_speed / w for b in model.bearings]
+        self.base_lambda = [b.tm.bearing_number * (w / b.model_speed) for b in model.bearings]
+        self.same_speed = bool(np.all(batch.speed == batch.speed[0])
+                               and np.all(batch.ramp == batch.ramp[0])) if batch.size else True
+        self._kernels = [_AtSpeed(b.tm) for b in model.bearings]
+        self.evaluations = 0
+        self.min_film = np.full((batch.size, k), np.inf)
+        self.max_deflection = np.full((batch.size, k), -np.inf)
+
+    def take(self, keep) -> "RotorRightHandSide":
+        """The same system for the runs selected by ``keep`` (the counters restart)."""
+        return RotorRightHandSide(self.model, self.runs.take(keep), self.stack,
+                                  self.track_deflection)
+
+    def reset(self) -> None:
+        self.min_film[:] = np.inf
+        self.max_deflection[:] = -np.inf
+
+    # ---------------------------------------------------------------- pieces
+    def journals(self, z: np.ndarray) -> np.ndarray:
+        """(X_k, Y_k) of every run, (B, K, 2)."""
+        q = self.layout.rotor_of(z)[:, :4]
+        return (q @ self.to_local).reshape(z.shape[0], -1, 2)
+
+    def _speed(self, tau: np.ndarray):
+        """ω/ω_ref: a float when every run turns at the same speed, else (B,)."""
+        if self.same_speed:
+            t = float(tau[0])
+            return float(self.runs.speed[0] + self.runs.ramp[0] * t)
+        return self.runs.speed_at(tau)
+
+    def _films(self, z: np.ndarray, xy: np.ndarray):
+        """[(bearings, tm, Φ, X, Y, W)] with a leading batch axis: once for all bearings
+        (stacked, (B·K, …) views) or once per bearing."""
+        lay, bearings = self.layout, self.model.bearings
+        if self.stack:
+            flat = z.reshape((-1, lay.width))
+            tm = bearings[0].tm
+            n = lay.phi_size[0]
+            phi = flat[:, :n].reshape((flat.shape[0],) + lay.phi[0])
+            w = None
+            if lay.foil[0] is not None:
+                w = flat[:, n:n + lay.foil_size[0]].reshape(
+                    (flat.shape[0],) + lay.foil[0])
+            return [(slice(None), tm, phi, xy[..., 0].ravel(), xy[..., 1].ravel(), w)]
+        return [(k, b.tm, lay.phi_of(z, k), xy[:, k, 0], xy[:, k, 1], lay.foil_of(z, k))
+                for k, b in enumerate(bearings)]
+
+    def pressures(self, z: np.ndarray) -> list:
+        """[(P, H)] per bearing, each (B, ...), at the states ``z``."""
+        xy = self.journals(z)
+        out = []
+        for k, b in enumerate(self.model.bearings):
+            p, h = pressure_and_film(self.layout.phi_of(z, k), xy[:, k, 0], xy[:, k, 1], b.tm,
+                                     deflection=self.layout.foil_of(z, k))
+            out.append((p, h))
+        return out
+
+    # ---------------------------------------------------------------- RHS
+    def __call__(self, z: np.ndarray) -> np.ndarray:
+        self.evaluations += 1
+        lay, model = self.layout, self.model
+        nb, k = z.shape[0], len(model.bearings)
+        rotor = lay.rotor_of(z)
+        tau = rotor[:, 8]
+        xy = self.journals(z)
+        speed = self._speed(tau)
+        out = np.empty_like(z)
+        out[:, :, lay.filled:] = 0.0                   # padding (the rotor's tail is set below)
+        forces = np.empty((nb, k, 2))
+        for j, tm, phi, x, y, w in self._films(z, xy):
+            jj = 0 if self.stack else j
+            p, h = pressure_and_film(phi, x, y, tm, deflection=w)
+            lam = self.base_lambda[jj] * speed
+            if not isinstance(speed, float):
+                lam = (np.repeat(lam, k) if self.stack else lam)[:, None, None]
+            kernel = self._kernels[jj]
+            kernel.bearing_number = lam
+            dphi = flux_residual(p, h, kernel)
+            dphi /= self.film_divisor[jj]
+            fx, fy = film_force(p, tm)
+            hmin = h.min(axis=(1, 2))
+            n = lay.phi_size[jj]
+            if self.stack:
+                view = out.reshape((-1, lay.width))
+                view[:, :n] = dphi.reshape(view.shape[0], n)
+                forces[:, :, 0], forces[:, :, 1] = fx.reshape(nb, k), fy.reshape(nb, k)
+                np.minimum(self.min_film, hmin.reshape(nb, k), out=self.min_film)
+            else:
+                view = out[:, j]
+                view[:, :n] = dphi.reshape(nb, n)
+                forces[:, j, 0], forces[:, j, 1] = fx, fy
+                np.minimum(self.min_film[:, j], hmin, out=self.min_film[:, j])
+            if tm.foil_state is not None:
+                dw = tm.foil_state.rate(p, w, tm)
+                if self.foil_factor[jj] != 1.0:
+                    dw *= self.foil_factor[jj]
+                view[:, n:n + dw[0].size] = dw.reshape(view.shape[0], -1)
+            if self.track_deflection:
+                d = _deflection(h, x, y, tm)
+                if self.stack:
+                    np.maximum(self.max_deflection, d.reshape(nb, k), out=self.max_deflection)
+                else:
+                    np.maximum(self.max_deflection[:, j], d, out=self.max_deflection[:, j])
+        load = forces.reshape(nb, 2 * k) @ self.from_local
+        load += self.static
+        if len(model.imbalance):
+            load += self._imbalance(tau)
+        acc = (load @ self.accel if self.accel is not None
+               else np.einsum("bij,bj->bi", self.accel_each, load))
+        velocity = rotor[:, 4:8]
+        if isinstance(speed, float):
+            acc -= speed * (velocity @ self.gyro)
+        else:
+            acc -= speed[:, None] * (velocity @ self.gyro)
+        tail = out[:, 0, lay.rotor:]
+        tail[:, :4] = velocity
+        tail[:, 4:8] = acc
+        tail[:, 8] = 1.0
+        return out
+
+    def _imbalance(self, tau: np.ndarray) -> np.ndarray:
+        """Q_u (B, 4) [N] of every run at τ (module docstring)."""
+        r = self.runs.speed_at(tau)
+        angle = self.runs.angle_at(tau)[:, None] + self.phases[None, :]       # (B, J)
+        c, s = np.cos(angle), np.sin(angle)
+        a = self.runs.ramp[:, None]
+        r2 = (r * r)[:, None]
+        fx = r2 * c + a * s
+        fy = r2 * s - a * c
+        out = np.empty((tau.size, 4))
+        out[:, 0], out[:, 1] = fx @ self.amounts, fy @ self.amounts
+        out[:, 2], out[:, 3] = fx @ self.moments, fy @ self.moments
+        out *= self.runs.imbalance_scale[:, None]
+        return out
+
+    # ---------------------------------------------------------------- stiffness
+    def stiffness(self, z: np.ndarray) -> float:
+        """Gershgorin bound ρ [per rad of τ] of the films and foil states at ``z`` (the
+        one-bearing bound, with each bearing's Λ at its current speed)."""
+        xy = self.journals(z)
+        r = float(np.max(self.runs.speed_at(self.layout.rotor_of(z)[:, 8])))
+        rho = 0.0
+        for k, b in enumerate(self.model.bearings):
+            tm = b.tm
+            lam = self.base_lambda[k] * r
+            s = State(self.layout.phi_of(z, k), xy[:, k, 0], xy[:, k, 1], xy[:, k, 0] * 0,
+                      xy[:, k, 0] * 0, self.layout.foil_of(z, k))
+            film = stiffness_bound(s, replace(tm, bearing_number=lam, foil_state=None))
+            rho = max(rho, film * 2.0 * lam / self.film_divisor[k])
+            if tm.foil_state is not None:
+                p, h = pressure_and_film(s.phi, s.x, s.y, tm, deflection=s.w)
+                rho = max(rho, foil_bound(p, h, tm) * self.foil_factor[k])
+        return rho
+
+
+def _same(a, b) -> bool:
+    """Two optional per-row arrays of the bearing as built are equal (or both absent)."""
+    if a is None or b is None:
+        return a is None and b is None
+    return bool(np.array_equal(a, b))
+
+
+class _AtSpeed:
+    """The one-bearing model seen by the flux kernel at the current bearing number: Λ is
+    set per evaluation (a run-up changes it continuously, without rebuilding anything);
+    every other attribute is the model's own."""
+
+    def __init__(self, tm: TransientModel):
+        self._tm = tm
+        self.bearing_number = tm.bearing_number
+
+    def __getattr__(self, name):
+        return getattr(self._tm, name)
+
+
+def _deflection(h: np.ndarray, x: np.ndarray, y: np.ndarray, tm: TransientModel):
+    """Largest foil deflection W = H − H_r of each run [clearances]."""
+    if tm.law.name == "rigid":
+        return np.zeros(x.shape)
+    hr = rigid_film(x, y, tm)                                     # (B, m), with the bore
+    return (h - hr[:, :, None]).max(axis=(1, 2))
