@@ -48,7 +48,7 @@ def register(subparsers) -> None:
                      "files in DIR")
     sub.add_argument("--plot", default=None, metavar="DIR", help="write the figures (PNG) "
                      "in DIR")
-    rotor_time.add_arguments(sub)      # --orbit, --run-up, --coast-down (issue 18)
+    rotor_time.add_arguments(sub)      # --orbit, --run-up, --coast-down
     sub.set_defaults(handler=run)
 
 

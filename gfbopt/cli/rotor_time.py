@@ -13,7 +13,7 @@ with the speed where the subsynchronous line appears beside the linear onset; th
 film with its time, speed and bearing, and contact when it happens (the record up to there
 is kept).  Progress: a bar with an ETA on a terminal, a periodic status line otherwise.
 
-The ``gfbopt rotor`` command (:mod:`gfbopt.cli.rotor`, issue 16) owns the rotor file and the
+The ``gfbopt rotor`` command (:mod:`gfbopt.cli.rotor`) owns the rotor file and the
 shared options ``--speed-rpm``, ``--grid``, ``--json``, ``--csv DIR``, ``--plot DIR``; this
 module adds the transient's options (:func:`add_arguments`) and runs them (:func:`handle`)
 when :func:`requested` says one of ``--orbit/--run-up/--coast-down`` was given.

@@ -107,7 +107,7 @@ def regrid(system, settings, designs: list, problem: DesignProblem,
 def whirl_at_top_speed(system, design: dict, settings, revolutions: float) -> dict:
     """The rotor with ``design`` run at the top speed for ``revolutions`` from its
     equilibrium with a small cylindrical kick (:func:`gfbopt.transient.rotor_orbit`, the
-    rotor transient of issue 18, on the search grid, the loss factor of the search): per
+    rotor transient, on the search grid, the loss factor of the search): per
     bearing the subsynchronous limit cycle [µm] (settled or not) and the smallest film
     [µm], and whether the film closed (contact) first."""
     from ..inputs.options import ModelOptions, merge_options

@@ -34,7 +34,7 @@ FORMULATION = {"foil": "string", "film": "string", "seam_angle_deg": "float64",
                "compression_only": "bool"}
 STATIC_OUT = {"eccentricity": "float64", "load": "float64", "attitude_angle_deg": "float64",
               "min_film": "float64", "status": "string", "residual": "float64"}
-STATIC_OUT["torque_ratio"] = "float64"        # drag torque over Petroff's (issue 17)
+STATIC_OUT["torque_ratio"] = "float64"        # drag torque over Petroff's
 #: geometry of a bearing file that an ``onset_speed`` study may sample [m]
 GEOMETRY = ("bump_pitch", "bump_thickness", "bump_half_length", "radial_clearance",
             "bump_youngs_modulus", "top_foil_thickness", "length", "radius")

@@ -10,7 +10,7 @@ rotor's inertias (M and G together) scaled by μ: at each whirl ratio γ = Ω/ω
     A(Ω) v = ν K_b(Ω) v,     A = Ω² M − iΩ ω G,   K_b = Σ T_kᵀ Z_k T_k,   ν = 1/μ,
 
 and a real ν > 0 is a threshold: the rotor with inertias μ = 1/ν has a mode on the imaginary
-axis at s = iΩ, with shape v (issue 16; docs/PHYSICS.md).  μ generalises the one-bearing
+axis at s = iΩ, with shape v (docs/PHYSICS.md).  μ generalises the one-bearing
 critical mass: for one bearing carrying mass M, μ = M̄c/M̄.  Scaling the inertias keeps
 the rotor's shape (mass, inertias and the gyroscopic term alike), so the rotor itself
 (μ = 1) is below the threshold of a mode — that mode is stable — when the mode's critical

@@ -33,7 +33,7 @@ frequency Ω where the dynamic stiffness
 
     D(Ω) = −Ω² M + iΩ ω G + Σ_k T_kᵀ Z_k(iΩ) T_k                                      (1)
 
-is singular (issue 16; a generalisation of the one-bearing det(−M̄W̄0γ² I + Z̄) = 0).
+is singular (a generalisation of the one-bearing det(−M̄W̄0γ² I + Z̄) = 0).
 
 Statics: the applied forces (weight m g at the CG along the gravity direction, side loads at
 their positions) are shared by force and moment balance, W_A + W_B = F, z_A W_A + z_B W_B =

@@ -1,4 +1,4 @@
-"""Studies of the bearing as built (issue 17): the levers foil-bearing designers use.
+"""Studies of the bearing as built: the levers foil-bearing designers use.
 
 * ``onset_as_built`` — the onset speed of whirl [rpm] of a rotor (mass and load per bearing
   fixed) on a bearing file, against the mechanical preload depth of N shims (or lobes) and

@@ -1,4 +1,4 @@
-"""The rotor study kind: a rigid rotor on two foil bearings (issue 16).
+"""The rotor study kind: a rigid rotor on two foil bearings.
 
 * ``rotor_two_bearings`` — for a rotor file (``problems/rotors/*.toml``): the onset speed of
   every mode (matched whirl, :func:`gfbopt.rotor.system.rotor_onsets`), which whirls first, the

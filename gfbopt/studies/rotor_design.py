@@ -21,7 +21,7 @@ search.  A run:
    the front, the robustness and the default-grid check) and figures that mark the top speed.
 
 When no design is stable to the top speed, the chosen one is run at the top speed in time
-(the rotor transient of issue 18, :func:`gfbopt.design.robustness.whirl_at_top_speed`): the
+(the rotor transient, :func:`gfbopt.design.robustness.whirl_at_top_speed`): the
 verdict gives its whirl limit cycle at each bearing and the minimum film, or the contact.
 """
 from __future__ import annotations
@@ -31,6 +31,7 @@ import json
 import time
 from pathlib import Path
 
+from ..errors import ParameterError
 from ..design.rotor_objectives import OUTPUTS
 from ..design.rotor_spec import BORE_KINDS, GOALS, plan_rotor_design
 from ..design.search import METHODS
@@ -151,7 +152,7 @@ def design_hash(study: Study) -> str:
     try:
         for k, b in enumerate(read_toml(rotor).get("bearings", [])):
             files[f"bearing{k}"] = _digest(rotor.parent / str(b.get("file", "")))
-    except Exception:                # an unreadable rotor file is refused by the plan
+    except (ParameterError, OSError):  # an unreadable rotor file is refused by the plan
         pass
     version = ".".join(__version__.split(".")[:2])
     text = json.dumps({"spec": spec, "files": files, "version": version}, sort_keys=True,

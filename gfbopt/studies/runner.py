@@ -134,6 +134,6 @@ def run_study(path: Union[str, Path, LoadedStudy],
     return result
 
 
-from . import rotor_transient  # noqa: E402  (rotor transients, issue 18)
+from . import rotor_transient  # noqa: E402  (rotor transients)
 
 register(rotor_transient)

@@ -45,7 +45,7 @@ __all__ = ["CriticalMass", "DEFAULT_METHOD", "KelvinVoigtFoil", "LinearMode", "M
            "flux_residual", "integrate_orbits", "limit_cycle_amplitudes", "pressure_and_film",
            "rk4_step", "stable_time_step", "stiffness_bound", "transient_model"]
 
-# the whole rotor on both bearing films (issue 18): gfbopt.transient.rotor_analysis
+# the whole rotor on both bearing films: gfbopt.transient.rotor_analysis
 from .rotor_analysis import rotor_orbit, rotor_ramp  # noqa: E402
 
 __all__ += ["rotor_orbit", "rotor_ramp"]

@@ -257,7 +257,7 @@ def _linear_onset(system, profile, settings, given) -> dict:
         from ..rotor.system import rotor_onsets
     except ImportError:
         return {"linear_onset_speed_rpm": math.nan, "linear_onset_source":
-                "not available in this build (gfbopt.rotor.system, issue 16)"}
+                "not available in this build (gfbopt.rotor.system)"}
     from ..inputs.grid import Grid
 
     low = min(profile.start_rpm, profile.end_rpm)
