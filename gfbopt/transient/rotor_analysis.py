@@ -26,6 +26,7 @@ from typing import Optional, Union
 import numpy as np
 
 from ..errors import ParameterError
+from ..inputs.checks import check_positive
 from ..inputs.conversions import rpm_to_rad_per_s
 from ..inputs.grid import Grid
 from ..inputs.rotor_system import RotorSystem
@@ -71,15 +72,6 @@ class SpeedProfile:
                 "duration_s": self.duration_s, "revolutions": self.revolutions}
 
 
-def _positive(name: str, value) -> float:
-    try:
-        v = float(value)
-    except (TypeError, ValueError):
-        raise ParameterError(name, value, "must be a number") from None
-    if not (math.isfinite(v) and v > 0):
-        raise ParameterError(name, value, "must be finite and > 0")
-    return v
-
 
 def _limit(revolutions: float, force: bool, name: str) -> None:
     if revolutions > MAX_REVOLUTIONS and not force:
@@ -89,8 +81,8 @@ def _limit(revolutions: float, force: bool, name: str) -> None:
 
 
 def orbit_profile(speed_rpm, revolutions, force: bool = False) -> SpeedProfile:
-    speed = _positive("speed_rpm", speed_rpm)
-    revs = _positive("revolutions", revolutions)
+    speed = check_positive("speed_rpm", speed_rpm)
+    revs = check_positive("revolutions", revolutions)
     _limit(revs, force, "revolutions")
     return SpeedProfile("orbit", speed, speed, 0.0, revs * 60.0 / speed, revs)
 
@@ -98,8 +90,8 @@ def orbit_profile(speed_rpm, revolutions, force: bool = False) -> SpeedProfile:
 def ramp_profile(start_rpm, end_rpm, rate_rpm_per_s, kind: str = "run-up",
                  force: bool = False) -> SpeedProfile:
     """A linear speed ramp; a run-up must end above its start, a coast-down below."""
-    start, end = _positive("start_rpm", start_rpm), _positive("end_rpm", end_rpm)
-    rate = _positive("rate_rpm_per_s", rate_rpm_per_s)
+    start, end = check_positive("start_rpm", start_rpm), check_positive("end_rpm", end_rpm)
+    rate = check_positive("rate_rpm_per_s", rate_rpm_per_s)
     if kind == "run-up" and not end > start:
         raise ParameterError("end_rpm", end, f"a run-up must end above its start speed "
                              f"{start:g} rpm (use a coast-down to slow down)")
@@ -167,7 +159,7 @@ def run_profile(rotor: Union[RotorSystem, RotorInput], profile: SpeedProfile, *,
                              "the rotor has no imbalance plane; give one or set it to 0")
     travel = None
     if foil_travel_m is not None:
-        travel = _positive("foil_travel_m", foil_travel_m) / inp.bearings[0].geometry.radial_clearance
+        travel = check_positive("foil_travel_m", foil_travel_m) / inp.bearings[0].geometry.radial_clearance
     cache = cache if cache is not None else SolverCache(grid)
     model, solutions = build_model(inp, profile.start_rpm, grid,
                                    reference_speed_rpm=profile.top_rpm,
@@ -179,7 +171,7 @@ def run_profile(rotor: Union[RotorSystem, RotorInput], profile: SpeedProfile, *,
     batch = runs(mu.size, speed=r0, ramp=ramp, inertia_scale=mu, imbalance_scale=scale)
     z = equilibrium_states(model, batch.size)
     if perturbation != "none":
-        v = _positive("kick", kick) / math.sqrt(2)
+        v = check_positive("kick", kick) / math.sqrt(2)
         sign_b = 1.0 if perturbation == "cylindrical" else -1.0
         z = set_station_velocities(model, z, [[v, v], [sign_b * v, sign_b * v]])
     duration = profile.duration_s * omega

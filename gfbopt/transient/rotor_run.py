@@ -28,6 +28,7 @@ from typing import Optional
 import numpy as np
 
 from ..errors import ConvergenceError, ParameterError
+from ..inputs.checks import check_positive
 from .rk4 import RK4_STABILITY_RADIUS, STEP_SAFETY, rk4_step
 from .rkc import (MAX_STAGES, MAX_STEP, STAGE_SAFETY, STEPS_PER_FILM_TIME,
                   STEPS_PER_ROTOR_PERIOD, film_time, rkc_stability_interval, rkc_step,
@@ -150,15 +151,6 @@ def accuracy_step(rhs: RotorRightHandSide, z: np.ndarray, top_speed: float,
                films / STEPS_PER_FILM_TIME)
 
 
-def _check_positive(name: str, value) -> float:
-    try:
-        v = float(value)
-    except (TypeError, ValueError):
-        raise ParameterError(name, value, "must be a number") from None
-    if not (math.isfinite(v) and v > 0):
-        raise ParameterError(name, value, "must be finite and > 0")
-    return v
-
 
 def integrate_rotor(model: RotorTransientModel, batch: Runs, duration: float,
                     initial: np.ndarray, *, method: str = "rkc",
@@ -187,10 +179,10 @@ def integrate_rotor(model: RotorTransientModel, batch: Runs, duration: float,
         raise ParameterError("method", method, f"must be one of {', '.join(METHODS)}")
     if stages is not None and method != "rkc":
         raise ParameterError("stages", stages, "applies to method='rkc' only")
-    duration = _check_positive("duration", duration)
-    sample_every = _check_positive("sample_every", sample_every)
+    duration = check_positive("duration", duration)
+    sample_every = check_positive("sample_every", sample_every)
     contact_film = float(contact_film)
-    travel = math.inf if foil_travel is None else _check_positive("foil_travel", foil_travel)
+    travel = math.inf if foil_travel is None else check_positive("foil_travel", foil_travel)
     lay = layout(model)
     z = np.array(initial, dtype=float)
     shape = (batch.size, len(model.bearings), lay.width)
@@ -334,7 +326,7 @@ def _first_step(rhs: RotorRightHandSide, z: np.ndarray, rho: float, top: float, 
         limit = RK4_STABILITY_RADIUS / rho
         if time_step is None:
             return STEP_SAFETY * limit, None
-        dt = _check_positive("time_step", time_step)
+        dt = check_positive("time_step", time_step)
         if dt > limit:
             raise ParameterError("time_step", time_step, f"exceeds the RK4 stability limit "
                                  f"{limit:.4g} of the discretised system (Gershgorin bound)")
@@ -344,7 +336,7 @@ def _first_step(rhs: RotorRightHandSide, z: np.ndarray, rho: float, top: float, 
                 or not 2 <= int(stages) <= MAX_STAGES:
             raise ParameterError("stages", stages, f"must be an integer in [2, {MAX_STAGES}]")
         stages = int(stages)
-    dt = (_check_positive("time_step", time_step) if time_step is not None
+    dt = (check_positive("time_step", time_step) if time_step is not None
           else accuracy_step(rhs, z, top, max_step))
     if stages is None:
         stages = stages_for(dt * rho)
