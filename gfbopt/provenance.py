@@ -37,13 +37,16 @@ def source_state() -> dict:
     """{'commit': sha or None, 'dirty': bool or None, 'source': description} of gfbopt itself.
 
     ``dirty`` is True when the gfbopt checkout has uncommitted changes to tracked files.
+    Generated outputs (``results/``, ``runs/``) are not source: a run that rewrites the shipped
+    results does not make its own provenance dirty.
     """
     try:
         top = Path(_git("rev-parse", "--show-toplevel"))
         if not (top / "gfbopt" / "version.py").is_file() or _PACKAGE_DIR != top / "gfbopt":
             raise OSError("gfbopt is not the package of this repository")
         commit = _git("rev-parse", "HEAD")
-        dirty = bool(_git("status", "--porcelain", "--untracked-files=no"))
+        dirty = bool(_git("status", "--porcelain", "--untracked-files=no", "--",
+                          ":(top,exclude)results", ":(top,exclude)runs"))
         return {"commit": commit, "dirty": dirty, "source": f"git checkout {top}"}
     except (OSError, subprocess.SubprocessError):
         return {"commit": None, "dirty": None,
