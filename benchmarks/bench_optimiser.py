@@ -12,8 +12,10 @@ Measured (serial, one process, so nothing else hides in the numbers):
   library's default (10,000 random points, 10 L-BFGS-B starts) and at gfbopt's default
   (5,000 random points, no L-BFGS-B polishing);
 * one real evaluation: a bearing-pair design of the blower rotor (problems/rotors/
-  blower.toml, two Ruscitto bearings) on the 36x10 search grid after the solver builds
-  (:func:`gfbopt.design.rotor_objectives.evaluate_rotor_design`).
+  blower.toml, two Ruscitto bearings, shim preload) on the 36x10 search grid and on the
+  default 144x36 grid after the solver builds
+  (:func:`gfbopt.design.rotor_objectives.evaluate_rotor_design`), wall and CPU seconds, with
+  one BLAS thread as in every gfbopt run.
 
 Run: ``PYTHONPATH=. python benchmarks/bench_optimiser.py`` → results/benchmarks/optimiser.json.
 The machine's load average is recorded: the 2 cores are shared, so absolute times vary; the
@@ -78,24 +80,39 @@ def real_evaluation() -> dict:
     from gfbopt.static import SolverCache
 
     system = load_rotor(ROOT / "problems" / "rotors" / "blower.toml")
-    settings = EvaluationSettings(4000.0, 45000.0, 56250.0, Grid.parse("36x10"),
-                                  heaviest_load_factor=2.0)
-    cache = SolverCache(settings.grid)
-    t0 = time.perf_counter()
-    evaluate_rotor_design(system, settings, cache)               # builds the solvers
-    cold = time.perf_counter() - t0
-    times = []
-    for clearance in (17.0, 23.0):
-        t0 = time.perf_counter()
-        row = evaluate_rotor_design(system, settings, cache, radial_clearance_um=clearance)
-        times.append(time.perf_counter() - t0)
-        assert row["success"], row["message"]
-    return {"grid": "36x10", "first_evaluation_s": cold, "evaluation_s": float(np.mean(times)),
-            "evaluations": len(times)}
+    out = {}
+    for grid in ("36x10", "144x36"):
+        settings = EvaluationSettings(4000.0, 45000.0, 56250.0, Grid.parse(grid),
+                                      heaviest_load_factor=2.0)
+        cache = SolverCache(settings.grid)
+        t0, c0 = time.perf_counter(), time.process_time()
+        evaluate_rotor_design(system, settings, cache)               # builds the solvers
+        cold, cold_cpu = time.perf_counter() - t0, time.process_time() - c0
+        times, cpu = [], []
+        for clearance, preload in ((17.0, 9.0), (23.0, 4.0)):
+            t0, c0 = time.perf_counter(), time.process_time()
+            row = evaluate_rotor_design(system, settings, cache, radial_clearance_um=clearance,
+                                        preload_depth_um=preload)
+            times.append(time.perf_counter() - t0)
+            cpu.append(time.process_time() - c0)
+            assert row["success"], row["message"]
+        out[grid] = {"first_evaluation_s": cold, "first_evaluation_cpu_s": cold_cpu,
+                     "evaluation_s": float(np.mean(times)),
+                     "evaluation_cpu_s": float(np.mean(cpu)), "evaluations": len(times)}
+    return {"grid": "36x10", "first_evaluation_s": out["36x10"]["first_evaluation_s"],
+            "evaluation_s": out["36x10"]["evaluation_s"],
+            "evaluation_cpu_s": out["36x10"]["evaluation_cpu_s"], "evaluations": 2,
+            "by_grid": out}
 
 
 def main() -> None:
+    from gfbopt.parallel import limit_blas_threads
     from gfbopt.provenance import provenance
+
+    # one BLAS thread, as in every gfbopt run and pool worker: multi-threaded OpenBLAS on
+    # these small matrices spins against the other process on 2 shared cores (the 0.2-era
+    # figure of 29-51 s per evaluation was mostly that: 1.6 s with one thread, idle)
+    limit_blas_threads()
 
     load_before = os.getloadavg()
     evaluation = real_evaluation()

@@ -200,6 +200,20 @@ def _static(case, speed_rpm: float, load_newton: float, grid: Grid, cache):
                         solver=cache(model, grid), continuation=True)
 
 
+def film_um(sol, bearing) -> float:
+    """The minimum film [µm] of a static solution: the smallest nodal film, or with a
+    sharp-edged (shim) bore the film at its steps when smaller
+    (:func:`gfbopt.physics.bore.step_film`, a grid-robust bound: the nodal film at a shim
+    edge is not converged on any practical grid); 0 when the film closes there."""
+    from ..physics.bore import step_film
+
+    h = sol.min_film
+    ab = sol.model.as_built
+    if ab is not None and ab.bore.kind == "shims" and not ab.bore.is_round:
+        h = min(h, step_film(sol.film, sol.deflection, ab.bore_rows(sol.theta)))
+    return max(h, 0.0) * bearing.radial_clearance * 1e6
+
+
 def _film_and_power(rotor, line, settings: EvaluationSettings, cache) -> dict:
     from ..physics.torque import drag_torque_and_power
 
@@ -212,13 +226,12 @@ def _film_and_power(rotor, line, settings: EvaluationSettings, cache) -> dict:
             sol = state.solution
             power += drag_torque_and_power(sol.torque_ratio, sol.model.bearing_number,
                                            state.case.bearing)[1]
-            film_top = min(film_top, sol.min_film * state.case.bearing.radial_clearance * 1e6)
+            film_top = min(film_top, film_um(sol, state.case.bearing))
     film_low = math.inf
     for case in rotor.cases:
         sol = _static(case, settings.speed_low_rpm,
                       case.load_newton * settings.heaviest_load_factor, settings.grid, cache)
-        film_low = min(film_low, sol.min_film * case.bearing.radial_clearance * 1e6
-                       if sol.success else 0.0)
+        film_low = min(film_low, film_um(sol, case.bearing) if sol.success else 0.0)
     return {"total_power_loss_w": power, "min_film_top_speed_um": film_top,
             "min_film_lowest_speed_um": film_low}
 

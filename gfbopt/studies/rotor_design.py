@@ -189,7 +189,7 @@ def run_design(loaded: LoadedStudy, results_root="results", *, workers: int = 1,
         search = optimise(p.problem, evaluate_rotor_design, p.search,
                           fixed={"system": p.system, "settings": p.settings}, store=store,
                           run_tasks=run_tasks, progress=fraction)
-    result = report(study, p, search, run_tasks, progress, time.perf_counter() - t0)
+    result = report(study, p, search, run_tasks, progress, t0)
     if write:
         from .report import write_result
 
