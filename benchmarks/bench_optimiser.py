@@ -17,7 +17,10 @@ Measured (serial, one process, so nothing else hides in the numbers):
   (:func:`gfbopt.design.rotor_objectives.evaluate_rotor_design`), wall and CPU seconds, with
   one BLAS thread as in every gfbopt run.
 
-Run: ``PYTHONPATH=. python benchmarks/bench_optimiser.py`` → results/benchmarks/optimiser.json.
+Run: ``PYTHONPATH=. python benchmarks/bench_optimiser.py`` → results/benchmarks/optimiser.json;
+with ``--ranking`` instead: six designs of the main job's space on 36x10, 72x20 and 144x36 and
+how the coarse grids rank them (:func:`grid_ranking`) → results/benchmarks/
+design_grid_ranking.json.
 The machine's load average is recorded: the 2 cores are shared, so absolute times vary; the
 ratios are taken within the run.
 """
@@ -105,6 +108,62 @@ def real_evaluation() -> dict:
             "by_grid": out}
 
 
+#: designs (radial clearance, preload depth [µm]) spread over the main job's space, for the
+#: ranking check of the search grid against the default grid
+RANKING_DESIGNS = ((16.0, 11.0), (18.0, 6.0), (22.0, 3.0), (26.0, 9.0), (30.0, 0.0),
+                   (34.0, 5.0))
+
+
+def grid_ranking(grids=("36x10", "72x20", "144x36")) -> dict:
+    """The main job's objectives and film limit for :data:`RANKING_DESIGNS` on each grid,
+    and how the coarse grids rank them against the default (last) grid: Spearman's rank
+    correlation of the first onset and of the power loss, and the designs whose feasibility
+    (minimum film at 4,000 rpm under 2× load ≥ 1.5 µm) differs."""
+    from scipy.stats import spearmanr
+
+    from gfbopt.design.rotor_objectives import EvaluationSettings, evaluate_rotor_design
+    from gfbopt.inputs.grid import Grid
+    from gfbopt.inputs.rotor_system import load_rotor
+    from gfbopt.static import SolverCache
+
+    system = load_rotor(ROOT / "problems" / "rotors" / "blower.toml")
+    rows = {}
+    for grid in grids:
+        settings = EvaluationSettings(4000.0, 45000.0, 56250.0, Grid.parse(grid),
+                                      heaviest_load_factor=2.0)
+        cache = SolverCache(settings.grid)
+        rows[grid] = []
+        for c, d in RANKING_DESIGNS:
+            c0 = time.process_time()
+            r = evaluate_rotor_design(system, settings, cache, radial_clearance_um=c,
+                                      preload_depth_um=d)
+            rows[grid].append({"radial_clearance_um": c, "preload_depth_um": d,
+                               **{k: r.get(k) for k in ("first_onset_speed_rpm",
+                                                        "total_power_loss_w",
+                                                        "min_film_lowest_speed_um",
+                                                        "success")},
+                               "cpu_s": time.process_time() - c0})
+            print(grid, rows[grid][-1], flush=True)
+    ref = rows[grids[-1]]
+    agreement = {}
+    for grid in grids[:-1]:
+        mine = rows[grid]
+        agreement[grid] = {
+            "spearman_onset": float(spearmanr([r["first_onset_speed_rpm"] for r in mine],
+                                              [r["first_onset_speed_rpm"] for r in ref])[0]),
+            "spearman_power": float(spearmanr([r["total_power_loss_w"] for r in mine],
+                                              [r["total_power_loss_w"] for r in ref])[0]),
+            "feasibility_differs": [[r["radial_clearance_um"], r["preload_depth_um"]]
+                                    for r, q in zip(mine, ref)
+                                    if (r["min_film_lowest_speed_um"] >= 1.5)
+                                    != (q["min_film_lowest_speed_um"] >= 1.5)],
+            "largest_onset_change": float(max(abs(r["first_onset_speed_rpm"]
+                                                  / q["first_onset_speed_rpm"] - 1)
+                                              for r, q in zip(mine, ref)))}
+    return {"designs": rows, "agreement_with_" + grids[-1]: agreement,
+            "min_film_limit_um": 1.5}
+
+
 def main() -> None:
     from gfbopt.parallel import limit_blas_threads
     from gfbopt.provenance import provenance
@@ -113,6 +172,13 @@ def main() -> None:
     # these small matrices spins against the other process on 2 shared cores (the 0.2-era
     # figure of 29-51 s per evaluation was mostly that: 1.6 s with one thread, idle)
     limit_blas_threads()
+    if "--ranking" in sys.argv:
+        out = {"load_average_before": os.getloadavg(), **grid_ranking(),
+               "load_average_after": os.getloadavg(), "provenance": provenance()}
+        path = ROOT / "results" / "benchmarks" / "design_grid_ranking.json"
+        path.write_text(json.dumps(out, indent=2, default=str))
+        print(json.dumps(out["agreement_with_144x36"], indent=2))
+        return
 
     load_before = os.getloadavg()
     evaluation = real_evaluation()
