@@ -123,6 +123,10 @@ SCHEMAS = {"rotor_bearing_design": {
                               length=2),
     "pad_offset_deg": opt("number", 180.0, "leading end of the first pad from the load "
                           "[deg] (pads variable)"),
+    "zone_edges_deg": opt("numbers", None, "edges of the bump zones round the bearing [deg "
+                          "from the load line], e.g. [0, 120, 240, 360]: per-zone bump "
+                          "variables zoneK_bump_pitch_mm, zoneK_bump_half_length_mm, "
+                          "zoneK_bump_thickness_um (zone K between edges K and K + 1)"),
     "bore": opt("table", BORE_DEFAULT, "the preload's form", keys=BORE),
     "variables": req("tables", "design variables and their ranges", keys=VARIABLE),
     "search": opt("table", SEARCH_DEFAULT, "the optimiser", keys=SEARCH),
