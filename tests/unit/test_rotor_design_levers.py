@@ -126,3 +126,19 @@ def test_per_zone_bump_variable_acts_and_reduces_to_the_uniform_foil():
                                                           rel=1e-9)
     assert thin["first_onset_speed_rpm"] < 0.9 * uniform["first_onset_speed_rpm"]
     assert thin["bump_stress_mpa"] > 2 * uniform["bump_stress_mpa"]
+
+
+def test_a_design_evaluated_again_from_scratch_reproduces_its_objectives():
+    """Shimmed design (c 20 µm, 6 µm shims) at 24x8, twice, each with a fresh solver cache:
+    the evaluation is deterministic (same builds, same warm-start chain along the speeds),
+    so the objectives and the film limit agree to round-off; bound 1e-6 (the issue's)."""
+    system = study_from_dict(copy.deepcopy(read_toml(FILE)), name="t", file=str(FILE),
+                             directory=FILE.parent).plan.system
+    s = EvaluationSettings(4000.0, 45000.0, 56250.0, Grid.parse("24x8"),
+                           heaviest_load_factor=2.0)
+    design = {"radial_clearance_um": 20.0, "preload_depth_um": 6.0}
+    first = evaluate_rotor_design(system, s, None, **design)
+    again = evaluate_rotor_design(system, s, None, **design)
+    assert first["success"], first["message"]
+    for name in ("first_onset_speed_rpm", "total_power_loss_w", "min_film_lowest_speed_um"):
+        assert again[name] == pytest.approx(first[name], rel=1e-6), name
