@@ -58,7 +58,7 @@ def static_row(model: BearingModel, solution: StaticSolution,
     nan = math.nan
     row = {**model.groups(),
            "eccentricity": solution.eccentricity if ok else nan,
-           "attitude_angle_deg": math.degrees(solution.attitude_angle) if ok else nan,
+           "attitude_angle_deg": solution.attitude_angle_deg if ok else nan,
            "load": solution.load if ok else nan,
            "min_film": solution.min_film if ok else nan,
            "torque_ratio": solution.torque_ratio if ok else nan}

@@ -154,10 +154,10 @@ def _parts(model: BearingModel) -> dict:
                                      else "axial-mean deflection law")
     if model.film == "periodic":
         film = "periodic film"
-    elif model.seam_angle is None:
+    elif model.seam_angle_rad is None:
         film = "seam on the max-film line"
     else:
-        film = f"seam {math.degrees(model.seam_angle):g}° from the load"
+        film = f"seam {math.degrees(model.seam_angle_rad):g}° from the load"
     return {"foil": _foil_text(model), "film": film,
             "force": "Gümbel force" if model.subambient == "gumbel" else "full-film force",
             "law": law, "co": "compression-only bumps" if model.compression_only
