@@ -22,7 +22,7 @@ import scipy.sparse as sp
 from gfbopt.inputs import Grid, load_bearing
 from gfbopt.inputs.rotor import OperatingPoint, Rotor
 from gfbopt.linear import least_stable_mode
-from gfbopt.linear.threshold import MODE_BAND, damping_ratio
+from gfbopt.linear.least_stable import MODE_BAND, damping_ratio
 from gfbopt.rotor import stability
 from gfbopt.rotor.analysis import resolve_case, threshold_at
 
