@@ -110,17 +110,6 @@ def build_model(options: dict, where: Where, *, rigid_when_no_compliance: bool =
         raise where.error(kwargs, f"is not a valid model ({exc})") from None
 
 
-def build_dimensional_model(geometry: BearingGeometry, speed_rpm: float, options: dict,
-                            where: Where) -> BearingModel:
-    """The model of a bearing file at ``speed_rpm`` with a variant's formulation."""
-    kwargs = _model_kwargs(options)
-    foil = kwargs.pop("foil", "simple")
-    try:
-        return geometry.model(speed_rpm, foil=foil, **kwargs)
-    except ParameterError as exc:
-        raise (where / exc.name).error(exc.value, exc.rule) from None
-
-
 def load_geometry(study: Study) -> BearingGeometry:
     """The bearing file named by the study (relative to the study file)."""
     path = study.directory / study.spec["bearing"]
