@@ -55,7 +55,7 @@ def nsga2_overhead() -> dict:
                                                                  "f2": "float64"}))
         r = optimise(problem, surrogates.zdt1, SearchSettings("nsga2", budget=400,
                                                                population=20, seed=0),
-                     store=store, flush_rows=1)
+                     store=store)
         parts = len(store.parts())
     return {"designs": r.asked, "parquet_parts": parts,
             "driver_time_per_design_s": r.driver_time_per_design_s,
