@@ -308,10 +308,11 @@ def _secant_search(line: SpeedLine, speeds: list, guide: Optional[SpeedLine], ba
             bracket = (speeds[k - 1], speed) if k else None
             break
         first = False
-    if guide is not None and line.f(speeds[0]) > 0 and first:
+    lowest = _lowest(line, guide, speeds[0])
+    if guide is not None and lowest > 0 and first:
         # unstable at the low end on the guide only: search without it
         return _secant_search(line, speeds, None, bar)
-    if line.f(speeds[0]) <= 0:
+    if lowest <= 0:
         return "unstable", math.nan
     bar.set_postfix_str("refining")
     if guide is None:
@@ -332,9 +333,34 @@ def _secant_search(line: SpeedLine, speeds: list, guide: Optional[SpeedLine], ba
         line.f(worst)                        # the smallest margin, on the fine grid
         return "stable", math.nan
     above = [s for s in speeds if s > onset]
-    if above and line.f(above[0]) > 0:       # the fine scan would not bracket it: scan on
+    if above and _stable_above(line, above[0]):  # the fine scan would not bracket it
         return _secant_search(line, speeds, None, bar)
     return "onset", onset
+
+
+def _lowest(line: SpeedLine, guide: Optional[SpeedLine], speed: float) -> float:
+    """f at the lowest scan speed on the fine grid: a local threshold from the guide's
+    crossing there when the guide's mass margin and the fine local one are both at least
+    :data:`COARSE_MARGIN` (stable on the fine grid by the guide's own test), else the full
+    threshold (which also decides "unstable at the lower end")."""
+    if guide is not None:
+        coarse = guide.full(speed)
+        if math.isfinite(coarse["root"]) and coarse["mass_margin"] >= COARSE_MARGIN:
+            row = line.local(speed, near=coarse)
+            if row["threshold"] == "local" and row["mass_margin"] >= COARSE_MARGIN:
+                return row["f"]
+    return line.f(speed)
+
+
+def _stable_above(line: SpeedLine, speed: float) -> bool:
+    """True when the fine grid is stable at ``speed`` (the first scan speed above the
+    guided onset).  A local threshold (the onset's branch, followed from the nearest
+    crossing) that is unstable settles it: the full threshold is the smallest crossing mass,
+    so it is no larger (:mod:`gfbopt.linear.threshold`); otherwise the full threshold
+    decides."""
+    if line.local(speed)["f"] <= 0:
+        return False
+    return line.f(speed) > 0
 
 
 def _confirm(line: SpeedLine, guide: SpeedLine, speeds: list, upto: float) -> Optional[float]:

@@ -201,8 +201,8 @@ class StaticSolver:
         n = lay.eccentricity
         p = self.parameters(solution.model, False, solution.eccentricity,
                             solution.attitude_angle, seam_angle=solution.seam_angle)
-        _, jac = self.jacobian_function()(solution.state, p)
-        a = sp.csc_matrix(jac.sparse())[:n, :n].tocsc()
+        _, jac = self.newton_system().residual_and_jacobian(solution.state, p)
+        a = jac[:n, :n].tocsc()
         # Only the lifted film rows depend on the journal: their equation is
         # H − H_r − W = 0 (or H − H_r for the local law), H_r = 1 − X cos θ − Y sin θ.
         film_rows = np.arange(lay.film.start, lay.film.stop)
