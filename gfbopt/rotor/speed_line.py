@@ -13,8 +13,9 @@ grows as N², M̄c slowly, so g is nearly linear in ln N).  Each evaluation
   the same speed interpolated onto the fine grid (:func:`transferred_start`);
 * computes the threshold either in full (:func:`gfbopt.linear.linear_threshold`: every branch,
   the least-stable one wins) or locally (:func:`gfbopt.linear.crossings.local_crossing`:
-  Newton's method on the whirl ratio from the crossing of a nearby evaluation, about two
-  sparse LUs instead of a Krylov scan, a check and an eigenvalue probe).  A local threshold
+  Newton's method on the whirl ratio from the crossing of a nearby evaluation on a Krylov
+  space of one sparse LU, instead of a 24-point Krylov scan, a check and an eigenvalue probe;
+  the same crossing to ~1e-10 when the branch is the same).  A local threshold
   follows one branch; the search confirms its answer with a full one.
 
 Every evaluation is a row of the result's scan, with the grid it was made on and whether its
