@@ -30,6 +30,7 @@ log s — so if neither neighbour of the continuous optimum is feasible no whole
 """
 from __future__ import annotations
 
+import functools
 import math
 import time
 import warnings
@@ -185,7 +186,11 @@ def _solve(problem: cp.Problem) -> tuple[str, str]:
 
 
 # ---------------------------------------------------------------- compliance range
+@functools.lru_cache(maxsize=64)
 def _compliance_range(spec: BumpDesignSpec, include_limits: bool) -> tuple[float, float]:
+    """(S_min, S_max) of ``spec`` by two GPs; a function of the frozen spec alone, so it is
+    kept per spec (a design search asks it for every target S: the same two GPs each
+    time).  A solver failure raises and is not kept."""
     g = _variables(spec, None)
     q = _quantities(spec, g)
     constraints = [lim.ratio <= 1.0
