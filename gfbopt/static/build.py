@@ -141,6 +141,9 @@ class StaticSolver:
         ubx[lay.attitude] = math.pi
         self._lbx, self._ubx = lbx, ubx
         self._newton = None
+        #: functions derived from this build by other modules, built on first use and kept
+        #: with it (e.g. the linearisation's film sensitivity, :mod:`gfbopt.linear.model`)
+        self.derived: dict = {}
         self.build_time_s = time.perf_counter() - t0
 
     def newton_system(self):
