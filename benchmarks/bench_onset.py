@@ -22,6 +22,11 @@ Usage::
 
     OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1 PYTHONPATH=. python benchmarks/bench_onset.py \\
         [--out results/benchmarks/onset_speed.json] [--repeats 3] [--grids 72x20,144x36]
+        [--sections onset,static,ipopt_options]
+
+The warm-solve ratio alone (fast path / (Newton steps × one LU), target ≤ 2) takes ~10 s:
+``--grids 144x36 --sections static``.  The static section times the fast path without the
+LU kept from the previous solve, and separately the next speed (0.01 % away) on the kept LU.
 
 The machine's load (``uptime``) is recorded before and after: other work on a shared machine
 slows everything down, so compare ratios within one run.
