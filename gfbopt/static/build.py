@@ -141,6 +141,9 @@ class StaticSolver:
         ubx[lay.attitude] = math.pi
         self._lbx, self._ubx = lbx, ubx
         self._newton = None
+        #: functions derived from this build by other modules, built on first use and kept
+        #: with it (e.g. the linearisation's film sensitivity, :mod:`gfbopt.linear.model`)
+        self.derived: dict = {}
         self.build_time_s = time.perf_counter() - t0
 
     def newton_system(self):
@@ -201,8 +204,8 @@ class StaticSolver:
         n = lay.eccentricity
         p = self.parameters(solution.model, False, solution.eccentricity,
                             solution.attitude_angle_rad, seam_angle=solution.seam_angle_rad)
-        _, jac = self.jacobian_function()(solution.state, p)
-        a = sp.csc_matrix(jac.sparse())[:n, :n].tocsc()
+        _, jac = self.newton_system().residual_and_jacobian(solution.state, p)
+        a = jac[:n, :n].tocsc()
         # Only the lifted film rows depend on the journal: their equation is
         # H − H_r − W = 0 (or H − H_r for the local law), H_r = 1 − X cos θ − Y sin θ.
         film_rows = np.arange(lay.film.start, lay.film.stop)
