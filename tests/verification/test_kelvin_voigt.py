@@ -21,8 +21,6 @@ With a loss factor η > 0 the foil deflection W is a state, τ_f W' + W = S q wi
 """
 import json
 import math
-import subprocess
-import sys
 from pathlib import Path
 from types import SimpleNamespace
 
@@ -37,6 +35,8 @@ from gfbopt.transient import (RightHandSide, equilibrium_state, find_critical_ma
                               integrate_orbits, linear_mode, pressure_and_film,
                               stable_time_step, stiffness_bound, transient_model)
 from gfbopt.transient.rkc import pack, unpack
+
+from cli_inprocess import run_cli
 
 REPO = Path(__file__).resolve().parents[2]
 GRID = Grid(36, 10)
@@ -396,8 +396,8 @@ def test_damped_state_without_its_foil_part_is_refused():
 
 # --------------------------------------------------------------------------- CLI
 def _cli(*args):
-    return subprocess.run([sys.executable, "-m", "gfbopt", *args], capture_output=True,
-                          text=True, cwd=REPO, timeout=600)
+    # in this process (tests/cli_inprocess.py: same main, exit status and output)
+    return run_cli(*args, cwd=REPO)
 
 
 POINT = ["--eccentricity", "0.4", "--bearing-number", "2", "--grid", "24x8"]
