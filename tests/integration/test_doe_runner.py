@@ -17,6 +17,8 @@ from gfbopt.errors import ParameterError
 from gfbopt.studies import study_from_dict
 from gfbopt.studies.doe import run_sampled
 
+from cli_inprocess import run_cli
+
 ROOT = Path(__file__).resolve().parents[2]
 
 STUDY = """\
@@ -63,11 +65,10 @@ def _write(tmp_path, name="tiny", n=12, chunk=2, batch=2, s_low=0.2) -> Path:
     return path
 
 
-def _run_cli(*args, **kw):
-    env = {**os.environ, "PYTHONPATH": str(ROOT)}
-    return subprocess.run([sys.executable, "-m", "gfbopt", "run", *map(str, args)],
-                          check=False, capture_output=True, text=True, env=env, cwd=ROOT,
-                          **kw)
+def _run_cli(*args):
+    """``gfbopt run ARGS`` in this process (tests/cli_inprocess.py: same main, exit status and
+    output, without an interpreter start per call); the run that is killed stays a process."""
+    return run_cli("run", *args, cwd=ROOT)
 
 
 def _outputs(frame: pd.DataFrame) -> pd.DataFrame:
@@ -154,13 +155,12 @@ def test_unreachable_scheduler_is_one_line_and_writes_nothing(tmp_path, monkeypa
     import functools
 
     import gfbopt.parallel
-    from cli_inprocess import run_cli
 
     monkeypatch.setattr(gfbopt.parallel, "connect_scheduler",
                         functools.partial(gfbopt.parallel.connect_scheduler, timeout=2.0))
     study = _write(tmp_path, n=4)
-    out = run_cli("run", study, "--scheduler", "tcp://127.0.0.1:9", "--results",
-                  tmp_path / "results", cwd=ROOT)
+    out = _run_cli(study, "--scheduler", "tcp://127.0.0.1:9", "--results",
+                   tmp_path / "results")
     assert out.returncode == 2
     assert "tcp://127.0.0.1:9" in out.stderr and len(out.stderr.strip().splitlines()) == 1
     assert not (tmp_path / "results").exists()
