@@ -64,6 +64,9 @@ def main() -> None:
                         help="worker count of the first run of each pair")
     parser.add_argument("--out", default="results/benchmarks/main_job.json")
     args = parser.parse_args()
+    load_start = os.getloadavg()
+    print(f"load before: {load_start[0]:.2f} {load_start[1]:.2f} {load_start[2]:.2f}",
+          flush=True)
     runs, ratios = [], {}
     for grid in args.grids:
         ratios[grid] = []
@@ -75,8 +78,18 @@ def main() -> None:
             ratios[grid].append(pair[2]["wall_s"] / pair[1]["wall_s"])
         print(f"grid {grid}: wall(2 workers)/wall(1 worker) = "
               f"{', '.join(f'{r:.2f}' for r in ratios[grid])}", flush=True)
+    load_end = os.getloadavg()
+    print(f"load after: {load_end[0]:.2f} {load_end[1]:.2f} {load_end[2]:.2f}", flush=True)
+    targets = {"36x10": 30.0, "72x20": 120.0}
+    for row in runs:
+        if row["grid"] in targets:
+            print(f"grid {row['grid']} workers {row['workers']}: wall {row['wall_s']:.1f} s "
+                  f"(target {targets[row['grid']]:.0f} s on 2 idle cores: "
+                  f"{'met' if row['wall_s'] <= targets[row['grid']] else 'NOT met'})")
     write_report(machine_info(benchmark="main_job", study=str(STUDY.relative_to(ROOT)),
-                              runs=runs, load_average_end=os.getloadavg(),
+                              runs=runs, load_average_start=load_start,
+                              load_average_end=load_end,
+                              wall_targets_s=targets,
                               wall_ratio_2_over_1={g: {"per_round": r,
                                                        "median": statistics.median(r)}
                                                    for g, r in ratios.items()},

@@ -27,12 +27,18 @@ With a bearing radius R the number of bumps N = 2πR/s must be a whole number: t
 optimum is rounded down and up, the pitch fixed to 2πR/N and the GP solved again; the better
 feasible N is kept.  (The feasible pitches form an interval — the feasible set is convex in
 log s — so if neither neighbour of the continuous optimum is feasible no whole N is.)
+
+Speed.  A design search asks for many targets S on one spec: the compliance ranges are kept
+per spec, and a target value is solved on a design GP whose target (and fixed pitch) are
+cvxpy parameters, kept per spec, so that cvxpy compiles it once (DPP) and every later target
+only sets the parameters — the compilation, not the conic solve, is most of a GP's cost.
+The program parts live in :mod:`.gp_parts`.
 """
 from __future__ import annotations
 
+import functools
 import math
 import time
-import warnings
 from collections.abc import Sequence
 from dataclasses import dataclass
 
@@ -40,6 +46,17 @@ import cvxpy as cp
 
 from ..errors import ConvergenceError, ParameterError
 from ..physics import bump
+from .gp_parts import (
+    _Geometry,
+    _Limit,
+    _limits,
+    _objective,
+    _quantities,
+    _solve,
+    _target_limits,
+    _values,
+    _variables,
+)
 from .spec import (
     OBJECTIVES,
     BumpDesign,
@@ -48,7 +65,6 @@ from .spec import (
     _mm,
     _positive,
     _range,
-    _um,
 )
 
 __all__ = ["BINDING_TOLERANCE", "OBJECTIVES", "BumpDesign", "BumpDesignSpec", "Relaxation",
@@ -66,126 +82,12 @@ _RELAXATION_THRESHOLD = 1e-5
 _SUCCESS_STATUSES = ("optimal", "optimal_inaccurate")
 
 
-# ----------------------------------------------------------------- the program parts
-@dataclass(frozen=True)
-class _Limit:
-    """One constraint, ``ratio <= 1``; a limit (relaxable) when ``relax`` is given."""
-
-    name: str
-    ratio: object  # cvxpy expression or float
-    relax: tuple[str, float, float, str] | None = None  # (label, value, scale, unit)
-
-
-@dataclass(frozen=True)
-class _Geometry:
-    """Design variables (cvxpy variables) or their values (floats)."""
-
-    pitch: object
-    half_length: object
-    thickness: object
-    top_foil_thickness: object = None
-
-
-def _quantities(spec: BumpDesignSpec, g: _Geometry) -> dict:
-    """Every monomial of the design, on floats or on cvxpy variables alike."""
-    e, nu, dp = spec.effective_youngs_modulus, spec.effective_poisson_ratio, spec.design_pressure
-    alpha = bump.bump_compliance(g.pitch, g.half_length, g.thickness, e, nu)
-    q = {"alpha": alpha,
-         "compliance": bump.compliance_coefficient(alpha, spec.ambient_pressure,
-                                                   spec.radial_clearance),
-         "stress": bump.bump_bending_stress(dp, g.pitch, g.half_length, g.thickness),
-         "deflection": bump.bump_deflection(dp, alpha)}
-    if g.top_foil_thickness is not None:
-        q["top_foil_sag"] = bump.top_foil_sag(dp, g.pitch, g.top_foil_thickness, e, nu)
-        q["top_foil_stress"] = bump.top_foil_stress(dp, g.pitch, g.top_foil_thickness)
-    return q
-
-
-def _objective(spec: BumpDesignSpec, g: _Geometry, q: dict):
-    return {"stress": q["stress"], "pitch": g.pitch, "number_of_bumps": 1.0 / g.pitch,
-            "thickness": g.thickness, "half_length": g.half_length,
-            "top_foil_thickness": g.top_foil_thickness,
-            "top_foil_sag": q.get("top_foil_sag")}[spec.objective]
-
-
-def _limits(spec: BumpDesignSpec, g: _Geometry, q: dict, pitch_fixed: bool,
-            include_limits: bool = True) -> list[_Limit]:
-    """All constraints as ``ratio <= 1``: geometry first, then the (relaxable) limits."""
-    out = []
-
-    def box(label, var, bounds, fmt):
-        out.append(_Limit(f"{label} >= {fmt(bounds[0])}", bounds[0] / var))
-        out.append(_Limit(f"{label} <= {fmt(bounds[1])}", var / bounds[1]))
-
-    if not pitch_fixed:
-        box("pitch", g.pitch, spec.pitch_range, _mm)
-    box("half length", g.half_length, spec.half_length_range, _mm)
-    box("bump thickness", g.thickness, spec.thickness_range, _um)
-    if spec.top_foil_thickness_range is not None:
-        box("top-foil thickness", g.top_foil_thickness, spec.top_foil_thickness_range, _um)
-    out.append(_Limit("bump closes within pitch", (2.0 * g.half_length + spec.gap) / g.pitch))
-    if not include_limits:
-        return out
-    allowable = spec.effective_allowable_stress
-    out.append(_Limit("bump stress <= allowable", q["stress"] / allowable,
-                      ("allowable stress", allowable, 1e-6, "MPa")))
-    if spec.top_foil_thickness_range is not None:
-        top_allowable = spec.effective_top_foil_allowable_stress
-        out.append(_Limit("top-foil stress <= allowable", q["top_foil_stress"] / top_allowable,
-                          ("top-foil allowable stress", top_allowable, 1e-6, "MPa")))
-        if spec.sag_limit is not None:
-            out.append(_Limit("top-foil sag <= limit",
-                              q["top_foil_sag"] / (spec.sag_limit * spec.radial_clearance),
-                              ("top-foil sag limit κ_c", spec.sag_limit, 1.0, "")))
-    if spec.flattening_limit is not None:
-        allowed = spec.flattening_limit * spec.bump_height
-        out.append(_Limit("no bump flattening", q["deflection"] / allowed,
-                          ("no-flattening limit κ h_b", allowed, 1e6, "µm")))
-    return out
-
-
-def _target_limits(q: dict, target: tuple[float, float]) -> list:
-    """cvxpy constraints putting S on the target (an equality) or in the band."""
-    low, high = target
-    if low == high:
-        return [q["compliance"] == low]
-    return [q["compliance"] / high <= 1.0, low / q["compliance"] <= 1.0]
-
-
-def _variables(spec: BumpDesignSpec, pitch: float | None) -> _Geometry:
-    top = (cp.Variable(pos=True, name="top_foil_thickness")
-           if spec.top_foil_thickness_range is not None else None)
-    return _Geometry(pitch if pitch is not None else cp.Variable(pos=True, name="pitch"),
-                     cp.Variable(pos=True, name="half_length"),
-                     cp.Variable(pos=True, name="thickness"), top)
-
-
-def _values(g: _Geometry) -> _Geometry:
-    def value(x):
-        return None if x is None else float(x.value) if isinstance(x, cp.Expression) else x
-    return _Geometry(value(g.pitch), value(g.half_length), value(g.thickness),
-                     value(g.top_foil_thickness))
-
-
-def _solve(problem: cp.Problem) -> tuple[str, str]:
-    """Solve a GP; return (status, solver name).
-
-    cvxpy's warnings (e.g. 'Solution may be inaccurate') are recorded, not raised: the status
-    carries the same information and the answer is re-checked with the plain formulas.
-    """
-    with warnings.catch_warnings(record=True):
-        warnings.simplefilter("always")
-        try:
-            problem.solve(gp=True)
-        except cp.error.SolverError as exc:
-            return f"solver_error: {exc}", ""
-    status = str(problem.status)  # 'optimal_inaccurate' already flags a doubtful answer
-    stats = problem.solver_stats
-    return status, (stats.solver_name if stats is not None else "")
-
-
 # ---------------------------------------------------------------- compliance range
+@functools.lru_cache(maxsize=64)
 def _compliance_range(spec: BumpDesignSpec, include_limits: bool) -> tuple[float, float]:
+    """(S_min, S_max) of ``spec`` by two GPs; a function of the frozen spec alone, so it is
+    kept per spec (a design search asks it for every target S: the same two GPs each
+    time).  A solver failure raises and is not kept."""
     g = _variables(spec, None)
     q = _quantities(spec, g)
     constraints = [lim.ratio <= 1.0
@@ -265,17 +167,61 @@ def _thinnest_top_foil(spec: BumpDesignSpec, pitch: float) -> float:
     return min(max(need), high)
 
 
-def _solve_design(spec: BumpDesignSpec, target: tuple[float, float],
-                  pitch: float | None = None) -> tuple[_Solution, int]:
-    """Minimise the objective at the target S (pitch fixed when given); (solution, GPs)."""
-    g = _variables(spec, pitch)
-    q = _quantities(spec, g)
-    constraints = ([lim.ratio <= 1.0 for lim in _limits(spec, g, q, pitch is not None)]
-                   + _target_limits(q, target))
+@dataclass(frozen=True)
+class _Program:
+    """The design GP at a target S (and a fixed pitch) given as cvxpy parameters, so that
+    cvxpy compiles it once and every later target only sets the parameters (DPP)."""
+
+    problem: cp.Problem
+    geometry: _Geometry
+    quantities: dict
+    objective: object
+    constraints: list
+    target: cp.Parameter
+    pitch: cp.Parameter | None
+
+
+def _design_objective(spec: BumpDesignSpec, g: _Geometry, q: dict):
     objective = _objective(spec, g, q)
     if not isinstance(objective, cp.Expression) or objective.is_constant():
         objective = q["stress"]  # the pitch is fixed: the pitch objectives are constants
-    status, solver = _solve(cp.Problem(cp.Minimize(objective), constraints))
+    return objective
+
+
+@functools.lru_cache(maxsize=64)
+def _program(spec: BumpDesignSpec, pitch_fixed: bool) -> _Program:
+    """The parametrised design GP of ``spec`` (kept per spec: a design search solves it for
+    many targets S); the same constraints and objective as the unparametrised one."""
+    target = cp.Parameter(pos=True, name="target_compliance")
+    pitch = cp.Parameter(pos=True, name="pitch") if pitch_fixed else None
+    g = _variables(spec, pitch)
+    q = _quantities(spec, g)
+    constraints = ([lim.ratio <= 1.0 for lim in _limits(spec, g, q, pitch_fixed)]
+                   + [q["compliance"] == target])
+    objective = _design_objective(spec, g, q)
+    return _Program(cp.Problem(cp.Minimize(objective), constraints), g, q, objective,
+                    constraints, target, pitch)
+
+
+def _solve_design(spec: BumpDesignSpec, target: tuple[float, float],
+                  pitch: float | None = None) -> tuple[_Solution, int]:
+    """Minimise the objective at the target S (pitch fixed when given); (solution, GPs).
+    A target value (not a band) is solved on the kept parametrised program (:func:`_program`)."""
+    if target[0] == target[1]:
+        program = _program(spec, pitch is not None)
+        program.target.value = target[0]
+        if program.pitch is not None:
+            program.pitch.value = pitch
+        g, q, objective = program.geometry, program.quantities, program.objective
+        constraints = program.constraints
+        status, solver = _solve(program.problem)
+    else:
+        g = _variables(spec, pitch)
+        q = _quantities(spec, g)
+        constraints = ([lim.ratio <= 1.0 for lim in _limits(spec, g, q, pitch is not None)]
+                       + _target_limits(q, target))
+        objective = _design_objective(spec, g, q)
+        status, solver = _solve(cp.Problem(cp.Minimize(objective), constraints))
     solves = 1
     if status not in _SUCCESS_STATUSES:
         return _Solution(status, solver), solves

@@ -266,7 +266,8 @@ class BumpDesign:
     geometric_compliance_range : (min, max) S under the geometry constraints alone
     relaxations : the limits that must move (empty on success)
     solver : the conic solver cvxpy used
-    solves : number of GPs solved
+    solves : number of GPs the design needs (the four of the compliance ranges included:
+        they are solved once per spec in a process and kept)
     wall_time_s : wall time of the whole design [s]
     """
 

@@ -249,12 +249,16 @@ def _crossing_here(lin: Linearisation, direct: DirectImpedance) -> Optional[Cros
     return Crossing(u.real / (g**2 * lin.load), g, (lu, x, z))
 
 
-#: a Newton step on the whirl ratio below this ends the local search: γ and u corrected by
-#: it are exact to its square times the curvature (~1e-8).  A local crossing only steers the
-#: onset search's secant: its answer is confirmed on a full threshold [-]
+#: a Newton step on the whirl ratio below this ends the direct local search (one sparse LU
+#: per step): γ and u corrected by it are exact to its square times the curvature (~1e-8) [-]
 LOCAL_STEP = 1e-4
-#: Newton steps (one sparse LU each) the local search may take
+#: Newton steps (one sparse LU each) the direct local search may take
 LOCAL_STEPS = 6
+#: half-width of the whirl-ratio window of the local search's Krylov space (its shift sits
+#: over the start, a quarter of the window's width into the right half plane) [-]
+LOCAL_WINDOW = 0.05
+#: Newton steps on the Krylov model (no LU each) before the local search gives up
+MODEL_STEPS = 12
 
 
 @dataclass(frozen=True)
@@ -273,19 +277,63 @@ def local_crossing(lin: Linearisation, whirl: float, root: complex,
                    whirl_range: tuple = (0.02, 1.2),
                    max_steps: int = LOCAL_STEPS) -> Optional[LocalCrossing]:
     """The crossing Im u(γ) = 0 of the root branch through ``root`` near ``whirl``, by
-    Newton's method on γ with the exact derivative, or None.
+    Newton's method on γ, or None.
 
     For a neighbour of an operating point whose threshold is known (the onset search's
     speed line): the branch is the root u of u² − u tr Z + det Z = 0 nearest ``root`` (the
-    real root there), followed from step to step by continuity.  Z(iγ) comes from its own
-    LU of A + iγB, as :class:`DirectImpedance`, and with the same LU dZ/dγ = −i F (A+iγB)⁻¹
-    B X (one more solve); then du/dγ = (u tr Z′ − (det Z)′)/(2u − tr Z).  The search ends when
-    the Newton step falls below :data:`LOCAL_STEP`; γ and u are then corrected by that
-    step (their error is its square).  None when it does not converge in ``max_steps``
-    steps, leaves ``whirl_range``, or ends on a root with u ≤ 0: the caller then computes
-    the full threshold (:func:`gfbopt.linear.linear_threshold`), which also decides between
-    branches — this search follows one.
+    real root there), followed from step to step by continuity.  Z(iγ) comes from a Krylov
+    space on one LU of A + s0 B with s0 over ``whirl``
+    (:class:`~gfbopt.linear.krylov.ShiftedImpedance` on ±:data:`LOCAL_WINDOW`, converged at
+    every γ evaluated to its tolerance, 1e-11), d Im u/dγ from a central difference on it;
+    Newton's method runs on that model until its step is below :data:`WHIRL_TOLERANCE` (the
+    full threshold's own tolerance on γ), so the crossing equals the full threshold's on the
+    same branch to ~1e-10 for one LU (a new space when a step leaves the window).  Where the
+    model does not converge, the direct search (:func:`direct_local_crossing`: an LU per
+    step) takes over.  None when it does not converge in :data:`MODEL_STEPS` steps, leaves
+    ``whirl_range``, or ends on a root with u ≤ 0: the caller then computes the full
+    threshold (:func:`gfbopt.linear.linear_threshold`), which also decides between branches
+    — this search follows one.  ``max_steps`` bounds the direct search's steps.
     """
+    low, high = whirl_range
+    gamma, ref = float(whirl), complex(root)
+    model, centre, lus = None, math.nan, 0
+    for _ in range(MODEL_STEPS):
+        if not low <= gamma <= high:
+            return None
+        if model is None or abs(gamma - centre) > 0.5 * LOCAL_WINDOW:
+            try:
+                model = ShiftedImpedance(lin, (max(gamma - LOCAL_WINDOW, 0.5 * gamma),
+                                               gamma + LOCAL_WINDOW))
+            except RuntimeError:                 # A + s0 B exactly singular
+                return direct_local_crossing(lin, gamma, ref, whirl_range, max_steps, lus)
+            centre, lus = gamma, lus + 1
+        points = np.array([gamma - SLOPE_STEP, gamma, gamma + SLOPE_STEP])
+        if not model.converge(points[1:2]).all():   # ±1e-6 converge with it
+            return direct_local_crossing(lin, gamma, ref, whirl_range, max_steps, lus)
+        roots = [mass_roots(model.evaluate(g)[0]) for g in points]
+        u = roots[1][np.argmin(np.abs(roots[1] - ref))]
+        left, right = (r[np.argmin(np.abs(r - u))] for r in (roots[0], roots[2]))
+        du = (right - left) / (2 * SLOPE_STEP)
+        if not (math.isfinite(du.imag) and du.imag != 0):
+            return None
+        step = -u.imag / du.imag
+        gamma, ref = gamma + step, u
+        if abs(step) <= WHIRL_TOLERANCE:
+            u_star = (u + du * step).real
+            if not (u_star > 0 and low <= gamma <= high):
+                return None
+            return LocalCrossing(u_star / (gamma**2 * lin.load), gamma, complex(u_star), lus)
+    return None
+
+
+def direct_local_crossing(lin: Linearisation, whirl: float, root: complex,
+                          whirl_range: tuple = (0.02, 1.2), max_steps: int = LOCAL_STEPS,
+                          spent: int = 0) -> Optional[LocalCrossing]:
+    """:func:`local_crossing` with Z(iγ) from its own LU of A + iγB at every step, as
+    :class:`DirectImpedance`, and with the same LU dZ/dγ = −i F (A+iγB)⁻¹ B X (one more
+    solve); then du/dγ = (u tr Z′ − (det Z)′)/(2u − tr Z).  The search ends when the Newton
+    step falls below :data:`LOCAL_STEP`; γ and u are then corrected by that step (their error
+    is its square).  ``spent`` : LUs already spent (counted in the result)."""
     low, high = whirl_range
     gamma, ref = float(whirl), complex(root)
     for k in range(1, max_steps + 1):
@@ -310,5 +358,6 @@ def local_crossing(lin: Linearisation, whirl: float, root: complex,
             u_star = (u + du * step).real
             if not u_star > 0:
                 return None
-            return LocalCrossing(u_star / (gamma**2 * lin.load), gamma, complex(u_star), k)
+            return LocalCrossing(u_star / (gamma**2 * lin.load), gamma, complex(u_star),
+                                 spent + k)
     return None

@@ -74,6 +74,7 @@ class ShiftedImpedance:
         self._b = b.tocsr()
         self._lu = factor((a + self.shift * b).astype(complex))
         self.factorisations, self.solves, self.blocks = 1, 1, 0
+        self._evaluated: dict = {}                   # (γ, columns) -> (Z, residual)
         n = lin.size
         self._v = np.zeros((n, 2 * (self.max_blocks + 1)), dtype=complex)
         self._h = np.zeros((2 * (self.max_blocks + 1), 2 * self.max_blocks), dtype=complex)
@@ -115,14 +116,19 @@ class ShiftedImpedance:
         m = 2 * (self.blocks if blocks is None else blocks)
         if m == 0:                                   # no step yet: Z ≈ F X0, exact at s0
             return self._fv[:, :2] @ self._r, 1.0
+        kept = self._evaluated.get((gamma, m))
+        if kept is not None:                         # the space's first m columns are fixed
+            return kept[0].copy(), kept[1]
         sigma = 1j * gamma - self.shift
         matrix = np.eye(m + 2, m) + sigma * self._h[:m + 2, :m]
         rhs = np.zeros((m + 2, 2), dtype=complex)
         rhs[:2] = self._r
         q, r = np.linalg.qr(matrix)
         y = np.linalg.solve(r, q.conj().T @ rhs)
-        residual = np.linalg.norm(rhs - matrix @ y) / np.linalg.norm(self._r)
-        return self._fv[:, :m] @ y, float(residual)
+        residual = float(np.linalg.norm(rhs - matrix @ y) / np.linalg.norm(self._r))
+        z = self._fv[:, :m] @ y
+        self._evaluated[(gamma, m)] = (z.copy(), residual)
+        return z, residual
 
     def converged(self, gamma: float, tol: float = TOLERANCE) -> bool:
         """True when Z(iγ) has converged: relative residual ≤ ``tol`` and relative change of

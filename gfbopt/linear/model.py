@@ -18,6 +18,7 @@ import scipy.sparse.linalg as spla
 from .. import discretisation as disc
 from ..errors import ParameterError
 from ..inputs.bearing import BearingGeometry
+from ..inputs.model import renamed_radian_attribute
 from ..inputs.conversions import rpm_to_rad_per_s, stiffness_scale, whirl_frequency_hz
 from ..physics.compliance import ComplianceTerms, PerturbationContext
 from ..physics.foil_laws import foil_law
@@ -71,7 +72,7 @@ def linearise(solution: StaticSolution, solver: Optional[StaticSolver] = None) -
     if not solution.success:
         raise ParameterError("solution", f"status {solution.status}",
                              "the static equilibrium did not converge; nothing to linearise")
-    if solution.eccentricity == 0.0 or not math.isfinite(solution.attitude_angle):
+    if solution.eccentricity == 0.0 or not math.isfinite(solution.attitude_angle_rad):
         raise ParameterError("solution.eccentricity", solution.eccentricity,
                              "must be > 0: a concentric journal carries no load (W0 = 0), so "
                              "M̄ = M c ω²/W0 is undefined")
@@ -92,7 +93,7 @@ def linearise(solution: StaticSolution, solver: Optional[StaticSolver] = None) -
     n_u = blocks.n_pressure
     dp = -2 * lam * film
     law = foil_law(model, engine="linear")
-    s_rows = row_values(model, st, solution.seam_angle)[1]    # S per θ row (bump zones)
+    s_rows = row_values(model, st, solution.seam_angle_rad)[1]    # S per θ row (bump zones)
     slope = law.squeeze_film_slope(pressure, s_rows[st.row], model.compression_only)
     if slope is not None:
         dp = dp - 2 * lam * pressure * slope
@@ -120,28 +121,47 @@ def _perturbation_context(solution: StaticSolution, solver: StaticSolver,
         film_rows=lay.film.start + rows, axial_cols=lay.axial.start + rows,
         beam=np.arange(lay.beam.start, lay.beam.stop),
         beam_dofs=solution.state[lay.beam], law_data=solver.law_data,
-        film_sensitivity=lambda: film_sensitivity(st, p_full, solution.film.ravel(),
-                                                  model.bearing_number, dz),
-        row_compliance=row_values(model, st, solution.seam_angle)[1], pressure_rows=st.row)
+        film_sensitivity=lambda: film_sensitivity(
+            st, p_full, solution.film.ravel(), model.bearing_number, dz,
+            function=_kept_sensitivity(solver)),
+        row_compliance=row_values(model, st, solution.seam_angle_rad)[1], pressure_rows=st.row)
+
+
+def _kept_sensitivity(solver: StaticSolver) -> ca.Function:
+    """The :func:`sensitivity_function` of the build's stencil, kept with the build."""
+    function = solver.derived.get("film_sensitivity")
+    if function is None:
+        function = solver.derived["film_sensitivity"] = sensitivity_function(solver.stencil)
+    return function
+
+
+def sensitivity_function(st: disc.Stencil) -> ca.Function:
+    """(P, H at the five nodes, Λ, ΔZ) ↦ ∂R/∂H at the centre node, mapped over the
+    unknown nodes of ``st``: :func:`gfbopt.discretisation.reynolds_residual` on a one-node
+    stencil (centre, east, west, north, south), differentiated by CasADi."""
+    one = replace(st, unknown=np.array([0]), east=np.array([1]), west=np.array([2]),
+                  north=np.array([3]), south=np.array([4]))
+    p5, h5, lam, d = ca.SX.sym("p", 5), ca.SX.sym("h", 5), ca.SX.sym("lam"), ca.SX.sym("dz")
+    jac = ca.jacobian(disc.reynolds_residual(p5, h5, one, lam, d), h5)
+    return ca.Function("dR_dH", [p5, h5, lam, d], [jac]).map(st.n_unknown)
 
 
 def film_sensitivity(st: disc.Stencil, p_full: np.ndarray, h_full: np.ndarray,
-                     bearing_number: float, dz: float) -> sp.csr_matrix:
+                     bearing_number: float, dz: float,
+                     function: Optional[ca.Function] = None) -> sp.csr_matrix:
     """∂R/∂H of the steady discrete Reynolds residual, unknown nodes × unknown nodes [-].
 
     R is :func:`gfbopt.discretisation.reynolds_residual` itself, differentiated by CasADi on a
     one-node stencil (centre, east, west, north, south) and evaluated at every unknown node,
     so the derivative comes from the one definition of the film physics.  Columns of nodes
     with a fixed pressure (seam, axial edges) are dropped: the local law's foil moves only
-    where P is unknown.  p_full, h_full : P and H at every node (flat) [-]; dz : ΔZ [-].
+    where P is unknown.  p_full, h_full : P and H at every node (flat) [-]; dz : ΔZ [-];
+    function : :func:`sensitivity_function` of ``st`` when kept (the linearisation keeps it
+    with the static build; building it costs more than evaluating it).
     """
-    one = replace(st, unknown=np.array([0]), east=np.array([1]), west=np.array([2]),
-                  north=np.array([3]), south=np.array([4]))
-    p5, h5, lam, d = ca.SX.sym("p", 5), ca.SX.sym("h", 5), ca.SX.sym("lam"), ca.SX.sym("dz")
-    jac = ca.jacobian(disc.reynolds_residual(p5, h5, one, lam, d), h5)
     n_u = st.n_unknown
     nodes = np.vstack([st.unknown, st.east, st.west, st.north, st.south])   # (5, n_u)
-    f = ca.Function("dR_dH", [p5, h5, lam, d], [jac]).map(n_u)
+    f = sensitivity_function(st) if function is None else function
     values = np.asarray(f(p_full[nodes], h_full[nodes], bearing_number, dz)).reshape(n_u, 5)
     position = np.full(st.n_nodes, -1)
     position[st.unknown] = np.arange(n_u)
@@ -186,11 +206,20 @@ class Coefficients:
     whirl_ratio: np.ndarray
     stiffness: np.ndarray
     damping: np.ndarray
-    attitude_angle: float
+    #: attitude angle of the static solution [rad] (the numerics' unit; see attitude_angle_deg)
+    attitude_angle_rad: float
+
+    def __getattr__(self, name: str):
+        raise renamed_radian_attribute(type(self).__name__, name)
+
+    @property
+    def attitude_angle_deg(self) -> float:
+        """Attitude angle of the static solution, from the load line [deg]."""
+        return math.degrees(self.attitude_angle_rad)
 
     def in_line_of_centres_frame(self) -> "Coefficients":
         """The same coefficients with axes (r along the line of centres, t ahead of it)."""
-        c, s = math.cos(self.attitude_angle), math.sin(self.attitude_angle)
+        c, s = math.cos(self.attitude_angle_rad), math.sin(self.attitude_angle_rad)
         rot = np.array([[c, -s], [s, c]])       # columns: r and t in load-frame components
         tr = lambda m: np.einsum("ji,njk,kl->nil", rot, m, rot)  # noqa: E731  Rᵀ M R
         return Coefficients(self.whirl_ratio, tr(self.stiffness), tr(self.damping), 0.0)
@@ -237,7 +266,7 @@ def coefficients(lin: Linearisation, whirl_ratios: Sequence[float]) -> Coefficie
         else:
             z = impedance(lin, 1j * gamma)
             k[n], c[n] = z.real, z.imag / gamma
-    return Coefficients(g, k, c, lin.static.attitude_angle)
+    return Coefficients(g, k, c, lin.static.attitude_angle_rad)
 
 
 # ------------------------------------------------------------- dimensional output

@@ -19,7 +19,8 @@ One static build serves the whole line (Λ is a parameter of the CasADi model).
 g = ln(M̄c/M̄) against ln N (nearly linear: M̄ ∝ N², M̄c varies slowly), safeguarded by
 bisection, to :data:`SECANT_TOLERANCE`; each step's threshold is local — Newton's method on
 the whirl ratio from the previous crossing (:func:`gfbopt.linear.crossings.local_crossing`,
-~2 sparse LUs) — and each static solve starts from the nearest speed with the Newton fast
+one sparse LU and a few Krylov steps) — and each static solve starts from the nearest speed
+(extrapolated along the line, its LU reused) with the Newton fast
 path (:mod:`gfbopt.static.newton`).  The answer is confirmed by a full threshold at the
 secant's converged point: it must put the root within :data:`CONFIRM_TOLERANCE` of it
 (otherwise another branch took over, and Brent's method on full thresholds refines the
@@ -28,12 +29,19 @@ bracket, as the reference does).
 Coarse guide (``coarse_grid``; "auto" uses :data:`COARSE_GRID` on grids with at least
 :data:`GUIDE_FACTOR` times its cells).  The scan runs on the coarse grid (thresholds there
 are ~15× cheaper at 144 × 36); the lowest speed is always solved on the fine grid too (it is
-the result's first row and decides "unstable at the lower end").  The coarse onset starts the
+the result's first row and decides "unstable at the lower end"): with a local threshold from
+the guide's crossing there when the guide's and the fine local mass margins both reach
+:data:`COARSE_MARGIN` (the test every other scan speed passes; a local threshold converges to
+the full threshold's own whirl tolerance, so on the same branch the two agree to ~1e-10),
+with the full threshold otherwise.  The coarse onset starts the
 fine secant (its static from the coarse equilibrium interpolated onto the fine grid, a first
 Newton step with the coarse slope).  The first scan speed above the fine onset is then solved
 on the fine grid: it must be unstable there, as the end of the fine scan's bracket would be
 (otherwise the search goes on as a fine scan); it is also where the scan method finds its
-smallest margin.  Risk and check: the fine and coarse thresholds differ by the grid error, so
+smallest margin.  A local threshold on the onset's branch settles it when it is unstable
+(the full threshold, the smallest crossing mass, is no larger — unless the full threshold's
+24-point whirl scan would miss that crossing, a crossing the confirmed onset lies on); the
+full threshold decides otherwise.  Risk and check: the fine and coarse thresholds differ by the grid error, so
 a coarse scan speed could have the wrong sign.  Every scan speed below the fine onset (every
 one, when the coarse scan finds no onset) whose coarse mass margin is below
 :data:`COARSE_MARGIN` is recomputed on the fine grid, and a fine sign change there restarts the
@@ -308,10 +316,11 @@ def _secant_search(line: SpeedLine, speeds: list, guide: Optional[SpeedLine], ba
             bracket = (speeds[k - 1], speed) if k else None
             break
         first = False
-    if guide is not None and line.f(speeds[0]) > 0 and first:
+    lowest = _lowest(line, guide, speeds[0])
+    if guide is not None and lowest > 0 and first:
         # unstable at the low end on the guide only: search without it
         return _secant_search(line, speeds, None, bar)
-    if line.f(speeds[0]) <= 0:
+    if lowest <= 0:
         return "unstable", math.nan
     bar.set_postfix_str("refining")
     if guide is None:
@@ -332,9 +341,34 @@ def _secant_search(line: SpeedLine, speeds: list, guide: Optional[SpeedLine], ba
         line.f(worst)                        # the smallest margin, on the fine grid
         return "stable", math.nan
     above = [s for s in speeds if s > onset]
-    if above and line.f(above[0]) > 0:       # the fine scan would not bracket it: scan on
+    if above and _stable_above(line, above[0]):  # the fine scan would not bracket it
         return _secant_search(line, speeds, None, bar)
     return "onset", onset
+
+
+def _lowest(line: SpeedLine, guide: Optional[SpeedLine], speed: float) -> float:
+    """f at the lowest scan speed on the fine grid: a local threshold from the guide's
+    crossing there when the guide's mass margin and the fine local one are both at least
+    :data:`COARSE_MARGIN` (stable on the fine grid by the guide's own test), else the full
+    threshold (which also decides "unstable at the lower end")."""
+    if guide is not None:
+        coarse = guide.full(speed)
+        if math.isfinite(coarse["root"]) and coarse["mass_margin"] >= COARSE_MARGIN:
+            row = line.local(speed, near=coarse)
+            if row["threshold"] == "local" and row["mass_margin"] >= COARSE_MARGIN:
+                return row["f"]
+    return line.f(speed)
+
+
+def _stable_above(line: SpeedLine, speed: float) -> bool:
+    """True when the fine grid is stable at ``speed`` (the first scan speed above the
+    guided onset).  A local threshold (the onset's branch, followed from the nearest
+    crossing) that is unstable settles it: the full threshold is the smallest crossing mass,
+    so it is no larger (:mod:`gfbopt.linear.threshold`); otherwise the full threshold
+    decides."""
+    if line.local(speed)["f"] <= 0:
+        return False
+    return line.f(speed) > 0
 
 
 def _confirm(line: SpeedLine, guide: SpeedLine, speeds: list, upto: float) -> Optional[float]:

@@ -5,15 +5,17 @@
 M̄c is 0 or ∞, for the bracketing scan) and g = ln(M̄c/M̄) (for the secant refinement: M̄
 grows as N², M̄c slowly, so g is nearly linear in ln N).  Each evaluation
 
-* solves the equilibrium warm from the nearest speed already solved, with the Newton fast
+* solves the equilibrium warm from the nearest speed already solved (extrapolated from the
+  two nearest when both are close, :data:`EXTRAPOLATION_DISTANCE`), with the Newton fast
   path (:mod:`gfbopt.static.newton`; IPOPT when it does not converge in a few steps, a cold
   IPOPT solve and the load-capacity check of :func:`~gfbopt.rotor.analysis.equilibrium` when
   that fails too), or, on a fine grid guided by a coarse one, from the coarse equilibrium at
   the same speed interpolated onto the fine grid (:func:`transferred_start`);
 * computes the threshold either in full (:func:`gfbopt.linear.linear_threshold`: every branch,
   the least-stable one wins) or locally (:func:`gfbopt.linear.crossings.local_crossing`:
-  Newton's method on the whirl ratio from the crossing of a nearby evaluation, about two
-  sparse LUs instead of a Krylov scan, a check and an eigenvalue probe).  A local threshold
+  Newton's method on the whirl ratio from the crossing of a nearby evaluation on a Krylov
+  space of one sparse LU, instead of a 24-point Krylov scan, a check and an eigenvalue probe;
+  the same crossing to ~1e-10 when the branch is the same).  A local threshold
   follows one branch; the search confirms its answer with a full one.
 
 Every evaluation is a row of the result's scan, with the grid it was made on and whether its
@@ -40,6 +42,9 @@ from .analysis import Case, equilibrium
 #: another speed when it is nearer by more than this, in |ln(speed ratio)| [-]: the grid
 #: error of the guide (~1 %) is worth a few per cent of speed
 GUIDE_DISTANCE = 0.05
+#: a warm start is extrapolated from the two nearest solved speeds when both lie within
+#: this of the speed, in |ln(speed ratio)| [-] (farther, the nearest solution is used as it is)
+EXTRAPOLATION_DISTANCE = 0.02
 #: secant steps before :func:`secant_root` gives up (the onset search then falls back to
 #: Brent's method on full thresholds)
 SECANT_STEPS = 16
@@ -138,7 +143,26 @@ class SpeedLine:
         if near is not None and (nearest is None or
                                  distance(near) + GUIDE_DISTANCE < distance(nearest)):
             return transferred_start(self.guide._solutions[near], solver, model)
-        return self._solutions[nearest] if nearest is not None else None
+        if nearest is None:
+            return None
+        return self._extrapolated(speed, nearest) or self._solutions[nearest]
+
+    def _extrapolated(self, speed: float, nearest: float) -> Optional[StaticSolution]:
+        """The state extrapolated linearly in ln N from the two solved speeds nearest
+        ``speed`` when both lie within :data:`EXTRAPOLATION_DISTANCE` of it (the secant's
+        points: its error is then of the order of the product of the two distances, so the
+        Newton fast path needs a step or none); None otherwise."""
+        u = math.log(speed)
+        others = [v for v in self._solutions if v != nearest]
+        if not others:
+            return None
+        second = min(others, key=lambda v: abs(math.log(v) - u))
+        u1, u0 = math.log(nearest), math.log(second)
+        if max(abs(u1 - u), abs(u0 - u)) > EXTRAPOLATION_DISTANCE:
+            return None
+        a, b = self._solutions[nearest], self._solutions[second]
+        x = a.state + (a.state - b.state) * (u - u1) / (u1 - u0)
+        return dataclasses.replace(a, state=x)
 
     def _record(self, speed, sol, mcrit, whirl, root, kind, message) -> dict:
         mbar = self.case.mass_parameter(speed)
@@ -165,7 +189,7 @@ def transferred_start(coarse: StaticSolution, solver, model) -> StaticSolution:
     lifted variable made consistent (:func:`~gfbopt.static.consistent_state`).  Only its
     ``state`` is meant to be used (as ``initial`` of a solve)."""
     st = solver.stencil
-    psi = coarse.theta - coarse.seam_angle            # θ from the grid origin, 0 first
+    psi = coarse.theta - coarse.seam_angle_rad            # θ from the grid origin, 0 first
     psi[0] = 0.0
     pressure = coarse.pressure
     if st.periodic:                                   # close the period for interpolation
@@ -177,7 +201,7 @@ def transferred_start(coarse: StaticSolution, solver, model) -> StaticSolution:
     grid_psi, grid_z = np.meshgrid(st.psi, z, indexing="ij")
     p_full = interp(np.column_stack([grid_psi.ravel(), grid_z.ravel()]))
     x = consistent_state(solver, model, np.maximum(p_full, 1e-3), coarse.eccentricity,
-                         coarse.attitude_angle)
+                         coarse.attitude_angle_rad)
     return dataclasses.replace(coarse, state=x, grid=solver.grid)
 
 

@@ -55,10 +55,13 @@ def test_fixed_position_mode_too():
     """Eccentricity and attitude given (the forces at a position): the same state."""
     model = _model("seam", "simple", 2.0)
     solver = solver_for(model, GRID)
-    start = solve_static(model, eccentricity=0.4, attitude_angle=0.9, solver=solver)
-    ipopt = solve_static(model, eccentricity=0.45, attitude_angle=1.0, solver=solver,
+    start = solve_static(model, eccentricity=0.4, attitude_angle_deg=math.degrees(0.9),
+                         solver=solver)
+    ipopt = solve_static(model, eccentricity=0.45, attitude_angle_deg=math.degrees(1.0),
+                         solver=solver,
                          initial=start)
-    fast = solve_static(model, eccentricity=0.45, attitude_angle=1.0, solver=solver,
+    fast = solve_static(model, eccentricity=0.45, attitude_angle_deg=math.degrees(1.0),
+                        solver=solver,
                         initial=start, fast_path=True)
     assert fast.solver == "newton"
     assert np.abs(fast.state - ipopt.state).max() <= 1e-10
@@ -101,3 +104,24 @@ def test_cold_solves_stay_with_ipopt():
     model = _model("periodic", "simple", 2.0)
     sol = solve_static(model, load=0.5, grid=GRID, fast_path=True)
     assert sol.success and sol.solver == "ipopt" and not math.isnan(sol.load)
+
+
+@pytest.mark.parametrize("film, structure", [("seam", "simple"), ("periodic", "local")])
+def test_the_kept_lu_serves_a_neighbouring_speed_only(film, structure):
+    """A speed 0.01 % away (the onset secant's steps): chord steps on the previous solve's
+    LU, no new factorisation, the same state as IPOPT (1e-10, as above); 24 % away the
+    parameters differ by more than REUSE_PARAMETERS and a fresh LU is made."""
+    solver = solver_for(_model(film, structure, 1.7), GRID)
+    system = solver.newton_system()
+    start = solve_static(_model(film, structure, 1.7), solver=solver, load=0.5)
+    first = solve_static(_model(film, structure, 2.1), solver=solver, load=0.5,
+                         initial=start, fast_path=True)
+    assert first.solver == "newton" and system.kept is not None
+    near = _model(film, structure, 2.1 * 1.0001)
+    p = solver.parameters(near, True, 0.5)
+    outcome = newton.solve(system, first.state, p)
+    ipopt = solve_static(near, solver=solver, load=0.5, initial=first)
+    assert outcome.converged and outcome.factorisations == 0 and outcome.steps >= 1
+    assert np.abs(outcome.x - ipopt.state).max() <= 1e-10
+    far = solver.parameters(_model(film, structure, 2.6), True, 0.5)
+    assert newton.solve(system, first.state, far).factorisations >= 1
