@@ -4,7 +4,6 @@ and lift-off: monotone curves, h_min at the limit), and the torque columns of th
 import json
 import math
 import subprocess
-import sys
 from pathlib import Path
 
 import pytest
@@ -14,14 +13,16 @@ from gfbopt.errors import ParameterError
 from gfbopt.inputs import load_bearing, load_bearing_file
 from gfbopt.rotor.capacity import lift_off_speed, load_capacity
 
+from cli_inprocess import run_cli
+
 REPO = Path(__file__).resolve().parents[2]
 RUSCITTO = REPO / "problems/bearings/ruscitto.toml"
 GRID = Grid(24, 8)        # trends and the limit, not converged values
 
 
 def gfbopt(*args: str) -> subprocess.CompletedProcess:
-    return subprocess.run([sys.executable, "-m", "gfbopt", *args], capture_output=True,
-                          text=True, cwd=REPO, timeout=600)
+    # in this process (tests/cli_inprocess.py: same main, exit status and output)
+    return run_cli(*args, cwd=REPO)
 
 
 def _file(tmp_path, extra: str) -> str:

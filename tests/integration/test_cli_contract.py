@@ -6,10 +6,19 @@ from pathlib import Path
 
 import pytest
 
+from cli_inprocess import run_cli
+
 REPO = Path(__file__).resolve().parents[2]
 
 
 def gfbopt(*args: str) -> subprocess.CompletedProcess:
+    """The command run in this process (tests/cli_inprocess.py: same ``main``, same exit
+    status and output, no interpreter start per call); the entry point ``python -m gfbopt``
+    has its own subprocess tests below (version, provenance, bad input)."""
+    return run_cli(*args, cwd=REPO)
+
+
+def gfbopt_process(*args: str) -> subprocess.CompletedProcess:
     return subprocess.run([sys.executable, "-m", "gfbopt", *args], capture_output=True,
                           text=True, cwd=REPO, timeout=300)
 
@@ -49,10 +58,10 @@ def test_dimensional_static():
 
 
 def test_version_and_provenance_in_every_json_output():
-    out = gfbopt("--version")
+    out = gfbopt_process("--version")
     assert out.returncode == 0 and out.stdout.startswith("gfbopt ")
     version = out.stdout.split()[1]
-    data = json.loads(gfbopt("static", "--eccentricity", "0.5", "--bearing-number", "1",
+    data = json.loads(gfbopt_process("static", "--eccentricity", "0.5", "--bearing-number", "1",
                              "--compliance", "1", "--film", "seam", "--grid", "36x10",
                              "--json").stdout)
     prov = data["provenance"]
@@ -128,6 +137,15 @@ def test_bad_input_is_one_line_exit_2(args, message):
     assert "Traceback" not in out.stderr
     assert len(out.stderr.strip().splitlines()) == 1
     assert message in out.stderr
+
+
+def test_the_entry_point_refuses_bad_input_in_one_line_exit_2():
+    """``python -m gfbopt`` itself (the other refusals run ``main`` in this process): exit
+    status 2 reaches the shell, one line on stderr, no traceback, nothing on stdout."""
+    out = gfbopt_process("static", "--eccentricity", "-0.2", "--bearing-number", "1")
+    assert out.returncode == 2 and out.stdout == ""
+    assert "Traceback" not in out.stderr and len(out.stderr.strip().splitlines()) == 1
+    assert "eccentricity = -0.2: must be >= 0" in out.stderr
 
 
 def test_bad_bearing_file_is_one_line(tmp_path):

@@ -4,12 +4,13 @@ conventions in every output, and bad input (one line, exit 2, before any solve).
 import json
 import math
 import subprocess
-import sys
 from pathlib import Path
 
 import pytest
 
 from gfbopt.glossary import describe
+
+from cli_inprocess import run_cli
 
 REPO = Path(__file__).resolve().parents[2]
 RUSCITTO = "problems/bearings/ruscitto.toml"
@@ -18,8 +19,8 @@ POINT = ["--bearing", RUSCITTO, "--load-newton", "20", "--speed-rpm", "45000", "
 
 
 def gfbopt(*args: str) -> subprocess.CompletedProcess:
-    return subprocess.run([sys.executable, "-m", "gfbopt", *args], capture_output=True,
-                          text=True, cwd=REPO, timeout=600)
+    # in this process (tests/cli_inprocess.py: same main, exit status and output)
+    return run_cli(*args, cwd=REPO)
 
 
 def _json(*args: str) -> dict:

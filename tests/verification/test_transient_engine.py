@@ -156,18 +156,16 @@ def test_bad_critical_mass_input():
         transient_model(failed)
 
 
-def test_growth_rate_and_whirl_match_the_linear_eigenvalue():
+@pytest.mark.xdist_group("rk4_references")
+def test_growth_rate_and_whirl_match_the_linear_eigenvalue(simple_transient_case, rk4_growth):
     """Small kick at 1.04 M̄c: the fitted growth rate and whirl ratio equal the least stable
-    eigenvalue of the linearised semi-discrete system (1 % of σ, 1e-3 in whirl)."""
-    model = MODELS["simple"]
-    solver = solver_for(model, GRID)
-    sol = solve_static(model, eccentricity=0.4, solver=solver)
-    lin = linearise(sol, solver)
-    thr = linear_threshold(lin)
+    eigenvalue of the linearised semi-discrete system (1 % of σ, 1e-3 in whirl).  (The RK4 run
+    is shared with test_rkc: tests/verification/conftest.py.)"""
+    _, lin, thr, _ = simple_transient_case
     mass = 1.04 * thr.critical_mass
     ev = semi_discrete_eigenvalues(lin, mass, 1j * thr.whirl_ratio)
     ev = ev[np.argmin(np.abs(ev - 1j * thr.whirl_ratio))]
-    orbit = integrate_orbits(transient_model(sol), [mass], revolutions=5, settle=1)
+    orbit = rk4_growth
     assert orbit.growth_rate[0] == pytest.approx(ev.real, rel=0.01)
     assert orbit.whirl_ratio[0] == pytest.approx(ev.imag, abs=1e-3)
     assert orbit.verdict[0] == "unstable"
@@ -203,9 +201,9 @@ def test_critical_mass_without_a_linear_estimate():
     assert len({h["round"] for h in result.history}) >= 3
 
 
-def test_heavy_rotor_ends_in_contact_not_nan():
-    _, tm = _model("rigid")
-    orbit = integrate_orbits(tm, [40.0], revolutions=30, contact_film=0.05)
+@pytest.mark.xdist_group("rk4_references")
+def test_heavy_rotor_ends_in_contact_not_nan(rk4_heavy_rotor):
+    _, orbit = rk4_heavy_rotor         # rigid, M̄ = 40, 30 revolutions (shared with test_rkc)
     assert orbit.verdict[0] == "contact"
     assert orbit.contact[0] and np.isfinite(orbit.contact_tau[0])
     valid = np.isfinite(orbit.x[0])
@@ -216,17 +214,12 @@ def test_heavy_rotor_ends_in_contact_not_nan():
     assert table["min_film"].notna().sum() == valid.sum()
 
 
-def test_large_kick_above_threshold_is_a_limit_cycle_not_stable():
+@pytest.mark.xdist_group("rk4_references")
+def test_large_kick_above_threshold_is_a_limit_cycle_not_stable(rk4_limit_cycle):
     """docs/PHYSICS.md trap: just above threshold a large orbit shrinks onto the limit cycle; its
-    envelope falls, yet it must not be called stable."""
-    model = MODELS["simple"]
-    solver = solver_for(model, GRID)
-    sol = solve_static(model, eccentricity=0.4, solver=solver)
-    thr = linear_threshold(linearise(sol, solver))
-    tm = transient_model(sol)
-    state = equilibrium_state(tm, 1)
-    state.x[:] += 0.25
-    orbit = integrate_orbits(tm, [1.03 * thr.critical_mass], revolutions=40, initial=state)
+    envelope falls, yet it must not be called stable.  (M̄ = 1.03 M̄c, kick 0.25, 40
+    revolutions of RK4, shared with test_rkc: tests/verification/conftest.py.)"""
+    orbit = rk4_limit_cycle
     assert orbit.verdict[0] == "limit cycle"
     assert orbit.amplitude[0] > 0.05
 
