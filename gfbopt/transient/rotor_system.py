@@ -419,6 +419,15 @@ class RotorRightHandSide:
 
     def _imbalance(self, tau: np.ndarray) -> np.ndarray:
         """Q_u (B, 4) [N] of every run at τ (module docstring)."""
+        if self.same_speed:          # one shaft angle for the batch: J cosines, not B × J
+            t = float(tau[0])
+            r, a = self.runs.speed[0] + self.runs.ramp[0] * t, self.runs.ramp[0]
+            angle = self.runs.speed[0] * t + 0.5 * a * t * t + self.phases
+            c, s = np.cos(angle), np.sin(angle)
+            fx, fy = r * r * c + a * s, r * r * s - a * c
+            one = np.array([fx @ self.amounts, fy @ self.amounts,
+                            fx @ self.moments, fy @ self.moments])
+            return self.runs.imbalance_scale[:, None] * one[None, :]
         r = self.runs.speed_at(tau)
         angle = self.runs.angle_at(tau)[:, None] + self.phases[None, :]       # (B, J)
         c, s = np.cos(angle), np.sin(angle)
