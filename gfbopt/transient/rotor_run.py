@@ -14,7 +14,8 @@ one-bearing engine (:func:`.rkc.rkc_step`, :func:`.rk4.rk4_step`), with the same
   T_film/4), re-set with the stages every ``check_every`` steps from the largest ρ met so
   far.  The accuracy rule is the constant-speed one, per rad of shaft rotation (the
   one-bearing accuracy study, :mod:`.rkc`), so at 5,000 rpm of a ramp to 60,000 rpm the step
-  is 12× the top speed's, with √12 × the stages: ≈ 30 % fewer evaluations over the ramp.
+  may be up to 12× the top speed's with ≈ √12× the stages, where T_rotor/30 does not bind
+  (a heavy rotor: the study rotor's run-up to contact took 2.2× fewer evaluations).
   The record stays uniform in time: samples every ``sample_every`` are interpolated inside
   the step (cubic Hermite in q̃ and q̃', fourth order, below the step's own error);
 * rk4 — Δτ = 0.9 × 2.78/ρ, re-checked likewise; a given step above the limit is refused.
