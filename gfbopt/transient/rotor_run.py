@@ -215,7 +215,7 @@ def integrate_rotor(model: RotorTransientModel, batch: Runs, duration: float,
     # a ramp's rkc step follows the speed (module docstring); everything else is constant
     follow = method == "rkc" and not fixed and bool(np.any(batch.ramp != 0.0))
     if follow:
-        rho_top = rho
+        stages, rho_top = _check_stages(stages), rho
         step_of = _speed_step(rhs, z, max_step)
         dt = step_of(0.0, batch)
         dt, stages = _stages_at(dt, rho_top, stages, fixed_stages)
@@ -409,6 +409,16 @@ def _hermite(lay, before: np.ndarray, after: np.ndarray, tau0: float, h: float,
             + (-2 * s3 + 3 * s2) * b[:, :4] + (s3 - s2) * h * b[:, 4:8])
 
 
+def _check_stages(stages):
+    """A given RKC stage count as an int in [2, MAX_STAGES] (None stays None)."""
+    if stages is None:
+        return None
+    if isinstance(stages, bool) or not float(stages).is_integer() \
+            or not 2 <= int(stages) <= MAX_STAGES:
+        raise ParameterError("stages", stages, f"must be an integer in [2, {MAX_STAGES}]")
+    return int(stages)
+
+
 def _first_step(rhs: RotorRightHandSide, z: np.ndarray, rho: float, top: float, method: str,
                 time_step, stages, max_step: float = MAX_STEP) -> tuple:
     """(Δτ, stages) at the start; a given step or stage count outside the stability region
@@ -422,11 +432,7 @@ def _first_step(rhs: RotorRightHandSide, z: np.ndarray, rho: float, top: float, 
             raise ParameterError("time_step", time_step, f"exceeds the RK4 stability limit "
                                  f"{limit:.4g} of the discretised system (Gershgorin bound)")
         return dt, None
-    if stages is not None:
-        if isinstance(stages, bool) or not float(stages).is_integer() \
-                or not 2 <= int(stages) <= MAX_STAGES:
-            raise ParameterError("stages", stages, f"must be an integer in [2, {MAX_STAGES}]")
-        stages = int(stages)
+    stages = _check_stages(stages)
     dt = (check_positive("time_step", time_step) if time_step is not None
           else accuracy_step(rhs, z, top, max_step))
     if stages is None:
