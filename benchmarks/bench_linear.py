@@ -177,7 +177,7 @@ def bench_point(name: str, eccentricity: float, model: BearingModel) -> dict:
                   "film": model.film, "length_ratio": model.length_ratio},
         "n_states": lin.size, "nnz_a": int(lin.a.nnz),
         "static_iterations": sol.iterations, "load": sol.load,
-        "attitude_deg": math.degrees(sol.attitude_angle),
+        "attitude_deg": sol.attitude_angle_deg,
         "build": _entry(build, build_times),
         "static_cold": _entry(t_static, static_times),
         "linearise": _entry(t_lin, lin_times),

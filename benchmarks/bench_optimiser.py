@@ -12,10 +12,16 @@ Measured (serial, one process, so nothing else hides in the numbers):
   library's default (10,000 random points, 10 L-BFGS-B starts) and at gfbopt's default
   (5,000 random points, no L-BFGS-B polishing);
 * one real evaluation: a bearing-pair design of the blower rotor (problems/rotors/
-  blower.toml, two Ruscitto bearings) on the 36x10 search grid after the solver builds
-  (:func:`gfbopt.design.rotor_objectives.evaluate_rotor_design`).
+  blower.toml, two Ruscitto bearings, shim preload) on the 36x10 search grid and on the
+  default 144x36 grid after the solver builds
+  (:func:`gfbopt.design.rotor_objectives.evaluate_rotor_design`), wall and CPU seconds, with
+  one BLAS thread as in every gfbopt run.
 
-Run: ``PYTHONPATH=. python benchmarks/bench_optimiser.py`` → results/benchmarks/optimiser.json.
+Run: ``PYTHONPATH=. python benchmarks/bench_optimiser.py`` → results/benchmarks/optimiser.json;
+with ``--ranking`` instead: six designs of the main job's space on 36x10, 72x20 and 144x36 and
+how the coarse grids rank them (:func:`grid_ranking`) → results/benchmarks/
+design_grid_ranking.json; with ``--main-job``: the README's main job at --workers 1 and 2, wall
+and CPU seconds (:func:`main_job`) → results/benchmarks/rotor_design_main_job.json.
 The machine's load average is recorded: the 2 cores are shared, so absolute times vary; the
 ratios are taken within the run.
 """
@@ -49,7 +55,7 @@ def nsga2_overhead() -> dict:
                                                                  "f2": "float64"}))
         r = optimise(problem, surrogates.zdt1, SearchSettings("nsga2", budget=400,
                                                                population=20, seed=0),
-                     store=store, flush_rows=1)
+                     store=store)
         parts = len(store.parts())
     return {"designs": r.asked, "parquet_parts": parts,
             "driver_time_per_design_s": r.driver_time_per_design_s,
@@ -78,24 +84,136 @@ def real_evaluation() -> dict:
     from gfbopt.static import SolverCache
 
     system = load_rotor(ROOT / "problems" / "rotors" / "blower.toml")
-    settings = EvaluationSettings(4000.0, 45000.0, 56250.0, Grid.parse("36x10"),
-                                  heaviest_load_factor=2.0)
-    cache = SolverCache(settings.grid)
-    t0 = time.perf_counter()
-    evaluate_rotor_design(system, settings, cache)               # builds the solvers
-    cold = time.perf_counter() - t0
-    times = []
-    for clearance in (17.0, 23.0):
+    out = {}
+    for grid in ("36x10", "144x36"):
+        settings = EvaluationSettings(4000.0, 45000.0, 56250.0, Grid.parse(grid),
+                                      heaviest_load_factor=2.0)
+        cache = SolverCache(settings.grid)
+        t0, c0 = time.perf_counter(), time.process_time()
+        evaluate_rotor_design(system, settings, cache)               # builds the solvers
+        cold, cold_cpu = time.perf_counter() - t0, time.process_time() - c0
+        times, cpu = [], []
+        for clearance, preload in ((17.0, 9.0), (23.0, 4.0)):
+            t0, c0 = time.perf_counter(), time.process_time()
+            row = evaluate_rotor_design(system, settings, cache, radial_clearance_um=clearance,
+                                        preload_depth_um=preload)
+            times.append(time.perf_counter() - t0)
+            cpu.append(time.process_time() - c0)
+            assert row["success"], row["message"]
+        out[grid] = {"first_evaluation_s": cold, "first_evaluation_cpu_s": cold_cpu,
+                     "evaluation_s": float(np.mean(times)),
+                     "evaluation_cpu_s": float(np.mean(cpu)), "evaluations": len(times)}
+    return {"grid": "36x10", "first_evaluation_s": out["36x10"]["first_evaluation_s"],
+            "evaluation_s": out["36x10"]["evaluation_s"],
+            "evaluation_cpu_s": out["36x10"]["evaluation_cpu_s"], "evaluations": 2,
+            "by_grid": out}
+
+
+#: designs (radial clearance, preload depth [µm]) spread over the main job's space, for the
+#: ranking check of the search grid against the default grid
+RANKING_DESIGNS = ((16.0, 11.0), (18.0, 6.0), (22.0, 3.0), (26.0, 9.0), (30.0, 0.0),
+                   (34.0, 5.0))
+
+
+def grid_ranking(grids=("36x10", "72x20", "144x36")) -> dict:
+    """The main job's objectives and film limit for :data:`RANKING_DESIGNS` on each grid,
+    and how the coarse grids rank them against the default (last) grid: Spearman's rank
+    correlation of the first onset and of the power loss, and the designs whose feasibility
+    (minimum film at 4,000 rpm under 2× load ≥ 1.5 µm) differs."""
+    from scipy.stats import spearmanr
+
+    from gfbopt.design.rotor_objectives import EvaluationSettings, evaluate_rotor_design
+    from gfbopt.inputs.grid import Grid
+    from gfbopt.inputs.rotor_system import load_rotor
+    from gfbopt.static import SolverCache
+
+    system = load_rotor(ROOT / "problems" / "rotors" / "blower.toml")
+    rows = {}
+    for grid in grids:
+        settings = EvaluationSettings(4000.0, 45000.0, 56250.0, Grid.parse(grid),
+                                      heaviest_load_factor=2.0)
+        cache = SolverCache(settings.grid)
+        rows[grid] = []
+        for c, d in RANKING_DESIGNS:
+            c0 = time.process_time()
+            r = evaluate_rotor_design(system, settings, cache, radial_clearance_um=c,
+                                      preload_depth_um=d)
+            rows[grid].append({"radial_clearance_um": c, "preload_depth_um": d,
+                               **{k: r.get(k) for k in ("first_onset_speed_rpm",
+                                                        "total_power_loss_w",
+                                                        "min_film_lowest_speed_um",
+                                                        "success")},
+                               "cpu_s": time.process_time() - c0})
+            print(grid, rows[grid][-1], flush=True)
+    ref = rows[grids[-1]]
+    agreement = {}
+    for grid in grids[:-1]:
+        mine = rows[grid]
+        agreement[grid] = {
+            "spearman_onset": float(spearmanr([r["first_onset_speed_rpm"] for r in mine],
+                                              [r["first_onset_speed_rpm"] for r in ref])[0]),
+            "spearman_power": float(spearmanr([r["total_power_loss_w"] for r in mine],
+                                              [r["total_power_loss_w"] for r in ref])[0]),
+            "feasibility_differs": [[r["radial_clearance_um"], r["preload_depth_um"]]
+                                    for r, q in zip(mine, ref)
+                                    if (r["min_film_lowest_speed_um"] >= 1.5)
+                                    != (q["min_film_lowest_speed_um"] >= 1.5)],
+            "largest_onset_change": float(max(abs(r["first_onset_speed_rpm"]
+                                                  / q["first_onset_speed_rpm"] - 1)
+                                              for r, q in zip(mine, ref)))}
+    return {"designs": rows, "agreement_with_" + grids[-1]: agreement,
+            "min_film_limit_um": 1.5}
+
+
+def main_job(workers=(1, 2)) -> dict:
+    """The README's main job, ``gfbopt run problems/rotor_bearing_design.toml``, in a child
+    process per worker count: wall time and the CPU seconds of the run and its pool workers
+    (RUSAGE_CHILDREN of this process; the workers are joined, so theirs count)."""
+    import resource
+    import subprocess
+
+    out = {}
+    for n in workers:
+        before = resource.getrusage(resource.RUSAGE_CHILDREN)
         t0 = time.perf_counter()
-        row = evaluate_rotor_design(system, settings, cache, radial_clearance_um=clearance)
-        times.append(time.perf_counter() - t0)
-        assert row["success"], row["message"]
-    return {"grid": "36x10", "first_evaluation_s": cold, "evaluation_s": float(np.mean(times)),
-            "evaluations": len(times)}
+        with tempfile.TemporaryDirectory() as tmp:
+            subprocess.run([sys.executable, "-m", "gfbopt", "run",
+                            str(ROOT / "problems" / "rotor_bearing_design.toml"),
+                            "--workers", str(n), "--results", tmp], check=True,
+                           env={**os.environ, "PYTHONPATH": str(ROOT)},
+                           stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+            first = (Path(tmp) / "rotor_bearing_design" / "README.md").read_text()
+        after = resource.getrusage(resource.RUSAGE_CHILDREN)
+        out[f"workers_{n}"] = {"wall_s": time.perf_counter() - t0,
+                               "cpu_s": (after.ru_utime - before.ru_utime
+                                         + after.ru_stime - before.ru_stime),
+                               "verdict": first.splitlines()[0]}
+        print(n, out[f"workers_{n}"], flush=True)
+    return out
 
 
 def main() -> None:
+    from gfbopt.parallel import limit_blas_threads
     from gfbopt.provenance import provenance
+
+    # one BLAS thread, as in every gfbopt run and pool worker: multi-threaded OpenBLAS on
+    # these small matrices spins against the other process on 2 shared cores (the 0.2-era
+    # figure of 29-51 s per evaluation was mostly that: 1.6 s with one thread, idle)
+    limit_blas_threads()
+    if "--main-job" in sys.argv:
+        out = {"load_average_before": os.getloadavg(), "main_job": main_job(),
+               "limit_wall_s": 120.0, "load_average_after": os.getloadavg(),
+               "cpu_count": os.cpu_count(), "provenance": provenance()}
+        path = ROOT / "results" / "benchmarks" / "rotor_design_main_job.json"
+        path.write_text(json.dumps(out, indent=2, default=str))
+        return
+    if "--ranking" in sys.argv:
+        out = {"load_average_before": os.getloadavg(), **grid_ranking(),
+               "load_average_after": os.getloadavg(), "provenance": provenance()}
+        path = ROOT / "results" / "benchmarks" / "design_grid_ranking.json"
+        path.write_text(json.dumps(out, indent=2, default=str))
+        print(json.dumps(out["agreement_with_144x36"], indent=2))
+        return
 
     load_before = os.getloadavg()
     evaluation = real_evaluation()

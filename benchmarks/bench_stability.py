@@ -13,7 +13,14 @@ Measures
   solve, linearisation, threshold, least-stable mode) timed separately once;
 * onset: ``onset_speed(bearing, rotor, 20, (5000, 50000))`` at 144 × 36 after the build,
   median of 2 (target ≤ 10 s), with its number of threshold evaluations;
-* the cost of one impedance evaluation (one sparse complex LU), the unit of everything.
+* the cost of one impedance evaluation (one sparse complex LU), the unit of everything;
+* ``stability()`` with three searches for the least-stable mode, in one run (``mode_search``):
+  "near_threshold" — 0.2's search (shift-invert eigenvalues near the threshold whirl only, then
+  the secant polish on the characteristic equation; it can miss the least-damped root, issue
+  14), "eigs" — the wide reference (three shift-invert searches over whirl ratios 0.02–3),
+  "krylov" — the default (one LU, one Krylov space, roots of its reduced model); their
+  ratios to "near_threshold" (target for "krylov": ≤ 1.3) and the largest difference of the
+  mode found by "krylov" and "eigs".
 
 Usage::
 
@@ -35,7 +42,9 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))  # noqa: E402
 from machine import machine_info, write_report  # noqa: E402
 from gfbopt import Grid, SolverCache, solve_static
 from gfbopt.inputs import OperatingPoint, Rotor, load_bearing_file
-from gfbopt.linear import impedance, least_stable_mode, linear_threshold, linearise
+import gfbopt.rotor.analysis as analysis
+from gfbopt.linear import (characteristic_root, impedance, least_stable_mode, linear_threshold,
+                           linearise, semi_discrete_eigenvalues)
 from gfbopt.rotor import onset_speed, stability
 from gfbopt.rotor.analysis import resolve_case
 
@@ -43,6 +52,62 @@ REPO = Path(__file__).resolve().parents[1]
 BEARING, OPTIONS = load_bearing_file(REPO / "problems" / "bearings" / "ruscitto.toml")
 ROTOR, LOAD, SPEED, RANGE = Rotor(2.0), 20.0, 45000.0, (5000.0, 50000.0)
 TARGETS = {"stability_72x20_s": 1.0, "stability_144x36_s": 3.0, "onset_144x36_s": 10.0}
+
+
+def near_threshold_mode(lin, mass, threshold):
+    """0.2's least_stable_mode (gfbopt <= 0.2, for timing only): the eigenvalues nearest
+    the threshold whirl, polished on the characteristic equation."""
+    import math
+
+    import numpy as np
+
+    gamma = threshold.whirl_ratio if math.isfinite(threshold.whirl_ratio) else 0.5
+    ev = semi_discrete_eigenvalues(lin, mass, 1j * gamma, count=8)
+    whirling = ev[(np.abs(ev.imag) > 0.02) & (np.abs(ev.imag) < 3.0)]
+    best = whirling[np.argmax(whirling.real)]
+    return characteristic_root(lin, mass, complex(best.real, abs(best.imag)))
+
+
+#: the least-stable-mode searches compared (module docstring)
+MODE_SEARCHES = {
+    "near_threshold": near_threshold_mode,
+    "eigs": lambda lin, mass, thr: least_stable_mode(lin, mass, thr, method="eigs"),
+    "krylov": lambda lin, mass, thr: least_stable_mode(lin, mass, thr, method="krylov"),
+}
+
+
+def mode_search(grid: Grid, cache: SolverCache, speeds=(SPEED, 5000.0), repeats: int = 3
+                ) -> dict:
+    """``stability()`` at each speed with each least-stable-mode search (MODE_SEARCHES),
+    interleaved, median of ``repeats`` [s] wall and CPU; ratios to 0.2's search."""
+    out: dict = {}
+    original = analysis.least_stable_mode
+    try:
+        for speed in speeds:
+            walls = {k: [] for k in MODE_SEARCHES}
+            cpus = {k: [] for k in MODE_SEARCHES}
+            modes = {}
+            for _ in range(repeats):
+                for name, search in MODE_SEARCHES.items():
+                    analysis.least_stable_mode = search
+                    t0, c0 = time.perf_counter(), time.process_time()
+                    r = stability(BEARING, ROTOR, OperatingPoint(speed, LOAD), options=OPTIONS,
+                                  grid=grid, cache=cache)
+                    walls[name].append(time.perf_counter() - t0)
+                    cpus[name].append(time.process_time() - c0)
+                    modes[name] = complex(r.growth_rate, r.mode_whirl_ratio)
+            wall = {k: statistics.median(v) for k, v in walls.items()}
+            cpu = {k: statistics.median(v) for k, v in cpus.items()}
+            out[f"{speed:.0f}_rpm"] = {
+                "wall_s": wall, "cpu_s": cpu,
+                "ratio_to_near_threshold_wall": {k: wall[k] / wall["near_threshold"]
+                                                 for k in wall},
+                "ratio_to_near_threshold_cpu": {k: cpu[k] / cpu["near_threshold"] for k in cpu},
+                "mode": {k: [v.real, v.imag] for k, v in modes.items()},
+                "krylov_minus_eigs": abs(modes["krylov"] - modes["eigs"])}
+    finally:
+        analysis.least_stable_mode = original
+    return out
 
 
 def timed(function, repeats: int) -> tuple[float, list, object]:
@@ -119,6 +184,8 @@ def main(argv=None) -> dict:
     args = parser.parse_args(argv)
     load_before = os.getloadavg()
     coarse, fine = bench_grid("72x20", onset=False), bench_grid("144x36", onset=True)
+    fine_grid = Grid.parse("144x36")
+    searches = mode_search(fine_grid, SolverCache(fine_grid))
     measured = {"stability_72x20_s": coarse["stability"]["median_s"],
                 "stability_144x36_s": fine["stability"]["median_s"],
                 "onset_144x36_s": fine["onset"]["median_s"]}
@@ -128,6 +195,7 @@ def main(argv=None) -> dict:
                     "load_newton": LOAD, "speed_rpm": SPEED,
                     "conventions": OPTIONS.to_dict()},
            "grids": [coarse, fine],
+           "mode_search_144x36": searches,
            "ratios": {"fine_over_coarse_stability": measured["stability_144x36_s"]
                       / measured["stability_72x20_s"],
                       "onset_over_one_stability_144x36": measured["onset_144x36_s"]
@@ -145,6 +213,11 @@ def main(argv=None) -> dict:
     o = fine["onset"]
     print(f"  onset at 144x36: {o['median_s']:.2f} s, {o['evaluations']} thresholds, onset "
           f"{o['onset_speed_rpm']:.1f} rpm at {o['whirl_frequency_hz']:.1f} Hz")
+    for speed, m in searches.items():
+        w, c, r = m["wall_s"], m["cpu_s"], m["ratio_to_near_threshold_cpu"]
+        print(f"  stability() at {speed}, 144x36, CPU s (wall s): " + ", ".join(
+            f"{k} {c[k]:.2f} ({w[k]:.2f}; x{r[k]:.2f})" for k in c)
+            + f"; |krylov - eigs| = {m['krylov_minus_eigs']:.1e}")
     for name, t in out["targets"].items():
         print(f"  {name:<22s} {t['measured_s']:7.3f} s  target <= {t['target_s']:g} s  "
               f"{'met' if t['met'] else 'NOT met'}")

@@ -281,9 +281,9 @@ def bench_point(solver: StaticSolver, bearing_number: float, eccentricity: float
         "ratio_warm_ipopt_over_newton": warm / newton,
         "load_ipopt": sol.load, "load_newton": ref["load"],
         "load_rel_diff": abs(sol.load / ref["load"] - 1),
-        "attitude_deg_ipopt": math.degrees(sol.attitude_angle),
+        "attitude_deg_ipopt": sol.attitude_angle_deg,
         "attitude_deg_newton": ref["attitude_angle_deg"],
-        "attitude_diff_deg": abs(math.degrees(sol.attitude_angle) - ref["attitude_angle_deg"]),
+        "attitude_diff_deg": abs(sol.attitude_angle_deg - ref["attitude_angle_deg"]),
     }
 
 
@@ -348,10 +348,10 @@ def bench_tables(reference_dir: Path, warm_chain: bool) -> dict:
         results.append({
             "table": table, "Lambda": model.bearing_number, "eps": ref["eps"],
             "S": model.compliance, "foil": model.foil, "subambient": model.subambient,
-            "load": sol.load, "attitude_deg": math.degrees(sol.attitude_angle),
+            "load": sol.load, "attitude_deg": sol.attitude_angle_deg,
             "load_reference": ref_load, "attitude_deg_reference": ref_att,
             "load_rel_error": sol.load / ref_load - 1,
-            "attitude_error_deg": math.degrees(sol.attitude_angle) - ref_att,
+            "attitude_error_deg": sol.attitude_angle_deg - ref_att,
             "success": sol.success, "iterations": sol.iterations, "solve_s": elapsed})
     total = time.perf_counter() - t0
     return {"total_s": total, "build_s": build, "solves_s": total - build,

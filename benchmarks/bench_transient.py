@@ -199,8 +199,8 @@ def baseline_orbit(tm, mass: float, variant: str = "grouped_analytic") -> dict:
     sol = solve_ivp(rotor, (0.0, t_end), y0, method="BDF", t_eval=t_eval, rtol=RTOL,
                     atol=ATOL, events=contact, **jac_kw)
     sx = tm.static
-    x0 = sx.eccentricity * math.cos(sx.attitude_angle)
-    y0_ = sx.eccentricity * math.sin(sx.attitude_angle)
+    x0 = sx.eccentricity * math.cos(sx.attitude_angle_rad)
+    y0_ = sx.eccentricity * math.sin(sx.attitude_angle_rad)
     touched = sol.status == 1 and sol.t_events[0].size > 0
     window = sol.t >= 2 * math.pi * SETTLE
     if sol.status == 0:
@@ -337,7 +337,7 @@ def bench_point(name: str, eccentricity: float, model: BearingModel, cap_s: floa
         "model": {"bearing_number": model.bearing_number, "compliance": model.compliance,
                   "foil": model.foil, "film": model.film, "length_ratio": model.length_ratio,
                   "deflection_law": model.deflection_law},
-        "load": sol.load, "attitude_deg": math.degrees(sol.attitude_angle),
+        "load": sol.load, "attitude_deg": sol.attitude_angle_deg,
         "n_states": FlatRotor(tm, 1.0).n,
         "solver_build_s": build_s,
         "linear": {"critical_mass": thr.critical_mass, "whirl_ratio": thr.whirl_ratio,

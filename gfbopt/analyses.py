@@ -23,9 +23,36 @@ from typing import Optional, Sequence
 
 import numpy as np
 
+from .errors import ParameterError
 from .inputs import DEFAULT_GRID, BearingGeometry, BearingModel, Grid
 from .inputs.conversions import mass_from_parameter, rpm_to_rad_per_s
 from .static import SolverCache, StaticSolution, solve_static, solver_for
+
+def bearing_model(bearing: BearingGeometry, speed_rpm: float, *, film: Optional[str] = None,
+                  seam_angle_deg=None, foil: Optional[str] = None,
+                  deflection_law: Optional[str] = None, loss_factor: Optional[float] = None,
+                  options=None, **extra) -> BearingModel:
+    """The non-dimensional model of a bearing in SI at ``speed_rpm`` [rpm], its formulation
+    resolved as every route resolves it: the options stated here, else ``options``
+    (:class:`~gfbopt.inputs.options.ModelOptions`), else the bearing's own
+    (``bearing.options``: its file's ``[model]`` table), else the defaults
+    (:func:`~gfbopt.inputs.options.merge_options`) — as ``gfbopt static/linear --bearing
+    FILE`` and the ``load_sweep`` / ``linear_coefficients`` studies do.  seam_angle_deg [deg]
+    in [0, 360) or 'max_film'; ``extra``: the keys a bearing file does not state
+    (``subambient``, ``compression_only``).
+
+    Example: ``solve_static(bearing_model(load_bearing(FILE), 30000),
+    load=bearing.nondimensional_load(20.0))``.
+    """
+    from .inputs.options import ModelOptions, merge_options
+
+    if options is not None and not isinstance(options, ModelOptions):
+        raise ParameterError("options", options, "must be ModelOptions")
+    stated = ModelOptions(film=film, seam_angle_deg=seam_angle_deg, foil=foil,
+                          deflection_law=deflection_law, loss_factor=loss_factor)
+    resolved = merge_options(stated, bearing.options if options is None else options)
+    return bearing.model(speed_rpm, **resolved.model_kwargs(), **extra)
+
 
 #: outputs of a static solve (NaN when it failed)
 STATIC_OUTPUTS = ("eccentricity", "attitude_angle_deg", "load", "min_film", "torque_ratio")
@@ -58,7 +85,7 @@ def static_row(model: BearingModel, solution: StaticSolution,
     nan = math.nan
     row = {**model.groups(),
            "eccentricity": solution.eccentricity if ok else nan,
-           "attitude_angle_deg": math.degrees(solution.attitude_angle) if ok else nan,
+           "attitude_angle_deg": solution.attitude_angle_deg if ok else nan,
            "load": solution.load if ok else nan,
            "min_film": solution.min_film if ok else nan,
            "torque_ratio": solution.torque_ratio if ok else nan}

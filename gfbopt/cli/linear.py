@@ -69,7 +69,7 @@ def run(args) -> int:
            "damping": {f"{g:g}": coeffs.damping[k].tolist()
                        for k, g in enumerate(coeffs.whirl_ratio)},
            "load": sol.load, "eccentricity": sol.eccentricity,
-           "attitude_angle_deg": math.degrees(sol.attitude_angle),
+           "attitude_angle_deg": sol.attitude_angle_deg,
            "success": bool(sol.success and threshold.success),
            "message": sol.message or threshold.message,
            "wall_time_s": time.perf_counter() - t0}

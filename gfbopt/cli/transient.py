@@ -274,7 +274,7 @@ def run_orbit(args) -> int:
     settings = describe(op, method=args.method, kick=args.kick, mass=mass,
                         rotor_mass_kg=args.rotor_mass_kg)
     out = {**settings, **orbit.to_dict(0), "eccentricity": sol.eccentricity,
-           "load": sol.load, "attitude_angle_deg": math.degrees(sol.attitude_angle)}
+           "load": sol.load, "attitude_angle_deg": sol.attitude_angle_deg}
     emit(out, args.json, lambda: (
         f"gfbopt orbit — M̄ = {mass:.6g}"
         + (f" ({args.rotor_mass_kg:g} kg)" if args.mass is None else "")
@@ -331,7 +331,7 @@ def run_critical_mass(args) -> int:
     out = {**settings, **result.to_dict(),
            "linear_critical_mass": linear.critical_mass,
            "linear_whirl_ratio": linear.whirl_ratio, "eccentricity": sol.eccentricity,
-           "load": sol.load, "attitude_angle_deg": math.degrees(sol.attitude_angle),
+           "load": sol.load, "attitude_angle_deg": sol.attitude_angle_deg,
            "history": list(result.history)}
     emit(out, args.json, lambda: (
         f"gfbopt critical-mass — M̄_crit = {result.critical_mass:.5g} (bracket "
@@ -355,7 +355,7 @@ def _unstable_at_any_mass(args, op, sol, linear) -> int:
            "whirl_ratio": linear.whirl_ratio, "transients": 0, "rotor_revolutions": 0.0,
            "success": True, "message": linear.message, "linear_critical_mass": 0.0,
            "linear_whirl_ratio": linear.whirl_ratio, "eccentricity": sol.eccentricity,
-           "load": sol.load, "attitude_angle_deg": math.degrees(sol.attitude_angle),
+           "load": sol.load, "attitude_angle_deg": sol.attitude_angle_deg,
            "history": [], "verdict": "unstable at every rotor mass"}
     emit(out, args.json, lambda: (
         f"gfbopt critical-mass — unstable at every rotor mass: M̄_crit = 0 (linear threshold "

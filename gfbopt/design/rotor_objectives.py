@@ -50,6 +50,26 @@ DESIGN_VARIABLES = {
 }
 #: the bump-geometry variables that ``compliance`` replaces
 BUMP_GEOMETRY = ("bump_pitch_mm", "bump_half_length_mm", "bump_thickness_um")
+#: SI attribute and scale of each bump-geometry variable
+_BUMP_SI = {"bump_pitch_mm": ("bump_pitch", 1e-3),
+            "bump_half_length_mm": ("bump_half_length", 1e-3),
+            "bump_thickness_um": ("bump_thickness", 1e-6)}
+
+
+def zone_variable(var: str):
+    """(zone number k ≥ 1, bump variable) for a per-zone name ``zoneK_<bump variable>``
+    (e.g. ``zone2_bump_thickness_um``: the bump foil of the second zone of ``zone_edges_deg``
+    round the bearing), else None."""
+    head, _, rest = var.partition("_")
+    if head.startswith("zone") and head[4:].isdigit() and int(head[4:]) >= 1 \
+            and rest in BUMP_GEOMETRY:
+        return int(head[4:]), rest
+    return None
+
+
+def known_variable(var: str) -> bool:
+    """True for a name of :data:`DESIGN_VARIABLES` or a per-zone bump variable."""
+    return var in DESIGN_VARIABLES or zone_variable(var) is not None
 #: output columns of one evaluation and their store types
 OUTPUTS = {
     "first_onset_speed_rpm": "float64", "first_mode": "string", "onset_status": "string",
@@ -93,6 +113,7 @@ class EvaluationSettings:
     preload_count: int = 3
     pad_offset_deg: float = 180.0
     bump_spec: object = None
+    zone_edges_deg: tuple = ()
 
 
 def _split(name: str) -> tuple:
@@ -112,12 +133,21 @@ def _bearing_design(geometry, values: dict, settings: EvaluationSettings):
         change["radial_clearance"] = values["radial_clearance_um"] * 1e-6
     if "length_mm" in values:
         change["length"] = values["length_mm"] * 1e-3
-    for var, key, scale in (("bump_pitch_mm", "bump_pitch", 1e-3),
-                            ("bump_half_length_mm", "bump_half_length", 1e-3),
-                            ("bump_thickness_um", "bump_thickness", 1e-6)):
+    for var, (key, scale) in _BUMP_SI.items():
         if var in values:
             change[key] = values[var] * scale
     build = geometry.build or BearingBuild()
+    zoned = {zone_variable(v): x for v, x in values.items() if zone_variable(v)}
+    if zoned:
+        from ..inputs.bore_si import ZoneSpec
+
+        edges = settings.zone_edges_deg
+        zones = []
+        for k in range(1, len(edges)):
+            si = {_BUMP_SI[var][0]: zoned[(k, var)] * _BUMP_SI[var][1]
+                  for var in BUMP_GEOMETRY if (k, var) in zoned}
+            zones.append(ZoneSpec(edges[k - 1], edges[k], **si))
+        build = dataclasses.replace(build, zones=tuple(zones))
     if "preload_depth_um" in values or "preload_count" in values:
         count = int(round(values.get("preload_count", settings.preload_count)))
         depth = values.get("preload_depth_um", 0.0) * 1e-6
@@ -142,9 +172,13 @@ def apply_design(system, design: dict, settings: EvaluationSettings) -> tuple:
     per = {n: {} for n in names}
     for name, value in design.items():
         bearing, var = _split(name)
-        if var not in DESIGN_VARIABLES:
+        if not known_variable(var):
             raise ParameterError("design", name, f"is not a design variable (known: "
-                                 f"{', '.join(DESIGN_VARIABLES)})")
+                                 f"{', '.join(DESIGN_VARIABLES)}, zoneK_<bump variable>)")
+        zone = zone_variable(var)
+        if zone is not None and zone[0] >= len(settings.zone_edges_deg):
+            raise ParameterError("design", name, f"names zone {zone[0]}, but zone_edges_deg "
+                                 f"gives {max(len(settings.zone_edges_deg) - 1, 0)} zones")
         for n in ([bearing] if bearing else names):
             if n not in per:
                 raise ParameterError("design", name, f"names no bearing of the rotor "
@@ -179,9 +213,17 @@ def _realise_compliance(geometry, compliance: float, settings: EvaluationSetting
 
 
 def structural_limits(geometry, settings: EvaluationSettings) -> dict:
-    """Bump stress [MPa], top-foil sag / c and bump closing (2 l0 + gap)/s of a bearing."""
+    """Bump stress [MPa], top-foil sag / c and bump closing (2 l0 + gap)/s of a bearing —
+    the largest over its bump zones when it has zones."""
     from ..physics.bump import bump_bending_stress, top_foil_sag
 
+    zones = geometry.build.zones if geometry.build is not None else ()
+    if zones:
+        parts = [structural_limits(dataclasses.replace(geometry, build=None, **{
+            key: getattr(z, key) for key in ("bump_pitch", "bump_half_length",
+                                             "bump_thickness")
+            if getattr(z, key) is not None}), settings) for z in zones]
+        return {k: max(p[k] for p in parts) for k in parts[0]}
     g = geometry
     dp = settings.design_pressure_pa
     return {"bump_stress_mpa": bump_bending_stress(dp, g.bump_pitch, g.bump_half_length,
@@ -200,6 +242,20 @@ def _static(case, speed_rpm: float, load_newton: float, grid: Grid, cache):
                         solver=cache(model, grid), continuation=True)
 
 
+def film_um(sol, bearing) -> float:
+    """The minimum film [µm] of a static solution: the smallest nodal film, or with a
+    sharp-edged (shim) bore the film at its steps when smaller
+    (:func:`gfbopt.physics.bore.step_film`, a grid-robust bound: the nodal film at a shim
+    edge is not converged on any practical grid); 0 when the film closes there."""
+    from ..physics.bore import step_film
+
+    h = sol.min_film
+    ab = sol.model.as_built
+    if ab is not None and ab.bore.kind == "shims" and not ab.bore.is_round:
+        h = min(h, step_film(sol.film, sol.deflection, ab.bore_rows(sol.theta)))
+    return max(h, 0.0) * bearing.radial_clearance * 1e6
+
+
 def _film_and_power(rotor, line, settings: EvaluationSettings, cache) -> dict:
     from ..physics.torque import drag_torque_and_power
 
@@ -212,13 +268,12 @@ def _film_and_power(rotor, line, settings: EvaluationSettings, cache) -> dict:
             sol = state.solution
             power += drag_torque_and_power(sol.torque_ratio, sol.model.bearing_number,
                                            state.case.bearing)[1]
-            film_top = min(film_top, sol.min_film * state.case.bearing.radial_clearance * 1e6)
+            film_top = min(film_top, film_um(sol, state.case.bearing))
     film_low = math.inf
     for case in rotor.cases:
         sol = _static(case, settings.speed_low_rpm,
                       case.load_newton * settings.heaviest_load_factor, settings.grid, cache)
-        film_low = min(film_low, sol.min_film * case.bearing.radial_clearance * 1e6
-                       if sol.success else 0.0)
+        film_low = min(film_low, film_um(sol, case.bearing) if sol.success else 0.0)
     return {"total_power_loss_w": power, "min_film_top_speed_um": film_top,
             "min_film_lowest_speed_um": film_low}
 

@@ -21,7 +21,8 @@ from dataclasses import dataclass
 
 from ..errors import ParameterError
 from .problem import Constraint, DesignProblem, Objective, Variable
-from .rotor_objectives import BUMP_GEOMETRY, DESIGN_VARIABLES, EvaluationSettings
+from .rotor_objectives import (BUMP_GEOMETRY, DESIGN_VARIABLES, EvaluationSettings,
+                               known_variable, zone_variable)
 from .search import SearchSettings
 
 GOALS = ("front", "max_onset", "stable_then_min_power")
@@ -61,15 +62,31 @@ class RotorDesignPlan:
     limit_cycle_grid: object = None
 
 
-def _variables(rows: list, where, bearings: tuple) -> tuple:
+def _zone_edges(edges, where) -> tuple:
+    """The bump zones' edges [deg]: increasing, spanning exactly 360° (one line else)."""
+    if edges is None:
+        return ()
+    e = [float(x) for x in edges]
+    if len(e) < 2 or any(b <= a for a, b in zip(e, e[1:])) or abs(e[-1] - e[0] - 360.0) > 1e-9:
+        raise where.error(list(edges), "must be at least two increasing angles [deg] whose "
+                          "last is the first + 360 (the zones cover the bearing once)")
+    return tuple(e)
+
+
+def _variables(rows: list, where, bearings: tuple, zones: int = 0) -> tuple:
     out, seen = [], set()
     for k, row in enumerate(rows):
         w = where / k
         name = row["name"]
         bearing, var = name.split(":", 1) if ":" in name else (None, name)
-        if var not in DESIGN_VARIABLES:
+        if not known_variable(var):
             raise (w / "name").error(name, f"is not a design variable of the rotor's bearings "
-                                     f"(known: {', '.join(DESIGN_VARIABLES)})")
+                                     f"(known: {', '.join(DESIGN_VARIABLES)}, "
+                                     "zoneK_<bump variable>)")
+        zone = zone_variable(var)
+        if zone is not None and zone[0] > zones:
+            raise (w / "name").error(name, f"names bump zone {zone[0]}, but zone_edges_deg "
+                                     f"gives {zones} zone(s)")
         if bearing is not None and bearing not in bearings:
             raise (w / "name").error(name, f"names no bearing of the rotor (bearings: "
                                      f"{', '.join(bearings)})")
@@ -93,8 +110,9 @@ def _variables(rows: list, where, bearings: tuple) -> tuple:
         if var in ("preload_depth_um",) and low < 0:
             raise w.error([row["low"], row["high"]], "a preload depth must be >= 0")
     names = {v.name.split(":")[-1] for v in out}
-    if "compliance" in names and names & set(BUMP_GEOMETRY):
-        raise where.error(sorted(names & set(BUMP_GEOMETRY)), "give either compliance (the "
+    bump = {n for n in names if n in BUMP_GEOMETRY or zone_variable(n)}
+    if "compliance" in names and bump:
+        raise where.error(sorted(bump), "give either compliance (the "
                           "geometric program picks the bump foil) or the bump geometry, not "
                           "both")
     return tuple(out)
@@ -132,7 +150,8 @@ def _problem(spec: dict, where, variables: tuple) -> DesignProblem:
         constraints.append(Constraint("bump_stress_mpa", upper=spec["allowable_stress_mpa"]))
     if spec["sag_limit"] is not None:
         constraints.append(Constraint("top_foil_sag_ratio", upper=spec["sag_limit"]))
-    if any(v.name.split(":")[-1] in BUMP_GEOMETRY for v in variables):
+    if any(v.name.split(":")[-1] in BUMP_GEOMETRY or zone_variable(v.name.split(":")[-1])
+           for v in variables):
         constraints.append(Constraint("bump_closing_ratio", upper=1.0))
     if goal == "front":
         objectives = (Objective("first_onset_speed_rpm", "max"), Objective("total_power_loss_w"))
@@ -177,7 +196,9 @@ def plan_rotor_design(study, study_hash: str = "") -> RotorDesignPlan:
     if not s["variables"]:
         raise study.where("variables").error([], "must name at least one design variable")
     bearings = tuple(b.name for b in system.bearings)
-    variables = _variables(s["variables"], study.where("variables"), bearings)
+    edges = _zone_edges(s["zone_edges_deg"], study.where("zone_edges_deg"))
+    variables = _variables(s["variables"], study.where("variables"), bearings,
+                           max(len(edges) - 1, 0))
     problem = _problem(s, study.where(), variables)
     r = s["robustness"]
     robustness = RobustnessSpec(_tolerances(r["tolerances"], study.where("robustness",
@@ -214,7 +235,8 @@ def plan_rotor_design(study, study_hash: str = "") -> RotorDesignPlan:
                   design_pressure_pa=s["design_pressure_bar"] * 1e5, gap_m=s["gap_mm"] * 1e-3,
                   bore_kind=bore["kind"], bore_width_deg=bore["width_deg"],
                   bore_offset_deg=bore["offset_deg"], preload_count=bore["count"],
-                  pad_offset_deg=s["pad_offset_deg"], bump_spec=bump_spec)
+                  pad_offset_deg=s["pad_offset_deg"], bump_spec=bump_spec,
+                  zone_edges_deg=edges)
     if s["max_lift_off_speed_rpm"] is not None and s["lift_off_film_um"] is None:
         raise study.where("lift_off_film_um").error(None, "is needed by "
                                                     "max_lift_off_speed_rpm")

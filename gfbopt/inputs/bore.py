@@ -358,7 +358,7 @@ def check_as_built(model) -> None:
             raise ParameterError("zones", len(ab.zones), "a varying foundation is modelled "
                                  "for the simple foil (both deflection laws), not under the "
                                  "beam top foil")
-    if ab.housing_fixed and model.film == "seam" and model.seam_angle is None:
+    if ab.housing_fixed and model.film == "seam" and model.seam_angle_rad is None:
         raise ParameterError("seam_angle", "max_film", "a bore profile or bump zones are "
                              "fixed in the housing, but the seam on the maximum-film line "
                              "moves with the journal: state a fixed seam angle")
@@ -366,15 +366,16 @@ def check_as_built(model) -> None:
         raise ParameterError("pads", len(ab.pads), "top-foil pads end in seams at ambient "
                              "pressure: they need film = 'seam' (a periodic film has none)")
     if ab.pads and not ab.single_pad:
-        if model.seam_angle is None:
+        if model.seam_angle_rad is None:
             raise ParameterError("pads", len(ab.pads), "several pads need film = 'seam' with "
                                  "a fixed seam angle (one pad's leading end)")
         if model.foil == "beam":
             raise ParameterError("pads", len(ab.pads), "several pads are modelled for the "
                                  "simple foil; the beam top foil is one pad")
-    if ab.pads and model.film == "seam" and model.seam_angle is not None:
+    if ab.pads and model.film == "seam" and model.seam_angle_rad is not None:
         leads = [p.leading_end for p in ab.pads]
-        if min(abs(float(_wrap(model.seam_angle - a + math.pi)) - math.pi) for a in leads) > 1e-9:
-            raise ParameterError("seam_angle_deg", math.degrees(model.seam_angle), "must be "
+        if min(abs(float(_wrap(model.seam_angle_rad - a + math.pi)) - math.pi)
+               for a in leads) > 1e-9:
+            raise ParameterError("seam_angle_deg", math.degrees(model.seam_angle_rad), "must be "
                                  "one pad's leading end ("
                                  + ", ".join(f"{math.degrees(a):.6g}" for a in leads) + "°)")

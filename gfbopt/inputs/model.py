@@ -23,6 +23,33 @@ MAX_BEARING_NUMBER = 1e4
 MAX_COMPLIANCE = 1e3
 
 
+#: the unit-less radian names of gfbopt <= 0.2 and what replaced them (degrees at the edge)
+RADIAN_NAMES = ("attitude_angle", "seam_angle", "min_film_angle", "min_film_angle_from_seam")
+
+
+def renamed_radian_attribute(owner: str, name: str) -> AttributeError:
+    """The AttributeError for ``name`` on ``owner``: for an old unit-less radian name
+    (:data:`RADIAN_NAMES`) it names the degree property and the radian field that replaced
+    it, so ``sol.attitude_angle_rad`` can never be read as degrees by mistake."""
+    if name in RADIAN_NAMES:
+        return AttributeError(f"{owner}.{name} (radians in gfbopt <= 0.2) was renamed: angles "
+                              f"are degrees at every public edge, {name}_deg [deg]; the "
+                              f"numerics' radians are {name}_rad "
+                              f"({name}_deg = math.degrees({name}_rad))")
+    return AttributeError(f"{owner!r} object has no attribute {name!r}")
+
+
+def radian_keyword_migration(name: str, value) -> str:
+    """The rule shown for an old unit-less radian keyword ``name`` (e.g. ``attitude_angle`` of
+    :func:`gfbopt.static.solve_static`): the degree keyword and the conversion."""
+    text = (f"is no longer accepted: angles are given in degrees at every public edge, as "
+            f"{name}_deg (from the load line in the direction of rotation)")
+    if isinstance(value, (int, float)) and not isinstance(value, bool) and math.isfinite(value):
+        text += (f"; if {value!r} was meant in radians (gfbopt <= 0.2), write "
+                 f"{name}_deg={math.degrees(value):.6g}")
+    return text
+
+
 def film_convention(film: str, seam_angle_deg: Optional[float], foil: str = "simple") -> str:
     """One line naming the film convention (docs/PHYSICS.md §4), for every output.
 
@@ -62,7 +89,7 @@ class BearingModel:
         line of centres, P = 1 at θ = 0, 2π).  For a periodic film it only places the fixed
         end of the beam foil.  Degrees, as on the command line and in files; the old radian
         keyword ``seam_angle`` is refused with the conversion (the solvers read the angle in
-        radians from the :attr:`seam_angle` property).
+        radians from the :attr:`seam_angle_rad` property).
     compression_only : if True the bumps cannot pull the foil towards the journal (W ≥ 0
         for the simple model; the bump reaction acts only where W > 0 for the beam).
     deflection_law : 'mean' — the foil deflects with the axially averaged pressure,
@@ -145,10 +172,13 @@ class BearingModel:
             check_as_built(self)
 
     @property
-    def seam_angle(self) -> Optional[float]:
+    def seam_angle_rad(self) -> Optional[float]:
         """The welded end from the load line in radians (the solvers' internal unit), or None
         for the seam on the maximum-film line.  Read-only: give ``seam_angle_deg``."""
         return None if self.seam_angle_deg is None else math.radians(self.seam_angle_deg)
+
+    def __getattr__(self, name: str):
+        raise renamed_radian_attribute(type(self).__name__, name)
 
     @property
     def is_rigid(self) -> bool:

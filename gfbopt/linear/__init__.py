@@ -41,7 +41,8 @@ module                 contents
 :mod:`.model`          :class:`Linearisation`, :func:`linearise`, :func:`impedance`,
                        :func:`coefficients` (K̄, C̄ against γ), :func:`dimensional_coefficients`
 :mod:`.threshold`      :func:`linear_threshold`, :func:`characteristic_root`,
-                       :func:`semi_discrete_eigenvalues`, :func:`least_stable_mode`
+                       :func:`semi_discrete_eigenvalues`
+:mod:`.least_stable`   :func:`least_stable_mode`: the least-damped rigid-body root
 :mod:`.crossings`      the threshold's search for real roots u(γ): the reference scan and the
                        fast search on the Krylov model, checked on the exact impedance
 :mod:`.krylov`         :class:`~.krylov.ShiftedImpedance`: Z(iγ) on a whirl-ratio interval
@@ -51,7 +52,8 @@ module                 contents
 from .model import (Coefficients, Linearisation, coefficients, dimensional_coefficients,
                     film_sensitivity, impedance, linearise)
 from .threshold import (PROBE_MASS, STABILITY_TOLERANCE, LinearThreshold, characteristic_root,
-                        least_stable_mode, linear_threshold, semi_discrete_eigenvalues)
+                        linear_threshold, semi_discrete_eigenvalues)
+from .least_stable import least_stable_mode
 
 __all__ = ["Coefficients", "LinearThreshold", "Linearisation", "PROBE_MASS",
            "STABILITY_TOLERANCE", "characteristic_root", "coefficients",

@@ -18,6 +18,7 @@ import scipy.sparse.linalg as spla
 from .. import discretisation as disc
 from ..errors import ParameterError
 from ..inputs.bearing import BearingGeometry
+from ..inputs.model import renamed_radian_attribute
 from ..inputs.conversions import rpm_to_rad_per_s, stiffness_scale, whirl_frequency_hz
 from ..physics.compliance import ComplianceTerms, PerturbationContext
 from ..physics.foil_laws import foil_law
@@ -71,7 +72,7 @@ def linearise(solution: StaticSolution, solver: Optional[StaticSolver] = None) -
     if not solution.success:
         raise ParameterError("solution", f"status {solution.status}",
                              "the static equilibrium did not converge; nothing to linearise")
-    if solution.eccentricity == 0.0 or not math.isfinite(solution.attitude_angle):
+    if solution.eccentricity == 0.0 or not math.isfinite(solution.attitude_angle_rad):
         raise ParameterError("solution.eccentricity", solution.eccentricity,
                              "must be > 0: a concentric journal carries no load (W0 = 0), so "
                              "M̄ = M c ω²/W0 is undefined")
@@ -92,7 +93,7 @@ def linearise(solution: StaticSolution, solver: Optional[StaticSolver] = None) -
     n_u = blocks.n_pressure
     dp = -2 * lam * film
     law = foil_law(model, engine="linear")
-    s_rows = row_values(model, st, solution.seam_angle)[1]    # S per θ row (bump zones)
+    s_rows = row_values(model, st, solution.seam_angle_rad)[1]    # S per θ row (bump zones)
     slope = law.squeeze_film_slope(pressure, s_rows[st.row], model.compression_only)
     if slope is not None:
         dp = dp - 2 * lam * pressure * slope
@@ -122,7 +123,7 @@ def _perturbation_context(solution: StaticSolution, solver: StaticSolver,
         beam_dofs=solution.state[lay.beam], law_data=solver.law_data,
         film_sensitivity=lambda: film_sensitivity(st, p_full, solution.film.ravel(),
                                                   model.bearing_number, dz),
-        row_compliance=row_values(model, st, solution.seam_angle)[1], pressure_rows=st.row)
+        row_compliance=row_values(model, st, solution.seam_angle_rad)[1], pressure_rows=st.row)
 
 
 def film_sensitivity(st: disc.Stencil, p_full: np.ndarray, h_full: np.ndarray,
@@ -186,11 +187,20 @@ class Coefficients:
     whirl_ratio: np.ndarray
     stiffness: np.ndarray
     damping: np.ndarray
-    attitude_angle: float
+    #: attitude angle of the static solution [rad] (the numerics' unit; see attitude_angle_deg)
+    attitude_angle_rad: float
+
+    def __getattr__(self, name: str):
+        raise renamed_radian_attribute(type(self).__name__, name)
+
+    @property
+    def attitude_angle_deg(self) -> float:
+        """Attitude angle of the static solution, from the load line [deg]."""
+        return math.degrees(self.attitude_angle_rad)
 
     def in_line_of_centres_frame(self) -> "Coefficients":
         """The same coefficients with axes (r along the line of centres, t ahead of it)."""
-        c, s = math.cos(self.attitude_angle), math.sin(self.attitude_angle)
+        c, s = math.cos(self.attitude_angle_rad), math.sin(self.attitude_angle_rad)
         rot = np.array([[c, -s], [s, c]])       # columns: r and t in load-frame components
         tr = lambda m: np.einsum("ji,njk,kl->nil", rot, m, rot)  # noqa: E731  Rᵀ M R
         return Coefficients(self.whirl_ratio, tr(self.stiffness), tr(self.damping), 0.0)
@@ -237,7 +247,7 @@ def coefficients(lin: Linearisation, whirl_ratios: Sequence[float]) -> Coefficie
         else:
             z = impedance(lin, 1j * gamma)
             k[n], c[n] = z.real, z.imag / gamma
-    return Coefficients(g, k, c, lin.static.attitude_angle)
+    return Coefficients(g, k, c, lin.static.attitude_angle_rad)
 
 
 # ------------------------------------------------------------- dimensional output

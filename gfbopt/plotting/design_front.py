@@ -26,7 +26,11 @@ _LABELS = {
 def variable_label(name: str) -> str:
     """Axis label of a design variable (a bearing prefix "A:" is kept in front)."""
     bearing, var = name.split(":", 1) if ":" in name else ("", name)
-    label = _LABELS.get(var, var)
+    head, _, rest = var.partition("_")
+    if head.startswith("zone") and head[4:].isdigit() and rest in _LABELS:
+        label = f"zone {head[4:]}: {_LABELS[rest]}"          # a per-zone bump variable
+    else:
+        label = _LABELS.get(var, var)
     return f"bearing {bearing}: {label}" if bearing else label
 
 

@@ -341,7 +341,7 @@ def assess(case: Case, speed_rpm: float, initial: Optional[StaticSolution] = Non
         growth_rate_per_s=growth_rate_per_second(growth, omega),
         log_decrement=(logarithmic_decrement(growth, whirl) if whirl > 0 else math.nan),
         threshold_whirl_frequency_hz=whirl_frequency_hz(thr.whirl_ratio, omega),
-        eccentricity=sol.eccentricity, attitude_angle_deg=math.degrees(sol.attitude_angle),
+        eccentricity=sol.eccentricity, attitude_angle_deg=sol.attitude_angle_deg,
         min_film_thickness_um=film_thickness_um(sol.min_film, case.bearing.radial_clearance),
         bearing_number=sol.model.bearing_number, load_parameter=case.load,
         mass_parameter=mbar, critical_mass_parameter=mcrit,

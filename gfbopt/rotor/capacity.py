@@ -125,7 +125,7 @@ class _Curve:
                                                   self.bearing)
             row.update(min_film_thickness_um=sol.min_film * self.bearing.radial_clearance * 1e6,
                        eccentricity=sol.eccentricity,
-                       attitude_angle_deg=math.degrees(sol.attitude_angle),
+                       attitude_angle_deg=sol.attitude_angle_deg,
                        torque_ratio=sol.torque_ratio, drag_torque_nm=torque, power_loss_w=power)
             self._solved[x] = sol
         self.rows.append(row)

@@ -165,7 +165,7 @@ def transferred_start(coarse: StaticSolution, solver, model) -> StaticSolution:
     lifted variable made consistent (:func:`~gfbopt.static.consistent_state`).  Only its
     ``state`` is meant to be used (as ``initial`` of a solve)."""
     st = solver.stencil
-    psi = coarse.theta - coarse.seam_angle            # θ from the grid origin, 0 first
+    psi = coarse.theta - coarse.seam_angle_rad            # θ from the grid origin, 0 first
     psi[0] = 0.0
     pressure = coarse.pressure
     if st.periodic:                                   # close the period for interpolation
@@ -177,7 +177,7 @@ def transferred_start(coarse: StaticSolution, solver, model) -> StaticSolution:
     grid_psi, grid_z = np.meshgrid(st.psi, z, indexing="ij")
     p_full = interp(np.column_stack([grid_psi.ravel(), grid_z.ravel()]))
     x = consistent_state(solver, model, np.maximum(p_full, 1e-3), coarse.eccentricity,
-                         coarse.attitude_angle)
+                         coarse.attitude_angle_rad)
     return dataclasses.replace(coarse, state=x, grid=solver.grid)
 
 

@@ -222,7 +222,7 @@ class BearingState:
         sol = self.solution
         return {"bearing": self.load.name, "speed_rpm": self.speed_rpm,
                 "load_newton": self.load.magnitude, "eccentricity": sol.eccentricity,
-                "attitude_angle_deg": math.degrees(sol.attitude_angle),
+                "attitude_angle_deg": sol.attitude_angle_deg,
                 "min_film_thickness_um": sol.min_film * self.case.bearing.radial_clearance * 1e6,
                 "bearing_number": sol.model.bearing_number, "load_exceeds_capacity": False}
 

@@ -200,7 +200,7 @@ class StaticSolver:
         lay, st = self.layout, self.stencil
         n = lay.eccentricity
         p = self.parameters(solution.model, False, solution.eccentricity,
-                            solution.attitude_angle, seam_angle=solution.seam_angle)
+                            solution.attitude_angle_rad, seam_angle=solution.seam_angle_rad)
         _, jac = self.jacobian_function()(solution.state, p)
         a = sp.csc_matrix(jac.sparse())[:n, :n].tocsc()
         # Only the lifted film rows depend on the journal: their equation is
@@ -212,7 +212,7 @@ class StaticSolver:
         # F_X = cos θ_s ΣA_k − sin θ_s ΣB_k, F_Y = sin θ_s ΣA_k + cos θ_s ΣB_k (partial sums)
         sums = np.arange(lay.partial_sums.start, lay.partial_sums.stop)
         nb = sums.size // 2
-        ts = solution.seam_angle
+        ts = solution.seam_angle_rad
         force = np.zeros((2, n))
         force[0, sums[:nb]], force[0, sums[nb:]] = math.cos(ts), -math.sin(ts)
         force[1, sums[:nb]], force[1, sums[nb:]] = math.sin(ts), math.cos(ts)
@@ -234,7 +234,7 @@ def solver_key(model: BearingModel, grid: Grid) -> tuple:
     so they are not part of the key; several pads change which rows are unknown, so they are.
     """
     ab = model.as_built
-    fixed = () if ab is None else ab.fixed_rows(model.seam_angle or 0.0, grid.n_theta)
+    fixed = () if ab is None else ab.fixed_rows(model.seam_angle_rad or 0.0, grid.n_theta)
     return (grid, model.film, static_structure(model), fixed)
 
 
@@ -259,8 +259,8 @@ def fixed_origin(model: BearingModel) -> Optional[float]:
     journal); a seam on the maximum-film line is refused with such a bearing
     (:func:`gfbopt.inputs.bore.check_as_built`).
     """
-    if model.seam_angle is not None:
-        return model.seam_angle
+    if model.seam_angle_rad is not None:
+        return model.seam_angle_rad
     if model.as_built is not None and model.as_built.housing_fixed:
         return 0.0
     return None

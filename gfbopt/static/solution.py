@@ -12,7 +12,7 @@ import numpy as np
 
 from .. import discretisation as disc
 from ..inputs.grid import Grid
-from ..inputs.model import BearingModel
+from ..inputs.model import BearingModel, renamed_radian_attribute
 from ..physics.foil_laws import FoilParameters
 
 
@@ -20,7 +20,12 @@ from ..physics.foil_laws import FoilParameters
 class StaticSolution:
     """A static equilibrium and its diagnostics.
 
-    Scalars are non-dimensional (load W̄ = W/(p_a R²), film H = h/c), angles in radians.
+    Scalars are non-dimensional (load W̄ = W/(p_a R²), film H = h/c).  Angles (from the load
+    line, direction of rotation) are degrees at the public edge: :attr:`attitude_angle_deg`,
+    :attr:`min_film_angle_deg`, :attr:`seam_angle_deg`, :attr:`min_film_angle_from_seam_deg`;
+    the numerics keep radians only in the fields named ``*_rad`` (the old unit-less names
+    ``attitude_angle``, ``seam_angle``, ``min_film_angle`` raise an AttributeError naming the
+    replacement).
     Arrays: ``theta`` [rad, from the load line, direction of rotation] at the θ nodes,
     ``z`` [-] at the axial nodes, ``pressure`` P of shape (n_theta_nodes, n_z + 1),
     ``film`` H and ``deflection`` W of the same shape, ``mean_pressure`` P̄ per θ node.
@@ -32,12 +37,12 @@ class StaticSolution:
     model: BearingModel
     grid: Grid
     eccentricity: float
-    attitude_angle: float
+    attitude_angle_rad: float
     load: float
     force: tuple
     min_film: float
-    min_film_angle: float
-    seam_angle: float
+    min_film_angle_rad: float
+    seam_angle_rad: float
     theta: np.ndarray
     z: np.ndarray
     pressure: np.ndarray
@@ -55,6 +60,27 @@ class StaticSolution:
     pressure_torque_ratio: float = math.nan
     #: which method solved it: "ipopt", or "newton" (the warm fast path, gfbopt.static.newton)
     solver: str = "ipopt"
+
+    def __getattr__(self, name: str):
+        raise renamed_radian_attribute(type(self).__name__, name)
+
+    @property
+    def attitude_angle_deg(self) -> float:
+        """Attitude angle φ: the journal centre from the load line in the direction of
+        rotation [deg] (NaN for a concentric journal)."""
+        return math.degrees(self.attitude_angle_rad)
+
+    @property
+    def min_film_angle_deg(self) -> float:
+        """Angle of the minimum film from the load line, in [0, 360) [deg]."""
+        return math.degrees(self.min_film_angle_rad) % 360.0
+
+    @property
+    def seam_angle_deg(self) -> float:
+        """Angle of the welded end of the top foil (the grid origin) from the load line [deg]
+        (for the seam on the maximum-film line: 180° + φ; for a periodic film the grid's
+        origin)."""
+        return math.degrees(self.seam_angle_rad)
 
     @property
     def torque_ratio(self) -> float:
@@ -74,23 +100,24 @@ class StaticSolution:
 
         With a seam film the first node is the welded end (0) and the last the free end (2π).
         """
-        return self.theta - self.seam_angle
+        return self.theta - self.seam_angle_rad
 
     @property
-    def min_film_angle_from_seam(self) -> float:
-        """Angle of the minimum film from the welded end, in [0, 2π) [rad]."""
-        return float(np.mod(self.min_film_angle - self.seam_angle, 2 * math.pi))
+    def min_film_angle_from_seam_deg(self) -> float:
+        """Angle of the minimum film from the welded end, in [0, 360) [deg]."""
+        return math.degrees(float(np.mod(self.min_film_angle_rad - self.seam_angle_rad,
+                                         2 * math.pi)))
 
     def to_dict(self) -> dict:
         """Scalar results as a flat dict (angles in degrees) for JSON and DataFrames."""
         return {
             "eccentricity": self.eccentricity,
-            "attitude_angle_deg": math.degrees(self.attitude_angle),
+            "attitude_angle_deg": self.attitude_angle_deg,
             "load": self.load,
             "force_x": self.force[0], "force_y": self.force[1],
             "min_film": self.min_film,
-            "min_film_angle_deg": math.degrees(self.min_film_angle) % 360.0,
-            "min_film_angle_from_seam_deg": math.degrees(self.min_film_angle_from_seam),
+            "min_film_angle_deg": self.min_film_angle_deg,
+            "min_film_angle_from_seam_deg": self.min_film_angle_from_seam_deg,
             "max_mean_pressure": float(self.mean_pressure.max()),
             "max_deflection": float(self.deflection.max()),
             "torque_ratio": self.torque_ratio,

@@ -17,9 +17,9 @@ import numpy as np
 
 from .. import discretisation as disc
 from ..errors import ConvergenceError, ParameterError
-from ..inputs.checks import check_finite, check_positive
+from ..inputs.checks import _ABSENT, check_finite, check_positive
 from ..inputs.grid import DEFAULT_GRID, Grid
-from ..inputs.model import BearingModel
+from ..inputs.model import BearingModel, radian_keyword_migration
 from ..physics.closed_forms import first_order_pressure, small_eccentricity_limit
 from ..physics.bore import first_order_bore_pressure
 from ..physics.film import force_gauge, rigid_film_polar
@@ -149,8 +149,9 @@ def postprocess(solver: StaticSolver, model: BearingModel, x: np.ndarray, stats:
     message = "" if ok else (f"IPOPT status {status}; Reynolds residual {residual:.2e}; "
                              f"force residual {force_res:.2e}; min H {hmat.min():.3g}")
     return StaticSolution(
-        model=model, grid=solver.grid, eccentricity=ecc, attitude_angle=phi,
-        load=-float(fx), force=(float(fx), float(fy)), min_film=hmin, min_film_angle=angle, seam_angle=seam,
+        model=model, grid=solver.grid, eccentricity=ecc, attitude_angle_rad=phi,
+        load=-float(fx), force=(float(fx), float(fy)), min_film=hmin, min_film_angle_rad=angle,
+        seam_angle_rad=seam,
         theta=theta, z=st.z_nodes(model.length_ratio),
         pressure=p.reshape(st.n_theta_nodes, nzn), film=hmat,
         deflection=w_nodes.reshape(st.n_theta_nodes, nzn), success=ok, status=status,
@@ -175,12 +176,12 @@ def _minimum_film(hmat: np.ndarray, theta: np.ndarray, periodic: bool) -> tuple[
 
 
 def solve_static(model: BearingModel, *, eccentricity: Optional[float] = None,
-                 load: Optional[float] = None, attitude_angle: Optional[float] = None,
+                 load: Optional[float] = None, attitude_angle_deg: Optional[float] = None,
                  grid: Grid = DEFAULT_GRID,
                  solver: Optional[StaticSolver] = None,
                  initial: Optional[StaticSolution] = None,
                  continuation: bool = True, raise_on_failure: bool = False,
-                 fast_path: bool = False) -> StaticSolution:
+                 fast_path: bool = False, attitude_angle=_ABSENT) -> StaticSolution:
     """Static equilibrium at a given eccentricity ratio or a given load.
 
     Parameters
@@ -188,8 +189,10 @@ def solve_static(model: BearingModel, *, eccentricity: Optional[float] = None,
     model : the non-dimensional bearing
     eccentricity : ε = e/c [-] (then the load and attitude angle are found), or
     load : W̄ = W/(p_a R²) [-] (then ε and the attitude angle are found)
-    attitude_angle : with ``eccentricity``, fixes the journal position too [rad]: the film
-        force at that position is returned (``load`` = −F_X, ``force``) without equilibrium
+    attitude_angle_deg : with ``eccentricity``, fixes the journal position too [deg], from
+        the load line in the direction of rotation: the film force at that position is
+        returned (``load`` = −F_X, ``force``) without equilibrium.  (The old radian keyword
+        ``attitude_angle`` is refused with the conversion.)
     grid : finite-difference grid (ignored when ``solver`` is given)
     solver : a prebuilt :class:`StaticSolver` (reuse it across a sweep)
     initial : a previous solution to warm-start from (same solver)
@@ -204,12 +207,16 @@ def solve_static(model: BearingModel, *, eccentricity: Optional[float] = None,
     -------
     StaticSolution, with ``success``, IPOPT's ``status`` and the ``residual`` recomputed.
     """
+    if attitude_angle is not _ABSENT:
+        raise ParameterError("attitude_angle", attitude_angle, radian_keyword_migration(
+            "attitude_angle", attitude_angle))
     load_mode, target = _check_target(model, eccentricity, load)
-    if attitude_angle is not None:
+    attitude_angle = None                       # the solver's unit: radians
+    if attitude_angle_deg is not None:
         if load_mode:
-            raise ParameterError("attitude_angle", attitude_angle,
+            raise ParameterError("attitude_angle_deg", attitude_angle_deg,
                                  "fixes the position together with eccentricity, not with load")
-        attitude_angle = check_finite("attitude_angle", attitude_angle)
+        attitude_angle = math.radians(check_finite("attitude_angle_deg", attitude_angle_deg))
     if solver is None:
         solver = solver_for(model, grid)
     elif not solver.matches(model, solver.grid):
@@ -255,7 +262,7 @@ def _concentric(solver: StaticSolver, model: BearingModel, t0: float) -> StaticS
     sol = postprocess(solver, model, x, {"success": True, "return_status": "Concentric",
                                           "iter_count": 0}, False, 0.0,
                        time.perf_counter() - t0)
-    return replace(sol, attitude_angle=float("nan"))
+    return replace(sol, attitude_angle_rad=float("nan"))
 
 
 def _solve_with_continuation(solver, model, load_mode, target, initial, continuation, t0,

@@ -110,17 +110,6 @@ def build_model(options: dict, where: Where, *, rigid_when_no_compliance: bool =
         raise where.error(kwargs, f"is not a valid model ({exc})") from None
 
 
-def build_dimensional_model(geometry: BearingGeometry, speed_rpm: float, options: dict,
-                            where: Where) -> BearingModel:
-    """The model of a bearing file at ``speed_rpm`` with a variant's formulation."""
-    kwargs = _model_kwargs(options)
-    foil = kwargs.pop("foil", "simple")
-    try:
-        return geometry.model(speed_rpm, foil=foil, **kwargs)
-    except ParameterError as exc:
-        raise (where / exc.name).error(exc.value, exc.rule) from None
-
-
 def load_geometry(study: Study) -> BearingGeometry:
     """The bearing file named by the study (relative to the study file)."""
     path = study.directory / study.spec["bearing"]
@@ -154,10 +143,10 @@ def _parts(model: BearingModel) -> dict:
                                      else "axial-mean deflection law")
     if model.film == "periodic":
         film = "periodic film"
-    elif model.seam_angle is None:
+    elif model.seam_angle_rad is None:
         film = "seam on the max-film line"
     else:
-        film = f"seam {math.degrees(model.seam_angle):g}° from the load"
+        film = f"seam {math.degrees(model.seam_angle_rad):g}° from the load"
     return {"foil": _foil_text(model), "film": film,
             "force": "Gümbel force" if model.subambient == "gumbel" else "full-film force",
             "law": law, "co": "compression-only bumps" if model.compression_only

@@ -123,6 +123,10 @@ SCHEMAS = {"rotor_bearing_design": {
                               length=2),
     "pad_offset_deg": opt("number", 180.0, "leading end of the first pad from the load "
                           "[deg] (pads variable)"),
+    "zone_edges_deg": opt("numbers", None, "edges of the bump zones round the bearing [deg "
+                          "from the load line], e.g. [0, 120, 240, 360]: per-zone bump "
+                          "variables zoneK_bump_pitch_mm, zoneK_bump_half_length_mm, "
+                          "zoneK_bump_thickness_um (zone K between edges K and K + 1)"),
     "bore": opt("table", BORE_DEFAULT, "the preload's form", keys=BORE),
     "variables": req("tables", "design variables and their ranges", keys=VARIABLE),
     "search": opt("table", SEARCH_DEFAULT, "the optimiser", keys=SEARCH),
@@ -189,7 +193,7 @@ def run_design(loaded: LoadedStudy, results_root="results", *, workers: int = 1,
         search = optimise(p.problem, evaluate_rotor_design, p.search,
                           fixed={"system": p.system, "settings": p.settings}, store=store,
                           run_tasks=run_tasks, progress=fraction)
-    result = report(study, p, search, run_tasks, progress, time.perf_counter() - t0)
+    result = report(study, p, search, run_tasks, progress, t0)
     if write:
         from .report import write_result
 

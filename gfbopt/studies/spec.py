@@ -101,7 +101,20 @@ GROUPS = {
 }
 MODEL = {**GROUPS, **FORMULATION}
 VARIANT = {"label": req("string", "label of the variant"), **MODEL}
-DIMENSIONAL_VARIANT = {"label": req("string", "label of the variant"), **FORMULATION}
+#: the formulation of a study on a bearing file: what is not stated comes from the file's
+#: [model] table, then gfbopt's defaults (gfbopt.analyses.bearing_model, the CLI's resolution)
+DIMENSIONAL_FORMULATION = {
+    **FORMULATION,
+    "foil": opt("string", UNSET, "foil model (default: the bearing file's, else simple)",
+                choices=FOIL_MODELS),
+    "film": opt("string", UNSET, "film (default: the bearing file's, else seam)",
+                choices=FILM_MODELS),
+    "seam_angle_deg": opt("seam_angle", UNSET, "welded end from the load line [deg], or "
+                          "'max_film' (default: the bearing file's, else 180)"),
+    "deflection_law": opt("string", UNSET, "foil deflection law (default: the bearing "
+                          "file's, else mean)", choices=DEFLECTION_LAWS)}
+DIMENSIONAL_VARIANT = {"label": req("string", "label of the variant"),
+                       **DIMENSIONAL_FORMULATION}
 
 COMMON = {
     "name": opt("string", None, "study name (default: the file name)"),
@@ -208,14 +221,16 @@ SCHEMAS: dict[str, dict] = {
         "trends": opt("strings", [], "monotone trends checked",
                       choices=("min_film_thickness_decreases_with_load",
                                "eccentricity_increases_with_load")),
-        "model": opt("table", {}, "formulation shared by the variants", keys=FORMULATION),
+        "model": opt("table", {}, "formulation shared by the variants (over the bearing "
+                     "file's [model])", keys=DIMENSIONAL_FORMULATION),
         "variants": req("tables", "model variants", keys=DIMENSIONAL_VARIANT)},
     "linear_coefficients": {**GRID,
         "bearing": req("string", "bearing file (SI), relative to the study file"),
         "speeds_rpm": req("numbers", "shaft speeds [rpm]"),
         "loads_newton": req("numbers", "static loads [N]"),
         "whirl_ratios": req("numbers", "excitation frequency over shaft speed [-]"),
-        "model": opt("table", {}, "formulation shared by the variants", keys=FORMULATION),
+        "model": opt("table", {}, "formulation shared by the variants (over the bearing "
+                     "file's [model])", keys=DIMENSIONAL_FORMULATION),
         "variants": req("tables", "model variants", keys=DIMENSIONAL_VARIANT)},
     "linear_map": {**GRID, **STABILITY,
         "trends": opt("strings", [], "monotone trends checked",

@@ -5,10 +5,17 @@
 * ``linear_coefficients`` — stiffness [N/m] and damping [N s/m] against excitation frequency,
   with the linear threshold, per speed and load, and a table per operating point in the
   layout rotordynamics codes read.
+
+The formulation of each variant is resolved as every route resolves it
+(:func:`gfbopt.analyses.bearing_model`, :func:`~gfbopt.inputs.options.merge_options`): the
+variant's keys, then the study's ``[model]``, then the bearing file's ``[model]`` table, then
+gfbopt's defaults (a seam with the welded end 180° from the load).  A study that wants
+another convention than its bearing file states it (e.g. ``seam_angle_deg = "max_film"``).
 """
 from __future__ import annotations
 
 from .. import analyses
+from ..errors import ParameterError
 from ..parallel import run_points
 from ..static import SolverCache
 from . import checks
@@ -16,7 +23,6 @@ from .base import (
     RunContext,
     Study,
     StudyResult,
-    build_dimensional_model,
     frame,
     load_geometry,
     merged,
@@ -39,11 +45,14 @@ def _plan(study: Study) -> tuple:
                 raise study.where(key, k).error(v, "must be > 0")
     models = []
     for k, variant in enumerate(spec["variants"]):
+        opts = {key: v for key, v in merged(spec["model"], variant).items() if key != "label"}
         for speed in spec["speeds_rpm"]:
-            opts = merged(spec["model"], variant)
-            models.append((variant["label"], speed,
-                           build_dimensional_model(geometry, speed, opts,
-                                                   study.where("variants", k))))
+            try:        # variant, then study [model], then the bearing file's, then defaults
+                model = analyses.bearing_model(geometry, speed, **opts)
+            except ParameterError as exc:
+                raise (study.where("variants", k) / exc.name).error(exc.value,
+                                                                    exc.rule) from None
+            models.append((variant["label"], speed, model))
     return geometry, models
 
 

@@ -135,7 +135,7 @@ def _peaks(sol) -> dict:
             "max_deflection": float(sol.deflection[:, 0].max()),
             "max_deflection_angle_from_seam_deg":
                 float(angles[int(np.argmax(sol.deflection[:, 0]))]),
-            "min_film_angle_from_seam_deg": math.degrees(sol.min_film_angle_from_seam)}
+            "min_film_angle_from_seam_deg": sol.min_film_angle_from_seam_deg}
 
 
 def run_profile(study: Study, points: list, ctx: RunContext) -> StudyResult:

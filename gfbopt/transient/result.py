@@ -107,8 +107,8 @@ def finish_orbits(tm: TransientModel, tau: np.ndarray, x: np.ndarray, y: np.ndar
     ``started`` is the ``time.perf_counter()`` value at the start of the run.
     """
     sol = tm.static
-    x0 = sol.eccentricity * math.cos(sol.attitude_angle)
-    y0 = sol.eccentricity * math.sin(sol.attitude_angle)
+    x0 = sol.eccentricity * math.cos(sol.attitude_angle_rad)
+    y0 = sol.eccentricity * math.sin(sol.attitude_angle_rad)
     growth, whirl, amp, verdicts = classify(tau, x - x0, y - y0, contact, settle, kick)
     damping = {} if tm.foil_state is None else tm.foil_state.describe()
     return OrbitBatch(tau, x, y, hmin, (x0, y0), mass, growth, whirl, amp, contact,

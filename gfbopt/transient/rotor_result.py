@@ -115,7 +115,7 @@ class RotorTransientResult:
 def _equilibrium(sol, film, load_newton: float) -> dict:
     c = film.clearance
     return {"eccentricity": sol.eccentricity,
-            "attitude_angle_deg": math.degrees(sol.attitude_angle),
+            "attitude_angle_deg": sol.attitude_angle_deg,
             "min_film_thickness_um": sol.min_film * c * 1e6,
             "load_newton": load_newton,
             "load_direction_deg": math.degrees(film.frame_angle) + 0.0,

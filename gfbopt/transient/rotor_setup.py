@@ -186,8 +186,8 @@ def equilibrium_states(model: RotorTransientModel, batch: int, solutions=None) -
             raise ParameterError("solutions", sol.pressure.shape, "must be on the bearing's "
                                  f"grid {b.tm.shape}")
         lay.phi_of(z, k)[0] = sol.pressure * sol.film
-        x0 = sol.eccentricity * math.cos(sol.attitude_angle)
-        y0 = sol.eccentricity * math.sin(sol.attitude_angle)
+        x0 = sol.eccentricity * math.cos(sol.attitude_angle_rad)
+        y0 = sol.eccentricity * math.sin(sol.attitude_angle_rad)
         if lay.foil[k] is not None:
             hr = rigid_film(np.array([x0]), np.array([y0]), b.tm)[0]     # with the bore
             w = sol.film - hr[:, None]

@@ -98,7 +98,7 @@ def transient_model(solution: StaticSolution, reference_whirl_ratio: Optional[fl
         raise ParameterError("solution", f"status {solution.status}",
                              "the static equilibrium did not converge; no transient from it")
     model = solution.model
-    if solution.load <= 0 or not math.isfinite(solution.attitude_angle):
+    if solution.load <= 0 or not math.isfinite(solution.attitude_angle_rad):
         raise ParameterError("solution.load", solution.load,
                              "must be > 0 (the rotor mass parameter M̄ = M c ω²/W0 needs a load)")
     m, nzn = solution.pressure.shape
@@ -110,10 +110,10 @@ def transient_model(solution: StaticSolution, reference_whirl_ratio: Optional[fl
     law = foil_law(model, engine="transient")
     foil_data = law.transient_data(model, solution.grid, periodic, dtheta)
     cos, sin = np.cos(solution.theta), np.sin(solution.theta)
-    x0 = solution.eccentricity * math.cos(solution.attitude_angle)
-    y0 = solution.eccentricity * math.sin(solution.attitude_angle)
+    x0 = solution.eccentricity * math.cos(solution.attitude_angle_rad)
+    y0 = solution.eccentricity * math.sin(solution.attitude_angle_rad)
     st = solution_stencil(solution)
-    bore, s_rows = row_values(model, st, solution.seam_angle)   # the bearing as built
+    bore, s_rows = row_values(model, st, solution.seam_angle_rad)   # the bearing as built
     foil_state = kelvin_voigt_foil(solution, law, 1.0 + bore - x0 * cos - y0 * sin,
                                    reference_whirl_ratio, solver, threshold)
     return TransientModel(
@@ -286,8 +286,8 @@ def equilibrium_state(tm: TransientModel, batch: int) -> State:
     """The static equilibrium replicated ``batch`` times (Φ = P H, journal at rest)."""
     sol = tm.static
     phi = np.broadcast_to(sol.pressure * sol.film, (batch,) + sol.pressure.shape).copy()
-    x0 = sol.eccentricity * math.cos(sol.attitude_angle)
-    y0 = sol.eccentricity * math.sin(sol.attitude_angle)
+    x0 = sol.eccentricity * math.cos(sol.attitude_angle_rad)
+    y0 = sol.eccentricity * math.sin(sol.attitude_angle_rad)
     full = lambda v: np.full(batch, v)  # noqa: E731
     w = None
     if tm.foil_state is not None:

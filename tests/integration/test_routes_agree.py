@@ -146,3 +146,87 @@ def test_studies_naming_the_file_inherit_its_model_table(tmp_path):
          "half_length_range_mm": [0.5, 2.5], "thickness_range_um": [50.0, 200.0]},
         name="design", directory=path.parent)
     assert (stated.plan.options.film, stated.plan.options.seam_angle_deg) == ("seam", 150.0)
+
+
+# ------------------------------------------------------------- static and linear routes
+#: the operating point and whirl ratios of the static and K, C routes (γ = 0 is left out:
+#: with structural damping the damping there is NaN by definition)
+STATIC_SPEED, WHIRL = 30000.0, (0.5, 1.0)
+STATIC_KEYS = ("eccentricity", "attitude_angle_deg", "min_film")
+COEFFICIENT_KEYS = tuple(f"{q}{a}{b}" for q in "kc" for a in "xy" for b in "xy")
+
+
+def _cli_json(argv: list, capsys) -> dict:
+    code = main(argv + ["--json"])
+    out = capsys.readouterr().out
+    assert code == 0, out
+    return json.loads(out)
+
+
+def _kind_study(kind: str, path: Path, extra: dict) -> object:
+    """A one-variant study of ``kind`` naming the bearing file and stating no formulation:
+    it must take the file's [model] table, as the CLI and the Python API do."""
+    from gfbopt.studies.runner import compute
+
+    data = {"kind": kind, "title": "route check", "source": "test", "bearing": path.name,
+            "grid": GRID, "speeds_rpm": [STATIC_SPEED], "loads_newton": [LOAD],
+            "variants": [{"label": "file"}], **extra}
+    return compute(study_from_dict(data, name="routes", directory=path.parent))
+
+
+@pytest.mark.parametrize("setting", list(SETTINGS))
+def test_static_and_coefficient_routes_agree(setting, tmp_path, capsys):
+    """``gfbopt static`` / ``gfbopt linear`` with ``--bearing``, the Python API
+    (``analyses.bearing_model(load_bearing(FILE), speed)``, then ``solve_static`` and
+    ``coefficients_point``) and the ``load_sweep`` / ``linear_coefficients`` studies give the
+    same equilibrium and K, C for every [model] setting (same tolerance and reason as above)."""
+    from gfbopt import analyses, solve_static
+    from gfbopt.static import SolverCache
+
+    path = _bearing_file(tmp_path, SETTINGS[setting])
+    common = ["--bearing", str(path), "--speed-rpm", str(STATIC_SPEED), "--load-newton",
+              str(LOAD), "--grid", GRID]
+    cli_static = _cli_json(["static"] + common, capsys)
+    cli_linear = _cli_json(["linear"] + common + ["--whirl-ratio", *map(str, WHIRL)], capsys)
+    bearing = load_bearing(path)
+    model = analyses.bearing_model(bearing, STATIC_SPEED)          # the Python route
+    grid, cache = Grid.parse(GRID), SolverCache()
+    py = solve_static(model, load=bearing.nondimensional_load(LOAD), grid=grid)
+    py_k = analyses.coefficients_point(model, whirl_ratios=WHIRL,
+                                       load=bearing.nondimensional_load(LOAD), grid=grid,
+                                       cache=cache, geometry=bearing, speed_rpm=STATIC_SPEED)
+    sweep = _kind_study("load_sweep", path, {}).tables["table.csv"].iloc[0]
+    study_k = _kind_study("linear_coefficients", path, {"whirl_ratios": list(WHIRL)}
+                          ).tables["coefficients.csv"]
+    options = model.options()                     # the formulation every route states
+    for out in (cli_static, cli_linear):
+        assert {k: out[k] for k in ("foil", "film", "seam_angle_deg", "deflection_law",
+                                    "loss_factor", "film_convention")} == \
+            {k: options[k] for k in ("foil", "film", "seam_angle_deg", "deflection_law",
+                                     "loss_factor", "film_convention")}
+    for key in STATIC_KEYS:
+        value = py.to_dict()[key]
+        assert _same(cli_static[key], value), key
+        assert _same(sweep[key], value), key
+    assert _same(cli_linear["critical_mass"], py_k[0]["critical_mass"])
+    assert _same(study_k["critical_mass"].iloc[0], py_k[0]["critical_mass"])
+    for n, gamma in enumerate(WHIRL):
+        row = py_k[n]
+        cli_k, cli_c = cli_linear["stiffness"][f"{gamma:g}"], cli_linear["damping"][f"{gamma:g}"]
+        for key in COEFFICIENT_KEYS:
+            i, j = "xy".index(key[1]), "xy".index(key[2])
+            assert _same((cli_k if key[0] == "k" else cli_c)[i][j], row[key]), (gamma, key)
+            assert _same(study_k[key].iloc[n], row[key]), (gamma, key)
+
+
+def test_the_dimensional_studies_state_their_convention():
+    """The shipped load_sweep and linear_coefficients studies keep the thesis's seam on the
+    maximum-film line explicitly (inheriting the bearing file would move them to 180°)."""
+    from gfbopt.studies import load_study
+
+    for name in ("ruscitto_static", "ruscitto_coefficients"):
+        loaded = load_study(ROOT / "problems" / f"{name}.toml")
+        _, models = loaded.plan
+        assert {m.film for _, _, m in models} == {"seam"}
+        assert {m.seam_angle_deg for _, _, m in models} == {None}       # the max-film seam
+        assert {m.foil for _, _, m in models} == {"simple", "beam"}

@@ -69,7 +69,7 @@ def compute() -> dict:
         assert sol.success, (name, sol.message)
         solutions[name] = (sol, solver)
         out["static"][name] = {"load": sol.load, "eccentricity": sol.eccentricity,
-                               "attitude_angle": sol.attitude_angle, "min_film": sol.min_film,
+                               "attitude_angle": sol.attitude_angle_rad, "min_film": sol.min_film,
                                "max_mean_pressure": float(sol.mean_pressure.max()),
                                "max_deflection": float(sol.deflection.max())}
     for name in LINEAR_CASES:

@@ -64,6 +64,17 @@ def _var(data, k, **kw):
                                       {"name": "bump_pitch_mm", "low": 3.0, "high": 5.0}]),
      "variables", "not both"),
     (lambda d: d.update(goal="cheapest"), "goal", "must be one of"),
+    (lambda d: d.update(zone_edges_deg=[0.0, 120.0, 240.0]), "zone_edges_deg",
+     "first + 360"),
+    (lambda d: d.update(zone_edges_deg=[0.0, 240.0, 120.0, 360.0]), "zone_edges_deg",
+     "increasing"),
+    (lambda d: (d.update(zone_edges_deg=[0.0, 180.0, 360.0]),
+                d["variables"].append({"name": "zone3_bump_thickness_um", "low": 60.0,
+                                       "high": 150.0})),
+     "variables[2].name", "names bump zone 3"),
+    (lambda d: d["variables"].append({"name": "zone1_bump_thickness_um", "low": 60.0,
+                                      "high": 150.0}),
+     "variables[2].name", "gives 0 zone(s)"),
     (lambda d: d.update(rotor="rotors/missing.toml"), "rotor", ""),
 ])
 def test_bad_input_names_file_key_and_rule(change, key, rule):

@@ -257,9 +257,9 @@ def _compare(points=((0.6, 0.4), (3.0, 0.6)), grid: Grid = Grid(36, 10)) -> None
         print(f"Λ={lam} ε={ecc} grid {grid}: Newton W={ref['load']:.12f} "
               f"φ={ref['attitude_angle_deg']:.9f}° ({ref['iterations']} it, "
               f"|R|={ref['residual']:.1e}) | IPOPT W={sol.load:.12f} "
-              f"φ={math.degrees(sol.attitude_angle):.9f}° ({sol.iterations} it, "
+              f"φ={sol.attitude_angle_deg:.9f}° ({sol.iterations} it, "
               f"|R|={sol.residual:.1e}) | rel dW={abs(sol.load / ref['load'] - 1):.1e} "
-              f"dφ={abs(math.degrees(sol.attitude_angle) - ref['attitude_angle_deg']):.1e}°")
+              f"dφ={abs(sol.attitude_angle_deg - ref['attitude_angle_deg']):.1e}°")
 
 
 if __name__ == "__main__":

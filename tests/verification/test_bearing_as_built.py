@@ -60,7 +60,7 @@ def test_trivial_as_built_is_todays_bearing(kw):
         model = today.replace(as_built=built)
         assert solver_key(model, GRID) == solver_key(today, GRID)
         sol = solve_static(model, eccentricity=0.5, solver=cache(model))
-        for key in ("load", "attitude_angle", "torque_ratio", "min_film"):
+        for key in ("load", "attitude_angle_deg", "torque_ratio", "min_film"):
             assert getattr(sol, key) == pytest.approx(getattr(ref_sol, key), rel=1e-12), key
     # the dynamics too (one variant: the linear model is the static Jacobian's)
     ref_thr = linear_threshold(linearise(ref_sol, cache(today)), samples=8)
@@ -116,12 +116,13 @@ def test_three_lobe_force_matches_independent_newton_and_is_second_order():
             break
         p = p + spla.splu(ref.jacobian(p, h, st, 3.0, dz)).solve(-r)
     fx, fy = ref.forces(p, st, dz)
-    sol = solve_static(model, eccentricity=ecc, attitude_angle=phi, grid=GRID)
+    sol = solve_static(model, eccentricity=ecc, attitude_angle_deg=math.degrees(phi), grid=GRID)
     assert sol.success
     assert sol.force[0] == pytest.approx(fx, rel=1e-9)
     assert sol.force[1] == pytest.approx(fy, rel=1e-9)
     # grid convergence of the load
-    loads = [solve_static(model, eccentricity=ecc, attitude_angle=phi, grid=g).force[0]
+    loads = [solve_static(model, eccentricity=ecc, attitude_angle_deg=math.degrees(phi),
+                          grid=g).force[0]
              for g in (Grid(24, 8), Grid(48, 16), Grid(96, 32))]
     order = math.log2((loads[1] - loads[0]) / (loads[2] - loads[1]))
     assert order == pytest.approx(2.0, abs=0.3)

@@ -22,7 +22,7 @@ import scipy.sparse as sp
 from gfbopt.inputs import Grid, load_bearing
 from gfbopt.inputs.rotor import OperatingPoint, Rotor
 from gfbopt.linear import least_stable_mode
-from gfbopt.linear.threshold import MODE_BAND, damping_ratio
+from gfbopt.linear.least_stable import MODE_BAND, damping_ratio
 from gfbopt.rotor import stability
 from gfbopt.rotor.analysis import resolve_case, threshold_at
 
@@ -78,3 +78,32 @@ def test_low_speed_reports_the_high_frequency_root():
     half = [r for r in dense_roots(lin, case.mass_parameter(5000)) if abs(r.imag) < 1.0]
     half_delta = min(-2 * math.pi * r.real / r.imag for r in half)
     assert result.log_decrement < half_delta       # the half-frequency root is more damped
+
+
+SLOW = pytest.mark.slow          # a new static build each (~5-15 s under load): two by default
+
+
+@pytest.mark.parametrize("model, load, speed_rpm", [
+    ('film = "periodic"', 20.0, 30000),
+    pytest.param('foil = "beam"', 20.0, 15000, marks=SLOW),
+    pytest.param('deflection_law = "local"', 50.0, 10000, marks=SLOW),
+    ('film = "seam"\nseam_angle_deg = 90.0', 20.0, 45000),
+    pytest.param('foil = "rigid"', 10.0, 20000, marks=SLOW),
+    pytest.param("loss_factor = 0.2", 80.0, 8000, marks=SLOW)])
+def test_krylov_search_equals_the_dense_spectrum_and_the_reference(model, load, speed_rpm,
+                                                                   tmp_path):
+    """The default search (one LU and one Krylov space, roots of its reduced model) gives the
+    least-damped root of the dense spectrum and of the reference search (three shift-invert
+    Arnoldi searches of the full system) over other films, foils, laws and loads: the same
+    eigenvalue, so 1e-8 relative as above."""
+    text = (ROOT / "problems" / "bearings" / "ruscitto.toml").read_text().split("[model]")[0]
+    path = tmp_path / "bearing.toml"
+    path.write_text(text + f"[model]\n{model}\n")
+    case = resolve_case(load_bearing(path), Rotor(2.0), load, grid=GRID)
+    _, lin, thr = threshold_at(case, speed_rpm)
+    mass = case.mass_parameter(speed_rpm)
+    expected = min(dense_roots(lin, mass), key=damping_ratio)
+    for method in ("krylov", "eigs"):
+        mode = least_stable_mode(lin, mass, thr, method=method)
+        assert mode.real == pytest.approx(expected.real, rel=1e-8, abs=1e-10), method
+        assert mode.imag == pytest.approx(abs(expected.imag), rel=1e-8), method

@@ -35,15 +35,16 @@ def test_stiffness_equals_finite_differences_of_static_forces(name):
     differences, step 1e-5: truncation ~1e-10, solver tolerance ~1e-12) to 1e-6 relative."""
     model, solver, sol, lin = _linearised(name)
     k = coefficients(lin, [0.0]).stiffness[0]
-    x0, y0 = sol.eccentricity * math.cos(sol.attitude_angle), sol.eccentricity * math.sin(
-        sol.attitude_angle)
+    x0, y0 = sol.eccentricity * math.cos(sol.attitude_angle_rad), sol.eccentricity * math.sin(
+        sol.attitude_angle_rad)
     fd = np.zeros((2, 2))
     h = 1e-5
     for j, (dx, dy) in enumerate(((h, 0.0), (0.0, h))):
         forces = []
         for sign in (1, -1):
             x, y = x0 + sign * dx, y0 + sign * dy
-            f = solve_static(model, eccentricity=math.hypot(x, y), attitude_angle=math.atan2(y, x),
+            f = solve_static(model, eccentricity=math.hypot(x, y),
+                             attitude_angle_deg=math.degrees(math.atan2(y, x)),
                              solver=solver, initial=sol)
             assert f.success
             forces.append(np.array(f.force))
@@ -67,7 +68,7 @@ def test_forward_circular_whirl_equals_static_bearing_at_reduced_bearing_number(
         lin = linearise(solve_static(model, eccentricity=eps, solver=solver), solver)
         linear_force = -np.real(impedance(lin, 1j * gamma) @ np.array([1.0, -1.0j])) * eps
         static = solve_static(model.replace(bearing_number=lam * (1 - 2 * gamma)),
-                              eccentricity=eps, attitude_angle=0.0, solver=solver)
+                              eccentricity=eps, attitude_angle_deg=0.0, solver=solver)
         gaps.append(np.abs(linear_force - static.force).max() / np.abs(static.force).max())
     assert 3.5 < gaps[0] / gaps[1] < 4.5
     assert gaps[1] < 0.015
@@ -110,7 +111,7 @@ def _transient_rigid_force(model, grid, x0, amplitude, gamma, periods=6):
         hdot = np.repeat(dfilm(t), nzn)[st.unknown]
         return (r / (2 * lam) - pu * hdot) / hu       # 2Λ(H Ṗ + P Ḣ) = R
 
-    static = solve_static(model, eccentricity=x0, attitude_angle=0.0, grid=grid)
+    static = solve_static(model, eccentricity=x0, attitude_angle_deg=0.0, grid=grid)
     p0 = static.pressure.ravel()[st.unknown]
     period = 2 * math.pi / gamma
     t_end = periods * period
@@ -141,7 +142,7 @@ def test_coefficients_equal_transient_response_to_small_harmonic_motion(gamma, l
     grid = Grid(24, 8)
     solver = solver_for(model, grid)
     x0 = 0.4
-    sol = solve_static(model, eccentricity=x0, attitude_angle=0.0, solver=solver)
+    sol = solve_static(model, eccentricity=x0, attitude_angle_deg=0.0, solver=solver)
     # linearise at this (non-equilibrium) position: same algebra, W0 irrelevant here
     lin = linearise(sol.__class__(**{**sol.__dict__, "success": True}), solver)
     coeff = coefficients(lin, [gamma])

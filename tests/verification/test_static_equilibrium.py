@@ -17,7 +17,7 @@ def test_load_mode_inverts_eccentricity_mode(periodic_solver):
     back = solve_static(model, load=forward.load, solver=periodic_solver)
     assert back.success
     assert back.eccentricity == pytest.approx(0.8, abs=1e-8)
-    assert back.attitude_angle == pytest.approx(forward.attitude_angle, abs=1e-8)
+    assert back.attitude_angle_rad == pytest.approx(forward.attitude_angle_rad, abs=1e-8)
 
 
 def test_compliant_bearing_runs_past_unit_eccentricity_from_cold(periodic_solver):
@@ -51,10 +51,10 @@ def test_seam_following_max_film_equals_a_fixed_seam_at_the_same_place():
     grid = Grid(36, 10)
     follow = BearingModel(bearing_number=2.0, compliance=1.0, film="seam")
     a = solve_static(follow, eccentricity=0.5, grid=grid)
-    fixed = follow.replace(seam_angle_deg=math.degrees(math.pi + a.attitude_angle))
+    fixed = follow.replace(seam_angle_deg=math.degrees(math.pi + a.attitude_angle_rad))
     b = solve_static(fixed, eccentricity=0.5, grid=grid)
     assert b.load == pytest.approx(a.load, rel=1e-8)
-    assert b.attitude_angle == pytest.approx(a.attitude_angle, abs=1e-8)
+    assert b.attitude_angle_rad == pytest.approx(a.attitude_angle_rad, abs=1e-8)
 
 
 def test_seam_forces_ambient_pressure_at_the_foil_ends():

@@ -55,10 +55,13 @@ def test_fixed_position_mode_too():
     """Eccentricity and attitude given (the forces at a position): the same state."""
     model = _model("seam", "simple", 2.0)
     solver = solver_for(model, GRID)
-    start = solve_static(model, eccentricity=0.4, attitude_angle=0.9, solver=solver)
-    ipopt = solve_static(model, eccentricity=0.45, attitude_angle=1.0, solver=solver,
+    start = solve_static(model, eccentricity=0.4, attitude_angle_deg=math.degrees(0.9),
+                         solver=solver)
+    ipopt = solve_static(model, eccentricity=0.45, attitude_angle_deg=math.degrees(1.0),
+                         solver=solver,
                          initial=start)
-    fast = solve_static(model, eccentricity=0.45, attitude_angle=1.0, solver=solver,
+    fast = solve_static(model, eccentricity=0.45, attitude_angle_deg=math.degrees(1.0),
+                        solver=solver,
                         initial=start, fast_path=True)
     assert fast.solver == "newton"
     assert np.abs(fast.state - ipopt.state).max() <= 1e-10
