@@ -84,7 +84,8 @@ class RotorTransientResult:
         r = self.run
         out = {**self.profile.to_dict(), **self.settings,
                "success": r.success, "message": r.message, "method": r.method,
-               "time_step_rad": r.time_step, "rkc_stages": list(r.stages),
+               "time_step_rad": r.time_step, "step_rule": r.options.get("step_rule", ""),
+               "rkc_stages": list(r.stages),
                "evaluations": r.evaluations, "wall_time_s": r.wall_time_s,
                "revolutions_integrated": r.revolutions,
                "inertia_scale": float(r.runs.inertia_scale[run]),

@@ -9,6 +9,15 @@ one-bearing engine (:func:`.rkc.rkc_step`, :func:`.rk4.rk4_step`), with the same
   (:func:`.rkc.film_time`); stages the fewest with Δτ·ρ ≤ 0.9 β(s), ρ the Gershgorin bound
   of every bearing's film and foil state at its current speed, re-checked every
   ``check_every`` steps (stages raised when it grew);
+* rkc on a ramp (a run-up or coast-down, no step given) — the step follows the speed:
+  Δτ(τ) = min(max_step rad of shaft rotation at the highest speed over the step, T_rotor/30,
+  T_film/4), re-set with the stages every ``check_every`` steps from the largest ρ met so
+  far.  The accuracy rule is the constant-speed one, per rad of shaft rotation (the
+  one-bearing accuracy study, :mod:`.rkc`), so at 5,000 rpm of a ramp to 60,000 rpm the step
+  may be up to 12× the top speed's with ≈ √12× the stages, where T_rotor/30 does not bind
+  (a heavy rotor: the study rotor's run-up to contact took 2.2× fewer evaluations).
+  The record stays uniform in time: samples every ``sample_every`` are interpolated inside
+  the step (cubic Hermite in q̃ and q̃', fourth order, below the step's own error);
 * rk4 — Δτ = 0.9 × 2.78/ρ, re-checked likewise; a given step above the limit is refused.
 
 Memory.  A run keeps, per stored sample (every ``sample_every`` rad of τ), τ, the four rotor
@@ -114,12 +123,11 @@ class _Rows:
         return _Rows(self.z + (a[:, None, None] if a.ndim else a) * d.z)
 
 
-def rotor_period(rhs: RotorRightHandSide, z: np.ndarray, h: float = 1e-6) -> float:
-    """Shortest period [rad of τ] of the rotor on the films' instantaneous stiffness.
+def rotor_frequency(rhs: RotorRightHandSide, z: np.ndarray, h: float = 1e-6) -> float:
+    """Fastest rotor frequency [rad per rad of τ] on the films' instantaneous stiffness.
 
     ∂q̃''/∂q̃ at fixed films (central differences, every run at once), with the gyroscopic
-    term: the largest |Im λ| of [[0, I], [∂q̃''/∂q̃, −r M⁻¹G]] over the runs; at least one
-    shaft revolution at the run's speed (as the one-bearing engine's rule).
+    term: the largest |Im λ| of [[0, I], [∂q̃''/∂q̃, −r M⁻¹G]] over the runs.
     """
     lay = rhs.layout
     cols = []
@@ -138,7 +146,15 @@ def rotor_period(rhs: RotorRightHandSide, z: np.ndarray, h: float = 1e-6) -> flo
         comp[4:, :4] = stiff[b]
         comp[4:, 4:] = -rate[b] * rhs.gyro
         fastest = max(fastest, float(np.abs(np.linalg.eigvals(comp).imag).max()))
-    return 2 * math.pi / max(fastest, float(np.max(rate)))
+    return fastest
+
+
+def rotor_period(rhs: RotorRightHandSide, z: np.ndarray, h: float = 1e-6) -> float:
+    """Shortest period [rad of τ] of the rotor on the films' instantaneous stiffness
+    (:func:`rotor_frequency`); at least one shaft revolution at the run's speed (as the
+    one-bearing engine's rule)."""
+    rate = rhs.runs.speed_at(rhs.layout.rotor_of(z)[:, 8])
+    return 2 * math.pi / max(rotor_frequency(rhs, z, h), float(np.max(rate)))
 
 
 def accuracy_step(rhs: RotorRightHandSide, z: np.ndarray, top_speed: float,
@@ -195,8 +211,16 @@ def integrate_rotor(model: RotorTransientModel, batch: Runs, duration: float,
     rhs = RotorRightHandSide(model, batch, track_deflection=foil_travel is not None)
     top = float(np.max(np.maximum(batch.speed, batch.speed_at(duration))))
     rho = rhs.stiffness(z)
-    dt, stages = _first_step(rhs, z, rho, top, method, time_step, stages, max_step)
-    fixed = time_step is not None
+    fixed, fixed_stages = time_step is not None, stages is not None
+    # a ramp's rkc step follows the speed (module docstring); everything else is constant
+    follow = method == "rkc" and not fixed and bool(np.any(batch.ramp != 0.0))
+    if follow:
+        stages, rho_top = _check_stages(stages), rho
+        step_of = _speed_step(rhs, z, max_step)
+        dt = step_of(0.0, batch)
+        dt, stages = _stages_at(dt, rho_top, stages, fixed_stages)
+    else:
+        dt, stages = _first_step(rhs, z, rho, top, method, time_step, stages, max_step)
     n_steps = int(math.ceil(duration / dt - 1e-9))
     per_sample = max(1, int(round(sample_every / dt)))
     nb, k = batch.size, len(model.bearings)
@@ -218,22 +242,29 @@ def integrate_rotor(model: RotorTransientModel, batch: Runs, duration: float,
         run_min_tau[:, j] = 0.0
     h_low[:] = run_min
 
-    def record() -> None:
+    def record(at: float, q: np.ndarray) -> None:
         q_now[:] = np.nan
-        q_now[live] = lay.rotor_of(z)[:, :4] * c_ref
-        taus.append(tau)
+        q_now[live] = q * c_ref
+        taus.append(at)
         qs.append(q_now.copy())
         hs.append(h_low.copy())
         h_low[live] = np.inf
 
-    record()
+    record(tau, lay.rotor_of(z)[:, :4])
     h_low[:] = run_min
+    next_sample = sample_every                        # follow: the uniform sample grid
     done_revs = 0
     with np.errstate(invalid="ignore", over="ignore", divide="ignore"):
-        while step < n_steps:
+        while (tau < duration - 1e-9 * dt) if follow else (step < n_steps):
             step += 1
             rhs.reset()
-            h = min(dt, duration - tau) if exact_end and step == n_steps else dt
+            if follow:
+                h = min(dt, duration - tau) if exact_end else dt
+                if exact_end and duration - tau - h < 1e-9 * dt:
+                    h = duration - tau
+            else:
+                h = min(dt, duration - tau) if exact_end and step == n_steps else dt
+            before = z
             try:
                 if method == "rkc":
                     z = rkc_step(rhs, z, h, stages)
@@ -268,8 +299,15 @@ def integrate_rotor(model: RotorTransientModel, batch: Runs, duration: float,
                     else:
                         contact_bearing[run] = int(np.argmax(rhs.max_deflection[i]))
                         kinds[run] = "foil travel"
-            if step % per_sample == 0 or step == n_steps or touching.any():
-                record()
+            if follow:
+                while next_sample <= tau + 1e-9 * h:
+                    record(next_sample, _hermite(lay, before, z, tau - h, h, next_sample))
+                    next_sample += sample_every
+                ended = tau >= duration - 1e-9 * dt
+                if (touching.any() or ended) and abs(taus[-1] - tau) > 1e-9 * h:
+                    record(tau, lay.rotor_of(z)[:, :4])
+            elif step % per_sample == 0 or step == n_steps or touching.any():
+                record(tau, lay.rotor_of(z)[:, :4])
             if touching.any():
                 if touching.all():
                     break
@@ -279,7 +317,16 @@ def integrate_rotor(model: RotorTransientModel, batch: Runs, duration: float,
                 rhs = rhs.take(keep)
             if step % check_every == 0:
                 rho = rhs.stiffness(z)
-                if method == "rk4":
+                if follow:
+                    rho_top = max(rho_top, rho)
+                    dt, stages = _stages_at(step_of(tau, rhs.runs), rho_top, stages,
+                                            fixed_stages)
+                    if stages > MAX_STAGES:
+                        failure = (f"Δτ·ρ = {dt * rho_top:.4g} needs more than {MAX_STAGES} "
+                                   f"RKC stages at τ = {tau:.3g}")
+                        break
+                    used.add(stages)
+                elif method == "rk4":
                     limit = RK4_STABILITY_RADIUS / rho
                     if dt > limit:
                         if fixed:
@@ -311,11 +358,65 @@ def integrate_rotor(model: RotorTransientModel, batch: Runs, duration: float,
     contact = np.isfinite(contact_tau)
     options = {"method": method, "contact_film": contact_film,
                "foil_travel": None if foil_travel is None else travel,
-               "sample_every": sample_every, "check_every": check_every}
+               "sample_every": sample_every, "check_every": check_every,
+               "step_rule": ("follows the speed: Δτ = min(max_step/r(τ), T_rotor/30, "
+                             "T_film/4), samples interpolated (cubic Hermite) onto a uniform "
+                             "grid") if follow else "constant"}
     return RotorRun(model, batch, np.array(taus), q, hmin, run_min, run_min_tau, max_defl,
                     contact, contact_tau, contact_bearing, tuple(kinds), dt,
                     tuple(sorted(used)) if method == "rkc" else (), evaluations,
                     time.perf_counter() - t0, method, not failure, failure, options)
+
+
+def _speed_step(rhs: RotorRightHandSide, z: np.ndarray, max_step: float):
+    """Δτ(τ, runs) of a ramp: ``max_step`` rad of shaft rotation at the highest speed any
+    live run reaches over the step, at most T_rotor/30 (its fastest frequency at the start,
+    :func:`rotor_frequency`) and T_film/4 (module docstring)."""
+    films = min(film_time(b.tm) * rhs.model.reference_speed / b.model_speed
+                for b in rhs.model.bearings)
+    fastest = rotor_frequency(rhs, z)
+    cap = films / STEPS_PER_FILM_TIME
+    if fastest > 0:
+        cap = min(cap, 2 * math.pi / fastest / STEPS_PER_ROTOR_PERIOD)
+
+    def step_of(tau: float, batch: Runs) -> float:
+        r = batch.speed_at(tau)
+        r_hi = np.maximum(r, batch.speed_at(tau + max_step / np.max(r)))
+        return min(max_step / float(np.max(r_hi)), cap)
+    return step_of
+
+
+def _stages_at(dt: float, rho: float, stages, fixed_stages: bool) -> tuple:
+    """(Δτ, s) of a speed-following step: the fewest stages with Δτ·ρ ≤ 0.9 β(s) (ρ the
+    largest bound met so far), or, with the stages given, Δτ shortened to their interval."""
+    if fixed_stages:
+        return min(dt, STAGE_SAFETY * rkc_stability_interval(stages) / rho), stages
+    s = stages_for(dt * rho)
+    if s > MAX_STAGES:
+        s = MAX_STAGES
+        dt = STAGE_SAFETY * rkc_stability_interval(s) / rho
+    return dt, s
+
+
+def _hermite(lay, before: np.ndarray, after: np.ndarray, tau0: float, h: float,
+             at: float) -> np.ndarray:
+    """q̃ (B, 4) at τ = ``at`` inside the step [τ0, τ0 + h]: the cubic Hermite interpolant
+    of q̃ and q̃' at both ends (fourth order, above the second-order step's own error)."""
+    a, b = lay.rotor_of(before), lay.rotor_of(after)
+    s = (at - tau0) / h
+    s2, s3 = s * s, s * s * s
+    return ((2 * s3 - 3 * s2 + 1) * a[:, :4] + (s3 - 2 * s2 + s) * h * a[:, 4:8]
+            + (-2 * s3 + 3 * s2) * b[:, :4] + (s3 - s2) * h * b[:, 4:8])
+
+
+def _check_stages(stages):
+    """A given RKC stage count as an int in [2, MAX_STAGES] (None stays None)."""
+    if stages is None:
+        return None
+    if isinstance(stages, bool) or not float(stages).is_integer() \
+            or not 2 <= int(stages) <= MAX_STAGES:
+        raise ParameterError("stages", stages, f"must be an integer in [2, {MAX_STAGES}]")
+    return int(stages)
 
 
 def _first_step(rhs: RotorRightHandSide, z: np.ndarray, rho: float, top: float, method: str,
@@ -331,11 +432,7 @@ def _first_step(rhs: RotorRightHandSide, z: np.ndarray, rho: float, top: float, 
             raise ParameterError("time_step", time_step, f"exceeds the RK4 stability limit "
                                  f"{limit:.4g} of the discretised system (Gershgorin bound)")
         return dt, None
-    if stages is not None:
-        if isinstance(stages, bool) or not float(stages).is_integer() \
-                or not 2 <= int(stages) <= MAX_STAGES:
-            raise ParameterError("stages", stages, f"must be an integer in [2, {MAX_STAGES}]")
-        stages = int(stages)
+    stages = _check_stages(stages)
     dt = (check_positive("time_step", time_step) if time_step is not None
           else accuracy_step(rhs, z, top, max_step))
     if stages is None:

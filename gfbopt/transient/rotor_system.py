@@ -294,6 +294,8 @@ class RotorRightHandSide:
         self.amounts = np.array([p.amount * w * w for p in model.imbalance])  # u ω_ref² [N]
         self.moments = self.amounts * np.array([p.position for p in model.imbalance])
         self.phases = np.array([p.phase for p in model.imbalance])
+        self._planes = [(float(f), float(u), float(m)) for f, u, m in
+                        zip(self.phases, self.amounts, self.moments)]
         self.film_divisor = [2.0 * b.tm.bearing_number * (w / b.model_speed)
                              for b in model.bearings]
         self.foil_factor = [b.model_speed / w for b in model.bearings]
@@ -419,6 +421,20 @@ class RotorRightHandSide:
 
     def _imbalance(self, tau: np.ndarray) -> np.ndarray:
         """Q_u (B, 4) [N] of every run at τ (module docstring)."""
+        if self.same_speed:          # one shaft angle for the batch: J planes in scalars
+            t = float(tau[0])
+            r0, a = float(self.runs.speed[0]), float(self.runs.ramp[0])
+            r = r0 + a * t
+            base = r0 * t + 0.5 * a * t * t
+            one = [0.0, 0.0, 0.0, 0.0]
+            for phase, amount, moment in self._planes:
+                c, s = math.cos(base + phase), math.sin(base + phase)
+                fx, fy = r * r * c + a * s, r * r * s - a * c
+                one[0] += fx * amount
+                one[1] += fy * amount
+                one[2] += fx * moment
+                one[3] += fy * moment
+            return self.runs.imbalance_scale[:, None] * np.array(one)[None, :]
         r = self.runs.speed_at(tau)
         angle = self.runs.angle_at(tau)[:, None] + self.phases[None, :]       # (B, J)
         c, s = np.cos(angle), np.sin(angle)

@@ -131,45 +131,50 @@ def flux_residual(p: np.ndarray, h: np.ndarray, tm: TransientModel) -> np.ndarra
 
     p : array (..., m, n_z + 1); h : the same shape, or (..., m, 1) when H is uniform along
     each θ row (then H³ is formed per row, and the axial face value is just H³).  The same
-    stencil as :func:`gfbopt.discretisation.reynolds_residual`, written with slices.
+    stencil as :func:`gfbopt.discretisation.reynolds_residual`, written with slices: the
+    face fluxes fe = 0.25 (H³ + H³_e)(P²_e − P²)/Δθ − 0.5 Λ (PH + PH_e) and
+    fn = 0.25 (H³ + H³_n)(P²_n − P²)/ΔZ, R = (fe − fe_w)/Δθ + (fn − fn_s)/ΔZ, with the 1/Δθ
+    and 1/ΔZ of the differences folded into the (small, per-row when H is) coefficients and
+    every full-size step in place: it is the cost of every right-hand-side evaluation.
     """
     lam = tm.bearing_number
     dth, dz = tm.dtheta, tm.dz
     h3 = h * h * h
     p2 = p * p
     ph = p * h
-    # (in-place steps, the same floating-point operations as the plain formula: it is the
-    # cost of every right-hand-side evaluation)
+    res = np.empty_like(p)
+    res[..., 0] = 0.0
+    res[..., -1] = 0.0
+    inner = res[..., 1:-1]
+    # axial: (fn − fn_s)/ΔZ on the interior columns
+    fn = p2[..., 1:] - p2[..., :-1]
+    if h.shape[-1] == 1:
+        np.subtract(fn[..., 1:], fn[..., :-1], out=inner)
+        inner *= h3 * (0.5 / (dz * dz))
+    else:
+        fn *= (0.25 / (dz * dz)) * (h3[..., :-1] + h3[..., 1:])
+        np.subtract(fn[..., 1:], fn[..., :-1], out=inner)
+    # circumferential: fe/Δθ through the face i+½ of every row (wrapping round when periodic)
+    advect = 0.5 * lam / dth
     if tm.periodic:
-        # flux through the face i+½ for every row i (wraps round):
-        # fe = 0.25 (H³ + H³_e)(P²_e − P²)/Δθ − 0.5 Λ (PH + PH_e)
         fe = _east(p2)
         fe -= p2
-        fe *= 0.25 * (h3 + _east(h3))
-        fe /= dth
-        advect = _east(ph)
-        advect += ph
-        advect *= 0.5 * lam
-        fe -= advect
-        dflux = _west(fe)
-        np.subtract(fe, dflux, out=dflux)
-        dflux /= dth
+        fe *= (0.25 / (dth * dth)) * (h3 + _east(h3))
+        flow = _east(ph)
+        flow += ph
+        flow *= advect
+        fe -= flow
+        inner += fe[..., 1:-1]
+        inner -= _west(fe)[..., 1:-1]
     else:
-        fe = (0.25 * (h3[..., :-1, :] + h3[..., 1:, :]) * (p2[..., 1:, :] - p2[..., :-1, :]) / dth
-              - 0.5 * lam * (ph[..., :-1, :] + ph[..., 1:, :]))
-        dflux = np.zeros_like(p)
-        dflux[..., 1:-1, :] = (fe[..., 1:, :] - fe[..., :-1, :]) / dth
-    fn = p2[..., :, 1:] - p2[..., :, :-1]
-    if h.shape[-1] == 1:
-        fn *= (0.5 / dz) * h3
-    else:
-        fn *= 0.25 * (h3[..., :, :-1] + h3[..., :, 1:])
-        fn /= dz
-    res = np.zeros_like(p)
-    axial = fn[..., :, 1:] - fn[..., :, :-1]
-    axial /= dz
-    axial += dflux[..., :, 1:-1]
-    res[..., :, 1:-1] = axial
+        fe = p2[..., 1:, :] - p2[..., :-1, :]
+        fe *= (0.25 / (dth * dth)) * (h3[..., :-1, :] + h3[..., 1:, :])
+        flow = ph[..., 1:, :] + ph[..., :-1, :]
+        flow *= advect
+        fe -= flow
+        mid = inner[..., 1:-1, :]
+        mid += fe[..., 1:, 1:-1]
+        mid -= fe[..., :-1, 1:-1]
     res[..., tm.ambient, :] = 0.0
     return res
 
