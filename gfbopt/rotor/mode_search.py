@@ -43,6 +43,10 @@ COARSE_MARGIN = 0.15
 NOMINAL_SLOPE = -2.0
 
 ONSET, UNSTABLE_LOW, STABLE = "onset", "unstable at the lowest speed", "stable over the range"
+#: a shape class (label) that first appears along the speed line with μ_c ≤ 1 where the other
+#: classes are already unstable at the speed below: it continues an unstable mode whose shape
+#: changed class (e.g. conical → mixed with structural damping), so it has no onset of its own
+APPEARS_UNSTABLE = "unstable where its shape first appears"
 
 
 @dataclass(frozen=True)
@@ -51,8 +55,9 @@ class ModeOnset:
 
     label ('forward conical', …); onset_speed_rpm [rpm] (nan: none in the range, see
     status); whirl_ratio, whirl_frequency_hz [Hz] at the onset; shape at the onset
-    (:func:`gfbopt.rotor.modes.shape`); status: 'onset', 'unstable at the lowest speed' or
-    'stable over the range'; smallest_inertia_margin: the least μ_c − 1 over the scan [-];
+    (:func:`gfbopt.rotor.modes.shape`); status: 'onset', 'unstable at the lowest speed',
+    'stable over the range' or 'unstable where its shape first appears'
+    (:data:`APPEARS_UNSTABLE`); smallest_inertia_margin: the least μ_c − 1 over the scan [-];
     note: the probe's message when the mode is unstable for every inertia scale there
     (μ_c = 0: the massless journal whirls, :mod:`gfbopt.rotor.probe`)."""
 
@@ -114,6 +119,15 @@ def mode_onset(line, speeds: list, label: str, tol: float, method: str = "secant
 
 def _refined(line, label, stable, unstable, tol, method, margin, seed=None) -> ModeOnset:
     whirl = unstable[1].whirl_ratio
+    if stable[1] is None and line.margin(stable[0], label, whirl) <= 0:
+        # No crossing of this class at the stable end, and the mode it continues (another
+        # class, :meth:`SpeedLine.follow`) is unstable there: no bracket of this mode's onset.
+        c = unstable[1]
+        return ModeOnset(label, math.nan, c.whirl_ratio, c.whirl_frequency_hz, c.shape,
+                         APPEARS_UNSTABLE, margin,
+                         f"its shape first appears between {stable[0]:,.0f} and "
+                         f"{unstable[0]:,.0f} rpm, already unstable (μ_c = "
+                         f"{c.inertia_scale:.3g}): it continues a mode of another shape")
     root = None
     if method == "secant":
         a, b = math.log(stable[0]), math.log(unstable[0])
