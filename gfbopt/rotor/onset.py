@@ -271,7 +271,8 @@ def onset_speed(bearing: BearingGeometry, rotor: Rotor, load_newton: Optional[fl
         bar.update(max(0, count - bar.n))
     return _result(line, guide, kind, onset, method, t0, note, speed_range_rpm=(low, high),
                    rotor_mass_kg=rotor.mass_kg, load_newton=case.load_newton,
-                   conventions=case.conventions())
+                   conventions=case.conventions(),
+                   margin_upto=min((s for s in speeds if s > onset), default=math.inf))
 
 
 # ------------------------------------------------------------------- the reference
@@ -444,9 +445,16 @@ def _rows(line: Optional[SpeedLine]) -> list:
 
 
 def _result(line: SpeedLine, guide: Optional[SpeedLine], kind: str, onset: float,
-            method: str, t0: float, note: str = "", **common) -> OnsetResult:
+            method: str, t0: float, note: str = "", margin_upto: float = math.inf,
+            **common) -> OnsetResult:
+    """The result; the smallest margin is taken over the rows up to ``margin_upto`` (the
+    first scan speed above the onset, where the scan of every method stops): the secant
+    searches also evaluate speeds beyond it (the coarse onset, checks), whose margins would
+    make the smallest margin depend on the method."""
     rows = _rows(line)
-    worst = min(rows, key=lambda r: r["mass_margin"])
+    worst = min((r for r in rows if r["speed_rpm"] <= margin_upto * (1 + 1e-12)),
+                key=lambda r: r["mass_margin"], default=None) or min(
+        rows, key=lambda r: r["mass_margin"])
     gamma = frequency = math.nan
     if kind == "onset":
         row = min(rows, key=lambda r: abs(r["speed_rpm"] - onset))
