@@ -1,4 +1,4 @@
-"""The bearing as built (issue 17): a preload or zone change costs no rebuild, and a static
+"""The bearing as built: a preload or zone change costs no rebuild, and a static
 solve with a preload is within 1.2× of the round bore at the same grid — in one run.
 
 Run:  PYTHONPATH=. python benchmarks/bench_bore.py [--out FILE.json] [--grids 72x20 144x36]

@@ -93,7 +93,7 @@ def main() -> None:
                               wall_ratio_2_over_1={g: {"per_round": r,
                                                        "median": statistics.median(r)}
                                                    for g, r in ratios.items()},
-                              target="wall(2 workers) <= wall(1 worker) (issue 19)"),
+                              target="wall(2 workers) <= wall(1 worker)"),
                  args.out)
 
 

@@ -1,4 +1,4 @@
-"""Speed of the onset search and of warm static solves (issue 19), ratios in one run.
+"""Speed of the onset search and of warm static solves, ratios in one run.
 
 Case: the Ruscitto et al. (1978) bearing (problems/bearings/ruscitto.toml, its [model]
 table: welded end 180° from the load, axial-mean law, η = 0), 2 kg and 20 N per bearing,

@@ -1,4 +1,4 @@
-"""Speed of the rotor on two bearings (gfbopt.rotor.system, issue 16), in one run:
+"""Speed of the rotor on two bearings (gfbopt.rotor.system), in one run:
 
 * onset of every mode of problems/rotors/blower.toml over 4,000–60,000 rpm at 144 × 36 (the
   default grid: the scan guided by 36 × 10, as the one-bearing onset) and at 72 × 20 (no

@@ -1,5 +1,5 @@
 """A ROSS shaft-and-disk rotor on two gfbopt foil bearings, and its onset of whirl with matched
-whirl — the study rotor of issue 16 (problems/rotors/blower.toml), compared with gfbopt's own
+whirl — the study rotor (problems/rotors/blower.toml), compared with gfbopt's own
 two-bearing rigid-rotor onset.
 
 Needs the optional extra (ROSS >= 3.0, Python >= 3.12)::
@@ -160,7 +160,7 @@ def report(out: dict) -> str:
     g = out["gfbopt"]
     r = out["ross_rigid"]
     lines = [
-        "# ROSS rigid-rotor onset against gfbopt's (issue 16)", "",
+        "# ROSS rigid-rotor onset against gfbopt's", "",
         f"Rotor `{out['rotor_file']}` (3.2 kg, CG 35/65 mm, I_t 0.012, I_p 0.002 kg m²) on two "
         f"Ruscitto bearings, grid {out['grid']}. Made by `examples/ross_rotor_onset.py` "
         f"(ROSS {out['provenance']['options'].get('ross', '?')}, Python "

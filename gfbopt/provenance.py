@@ -47,10 +47,11 @@ def source_state() -> dict:
         commit = _git("rev-parse", "HEAD")
         dirty = bool(_git("status", "--porcelain", "--untracked-files=no", "--",
                           ":(top,exclude)results", ":(top,exclude)runs"))
-        return {"commit": commit, "dirty": dirty, "source": f"git checkout {top}"}
+        # the checkout's folder is this machine's business, not the result's: the commit names it
+        return {"commit": commit, "dirty": dirty, "source": "git checkout"}
     except (OSError, subprocess.SubprocessError):
         return {"commit": None, "dirty": None,
-                "source": f"installed package {_PACKAGE_DIR} (not a git checkout)"}
+                "source": "installed package (not a git checkout)"}
 
 
 def jsonable(value):
