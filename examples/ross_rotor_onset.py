@@ -4,9 +4,9 @@ two-bearing rigid-rotor onset.
 
 Needs the optional extra (ROSS >= 3.0, Python >= 3.12)::
 
-    ~/.pyenv/versions/3.12.1/bin/python -m venv /work/venv312
-    /work/venv312/bin/pip install -e ".[ross,test]"
-    OMP_NUM_THREADS=1 /work/venv312/bin/python examples/ross_rotor_onset.py \\
+    python3.12 -m venv .venv312
+    .venv312/bin/pip install -e ".[ross,test]"
+    OMP_NUM_THREADS=1 .venv312/bin/python examples/ross_rotor_onset.py \\
         [--grid 72x20] [--results results] [--flexible]
 
 What it does:

@@ -2,7 +2,7 @@
 rigid ROSS shaft-and-disk rotor with matched whirl loses its damping where gfbopt's exact
 two-bearing threshold says.  Skips with the reason when ROSS is not importable (the default
 environment, Python 3.11).  Run under the 3.12 venv:
-    /work/venv312/bin/python -m pytest -q tests/verification/test_rotor_ross.py"""
+    .venv312/bin/python -m pytest -q tests/verification/test_rotor_ross.py   (examples/ross_rotor_onset.py)"""
 from pathlib import Path
 
 import numpy as np
