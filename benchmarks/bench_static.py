@@ -43,7 +43,6 @@ Newton reference; Tables 3.1 + 3.2 ≤ 5 s including the build; at the default g
 from __future__ import annotations
 
 import argparse
-import csv
 import importlib.util
 import json
 import math
@@ -65,6 +64,7 @@ from machine import machine_info as _machine_info, write_report  # noqa: E402
 from gfbopt import DEFAULT_GRID, BearingModel, Grid, StaticSolver, solve_static  # noqa: E402
 from gfbopt.static import PARAMETERS, default_ipopt_options  # noqa: E402
 from gfbopt.static.model import build_problem  # noqa: E402
+from gfbopt.inputs.bearing_file import read_toml  # noqa: E402
 
 HERE = Path(__file__).resolve().parent
 REPO = HERE.parent
@@ -112,22 +112,6 @@ def timed(function, repeats: int) -> tuple[float, list[float], object]:
         result = function()
         times.append(time.perf_counter() - t0)
     return statistics.median(times), times, result
-
-
-def read_reference(path: Path) -> list[dict]:
-    """Rows of a reference CSV (lines starting with '#' are comments), values as float/str."""
-    with open(path, newline="") as handle:
-        lines = [line for line in handle if not line.startswith("#")]
-    rows = []
-    for row in csv.DictReader(lines):
-        parsed = {}
-        for key, value in row.items():
-            try:
-                parsed[key] = float(value)
-            except ValueError:
-                parsed[key] = value
-        rows.append(parsed)
-    return rows
 
 
 def machine_info() -> dict:
@@ -308,27 +292,37 @@ def bench_hard_cold(solver: StaticSolver, points, repeats: int = 3) -> list[dict
     return out
 
 
-def table_models(reference_dir: Path) -> list[tuple[str, dict, BearingModel]]:
-    """(table, reference row, model) for every row of thesis Tables 3.1 and 3.2."""
+def table_models(problems_dir: Path) -> list[tuple[str, dict, BearingModel]]:
+    """(table, reference row, model) for every row of thesis Tables 3.1 and 3.2, read from
+    the shipped study files (problems/thesis_table_3_1.toml, thesis_table_3_2.toml: L/D = 1;
+    Table 3.1 against Yang et al., Table 3.2 under the Gümbel force against Peng & Carpino)."""
     rows = []
-    for ref in read_reference(reference_dir / "thesis_table_3_1.csv"):
-        rows.append(("3.1", ref, BearingModel(bearing_number=ref["Lambda"], foil="rigid",
-                                              length_ratio=ref["L_over_D"])))
-    for ref in read_reference(reference_dir / "thesis_table_3_2.csv"):
-        s = ref["S"]
-        rows.append(("3.2", ref, BearingModel(
-            bearing_number=ref["Lambda"], compliance=s, foil="simple" if s > 0 else "rigid",
-            length_ratio=ref["L_over_D"], subambient="gumbel")))
+    for table, name, reference in (("3.1", "thesis_table_3_1", "yang"),
+                                   ("3.2", "thesis_table_3_2", "peng_carpino")):
+        spec = read_toml(problems_dir / f"{name}.toml")
+        for row in spec["rows"]:
+            s = float(row.get("compliance", 0.0))
+            published = row["published"][reference]
+            ref = {"eps": row["eccentricity"], "load_ref": published["load"],
+                   "attitude_deg_ref": published["attitude_angle_deg"]}
+            if table == "3.1":
+                model = BearingModel(bearing_number=row["bearing_number"], foil="rigid",
+                                     length_ratio=1.0)
+            else:
+                model = BearingModel(bearing_number=row["bearing_number"], compliance=s,
+                                     foil="simple" if s > 0 else "rigid", length_ratio=1.0,
+                                     subambient="gumbel")
+            rows.append((table, ref, model))
     return rows
 
 
-def bench_tables(reference_dir: Path, warm_chain: bool) -> dict:
+def bench_tables(problems_dir: Path, warm_chain: bool) -> dict:
     """Build one solver and solve every row of Tables 3.1 and 3.2; total wall time [s].
 
     With ``warm_chain`` each row is warm-started from the previous row of the same
     (table, Λ, S, L/D) group (rows are in increasing ε in the CSV files).
     """
-    rows = table_models(reference_dir)
+    rows = table_models(problems_dir)
     t0 = time.perf_counter()
     solver = StaticSolver(GRID, film="periodic")
     build = time.perf_counter() - t0
@@ -341,10 +335,7 @@ def bench_tables(reference_dir: Path, warm_chain: bool) -> dict:
         sol = solve_static(model, eccentricity=ref["eps"], solver=solver, initial=initial)
         elapsed = time.perf_counter() - t1
         previous[key] = sol
-        if table == "3.1":
-            ref_load, ref_att = ref["load_ref"], ref["attitude_deg_ref"]
-        else:
-            ref_load, ref_att = ref["load_peng_carpino"], ref["attitude_deg_peng_carpino"]
+        ref_load, ref_att = ref["load_ref"], ref["attitude_deg_ref"]
         results.append({
             "table": table, "Lambda": model.bearing_number, "eps": ref["eps"],
             "S": model.compliance, "foil": model.foil, "subambient": model.subambient,
@@ -469,8 +460,8 @@ def main(argv=None) -> dict:
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--out", default=str(REPO / "results" / "benchmarks" /
                                              "static_speed.json"), help="JSON output path")
-    parser.add_argument("--reference-dir", default="/work/shared/reference",
-                        help="folder with thesis_table_3_1.csv and thesis_table_3_2.csv")
+    parser.add_argument("--problems-dir", default=str(REPO / "problems"),
+                        help="folder with thesis_table_3_1.toml and thesis_table_3_2.toml")
     parser.add_argument("--sections", default=",".join(SECTIONS),
                         help=f"comma-separated subset of {', '.join(SECTIONS)} (default: all)")
     args = parser.parse_args(argv)
@@ -495,8 +486,8 @@ def main(argv=None) -> dict:
         out["hard_cold"] = bench_hard_cold(solver, [(0.6, 0.2), (0.6, 0.4)], 3)
         del solver
     if "tables" in sections:
-        out["tables_cold"] = bench_tables(Path(args.reference_dir), warm_chain=False)
-        out["tables_warm_chain"] = bench_tables(Path(args.reference_dir), warm_chain=True)
+        out["tables_cold"] = bench_tables(Path(args.problems_dir), warm_chain=False)
+        out["tables_warm_chain"] = bench_tables(Path(args.problems_dir), warm_chain=True)
     if "cli" in sections:
         out["cli"] = bench_cli(2)
     out["targets"] = evaluate_targets(out)

@@ -91,7 +91,7 @@ class DirectImpedance:
         """(LU of A + iγB, X = its solve of C_ξ, Z(iγ) = f X)."""
         s = 1j * gamma
         a, b = self.lin.system(s)
-        lu = factor((a + s * b).astype(complex))
+        lu = factor((a + s * b).astype(complex), self.lin.factoriser)
         x = lu.solve(self.lin.c_xi.astype(complex))
         self.cost.factorisations += 1
         self.cost.solves += 1
@@ -339,7 +339,7 @@ def direct_local_crossing(lin: Linearisation, whirl: float, root: complex,
     for k in range(1, max_steps + 1):
         s = 1j * gamma
         a, b = lin.system(s)
-        lu = factor((a + s * b).astype(complex))
+        lu = factor((a + s * b).astype(complex), lin.factoriser)
         x = lu.solve(lin.c_xi.astype(complex))
         z = lin.force @ x
         dz = -1j * (lin.force @ lu.solve((b @ x).astype(complex)))

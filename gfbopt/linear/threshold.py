@@ -274,7 +274,7 @@ def semi_discrete_eigenvalues(lin: Linearisation, mass: float, shift: complex,
                    [sp.csc_matrix((2, n)), None, sp.identity(2)],
                    [sp.csc_matrix(lin.force), sp.csc_matrix((2, 2)), None]], format="csc")
     e = sp.block_diag([b, sp.identity(2), m * sp.identity(2)], format="csc")
-    lu = factor((jac - shift * e).astype(complex))
+    lu = factor((jac - shift * e).astype(complex), lin.factoriser)
     op = spla.LinearOperator(jac.shape, matvec=lambda v: lu.solve(e @ v), dtype=complex)
     mu = spla.eigs(op, k=count, which="LM", return_eigenvectors=False, tol=1e-12)
     values = shift + 1.0 / mu

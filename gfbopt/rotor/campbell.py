@@ -46,6 +46,7 @@ import scipy.sparse.linalg as spla
 
 from ..errors import ParameterError
 from ..linear.model import factor, impedance
+from ..sparse_lu import Factoriser
 from .modes import shape
 from .rigid import gyroscopic_matrix, mass_matrix
 from .supports import RotorCase, SpeedStates
@@ -125,6 +126,7 @@ class FullSystem:
                           [fout, z4, sp.csc_matrix(-self.g)]], format="csc")
         self.e = sp.block_diag([film_e, sp.identity(4), sp.csc_matrix(self.m)], format="csc")
         self.n_film = n
+        self._factorise = Factoriser()     # one pattern, a new shift at every call
 
     @property
     def size(self) -> int:
@@ -132,7 +134,7 @@ class FullSystem:
 
     def eigen(self, shift: complex, count: int = NEAR) -> tuple[np.ndarray, np.ndarray]:
         """(eigenvalues, eigenvectors) nearest ``shift`` (shift-invert Arnoldi)."""
-        lu = factor((self.j - shift * self.e).astype(complex))
+        lu = factor((self.j - shift * self.e).astype(complex), self._factorise)
         op = spla.LinearOperator(self.j.shape, matvec=lambda v: lu.solve(self.e @ v),
                                  dtype=complex)
         mu, vec = spla.eigs(op, k=count, which="LM", tol=1e-12, ncv=max(4 * count, 12))

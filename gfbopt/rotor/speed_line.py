@@ -45,6 +45,11 @@ GUIDE_DISTANCE = 0.05
 #: a warm start is extrapolated from the two nearest solved speeds when both lie within
 #: this of the speed, in |ln(speed ratio)| [-] (farther, the nearest solution is used as it is)
 EXTRAPOLATION_DISTANCE = 0.02
+#: bound assumed on C = |g''/(2g')| in the secant's error estimate C |step| |step before|
+#: (:func:`secant_root`; measured C ≈ 0.03 on the Ruscitto speed line, 5,000–15,000 rpm) [-]
+ERROR_FACTOR = 1.0
+#: the whirl ratio at the onset is interpolated from rows within this of it, in ln N [-]
+WHIRL_SPAN = 0.02
 #: secant steps before :func:`secant_root` gives up (the onset search then falls back to
 #: Brent's method on full thresholds)
 SECANT_STEPS = 16
@@ -227,17 +232,32 @@ class Guide(SpeedLine):
 
 
 def secant_root(line: SpeedLine, low: float, high: float, tol: float, start=None,
-            first: Optional[float] = None) -> Optional[tuple]:
-    """(u*, dg/du) with g(u*) = 0, u = ln N [rpm], by secant steps safeguarded by bisection.
+                first: Optional[float] = None, error_tol: float = 0.0,
+                confirm: Optional[float] = None) -> Optional[tuple]:
+    """(u*, dg/du, confirmed) with g(u*) = 0, u = ln N [rpm], by secant steps safeguarded by
+    bisection.
 
-    [lo, hi] = [ln ``low``, ln ``high``].  Without ``start``, it is a bracket whose ends are evaluated with full thresholds
-    (g(lo) > 0 ≥ g(hi)); with ``start`` = [(u0, g0)] and a ``first`` point, the secant starts
-    there and [lo, hi] only bounds it until a sign change brackets the root.  Interior points
-    use local thresholds.  Converged when the next secant step is at most ``tol``: that next
-    point is returned without evaluating it (the caller evaluates it in full); the secant
-    converges superlinearly, so its error is of the order of the product of the last two
-    steps.  None when it leaves the bounds without a bracket or does not converge in
-    :data:`SECANT_STEPS` steps."""
+    [lo, hi] = [ln ``low``, ln ``high``].  Without ``start``, it is a bracket whose ends are
+    evaluated with full thresholds (g(lo) > 0 ≥ g(hi)); with ``start`` = [(u0, g0)] and a
+    ``first`` point, the secant starts there and [lo, hi] only bounds it until a sign change
+    brackets the root.  Interior points use local thresholds.
+
+    Converged when the next secant point u* is at most ``tol`` from the last point, or when
+    its estimated error is at most ``error_tol``: the secant's error after a step is
+    C = |g''/(2g')| times the product of the errors of the two points before, and near the
+    root the errors are the steps, so the estimate is :data:`ERROR_FACTOR` (C ≤ 1 assumed;
+    measured C ≈ 0.03 on the Ruscitto speed line) times |step to u*| × |step before| (used
+    only when the steps shrink).  u* is returned without evaluating it.
+
+    ``confirm`` : with a tolerance, the full threshold is then computed at the last point
+    evaluated (its equilibrium and linearisation are kept, so it costs the threshold only)
+    and u* predicted again with it: confirmed (``confirmed`` True, that u* returned) when
+    it moves by at most ``confirm`` — the full threshold, which takes the least stable of
+    all branches, is then on the branch the local thresholds followed, and u* is the
+    secant's point on the full threshold's g.  None when it moves more (another branch
+    takes over there: the caller falls back), when the secant leaves the bounds without a
+    bracket, or when it does not converge in :data:`SECANT_STEPS` steps.  Without
+    ``confirm``, ``confirmed`` is False."""
     lo, hi = math.log(low), math.log(high)
     ends = {lo: low, hi: high} if start is None else {}
 
@@ -259,13 +279,20 @@ def secant_root(line: SpeedLine, low: float, high: float, tol: float, start=None
         predicted = u is not None or (g0 is not None and math.isfinite(g0)
                                       and math.isfinite(g1) and g1 != g0)
         if u is None and predicted:
-            u = u1 - g1 * (u1 - u0) / (g1 - g0)
+            u = _secant_point(points)
         if a is not None and (u is None or not a < u < b):
             u, predicted = 0.5 * (a + b), False   # bisection inside the bracket
         if u is None or not lo <= u <= hi:
             return None
-        if predicted and (step > 0 or start is not None) and abs(u - u1) <= tol:
-            return u, slope(points)              # converged: u is the next secant point
+        if predicted and (step > 0 or start is not None) and _converged(
+                u, u0, u1, tol, error_tol):
+            if confirm is None or len(points) < 2:
+                return u, slope(points), False
+            checked = points[:-1] + [(u1, g(u1, True))]
+            again = _secant_point(checked)
+            if again is None or abs(again - u) > confirm:
+                return None
+            return again, slope(checked), True
         gu = g(u)
         if not math.isfinite(gu) and a is None:
             return None
@@ -281,9 +308,52 @@ def secant_root(line: SpeedLine, low: float, high: float, tol: float, start=None
             b = u
         points.append((u, gu))
         if gu == 0:
-            return u, slope(points)
+            return u, slope(points), False
         u = None
     return None
+
+
+def _secant_point(points: list) -> Optional[float]:
+    """The secant's next point from the last two points (None when it is undefined)."""
+    (u0, g0), (u1, g1) = points[-2], points[-1]
+    if not (math.isfinite(g0) and math.isfinite(g1) and g1 != g0):
+        return None
+    return u1 - g1 * (u1 - u0) / (g1 - g0)
+
+
+def _converged(u: float, u0: Optional[float], u1: float, tol: float,
+               error_tol: float) -> bool:
+    """The stop test of :func:`secant_root`: |u − u1| ≤ ``tol``, or the estimated error of u,
+    :data:`ERROR_FACTOR` |u − u1| |u1 − u0|, at most ``error_tol`` while the steps shrink."""
+    step = abs(u - u1)
+    if step <= tol:
+        return True
+    if u0 is None or error_tol <= 0:
+        return False
+    before = abs(u1 - u0)
+    return step <= before and ERROR_FACTOR * step * before <= error_tol
+
+
+def onset_whirl_ratio(rows: list, onset: float, same_branch: float) -> float:
+    """The whirl ratio at the onset speed [-]: interpolated (or extrapolated) linearly in
+    ln N from the two rows nearest the onset when both lie within :data:`WHIRL_SPAN` of it
+    on one branch (whirl ratios within ``same_branch``), else the nearest row's.
+
+    The searches stop without evaluating their last point (the secant's next point, Brent's
+    root inside its last bracket), so the nearest row can be a step away from the onset
+    (up to 1e-4 relative): γ varies along the line by dγ/d ln N times that, while the
+    interpolation's error is of the order of the product of the two distances."""
+    def distance(r):
+        return abs(math.log(r["speed_rpm"] / onset))
+    near = sorted((r for r in rows if math.isfinite(r["whirl_ratio"])), key=distance)
+    if not near:
+        return math.nan
+    if len(near) < 2 or distance(near[1]) > WHIRL_SPAN:
+        return near[0]["whirl_ratio"]
+    (u0, g0), (u1, g1) = ((math.log(r["speed_rpm"]), r["whirl_ratio"]) for r in near[:2])
+    if u0 == u1 or abs(g1 - g0) >= same_branch:
+        return near[0]["whirl_ratio"]
+    return g0 + (g1 - g0) * (math.log(onset) - u0) / (u1 - u0)
 
 
 def slope(points: list) -> float:

@@ -21,6 +21,7 @@ from ..errors import ParameterError
 from ..inputs.grid import DEFAULT_GRID, Grid
 from ..inputs.model import FILM_MODELS, BearingModel
 from ..physics.foil_laws import FOIL_LAWS, static_structure
+from ..sparse_lu import Factoriser
 from .model import build_problem, n_parameters
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -144,6 +145,9 @@ class StaticSolver:
         #: functions derived from this build by other modules, built on first use and kept
         #: with it (e.g. the linearisation's film sensitivity, :mod:`gfbopt.linear.model`)
         self.derived: dict = {}
+        #: the sparse LUs of this build's matrices (static Jacobians, perturbation matrices),
+        #: each sparsity pattern's fill-reducing order kept (:mod:`gfbopt.sparse_lu`)
+        self.factoriser = Factoriser()
         self.build_time_s = time.perf_counter() - t0
 
     def newton_system(self):

@@ -7,19 +7,26 @@ each of its iterations costs several sparse LUs' worth of work (the KKT system i
 size, MUMPS analyses it on every call, and the interior-point bookkeeping adds more):
 benchmarks/bench_onset.py measures it.  Here the equations and their sparse Jacobian are the
 build's own CasADi functions (:meth:`StaticSolver.jacobian_function`, the Jacobian IPOPT is
-given), evaluated through CasADi's zero-copy buffers, and each step is one SuperLU
-factorisation (columns ordered by minimum degree on A + Aᵀ, as :func:`gfbopt.linear.factor`).
+given), evaluated through CasADi's zero-copy buffers, and a Newton step is one SuperLU
+factorisation (columns ordered by minimum degree on A + Aᵀ, the order kept from the build's
+first Jacobian: :mod:`gfbopt.sparse_lu`).
 
-Steps.  Full Newton steps while the step is large; once the largest component of a step is
-below :data:`CHORD_STEP` the last LU is kept (chord steps: each multiplies the error by about
-the change of J since that LU, i.e. by ~ the size of the step that followed it) and only g is
-re-evaluated.  A solve at parameters within :data:`REUSE_PARAMETERS` of those of the
-previous solve's last LU (a neighbouring speed of a search) starts with chord steps on that
-LU.  Converged
+Steps.  Each step solves with the current LU; a new one (with a new Jacobian) is made only
+when the chord steps on the current one stop paying: after the first step of an LU, the ratio
+of each step to the one before is its contraction rate (chord steps multiply the error by
+about the change of J since that LU), and a rate above :data:`CHORD_RATE` (less than a digit
+a step, where an LU costs about ten residual evaluations and solves) makes the next step a
+fresh Newton step.  Measured at 144 × 36 (Ruscitto, speed line 5,000–14,000 rpm): from a
+start interpolated off the coarse grid the first Newton step is ~6e-3 and the chord steps on
+its LU contract at 0.015–0.03 per step, converged in seven or eight chord steps (25 ms)
+where a second LU and its Jacobian cost ~35 ms.  A solve at parameters within
+:data:`REUSE_PARAMETERS` of those of the previous solve's last LU (a neighbouring speed of a
+search) starts with chord steps on that LU.  Converged
 when max |g| ≤ :data:`RESIDUAL_TOLERANCE`, or when max |g| is below IPOPT's own tolerance and
 the last step has stalled at round-off.  Refused (the caller falls back to IPOPT) when the
 iterate leaves IPOPT's bounds (P > 0, a total film H > 0, ε ≥ 0, −π/2 ≤ φ ≤ π), when a
-factorisation is singular, or when it has not converged in :data:`MAX_STEPS` steps.
+factorisation is singular, or when it has not converged in :data:`MAX_STEPS` steps or
+:data:`MAX_FACTORISATIONS` LUs.
 
 Because IPOPT's equilibrium is the root of the same g (the bounds are inactive at a solution,
 and a square nonsingular system fixes x whatever the barrier does to the multipliers), both
@@ -32,22 +39,26 @@ from dataclasses import dataclass
 from typing import Optional
 import numpy as np
 import scipy.sparse as sp
-import scipy.sparse.linalg as spla
 
-#: largest number of Newton (or chord) steps before the fast path gives up
-MAX_STEPS = 6
+#: largest number of steps (Newton and chord) before the fast path gives up: at the
+#: largest chord rate, :data:`CHORD_RATE`, ten steps gain ten digits
+MAX_STEPS = 16
+#: largest number of sparse LUs (Newton steps) before the fast path gives up
+MAX_FACTORISATIONS = 6
 #: max |g| accepted as converged [-] (IPOPT's tolerance is 1e-10)
 RESIDUAL_TOLERANCE = 1e-11
 #: IPOPT's constraint tolerance (ipopt.tol of :func:`~.build.default_ipopt_options`) [-]
 IPOPT_TOLERANCE = 1e-10
 #: a step whose largest component is below this has stalled at round-off [-]
 STALL_STEP = 1e-13
-#: below this largest step component the previous LU is reused (chord steps) [-]
-CHORD_STEP = 1e-3
+#: a chord step larger than this fraction of the step before makes the next step a fresh
+#: Newton step (module docstring) [-]
+CHORD_RATE = 0.1
 #: a solve whose parameters differ from those of the system's last LU by at most this
 #: (relative, parameter by parameter) starts with chord steps on that LU: a speed step of
-#: 0.1 % changes J by ~0.1 %, so each chord step gains about three digits [-]
-REUSE_PARAMETERS = 1e-3
+#: 1 % changes J by ~1 %, so each chord step gains about two digits (a worse rate than
+#: :data:`CHORD_RATE` ends the chord after its second step) [-]
+REUSE_PARAMETERS = 1e-2
 #: the status a converged fast path reports (StaticSolution.status)
 STATUS = "Newton_Converged"
 
@@ -91,6 +102,7 @@ class NewtonSystem:
         self._gr = np.zeros(self._g.size)
         self._res = _bound(solver.residual_function, self._x, self._p, self._gr)
         self.lower, self.upper = solver._lbx, solver._ubx
+        self.factorise = solver.factoriser
         self.kept: Optional[tuple] = None             # (p, LU) of the last factorisation
 
     def forget(self) -> None:
@@ -132,17 +144,20 @@ def _bound(function, *arrays):
 
 def solve(system: NewtonSystem, x0: np.ndarray, p: np.ndarray,
           max_steps: Optional[int] = None, reuse: bool = True) -> NewtonOutcome:
-    """Newton's method on g(x, p) = 0 from ``x0`` (module docstring); at most
-    ``max_steps`` steps (default :data:`MAX_STEPS`).  With ``reuse``, the system's last LU
-    starts the iteration as a chord step when its parameters differ from ``p`` by at most
-    :data:`REUSE_PARAMETERS` (relative): a neighbouring speed of a search."""
+    """Newton's method with chord steps on g(x, p) = 0 from ``x0`` (module docstring); at
+    most ``max_steps`` steps (default :data:`MAX_STEPS`) and :data:`MAX_FACTORISATIONS` LUs.
+    With ``reuse``, the system's last LU starts the iteration as a chord step when its
+    parameters differ from ``p`` by at most :data:`REUSE_PARAMETERS` (relative): a
+    neighbouring speed of a search."""
     max_steps = MAX_STEPS if max_steps is None else max_steps
     x = np.array(x0, dtype=float)
     g = system.residual(x, p)
     lu, last_step, steps, factorisations = None, np.inf, 0, 0
+    refresh = True                     # the next step needs a fresh LU
+    previous = None                    # the last step made on the current LU
     if reuse and system.kept is not None and system.kept[0].shape == p.shape:
         if np.all(np.abs(system.kept[0] - p) <= REUSE_PARAMETERS * np.abs(p)):
-            lu, last_step = system.kept[1], 0.0
+            lu, refresh = system.kept[1], False
     while True:
         residual = float(np.abs(g).max()) if g.size else 0.0
         if not np.isfinite(residual):
@@ -151,22 +166,25 @@ def solve(system: NewtonSystem, x0: np.ndarray, p: np.ndarray,
         if residual <= RESIDUAL_TOLERANCE or (residual <= IPOPT_TOLERANCE
                                               and last_step <= STALL_STEP):
             return NewtonOutcome(x, True, steps, factorisations, residual)
-        if steps >= max_steps:
+        if steps >= max_steps or (refresh and factorisations >= MAX_FACTORISATIONS):
             return NewtonOutcome(x, False, steps, factorisations, residual,
-                                 f"not converged in {max_steps} steps")
-        if lu is None or last_step > CHORD_STEP:
+                                 f"not converged in {steps} steps ({factorisations} LUs)")
+        if refresh:
             g, jac = system.residual_and_jacobian(x, p)
             try:
-                lu = spla.splu(jac, permc_spec="MMD_AT_PLUS_A")
+                lu = system.factorise(jac)
             except RuntimeError:                      # exactly singular
                 return NewtonOutcome(x, False, steps, factorisations, residual,
                                      "singular Jacobian")
             factorisations += 1
             system.kept = (np.array(p, dtype=float), lu)
+            previous = None
         step = lu.solve(-g)
         x += step
         steps += 1
         last_step = float(np.abs(step).max())
+        refresh = previous is not None and last_step > CHORD_RATE * previous
+        previous = last_step
         if not system.inside_bounds(x):
             return NewtonOutcome(x, False, steps, factorisations, residual,
                                  "the iterate left IPOPT's bounds")

@@ -79,7 +79,7 @@ def test_ipopt_takes_over_when_newton_does_not_converge(monkeypatch):
     outcome = newton.solve(system, start.state, solver.parameters(model, True, 0.5),
                            max_steps=1)
     assert not outcome.converged and outcome.steps == 1
-    assert outcome.reason == "not converged in 1 steps"
+    assert outcome.reason == "not converged in 1 steps (1 LUs)"
     fast = solve_static(model, load=0.5, solver=solver, initial=start, fast_path=True)
     ipopt = solve_static(model, load=0.5, solver=solver, initial=start)
     assert fast.success and fast.solver == "ipopt"
