@@ -36,18 +36,15 @@ KEPT_PATTERNS = 16
 class OrderedLU:
     """The LU of P A Pᵀ (P: the kept order) that solves A x = b like SuperLU's own object."""
 
-    def __init__(self, lu, order: np.ndarray):
+    def __init__(self, lu, order: np.ndarray, inverse: np.ndarray):
         self._lu = lu
-        self._order = order
+        self._order, self._inverse = order, inverse
         self.shape = lu.shape
 
     def solve(self, rhs: np.ndarray) -> np.ndarray:
         """x = A⁻¹ ``rhs`` (a vector or a matrix of right-hand sides)."""
-        rhs = np.asarray(rhs)
-        y = self._lu.solve(np.ascontiguousarray(rhs[self._order]))
-        x = np.empty_like(y)
-        x[self._order] = y
-        return x
+        y = self._lu.solve(np.take(np.asarray(rhs), self._order, axis=0))
+        return np.take(y, self._inverse, axis=0)        # x[order] = y, as a gather
 
 
 class _Pattern:
@@ -55,6 +52,7 @@ class _Pattern:
 
     def __init__(self, matrix: sp.csc_matrix, perm_c: np.ndarray):
         self.order = np.argsort(perm_c)
+        self.inverse = np.argsort(self.order)
         index = sp.csc_matrix((np.arange(matrix.nnz, dtype=float), matrix.indices,
                                matrix.indptr), shape=matrix.shape)
         permuted = index[self.order][:, self.order].tocsc()
@@ -90,7 +88,8 @@ class Factoriser:
                 self._patterns.pop(next(iter(self._patterns)))
             self._patterns[key] = _Pattern(a, lu.perm_c)
             return lu
-        return OrderedLU(spla.splu(pattern.permute(a), permc_spec="NATURAL"), pattern.order)
+        return OrderedLU(spla.splu(pattern.permute(a), permc_spec="NATURAL"), pattern.order,
+                         pattern.inverse)
 
 
 def factor(matrix: sp.spmatrix, factoriser: Optional[Factoriser] = None):
