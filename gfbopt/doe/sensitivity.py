@@ -67,7 +67,8 @@ class SobolIndices:
 
 def sobol_indices(plan, frame: pd.DataFrame, output: str, *, seed: int = 0) -> SobolIndices:
     """Sobol indices of column ``output`` of a finished Saltelli study ``frame`` (rows in
-    plan order, identified by ``point``)."""
+    plan order, identified by ``point``); ``seed`` fixes the bootstrap of the confidence
+    intervals (the same table every run)."""
     from SALib.analyze import sobol as sobol_analyze
 
     if plan.method != "saltelli":
@@ -87,8 +88,10 @@ def sobol_indices(plan, frame: pd.DataFrame, output: str, *, seed: int = 0) -> S
     if good.sum() < 2:
         return SobolIndices(output, pd.DataFrame(), int(good.sum()), dropped, False,
                             f"{int(good.sum())} complete blocks: too few for Sobol indices")
+    # SALib seeds its bootstrap only for a truthy seed (``if seed:``): 0 would leave the
+    # confidence intervals random from run to run, so the seed passed is ``seed + 1``
     res = sobol_analyze.analyze(_problem(plan), blocks[good].ravel(),
-                                calc_second_order=False, seed=seed)
+                                calc_second_order=False, seed=int(seed) + 1)
     table = pd.DataFrame({"input": plan.names, "S1": res["S1"], "S1_conf": res["S1_conf"],
                           "ST": res["ST"], "ST_conf": res["ST_conf"]})
     return SobolIndices(output, table, int(good.sum()), dropped, True,
