@@ -5,9 +5,10 @@ columns ordered by minimum degree on A + Aᵀ (``permc_spec="MMD_AT_PLUS_A"``): 
 (static Jacobians, perturbation matrices A + sB) are structurally near-symmetric five-point
 stencils plus a few lifted rows.  Inside a search the same sparsity pattern is factorised
 again and again with new values (a Newton step, a new speed, a new shift), and SuperLU
-recomputes the ordering every time: at 144 × 36 (5,466 unknowns) the ordering is about a
-third of the factorisation (28 ms with it, 19 ms on the matrix permuted by the kept order;
-benchmarks/bench_onset.py, section ``lu_order``).
+recomputes the ordering every time: at 144 × 36 (5,466 unknowns) it is a quarter to a third
+of the factorisation (measured 16–28 ms with it, 12–19 ms on the matrix permuted by the kept
+order; benchmarks/bench_onset.py, static section: ``one_lu_cpu_s`` against
+``one_lu_kept_order_cpu_s``).
 
 :class:`Factoriser` keeps, per pattern, the order SuperLU chose the first time (its column
 permutation, elimination-tree postorder included) and factorises later matrices of that

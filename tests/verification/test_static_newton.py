@@ -125,3 +125,23 @@ def test_the_kept_lu_serves_a_neighbouring_speed_only(film, structure):
     assert np.abs(outcome.x - ipopt.state).max() <= 1e-10
     far = solver.parameters(_model(film, structure, 2.6), True, 0.5)
     assert newton.solve(system, first.state, far).factorisations >= 1
+
+
+@pytest.mark.parametrize("film, structure", [("seam", "simple"), ("periodic", "beam")])
+def test_chord_steps_carry_a_one_percent_speed_step_on_the_kept_lu(film, structure):
+    """The secant's first step along a speed line is about 1 %: the previous solve's LU is
+    kept (within REUSE_PARAMETERS) and chord steps reach the tolerance without a new
+    factorisation, each gaining more than a digit (CHORD_RATE), to IPOPT's state (1e-10).
+    A plain Newton iteration would factorise at every one of its 2-3 steps."""
+    solver = solver_for(_model(film, structure, 1.7), GRID)
+    system = solver.newton_system()
+    start = solve_static(_model(film, structure, 2.1), solver=solver, load=0.5)
+    first = solve_static(_model(film, structure, 2.1 * 1.001), solver=solver, load=0.5,
+                         initial=start, fast_path=True)
+    assert first.solver == "newton" and system.kept is not None
+    step = _model(film, structure, 2.1 * 1.01)
+    outcome = newton.solve(system, first.state, solver.parameters(step, True, 0.5))
+    ipopt = solve_static(step, solver=solver, load=0.5, initial=first)
+    assert outcome.converged and outcome.factorisations == 0
+    assert 2 <= outcome.steps <= newton.MAX_STEPS
+    assert np.abs(outcome.x - ipopt.state).max() <= 1e-10
