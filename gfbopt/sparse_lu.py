@@ -17,6 +17,12 @@ same order, the same fill (checked: the same number of factor entries), and Supe
 partial pivoting on the rows.  The solution is the same to round-off
 (tests/unit/test_sparse_lu.py: ≤ 1e-12 relative against a fresh SuperLU LU).
 
+Every LU, the first of a pattern included, is made on the permuted matrix, so the numbers do
+not depend on what was factorised before: the same matrix gives the same bits in a fresh
+process, a pool worker or after a long search (the order is a function of the pattern
+alone: minimum degree and the elimination-tree postorder read only the structure).  The
+first LU of a pattern is therefore made twice (once for the order), once per build.
+
 A factoriser belongs to the object that owns the pattern (a static build, a Newton system),
 so nothing is shared between builds or processes.
 """
@@ -83,12 +89,11 @@ class Factoriser:
         key = (a.shape, a.dtype.kind, a.indptr.tobytes(), a.indices.tobytes())
         pattern: Optional[_Pattern] = self._patterns.get(key)
         self.factorisations += 1
-        if pattern is None:
-            lu = spla.splu(a, permc_spec=ORDERING)
+        if pattern is None:                  # the order: SuperLU's, from a first LU
+            order = spla.splu(a, permc_spec=ORDERING).perm_c
             if len(self._patterns) >= KEPT_PATTERNS:
                 self._patterns.pop(next(iter(self._patterns)))
-            self._patterns[key] = _Pattern(a, lu.perm_c)
-            return lu
+            pattern = self._patterns[key] = _Pattern(a, order)
         return OrderedLU(spla.splu(pattern.permute(a), permc_spec="NATURAL"), pattern.order,
                          pattern.inverse)
 

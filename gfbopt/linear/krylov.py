@@ -89,6 +89,24 @@ class ShiftedImpedance:
         scale = np.abs(np.diag(self._r))
         self.broken = not scale.min() > BREAKDOWN * scale.max()
 
+    @property
+    def hessenberg(self) -> np.ndarray:
+        """H̄ of the block Arnoldi relation G V_k = V_{k+1} H̄_k: the preallocated array, of
+        which the leading (2k + 2) × 2k block is filled after k block steps (read, not
+        written)."""
+        return self._h
+
+    @property
+    def start_factor(self) -> np.ndarray:
+        """R (2 × 2) of the start X0 = M0⁻¹ C_ξ = V_1 R."""
+        return self._r
+
+    @property
+    def force_basis(self) -> np.ndarray:
+        """F V: the force rows applied to the basis vectors (2 × preallocated columns, the
+        first 2k + 2 filled)."""
+        return self._fv
+
     def extend(self) -> bool:
         """One block Arnoldi step (block classical Gram–Schmidt, applied twice).  False when
         the process cannot grow: at ``max_blocks`` or at a breakdown."""

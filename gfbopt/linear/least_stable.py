@@ -94,8 +94,8 @@ def _reduced_roots(model: ShiftedImpedance, mass_load: float) -> np.ndarray:
     """The eigenvalues s of the reduced descriptor system on the whole space (module
     docstring); infinite ones dropped."""
     m = 2 * model.blocks
-    h = model._h[:m, :m]                                # noqa: SLF001 (krylov's arrays, read)
-    r, fv = model._r, model._fv[:, :m]                  # noqa: SLF001
+    h = model.hessenberg[:m, :m]
+    r, fv = model.start_factor, model.force_basis[:, :m]
     s0 = model.shift
     er = np.zeros((m, 2), dtype=complex)
     er[:2] = r
@@ -116,16 +116,16 @@ def _residual(model: ShiftedImpedance, s: complex) -> float:
     """Relative FOM residual of the film solve at s (exact preconditioned residual, module
     docstring of :mod:`gfbopt.rotor.reduced`)."""
     m = 2 * model.blocks
-    h = model._h                                        # noqa: SLF001
+    h = model.hessenberg
     rhs = np.zeros((m, 2), dtype=complex)
-    rhs[:2] = model._r                                  # noqa: SLF001
+    rhs[:2] = model.start_factor
     sigma = complex(s) - model.shift
     try:
         y = np.linalg.solve(np.eye(m) + sigma * h[:m, :m], rhs)
     except np.linalg.LinAlgError:
         return math.inf
     return float(abs(sigma) * np.linalg.norm(h[m:m + 2, :m] @ y)
-                 / np.linalg.norm(model._r))            # noqa: SLF001
+                 / np.linalg.norm(model.start_factor))
 
 
 def _in_band(w: np.ndarray) -> np.ndarray:

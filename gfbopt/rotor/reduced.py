@@ -46,17 +46,17 @@ class _Schur:
     """The FOM solution on the first ``m`` columns of the space in Schur form."""
 
     def __init__(self, model: ShiftedImpedance, m: int):
-        h = model._h                                    # noqa: SLF001 (module docstring)
+        h = model.hessenberg
         t, q = sla.schur(h[:m, :m], output="complex")
         rhs = np.zeros((m, 2), dtype=complex)
-        rhs[:2] = model._r                              # noqa: SLF001
+        rhs[:2] = model.start_factor
         self.shift = model.shift
         self.t = np.asfortranarray(t)
         self.c = q.conj().T @ rhs
-        self.f = model._fv[:, :m] @ q                   # noqa: SLF001
+        self.f = model.force_basis[:, :m] @ q
         self.tail = h[m:m + 2, :m] @ q
         self.diagonal = np.diag_indices(m)
-        self.norm_r = float(np.linalg.norm(model._r))   # noqa: SLF001
+        self.norm_r = float(np.linalg.norm(model.start_factor))
 
     def solve(self, sigma: complex) -> tuple[np.ndarray, float]:
         """(Z̄ (2 × 2), relative residual) at σ = s − s0 (inf when I + σT is singular)."""
@@ -149,7 +149,7 @@ class ReducedImpedance:
         k = self.model.blocks
         if k < 2:
             return False
-        h, fv, r = self.model._h, self.model._fv, self.model._r     # noqa: SLF001
+        h, fv, r = self.model.hessenberg, self.model.force_basis, self.model.start_factor
         sigma = complex(s) - self.model.shift
         values = []
         for m in (2 * k, 2 * k - 2):

@@ -69,6 +69,11 @@ class SpeedLine:
         self._last = None                            # (speed, equilibrium, linearisation)
         self.guide: Optional["SpeedLine"] = None     # a coarse line whose solutions start ours
 
+    @property
+    def solutions(self) -> dict:
+        """The equilibria solved so far: speed [rpm] → StaticSolution (read, not written)."""
+        return self._solutions
+
     # ----------------------------------------------------------------- evaluations
     def full(self, speed: float) -> dict:
         """The row at ``speed`` with the full threshold (cached)."""
@@ -143,11 +148,11 @@ class SpeedLine:
         def distance(other):
             return abs(math.log(other / speed))
         nearest = min(self._solutions, key=distance, default=None)
-        near = (min(self.guide._solutions, key=distance, default=None)
+        near = (min(self.guide.solutions, key=distance, default=None)
                 if self.guide is not None else None)
         if near is not None and (nearest is None or
                                  distance(near) + GUIDE_DISTANCE < distance(nearest)):
-            return transferred_start(self.guide._solutions[near], solver, model)
+            return transferred_start(self.guide.solutions[near], solver, model)
         if nearest is None:
             return None
         return self._extrapolated(speed, nearest) or self._solutions[nearest]

@@ -105,6 +105,11 @@ class SpeedLine:
         self._states: dict = {}
         self._crossings: dict = {}
 
+    @property
+    def speeds_solved(self) -> list:
+        """The speeds whose support states were asked for so far [rpm], in order."""
+        return sorted(self._states)
+
     def states(self, speed: float) -> SpeedStates:
         if speed not in self._states:
             ok = sorted((s for s, st in self._states.items() if st.ok),
@@ -205,7 +210,7 @@ def rotor_onsets(system: RotorSystem, speed_range, *, grid: Grid = DEFAULT_GRID,
     first = next((m for m in modes if m.status == ONSET), None)
     low_unstable = [m.label for m in modes if m.status == UNSTABLE_LOW]
     lines = [x for x in (line, guide) if x is not None]
-    capacity = [x.states(s).failure for x in lines for s in sorted(x._states)
+    capacity = [x.states(s).failure for x in lines for s in x.speeds_solved
                 if not x.states(s).ok]
     if low_unstable:
         notes = sorted({m.note for m in modes if m.status == UNSTABLE_LOW and m.note})
@@ -249,7 +254,7 @@ def _modes(line: SpeedLine, guide: Optional[SpeedLine], speeds: list, tol: float
         for label in labels:
             found = guided_onset(line, guide, speeds, label, tol)
             out.append(found if found is not None else fine_alone(label))
-        if not any(line.states(s).failure for s in line._states):
+        if not any(line.states(s).failure for s in line.speeds_solved):
             return out
     for speed in speeds:
         line.crossings(speed)

@@ -150,6 +150,12 @@ class StaticSolver:
         self.factoriser = Factoriser()
         self.build_time_s = time.perf_counter() - t0
 
+    @property
+    def bounds(self) -> tuple:
+        """(lower, upper): IPOPT's bounds on the unknowns (P > 0, a total film > 0, ε ≥ 0,
+        −π/2 ≤ φ ≤ π; ±inf elsewhere)."""
+        return self._lbx, self._ubx
+
     def newton_system(self):
         """The equations as numpy arrays for the Newton fast path (:mod:`.newton`), built on
         first use and kept with this build."""

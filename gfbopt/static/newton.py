@@ -101,7 +101,7 @@ class NewtonSystem:
         self._jac = _bound(function, self._x, self._p, self._g, self._nz)
         self._gr = np.zeros(self._g.size)
         self._res = _bound(solver.residual_function, self._x, self._p, self._gr)
-        self.lower, self.upper = solver._lbx, solver._ubx
+        self.lower, self.upper = solver.bounds
         self.factorise = solver.factoriser
         self.kept: Optional[tuple] = None             # (p, LU) of the last factorisation
 

@@ -102,7 +102,7 @@ def integrate_rk4(tm: TransientModel, mass: np.ndarray, revolutions: float, *,
     tau = 0.0
 
     def record(s):
-        p, h = pressure_and_film(s.phi, s.x, s.y, tm, rhs._guess, deflection=s.w)
+        p, h = pressure_and_film(s.phi, s.x, s.y, tm, rhs.guess, deflection=s.w)
         hmin = h.min(axis=(1, 2))
         taus.append(tau)
         xs.append(s.x.copy())

@@ -374,7 +374,7 @@ def integrate_rkc(tm: TransientModel, mass: np.ndarray, revolutions: float, *,
     def record() -> None:
         s = _unpack(z, tm)
         x_now[live], y_now[live] = s.x, s.y
-        _, h = pressure_and_film(s.phi, s.x, s.y, tm, f.rhs._guess, deflection=s.w)
+        _, h = pressure_and_film(s.phi, s.x, s.y, tm, f.rhs.guess, deflection=s.w)
         h_now[live] = h.min(axis=(1, 2))
         taus.append(tau)
         xs.append(x_now.copy())
@@ -410,11 +410,11 @@ def integrate_rkc(tm: TransientModel, mass: np.ndarray, revolutions: float, *,
                 if touching.all():
                     break
                 keep = ~touching
-                guess = None if f.rhs._guess is None else f.rhs._guess[keep]
+                guess = None if f.rhs.guess is None else f.rhs.guess[keep]
                 evaluations += f.rhs.evaluations
                 live, z = live[keep], z[keep]
                 f = _Packed(tm, mass[live])
-                f.rhs._guess = guess
+                f.rhs.guess = guess
             if step % check_every == 0:          # re-check the stiffness bound
                 rho = stiffness_bound(_unpack(z, tm), tm)
                 if dt * rho > STAGE_SAFETY * rkc_stability_interval(stages):

@@ -256,13 +256,14 @@ def _per_rotor(a: np.ndarray, like: np.ndarray) -> np.ndarray:
 class RightHandSide:
     """dState/dτ for a batch of rotors with masses ``mass`` (M̄, shape (B,)).
 
-    Keeps the last beam films as the Newton guess of the next evaluation.
+    Keeps the last beam films as the Newton guess of the next evaluation (``guess``; the
+    integrators thin it with the batch when rotors leave it).
     """
 
     def __init__(self, tm: TransientModel, mass: np.ndarray):
         self.tm = tm
         self.mass_load = np.asarray(mass, dtype=float) * tm.load
-        self._guess = None
+        self.guess = None
         self._cache: dict = {}
         self.evaluations = 0
         #: smallest film H seen per rotor since the last reset (contact detection) [-]
@@ -271,10 +272,10 @@ class RightHandSide:
     def __call__(self, s: State) -> State:
         tm = self.tm
         self.evaluations += 1
-        p, h = pressure_and_film(s.phi, s.x, s.y, tm, self._guess, self._cache, s.w)
+        p, h = pressure_and_film(s.phi, s.x, s.y, tm, self.guess, self._cache, s.w)
         np.minimum(self.min_film, h.min(axis=(1, 2)), out=self.min_film)
         if tm.law.name == "beam":
-            self._guess = h[..., 0]
+            self.guess = h[..., 0]
         dphi = flux_residual(p, h, tm)
         dphi /= 2 * tm.bearing_number
         fx, fy = film_force(p, tm)
