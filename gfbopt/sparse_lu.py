@@ -40,6 +40,11 @@ ORDERING = "MMD_AT_PLUS_A"
 KEPT_PATTERNS = 16
 
 
+class PatternError(Exception):
+    """A kept order that does not reproduce its pattern (an internal error, never a
+    singular matrix: SuperLU's RuntimeError says that)."""
+
+
 class OrderedLU:
     """The LU of P A Pᵀ (P: the kept order) that solves A x = b like SuperLU's own object."""
 
@@ -60,11 +65,16 @@ class _Pattern:
     def __init__(self, matrix: sp.csc_matrix, perm_c: np.ndarray):
         self.order = np.argsort(perm_c)
         self.inverse = np.argsort(self.order)
-        index = sp.csc_matrix((np.arange(matrix.nnz, dtype=float), matrix.indices,
+        # entry numbers from 1, so that no entry is an explicit zero scipy could drop
+        index = sp.csc_matrix((np.arange(1, matrix.nnz + 1, dtype=float), matrix.indices,
                                matrix.indptr), shape=matrix.shape)
         permuted = index[self.order][:, self.order].tocsc()
         permuted.sort_indices()
-        self.source = permuted.data.astype(np.int64)     # entry k of P A Pᵀ is A.data[source[k]]
+        if permuted.nnz != matrix.nnz:
+            raise PatternError(f"the permuted pattern has {permuted.nnz} entries, the matrix "
+                               f"{matrix.nnz}")
+        # entry k of P A Pᵀ is A.data[source[k]]
+        self.source = permuted.data.astype(np.int64) - 1
         self.indices, self.indptr = permuted.indices, permuted.indptr
 
     def permute(self, matrix: sp.csc_matrix) -> sp.csc_matrix:
