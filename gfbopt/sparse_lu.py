@@ -97,7 +97,9 @@ class Factoriser:
             a = a.copy()
             a.sum_duplicates()
         key = (a.shape, a.dtype.kind, a.indptr.tobytes(), a.indices.tobytes())
-        pattern: Optional[_Pattern] = self._patterns.get(key)
+        pattern: Optional[_Pattern] = self._patterns.pop(key, None)
+        if pattern is not None:
+            self._patterns[key] = pattern        # most recently used last (evicted last)
         self.factorisations += 1
         if pattern is None:                  # the order: SuperLU's, from a first LU
             order = spla.splu(a, permc_spec=ORDERING).perm_c

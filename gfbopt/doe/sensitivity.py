@@ -71,6 +71,8 @@ def sobol_indices(plan, frame: pd.DataFrame, output: str, *, seed: int = 0) -> S
     intervals (the same table every run)."""
     from SALib.analyze import sobol as sobol_analyze
 
+    if isinstance(seed, bool) or not isinstance(seed, (int, np.integer)) or seed < 0:
+        raise ParameterError("seed", seed, "must be an integer >= 0 (the bootstrap's seed)")
     if plan.method != "saltelli":
         raise ParameterError("sampling.method", plan.method, "Sobol indices need the "
                              "'saltelli' design")

@@ -23,11 +23,9 @@ each step's threshold is local — Newton's method on the whirl ratio from the p
 crossing (:func:`gfbopt.linear.crossings.local_crossing`, one sparse LU and a few Krylov
 steps) — and each static solve starts from the nearest speed (extrapolated along the line,
 its LU reused) with the Newton fast path (:mod:`gfbopt.static.newton`).  The answer is
-confirmed by a full threshold at the secant's last point (its equilibrium kept): the secant
-point predicted from it must be within :data:`CONFIRM_TOLERANCE` of the one predicted from
-the local threshold (otherwise another branch took over, and Brent's method on full
-thresholds refines the bracket, as the reference does).  The whirl ratio at the onset is
-interpolated in ln N from the two rows nearest it (:func:`~.speed_line.onset_whirl_ratio`).
+confirmed by a full threshold at the secant's converged point: it must put the root within
+:data:`CONFIRM_TOLERANCE` of it (otherwise another branch took over, and Brent's method on
+full thresholds refines the bracket, as the reference does).
 
 Coarse guide (``coarse_grid``; "auto" uses :data:`COARSE_GRID` on grids with at least
 :data:`GUIDE_FACTOR` times its cells).  The scan runs on the coarse grid (thresholds there
@@ -98,9 +96,8 @@ METHODS = ("secant", "scan")
 #: measured ≤ 1e-9 against the reference at a tight tolerance).  Steps much smaller would
 #: only resolve the noise of g (~1e-10: the static and threshold tolerances)
 SECANT_TOLERANCE = 1e-6
-#: the full threshold must confirm the secant's onset to within this, in ln N (relative
-#: speed): at the secant's last point it must give the same next point, or at the onset put
-#: the root within this of it (one Newton step on g) [-]
+#: the full threshold at the secant's onset must put the root within this of it, in ln N
+#: (relative speed; one Newton step on g) [-]
 CONFIRM_TOLERANCE = 1e-7
 #: the secant also stops when its estimate of the next point's error (the product of the
 #: last two steps, :data:`~.speed_line.ERROR_FACTOR` times it) is at most this [-]: a
@@ -403,20 +400,20 @@ def _guided(line: SpeedLine, guide: SpeedLine, low: float, high: float, lowest: 
     coarse = secant_root(guide, low, high, COARSE_TOLERANCE)
     if coarse is None:
         return None
-    u0, slope, _ = coarse
+    u0, slope = coarse
     row = line.local(math.exp(u0))
     if not (math.isfinite(row["g"]) and slope < 0):
         return None
     u1 = u0 - row["g"] / slope
     found = secant_root(line, lowest, highest, SECANT_TOLERANCE, start=[(u0, row["g"])],
-                        first=u1, error_tol=ERROR_TOLERANCE, confirm=CONFIRM_TOLERANCE)
+                        first=u1, error_tol=ERROR_TOLERANCE)
     return _confirmed(line, found)
 
 
 def _refine(line: SpeedLine, low: float, high: float) -> float:
     """The onset in the fine bracket [low, high] (f(low) > 0 ≥ f(high), full thresholds)."""
     found = _confirmed(line, secant_root(line, low, high, SECANT_TOLERANCE,
-                                         error_tol=ERROR_TOLERANCE, confirm=CONFIRM_TOLERANCE))
+                                         error_tol=ERROR_TOLERANCE))
     if found is not None:
         return found
     # another branch took over, or the secant did not converge: the reference refinement
@@ -429,22 +426,16 @@ def _refine(line: SpeedLine, low: float, high: float) -> float:
 
 
 def _confirmed(line: SpeedLine, found) -> Optional[float]:
-    """The converged speed if the full threshold confirms it, else None (another branch
-    took over, or the secant failed).  Confirmed by :func:`~.speed_line.secant_root` itself
-    (the full threshold at its last point gives the same next point to within
-    :data:`CONFIRM_TOLERANCE`), or else by the full threshold at the converged speed, which
-    must put the root within :data:`CONFIRM_TOLERANCE` of it (one Newton step on g with the
-    secant's slope)."""
+    """The converged speed if the full threshold there puts the root within
+    :data:`CONFIRM_TOLERANCE` of it (one Newton step on g with the secant's slope), else None
+    (another branch took over, or the secant failed).  The check bounds the error of the
+    speed itself, whatever stopped the secant."""
     if found is None:
         return None
-    u, slope, confirmed = found
+    u, slope = found
     speed = math.exp(u)
-    if not (math.isfinite(slope) and slope != 0):
-        return None
-    if confirmed:
-        return speed
     full = line.full(speed)["g"]
-    if not math.isfinite(full):
+    if not (math.isfinite(full) and math.isfinite(slope) and slope != 0):
         return None
     return speed if abs(full / slope) <= CONFIRM_TOLERANCE else None
 

@@ -48,6 +48,10 @@ EXTRAPOLATION_DISTANCE = 0.02
 #: bound assumed on C = |g''/(2g')| in the secant's error estimate C |step| |step before|
 #: (:func:`secant_root`; measured C ≈ 0.03 on the Ruscitto speed line, 5,000–15,000 rpm) [-]
 ERROR_FACTOR = 1.0
+#: the error estimate stops the secant only for a next step at most this, in ln N [-]: its
+#: point is a step from the last one evaluated, and the confirmation there must stay one
+#: Newton step (a step of 3e-4, allowed by the product alone, would be several)
+ERROR_STOP_STEP = 1e-4
 #: the whirl ratio at the onset is interpolated from rows within this of it, in ln N [-]
 WHIRL_SPAN = 0.02
 #: secant steps before :func:`secant_root` gives up (the onset search then falls back to
@@ -237,10 +241,8 @@ class Guide(SpeedLine):
 
 
 def secant_root(line: SpeedLine, low: float, high: float, tol: float, start=None,
-                first: Optional[float] = None, error_tol: float = 0.0,
-                confirm: Optional[float] = None) -> Optional[tuple]:
-    """(u*, dg/du, confirmed) with g(u*) = 0, u = ln N [rpm], by secant steps safeguarded by
-    bisection.
+                first: Optional[float] = None, error_tol: float = 0.0) -> Optional[tuple]:
+    """(u*, dg/du) with g(u*) = 0, u = ln N [rpm], by secant steps safeguarded by bisection.
 
     [lo, hi] = [ln ``low``, ln ``high``].  Without ``start``, it is a bracket whose ends are
     evaluated with full thresholds (g(lo) > 0 ≥ g(hi)); with ``start`` = [(u0, g0)] and a
@@ -252,17 +254,11 @@ def secant_root(line: SpeedLine, low: float, high: float, tol: float, start=None
     C = |g''/(2g')| times the product of the errors of the two points before, and near the
     root the errors are the steps, so the estimate is :data:`ERROR_FACTOR` (C ≤ 1 assumed;
     measured C ≈ 0.03 on the Ruscitto speed line) times |step to u*| × |step before| (used
-    only when the steps shrink).  u* is returned without evaluating it.
-
-    ``confirm`` : with a tolerance, the full threshold is then computed at the last point
-    evaluated (its equilibrium and linearisation are kept, so it costs the threshold only)
-    and u* predicted again with it: confirmed (``confirmed`` True, that u* returned) when
-    it moves by at most ``confirm`` — the full threshold, which takes the least stable of
-    all branches, is then on the branch the local thresholds followed, and u* is the
-    secant's point on the full threshold's g.  None when it moves more (another branch
-    takes over there: the caller falls back), when the secant leaves the bounds without a
-    bracket, or when it does not converge in :data:`SECANT_STEPS` steps.  Without
-    ``confirm``, ``confirmed`` is False."""
+    only when the steps shrink and the step is at most :data:`ERROR_STOP_STEP`).  u* is
+    returned without evaluating it: the caller confirms it with the full threshold there
+    (:func:`gfbopt.rotor.onset`), which bounds its error whatever C is.  None when the secant
+    leaves the bounds without a bracket or does not converge in :data:`SECANT_STEPS`
+    steps."""
     lo, hi = math.log(low), math.log(high)
     ends = {lo: low, hi: high} if start is None else {}
 
@@ -291,13 +287,7 @@ def secant_root(line: SpeedLine, low: float, high: float, tol: float, start=None
             return None
         if predicted and (step > 0 or start is not None) and _converged(
                 u, u0, u1, tol, error_tol):
-            if confirm is None or len(points) < 2:
-                return u, slope(points), False
-            checked = points[:-1] + [(u1, g(u1, True))]
-            again = _secant_point(checked)
-            if again is None or abs(again - u) > confirm:
-                return None
-            return again, slope(checked), True
+            return u, slope(points)               # u: the next secant point
         gu = g(u)
         if not math.isfinite(gu) and a is None:
             return None
@@ -313,7 +303,7 @@ def secant_root(line: SpeedLine, low: float, high: float, tol: float, start=None
             b = u
         points.append((u, gu))
         if gu == 0:
-            return u, slope(points), False
+            return u, slope(points)
         u = None
     return None
 
@@ -336,7 +326,8 @@ def _converged(u: float, u0: Optional[float], u1: float, tol: float,
     if u0 is None or error_tol <= 0:
         return False
     before = abs(u1 - u0)
-    return step <= before and ERROR_FACTOR * step * before <= error_tol
+    return (step <= min(before, ERROR_STOP_STEP)
+            and ERROR_FACTOR * step * before <= error_tol)
 
 
 def onset_whirl_ratio(rows: list, onset: float, same_branch: float) -> float:

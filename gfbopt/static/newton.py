@@ -21,7 +21,8 @@ start interpolated off the coarse grid the first Newton step is ~6e-3 and the ch
 its LU contract at 0.015–0.03 per step, converged in seven or eight chord steps (25 ms)
 where a second LU and its Jacobian cost ~35 ms.  A solve at parameters within
 :data:`REUSE_PARAMETERS` of those of the previous solve's last LU (a neighbouring speed of a
-search) starts with chord steps on that LU.  Converged
+search) starts with chord steps on that LU; when that fails, the LU is dropped and the solve
+starts again with a fresh one (only a converged solve's LU is kept).  Converged
 when max |g| ≤ :data:`RESIDUAL_TOLERANCE`, or when max |g| is below IPOPT's own tolerance and
 the last step has stalled at round-off.  Refused (the caller falls back to IPOPT) when the
 iterate leaves IPOPT's bounds (P > 0, a total film H > 0, ε ≥ 0, −π/2 ≤ φ ≤ π), when a
@@ -35,7 +36,7 @@ tests/verification/test_static_newton.py checks ≤ 1e-10.
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Optional
 import numpy as np
 import scipy.sparse as sp
@@ -148,36 +149,51 @@ def solve(system: NewtonSystem, x0: np.ndarray, p: np.ndarray,
     most ``max_steps`` steps (default :data:`MAX_STEPS`) and :data:`MAX_FACTORISATIONS` LUs.
     With ``reuse``, the system's last LU starts the iteration as a chord step when its
     parameters differ from ``p`` by at most :data:`REUSE_PARAMETERS` (relative): a
-    neighbouring speed of a search."""
+    neighbouring speed of a search; when that fails, the kept LU is dropped and the
+    iteration starts again from ``x0`` with a fresh one (the outcome counts both).  The LU
+    of a converged solve is kept for the next one; a failed solve keeps none."""
     max_steps = MAX_STEPS if max_steps is None else max_steps
-    x = np.array(x0, dtype=float)
-    g = system.residual(x, p)
-    lu, last_step, steps, factorisations = None, np.inf, 0, 0
-    refresh = True                     # the next step needs a fresh LU
-    previous = None                    # the last step made on the current LU
+    kept = None
     if reuse and system.kept is not None and system.kept[0].shape == p.shape:
         if np.all(np.abs(system.kept[0] - p) <= REUSE_PARAMETERS * np.abs(p)):
-            lu, refresh = system.kept[1], False
+            kept = system.kept[1]
+    outcome, lu = _iterate(system, x0, p, max_steps, kept)
+    if not outcome.converged and kept is not None:    # a stale LU: again with a fresh one
+        again, lu = _iterate(system, x0, p, max_steps, None)
+        outcome = replace(again, steps=again.steps + outcome.steps,
+                          factorisations=again.factorisations + outcome.factorisations)
+    system.kept = (np.array(p, dtype=float), lu) if outcome.converged else None
+    return outcome
+
+
+def _iterate(system: NewtonSystem, x0: np.ndarray, p: np.ndarray, max_steps: int,
+             lu) -> tuple:
+    """(outcome, last LU) of Newton and chord steps from ``x0``, starting on ``lu`` when
+    given (module docstring)."""
+    x = np.array(x0, dtype=float)
+    g = system.residual(x, p)
+    last_step, steps, factorisations = np.inf, 0, 0
+    refresh = lu is None               # the next step needs a fresh LU
+    previous = None                    # the last step made on the current LU
     while True:
         residual = float(np.abs(g).max()) if g.size else 0.0
         if not np.isfinite(residual):
             return NewtonOutcome(x, False, steps, factorisations, residual,
-                                 "the residual is not finite")
+                                 "the residual is not finite"), lu
         if residual <= RESIDUAL_TOLERANCE or (residual <= IPOPT_TOLERANCE
                                               and last_step <= STALL_STEP):
-            return NewtonOutcome(x, True, steps, factorisations, residual)
+            return NewtonOutcome(x, True, steps, factorisations, residual), lu
         if steps >= max_steps or (refresh and factorisations >= MAX_FACTORISATIONS):
             return NewtonOutcome(x, False, steps, factorisations, residual,
-                                 f"not converged in {steps} steps ({factorisations} LUs)")
+                                 f"not converged in {steps} steps ({factorisations} LUs)"), lu
         if refresh:
             g, jac = system.residual_and_jacobian(x, p)
             try:
                 lu = system.factorise(jac)
             except RuntimeError:                      # exactly singular
                 return NewtonOutcome(x, False, steps, factorisations, residual,
-                                     "singular Jacobian")
+                                     "singular Jacobian"), lu
             factorisations += 1
-            system.kept = (np.array(p, dtype=float), lu)
             previous = None
         step = lu.solve(-g)
         x += step
@@ -187,7 +203,7 @@ def solve(system: NewtonSystem, x0: np.ndarray, p: np.ndarray,
         previous = last_step
         if not system.inside_bounds(x):
             return NewtonOutcome(x, False, steps, factorisations, residual,
-                                 "the iterate left IPOPT's bounds")
+                                 "the iterate left IPOPT's bounds"), lu
         g = system.residual(x, p)
 
 

@@ -145,3 +145,22 @@ def test_chord_steps_carry_a_one_percent_speed_step_on_the_kept_lu(film, structu
     assert outcome.converged and outcome.factorisations == 0
     assert 2 <= outcome.steps <= newton.MAX_STEPS
     assert np.abs(outcome.x - ipopt.state).max() <= 1e-10
+
+
+def test_a_stale_kept_lu_is_dropped_and_the_solve_started_again():
+    """A kept LU that sends the first chord step out of IPOPT's bounds (here the LU of 0.01 J:
+    a step 100 times Newton's) is dropped and the solve restarted with a fresh LU: it
+    converges to IPOPT's state, and the fresh LU is kept instead of the stale one."""
+    model = _model("seam", "simple", 2.1)
+    solver = solver_for(model, GRID)
+    system = solver.newton_system()
+    start = solve_static(_model("seam", "simple", 1.7), solver=solver, load=0.5)
+    p = solver.parameters(model, True, 0.5)
+    _, jac = system.residual_and_jacobian(start.state, p)
+    stale = system.factorise(jac * 0.01)
+    system.kept = (np.array(p, dtype=float), stale)
+    outcome = newton.solve(system, start.state, p)
+    ipopt = solve_static(model, solver=solver, load=0.5, initial=start)
+    assert outcome.converged and outcome.factorisations >= 1
+    assert np.abs(outcome.x - ipopt.state).max() <= 1e-10
+    assert system.kept is not None and system.kept[1] is not stale
