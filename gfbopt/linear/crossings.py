@@ -38,7 +38,8 @@ import numpy as np
 from scipy.optimize import brentq
 
 from .krylov import TOLERANCE, ShiftedImpedance
-from .model import Linearisation, factor
+from ..sparse_lu import factor
+from .model import Linearisation
 
 #: tolerance of a crossing's whirl ratio (absolute, Brent's xtol) [-]
 WHIRL_TOLERANCE = 1e-10

@@ -43,7 +43,8 @@ from typing import Optional, Sequence
 import numpy as np
 from scipy.linalg import lapack
 
-from .model import Linearisation, factor
+from ..sparse_lu import factor
+from .model import Linearisation
 
 #: LAPACK's complex least-squares solver (3× faster than numpy's qr + solve on these sizes)
 _GELS = lapack.get_lapack_funcs("gels", dtype=complex)

@@ -24,8 +24,7 @@ from ..physics.compliance import ComplianceTerms, PerturbationContext
 from ..physics.foil_laws import foil_law
 from ..static import StaticSolution, StaticSolver, solver_for
 from ..static.build import row_values
-from ..sparse_lu import Factoriser
-from ..sparse_lu import factor as sparse_factor
+from ..sparse_lu import Factoriser, factor
 
 
 @dataclass(frozen=True, eq=False)
@@ -174,19 +173,6 @@ def film_sensitivity(st: disc.Stencil, p_full: np.ndarray, h_full: np.ndarray,
     keep = cols >= 0
     rows = np.repeat(np.arange(n_u), 5).reshape(n_u, 5)
     return sp.csr_matrix((values[keep], (rows[keep], cols[keep])), shape=(n_u, n_u))
-
-
-def factor(matrix: sp.spmatrix, factoriser: Optional[Factoriser] = None):
-    """Sparse LU of ``matrix`` with SuperLU, columns ordered by minimum degree on A + Aᵀ
-    (:mod:`gfbopt.sparse_lu`; with ``factoriser``, the order kept for its sparsity pattern).
-
-    The perturbation matrices are structurally near-symmetric (five-point stencil plus the
-    lifted rows); this ordering gives ~30 % less fill and ~1.5× faster factorisations than
-    SuperLU's default COLAMD (measured on the Ruscitto bearing at 144 × 36, 5464 unknowns:
-    2.7·10⁵ against 3.9·10⁵ factor entries, 0.07 s against 0.11 s), with the same partial
-    pivoting.
-    """
-    return sparse_factor(matrix, factoriser)
 
 
 def impedance(lin: Linearisation, s: complex,

@@ -45,7 +45,8 @@ import scipy.sparse.linalg as spla
 
 from ..errors import ConvergenceError, ParameterError
 from .crossings import Cost, DirectImpedance, krylov_crossings, scan_crossings
-from .model import Linearisation, factor, impedance
+from ..sparse_lu import factor
+from .model import Linearisation, impedance
 
 #: ways to evaluate the impedance in :func:`linear_threshold` (module docstring)
 METHODS = ("krylov", "scan")

@@ -45,8 +45,8 @@ import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
 from ..errors import ParameterError
-from ..linear.model import factor, impedance
-from ..sparse_lu import Factoriser
+from ..linear.model import impedance
+from ..sparse_lu import Factoriser, factor
 from .modes import shape
 from .rigid import gyroscopic_matrix, mass_matrix
 from .supports import RotorCase, SpeedStates
