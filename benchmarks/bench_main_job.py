@@ -1,6 +1,6 @@
 """The main job (``gfbopt run problems/ruscitto_pitch_design.toml``) at --workers 1 and 2.
 
-Issue 19: 0.2.0 started a spawn pool for every small batch of the design search (9 pools,
+In 0.2.0, `gfbopt run` started a spawn pool for every small batch of the design search (9 pools,
 18 workers, ≈ 1.9 s of imports each, solvers rebuilt), so ``--workers 2`` was 1.8× slower
 than ``--workers 1``.  ``gfbopt run`` now opens one :class:`gfbopt.parallel.WorkerPool` for
 the whole run; this benchmark runs the real command line, end to end, in a fresh process per
@@ -20,6 +20,7 @@ from __future__ import annotations
 
 import argparse
 import os
+import re
 import resource
 import statistics
 import subprocess
@@ -36,6 +37,11 @@ ROOT = Path(__file__).resolve().parents[1]
 STUDY = ROOT / "problems" / "ruscitto_pitch_design.toml"
 
 
+def _without_folder(line: str) -> str:
+    """The run's last line without the temporary results folder it names."""
+    return re.sub(r" -> \S+$", " -> (temporary results folder)", line)
+
+
 def _run(grid: str, workers: int) -> dict:
     env = {**os.environ, "PYTHONPATH": str(ROOT), "GFBOPT_PROGRESS": "0"}
     before = resource.getrusage(resource.RUSAGE_CHILDREN)
@@ -50,7 +56,8 @@ def _run(grid: str, workers: int) -> dict:
     cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
     row = {"grid": grid, "workers": workers, "wall_s": wall, "cpu_s": cpu,
            "exit_status": out.returncode, "load_before": load, "load_after": os.getloadavg(),
-           "summary": out.stdout.strip().splitlines()[-1:] or [out.stderr.strip()[-300:]]}
+           "summary": [_without_folder(line) for line in
+                       out.stdout.strip().splitlines()[-1:] or [out.stderr.strip()[-300:]]]}
     print(f"grid {grid} workers {workers}: wall {wall:6.1f} s, cpu {cpu:6.1f} s, exit "
           f"{out.returncode}, load {load[0]:.2f}", flush=True)
     return row

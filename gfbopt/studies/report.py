@@ -52,13 +52,20 @@ def summary_line(result: StudyResult, folder: str = "") -> str:
     return line + (f" -> {folder}" if folder else "")
 
 
+def _reference_names(published) -> list:
+    """The reference names a ``published`` entry gives: a table's keys; none for a file of
+    published values (a path) or when the study has none."""
+    return list(published) if isinstance(published, dict) else []
+
+
 def _references(result: StudyResult) -> tuple:
     spec = result.study.spec
-    refs = set(spec.get("references", [])) | set(spec.get("published", {}))
+    refs = set(spec.get("references") or []) | set(_reference_names(spec.get("published")))
     for key in ("rows", "cases"):
-        for row in spec.get(key, []):
-            refs |= set(row.get("published", {}) if isinstance(row, dict) else {})
-    refs |= {p["reference"] for p in spec.get("comparisons", [])}
+        for row in spec.get(key) or []:
+            refs |= set(_reference_names(row.get("published")) if isinstance(row, dict)
+                        else [])
+    refs |= {p["reference"] for p in spec.get("comparisons") or []}
     refs |= {c["reference"] for c in result.comparisons}
     return tuple(sorted(refs))
 
