@@ -15,6 +15,11 @@ from ..inputs.grid import Grid
 from ..inputs.model import BearingModel, renamed_radian_attribute
 from ..physics.foil_laws import FoilParameters
 
+#: |ε| below this is a journal at the centre (IPOPT's round-off of a fixed ε = 0) [-]
+CONCENTRIC_TOLERANCE = 1e-12
+#: a film force below this has no direction (the round bore's concentric P ≡ 1) [-]
+FORCE_TOLERANCE = 1e-12
+
 
 @dataclass(frozen=True, eq=False)
 class StaticSolution:
@@ -61,6 +66,18 @@ class StaticSolution:
     #: which method solved it: "ipopt", or "newton" (the warm fast path, gfbopt.static.newton)
     solver: str = "ipopt"
 
+    def __post_init__(self) -> None:
+        # IPOPT returns a journal held at the centre as ε ≈ ±1e-48: a round-off, reported as
+        # the concentric journal it is (never a negative eccentricity)
+        if abs(self.eccentricity) < CONCENTRIC_TOLERANCE:
+            object.__setattr__(self, "eccentricity", 0.0)
+        if self.eccentricity == 0.0:
+            # concentric: no line of centres (φ undefined), and the film force of a preloaded
+            # bore need not lie on the load line, so the load carried is its magnitude |F|
+            # (its direction is :attr:`film_force_angle_deg`), not the component −F_X
+            object.__setattr__(self, "attitude_angle_rad", math.nan)
+            object.__setattr__(self, "load", self.film_force)
+
     def __getattr__(self, name: str):
         raise renamed_radian_attribute(type(self).__name__, name)
 
@@ -69,6 +86,22 @@ class StaticSolution:
         """Attitude angle φ: the journal centre from the load line in the direction of
         rotation [deg] (NaN for a concentric journal)."""
         return math.degrees(self.attitude_angle_rad)
+
+    @property
+    def film_force(self) -> float:
+        """Magnitude of the film force on the journal, |F| = √(F_X² + F_Y²) [-] (W̄ units).
+        At an equilibrium it is the load; at a stated position (``attitude_angle_deg`` given,
+        or a concentric journal in a preloaded bore) F_Y need not vanish."""
+        return float(math.hypot(*self.force))
+
+    @property
+    def film_force_angle_deg(self) -> float:
+        """Direction of the film force on the journal from the load line (+X) in the direction
+        of rotation, in [0, 360) [deg]: 180 when it opposes the load exactly (NaN for no
+        force)."""
+        if not self.film_force > FORCE_TOLERANCE:
+            return math.nan
+        return math.degrees(math.atan2(self.force[1], self.force[0])) % 360.0
 
     @property
     def min_film_angle_deg(self) -> float:
@@ -115,6 +148,7 @@ class StaticSolution:
             "attitude_angle_deg": self.attitude_angle_deg,
             "load": self.load,
             "force_x": self.force[0], "force_y": self.force[1],
+            "film_force": self.film_force, "film_force_angle_deg": self.film_force_angle_deg,
             "min_film": self.min_film,
             "min_film_angle_deg": self.min_film_angle_deg,
             "min_film_angle_from_seam_deg": self.min_film_angle_from_seam_deg,
