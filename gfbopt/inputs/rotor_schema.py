@@ -30,11 +30,15 @@ class Key:
 #: every key of a rotor file (the contract; docs/formats/rotor_file.md is generated from it)
 SCHEMA: tuple[Key, ...] = (
     Key("rotor", "name", "string", "text", False, "rotor", "any text", "label in reports"),
-    Key("rotor", "mass", "number", "kg", True, None, "finite, > 0", "mass of the whole rotor"),
-    Key("rotor", "transverse_inertia", "number", "kg m²", True, None, "finite, > 0",
+    Key("rotor", "mass", "number", "kg", True, None,
+        "finite, > 0; each bearing's static share between 1e-4 p_a R² and 100 p_a L D, and "
+        "m × 9.80665 m/s² at most both bearings' 100 p_a L D", "mass of the whole rotor"),
+    Key("rotor", "transverse_inertia", "number", "kg m²", True, None,
+        "finite, > 0, <= m ((50 D)² + (10 D)²/2) (D: the larger journal diameter)",
         "transverse (diametral) moment of inertia about the centre of gravity"),
     Key("rotor", "polar_inertia", "number", "kg m²", True, None,
-        "finite, > 0, <= 2 × transverse_inertia (a rigid body's principal moments)",
+        "finite, > 0, <= 2 × transverse_inertia (a rigid body's principal moments), "
+        "<= m (10 D)²",
         "polar moment of inertia about the rotor axis (gyroscopic coupling I_p ω)"),
     Key("rotor", "gravity_direction_deg", "number", "deg", False, 0.0, "finite",
         "direction of gravity in the x–y plane, from +x in the direction of rotation "
@@ -45,7 +49,8 @@ SCHEMA: tuple[Key, ...] = (
         "an existing bearing file (relative to the rotor file)",
         "the bearing's TOML file ([bearing] in SI, optional [model])"),
     Key("bearings", "position", "number", "m", True, None,
-        "finite; the two bearings at different positions",
+        "finite, within 50 D of the centre of gravity; span between the bearings in "
+        "[(L_A + L_B)/2, 50 D]",
         "axial position from the centre of gravity (signed)"),
     Key("bearings", "name", "string", "text", False, "A, B", "unique",
         "label of the bearing in reports"),
@@ -58,24 +63,24 @@ SCHEMA: tuple[Key, ...] = (
         "magnitude of a static force on the rotor"),
     Key("side_loads", "direction_deg", "number", "deg", True, None, "finite",
         "direction of the force in the x–y plane, from +x in the direction of rotation"),
-    Key("side_loads", "position", "number", "m", False, 0.0, "finite",
+    Key("side_loads", "position", "number", "m", False, 0.0, "finite, within 50 D of the CG",
         "axial position where it acts, from the centre of gravity"),
     Key("imbalance", "amount_kg_m", "number", "kg m", False, None,
-        "finite, > 0; exactly one of amount_kg_m and amount_g_mm",
-        "imbalance m e of the plane"),
+        "finite, > 0; exactly one of amount_kg_m and amount_g_mm; all planes together "
+        "<= m c (c: the smaller radial clearance)", "imbalance m e of the plane"),
     Key("imbalance", "amount_g_mm", "number", "g mm", False, None,
-        "finite, > 0; exactly one of amount_kg_m and amount_g_mm",
-        "imbalance m e of the plane (1 g mm = 1e-6 kg m)"),
+        "finite, > 0; exactly one of amount_kg_m and amount_g_mm; all planes together "
+        "<= m c", "imbalance m e of the plane (1 g mm = 1e-6 kg m)"),
     Key("imbalance", "phase_deg", "number", "deg", False, 0.0, "finite",
         "angular position of the heavy spot on the rotor, from the rotor's reference mark "
         "(along +x at t = 0) in the direction of rotation"),
-    Key("imbalance", "position", "number", "m", True, None, "finite",
+    Key("imbalance", "position", "number", "m", True, None, "finite, within 50 D of the CG",
         "axial position of the imbalance plane, from the centre of gravity"),
     Key("imbalance", "name", "string", "text", False, "plane 1, 2, …", "any text",
         "label of the plane"),
     Key("stations", "name", "string", "text", True, None, "unique, not a bearing's name",
         "label of an axial station where the imbalance response is reported"),
-    Key("stations", "position", "number", "m", True, None, "finite",
+    Key("stations", "position", "number", "m", True, None, "finite, within 50 D of the CG",
         "axial position of the station, from the centre of gravity"),
 )
 def schema_markdown() -> str:
@@ -139,6 +144,13 @@ _NOTES = """
   installed with its seam relative to gravity. If the statics turn the bearing's load away
   from gravity by an angle α, its film sees the welded end at `seam_angle_deg − α` from its
   own load. `"max_film"` and a periodic film are unaffected.
+* **Plausibility limits** (gfbopt.inputs.rotor_limits): a rigid rotor reaches at most 50
+  journal diameters D from its centre of gravity (a shaft that long bends far below foil
+  bearing speeds), its bearings do not overlap, its inertias are those of a body within that
+  reach and wheels of radius up to 10 D, each bearing carries between 1e-4 p_a R² (else the
+  rotor is unloaded) and 100 p_a L D, and the imbalance displaces the mass centre by at most
+  the clearance. They catch positions in millimetres and inertias in kg cm²; a refusal names
+  the key, the value and the limit.
 * **Model options** not stated in `[bearings.model]` come from the bearing file's
   `[model]` table, then gfbopt's defaults (a seam 180° from the load, simple foil, axial-mean
   law, no structural damping).

@@ -41,7 +41,9 @@ in the direction of rotation, in degrees at this edge.  By default gravity acts 
 horizontal rotor.
 
 Bad input raises one :class:`~gfbopt.errors.ParameterError` naming the file, the key, the value
-and the rule, before anything is solved.  A centre of gravity outside the bearing span
+and the rule, before anything is solved; so does a rotor no machine can be (positions in
+millimetres, inertias beyond the mass's reach, an unloaded bearing, an imbalance displacing the
+mass centre beyond the clearance: :mod:`gfbopt.inputs.rotor_limits`).  A centre of gravity outside the bearing span
 (overhung rotor) and a bearing pushed away from gravity by the statics are legal
 (:mod:`gfbopt.rotor.rigid` rotates that bearing's frame).
 """
@@ -58,6 +60,7 @@ from .bearing_file import load_bearing_file, read_toml
 from .checks import check_finite, check_nonnegative, check_positive
 from .conversions import STANDARD_GRAVITY
 from .options import ModelOptions
+from .rotor_limits import check_rotor_limits
 from .rotor_schema import SCHEMA, TABLES as _TABLES, Key, schema_markdown  # noqa: F401
 
 #: the number of bearings a rotor file must give (the rigid-rotor model has two supports)
@@ -217,6 +220,20 @@ class RotorSystem:
         object.__setattr__(self, "gravity", check_nonnegative("gravity", self.gravity))
         object.__setattr__(self, "gravity_direction_deg",
                            check_finite("gravity_direction_deg", self.gravity_direction_deg))
+        check_rotor_limits(self, where)
+
+    def static_shares(self) -> tuple:
+        """Each bearing's static load vector (W_x, W_y) [N] from force and moment balance of
+        the weight and the side loads about the bearings (:func:`gfbopt.rotor.rigid.
+        bearing_loads` adds directions and frames)."""
+        fx, fy = self.weight_vector
+        mx = my = 0.0
+        for load in self.side_loads:
+            vx, vy = load.vector
+            fx, fy, mx, my = fx + vx, fy + vy, mx + load.position * vx, my + load.position * vy
+        za, zb = (b.position for b in self.bearings)
+        return (((zb * fx - mx) / (zb - za), (zb * fy - my) / (zb - za)),
+                ((mx - za * fx) / (zb - za), (my - za * fy) / (zb - za)))
 
     @property
     def weight_vector(self) -> tuple[float, float]:
