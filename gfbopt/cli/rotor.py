@@ -165,8 +165,13 @@ def _report(out: dict) -> str:
     if "campbell" in out and out["campbell"]["least_stable"]:
         ls = out["campbell"]["least_stable"]
         lines.append(f"  Campbell: {out['campbell']['modes']} modes over "
-                     f"{out['campbell']['speeds']} speeds; least stable {ls['label']} at "
+                     f"{out['campbell']['speeds']} speeds; least stable {ls['track_label']} at "
                      f"{ls['speed_rpm']:,.0f} rpm (log decrement {ls['log_decrement']:.3g})")
+        lines.append("    tracks: " + "; ".join(
+            f"{t['mode']} {t['label']}" + (f" (damping through zero at "
+                                           f"{t['track_zero_rpm']:,.0f} rpm)"
+                                           if math.isfinite(t["track_zero_rpm"]) else "")
+            for t in out["campbell"]["tracks"]))
     for key in ("csv", "figures"):
         if key in out:
             lines.append(f"  {key}: {', '.join(out[key])}")

@@ -56,6 +56,7 @@ class RotorAnalysis:
                                else 0, "modes": int(table["mode"].nunique()) if len(table)
                                else 0, "least_stable": (self.campbell.least_stable().to_dict()
                                                         if len(table) else None),
+                               "tracks": self.campbell.tracks(),
                                "load_capacity_exceeded": self.campbell.capacity}
         if self.imbalance is not None:
             out["imbalance_response"] = {"peaks": self.imbalance.peaks,

@@ -5,9 +5,11 @@ answer.
 
 * :func:`campbell_diagram` — at each speed the rotor's modes from :func:`gfbopt.rotor.
   campbell.system_modes`, tracked by continuation and continuity (:mod:`gfbopt.rotor.
-  tracking`: MAC of the orbits at the bearings plus frequency continuity), each row with its
-  own shape's label and the track's name (``track_label``: the matched-whirl onset's label
-  where the track crosses zero damping, :func:`name_tracks`); the table has the damped
+  tracking`: MAC of the orbits at the bearings plus frequency continuity), each row with the
+  mode's name (``track_label``, one name per track, no two alike: the matched-whirl onset's
+  label where the track loses its damping at that onset; :func:`gfbopt.rotor.tracking.
+  name_tracks` states the rule) and the shape class of its own row (``shape_label``, which
+  drifts with speed on an asymmetric rotor); the table has the damped
   natural frequency [Hz], whirl ratio, log decrement, damping ratio and growth rate of every
   mode.  With a loss factor the foil's Kelvin–Voigt states use at each
   speed the reference whirl ratio of the least-stable matched-whirl crossing there (stated in
@@ -33,22 +35,19 @@ from ..errors import ParameterError
 from ..inputs.conversions import rpm_to_rad_per_s
 from ..progress import progress
 from .campbell import system_modes
-from .tracking import assign, guesses, track_name
+from .tracking import assign, guesses, name_tracks
 from .onset import onset_speed
 from .rigid import dynamic_stiffness, imbalance_forces, station_matrix
 from .system import SpeedLine
 
 #: ν_ref of the Kelvin–Voigt foil states when no mode crosses at a speed [-]
 FALLBACK_REFERENCE_WHIRL = 0.5
-#: a track is the matched-whirl onset's mode when its frequency interpolated to the onset
-#: speed is within this of the onset's whirl frequency [-] (two modes crossing zero in one
-#: diagram interval are further apart than this, and a Campbell line is smooth in Hz)
-SAME_FREQUENCY = 0.05
 
 
 @dataclass(frozen=True)
 class CampbellDiagram:
-    """table : one row per (speed, tracked mode): speed_rpm, mode (track number), label,
+    """table : one row per (speed, tracked mode): speed_rpm, mode (track number),
+    track_label (the mode's name), shape_label (this row's shape class), track_zero_rpm,
     whirl_frequency_hz, whirl_ratio, log_decrement, damping_ratio, growth_rate_per_s,
     reference_whirl_ratio; capacity : speeds skipped (a bearing over capacity)."""
 
@@ -58,6 +57,15 @@ class CampbellDiagram:
     def least_stable(self) -> pd.Series:
         """The row with the smallest log decrement."""
         return self.table.loc[self.table["log_decrement"].idxmin()]
+
+    def tracks(self) -> list:
+        """One dict per tracked mode: mode (number), label (its name, ``track_label``),
+        track_zero_rpm (nan: its damping does not fall through zero)."""
+        if self.table.empty:
+            return []
+        first = self.table.groupby("mode", sort=True).first()
+        return [{"mode": int(k), "label": r["track_label"],
+                 "track_zero_rpm": float(r["track_zero_rpm"])} for k, r in first.iterrows()]
 
 
 def reference_whirl(line: SpeedLine, speed: float) -> float:
@@ -70,7 +78,7 @@ def campbell_diagram(line: SpeedLine, speeds, show_progress: bool = True,
                      onsets=None) -> CampbellDiagram:
     """The Campbell diagram at ``speeds`` [rpm] (module docstring).  ``onsets``: the
     matched-whirl onsets (:class:`~gfbopt.rotor.mode_search.ModeOnset`) that name the tracks
-    crossing zero damping next to them (:func:`name_tracks`)."""
+    crossing zero damping next to them (:func:`~gfbopt.rotor.tracking.name_tracks`)."""
     damped = any(c.options.loss_factor for c in line.rotor.cases)
     positions = [b.position for b in line.rotor.system.bearings]
     tracks: list = []
@@ -94,8 +102,8 @@ def campbell_diagram(line: SpeedLine, speeds, show_progress: bool = True,
     names = name_tracks([[(s, m) for s, m, _ in tr] for tr in tracks], onsets or ())
     for number, (tr, (name, zero)) in enumerate(zip(tracks, names), 1):
         for speed, m, _ in tr:
-            rows.append({"speed_rpm": speed, "mode": number, "label": m.label,
-                         "track_label": name, "track_zero_rpm": zero,
+            rows.append({"speed_rpm": speed, "mode": number, "track_label": name,
+                         "shape_label": m.label, "track_zero_rpm": zero,
                          "whirl_frequency_hz": m.whirl_frequency_hz,
                          "whirl_ratio": m.whirl_ratio, "log_decrement": m.log_decrement,
                          "damping_ratio": m.damping_ratio,
@@ -105,30 +113,6 @@ def campbell_diagram(line: SpeedLine, speeds, show_progress: bool = True,
     if not table.empty:
         table = table.sort_values(["mode", "speed_rpm"]).reset_index(drop=True)
     return CampbellDiagram(table, skipped)
-
-
-def name_tracks(tracks: list, onsets) -> list:
-    """(name, zero-damping speed [rpm]) per track (:func:`gfbopt.rotor.tracking.track_name`);
-    a track whose log decrement falls through zero in the diagram interval that holds a
-    matched-whirl onset, at that onset's whirl frequency (within :data:`SAME_FREQUENCY`), is
-    named by the onset's label (the same mode: at the threshold the full system's
-    eigenvector is the matched-whirl one)."""
-    out = []
-    for rows in tracks:
-        name, zero = track_name(rows)
-        for (s0, m0), (s1, m1) in zip(rows, rows[1:]):
-            if not m0.log_decrement > 0 >= m1.log_decrement:
-                continue
-            for o in onsets:
-                if not (s0 <= o.onset_speed_rpm <= s1 and math.isfinite(o.whirl_frequency_hz)):
-                    continue
-                f = m0.whirl_frequency_hz + (m1.whirl_frequency_hz - m0.whirl_frequency_hz) * (
-                    (o.onset_speed_rpm - s0) / (s1 - s0))
-                if abs(f / o.whirl_frequency_hz - 1.0) <= SAME_FREQUENCY:
-                    name = o.label
-            break
-        out.append((name, zero))
-    return out
 
 
 @dataclass(frozen=True)

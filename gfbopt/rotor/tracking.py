@@ -17,13 +17,29 @@ bearings d = (X_A, Y_A, X_B, Y_B) [m] (one unit for all four, unlike q = (x, y, 
 s_pred the track's prediction (per second). A match costing more than :data:`MAX_COST` starts a
 new track instead.
 
-Names. Each row keeps its own shape's label (the shape of an asymmetric rotor's mode drifts
-between cylindrical, mixed and conical with speed). A track is named by the label where its log
-decrement first falls through zero — at the threshold the full system's eigenvector is the
-matched-whirl mode's, so the name is the threshold's onset label (a test) — and, for a track
-that stays stable, by its label where it is least stable. ``track_zero_rpm`` is that zero's
-speed by linear interpolation of the log decrement between the diagram's speeds (the exact
-onsets are the threshold's)."""
+Names (one name per mode, used by every output: the text, JSON, CSV and the figures).  A
+mode's name is its shape class (:func:`gfbopt.rotor.modes.label`: "forward conical", …); a
+matched-whirl onset's mode keeps the onset's label.  Each Campbell row also keeps its own
+shape's class (column ``shape_label``): an asymmetric rotor's mode drifts between
+cylindrical, mixed and conical with speed, so a row's shape is not the track's name.
+:func:`name_tracks` names the tracks (column ``track_label``):
+
+1. the tracks that lose their damping are matched one to one to the matched-whirl onsets (the
+   same event: at the threshold the full system's eigenvector is the matched-whirl mode's) by
+   the optimal assignment on |zero − onset|/Δs + |f/f_onset − 1|, Δs the diagram interval
+   holding the track's zero, f the track's frequency interpolated at the onset speed; a pair
+   is a candidate when the zero is within one interval of the onset and f within
+   :data:`SAME_FREQUENCY` of the onset's frequency.  A mode unstable at the lowest speed is
+   matched to a track unstable at the diagram's first speed, by frequency alone.  A matched
+   track takes the onset's label;
+2. every other track is named by its shape class where its log decrement first falls
+   through zero, else at its first speed when unstable there, else where it is least stable;
+3. distinct names: a name already taken — by a matched track, by the label of an onset that
+   no track matched, or by a lower-numbered track — gets the suffix " (2)", " (3)", … in the
+   order of the track numbers (column ``mode``).
+
+``track_zero_rpm`` is the zero's speed by linear interpolation of the log decrement between
+the diagram's speeds (the exact onsets are the threshold's)."""
 from __future__ import annotations
 
 import math
@@ -31,6 +47,7 @@ import math
 import numpy as np
 from scipy.optimize import linear_sum_assignment
 
+from .mode_search import ONSET, UNSTABLE_LOW
 from .rigid import station_matrix
 
 #: a match of a mode to a track costing more than this starts a new track [-]
@@ -42,6 +59,12 @@ FREQUENCY_WEIGHT = 4.0
 #: a track continues at the root nearest its guess when that root is within this of the
 #: guess, relative [-]
 NEAR = 0.25
+#: a track is a matched-whirl onset's mode only when its frequency interpolated to the onset
+#: speed is within this of the onset's whirl frequency [-] (two modes crossing zero in one
+#: diagram interval are further apart than this, and a Campbell line is smooth in Hz)
+SAME_FREQUENCY = 0.05
+#: statuses of a matched-whirl mode that a track losing (or without) damping carries
+_UNSTABLE = (ONSET, UNSTABLE_LOW)
 
 
 def orbit_vector(mode, positions) -> np.ndarray:
@@ -125,16 +148,70 @@ def assign(tracks: list, active: list, speed: float, omega: float, modes: list,
     return new_active
 
 
-def track_name(rows: list) -> tuple[str, float]:
-    """(name, speed of the first zero of the log decrement [rpm] or nan) of one track's rows
-    (speed, mode) in speed order (module docstring)."""
+def _zero(rows: list):
+    """(zero speed [rpm], interval width [rpm], mode nearest the zero) of the first fall of
+    the log decrement through zero along one track's rows (speed, mode), or None."""
     for (s0, m0), (s1, m1) in zip(rows, rows[1:]):
         d0, d1 = m0.log_decrement, m1.log_decrement
         if d0 > 0 >= d1:
             zero = s0 + d0 / (d0 - d1) * (s1 - s0)
-            nearest = m0 if abs(zero - s0) <= abs(s1 - zero) else m1
-            return nearest.label, zero
+            return zero, s1 - s0, (m0 if abs(zero - s0) <= abs(s1 - zero) else m1)
+    return None
+
+
+def track_name(rows: list) -> tuple[str, float]:
+    """(shape class, speed of the first zero of the log decrement [rpm] or nan) of one
+    track's rows (speed, mode) in speed order (module docstring, rule 2)."""
+    found = _zero(rows)
+    if found is not None:
+        return found[2].label, found[0]
     if rows and rows[0][1].log_decrement <= 0:
         return rows[0][1].label, math.nan
     least = min(rows, key=lambda r: r[1].log_decrement)
     return least[1].label, math.nan
+
+
+def _match_cost(rows: list, onset, first_speed: float) -> float:
+    """The cost of naming a track (rows) by a matched-whirl ``onset`` (module docstring,
+    rule 1); inf when the pair is no candidate."""
+    f_onset = onset.whirl_frequency_hz
+    if not (rows and math.isfinite(f_onset) and f_onset > 0) or onset.status not in _UNSTABLE:
+        return math.inf
+    if onset.status == UNSTABLE_LOW:
+        if rows[0][0] != first_speed or rows[0][1].log_decrement > 0:
+            return math.inf
+        gap = abs(rows[0][1].whirl_frequency_hz / f_onset - 1.0)
+        return gap if gap <= SAME_FREQUENCY else math.inf
+    found = _zero(rows)
+    if found is None:
+        return math.inf
+    zero, width, _ = found
+    f = float(np.interp(onset.onset_speed_rpm, [s for s, _ in rows],
+                        [m.whirl_frequency_hz for _, m in rows]))
+    gap, far = abs(f / f_onset - 1.0), abs(zero - onset.onset_speed_rpm) / width
+    return far + gap if far <= 1.0 and gap <= SAME_FREQUENCY else math.inf
+
+
+def name_tracks(tracks: list, onsets=()) -> list:
+    """(name, zero-damping speed [rpm] or nan) of each track (rows (speed, mode) in speed
+    order), no two names alike (module docstring); ``onsets``: the matched-whirl onsets
+    (:class:`~gfbopt.rotor.mode_search.ModeOnset`)."""
+    base = [track_name(rows) for rows in tracks]
+    names: list = [None] * len(tracks)
+    onsets = list(onsets)
+    first = min((rows[0][0] for rows in tracks if rows), default=math.nan)
+    if tracks and onsets:
+        cost = np.array([[_match_cost(rows, o, first) for o in onsets] for rows in tracks])
+        for t, k in zip(*linear_sum_assignment(np.where(np.isfinite(cost), cost, 1e9))):
+            if math.isfinite(cost[t, k]):
+                names[t] = onsets[k].label
+    taken = {n for n in names if n} | {o.label for o in onsets if o.status in _UNSTABLE}
+    for t, (label, _) in enumerate(base):
+        if names[t] is None:
+            name, k = label, 1
+            while name in taken:
+                k += 1
+                name = f"{label} ({k})"
+            names[t] = name
+            taken.add(name)
+    return [(n, zero) for n, (_, zero) in zip(names, base)]

@@ -170,7 +170,7 @@ def _notes(result, plain, out: dict, top: float) -> list:
                  "first onset it is the linear response of an unstable rotor.")
     least = result.campbell.least_stable()
     notes.append(f"Campbell diagram: least log decrement {least['log_decrement']:.3g} "
-                 f"({least['label']}, {least['speed_rpm']:,.0f} rpm); "
+                 f"({least['track_label']}, {least['speed_rpm']:,.0f} rpm); "
                  f"{int(np.isfinite(result.campbell.table['log_decrement']).sum())} eigenvalues.")
     return notes
 
