@@ -13,9 +13,9 @@ fraction of the known optimum of a positive merit, or the simple regret of Hartm
 optimiser's own time per ask/tell step (the evaluations here cost nothing, so this is pure
 overhead).  Needs the three libraries (not gfbopt dependencies)::
 
-    python -m venv /tmp/bo && /tmp/bo/bin/pip install numpy scipy optuna \\
+    python -m venv ../bo-venv && ../bo-venv/bin/pip install numpy scipy optuna \\
         bayesian-optimization scikit-optimize
-    /tmp/bo/bin/python benchmarks/bench_bayesian_choice.py   # -> results/benchmarks/
+    ../bo-venv/bin/python benchmarks/bench_bayesian_choice.py   # -> results/benchmarks/
 
 The JSON goes to ``results/benchmarks/bayesian_choice.json``.  gfbopt's own Bayesian option
 (:mod:`gfbopt.design.search`, this library's GP + EI with constraints) and the cost of its

@@ -5,7 +5,7 @@ Run:  PYTHONPATH=. python benchmarks/bench_critical_mass.py [--out FILE.json]
 (default results/benchmarks/critical_mass.json; --skip-previous, --skip-scaling;
 --damped-only runs section 4 alone, default out results/benchmarks/critical_mass_damped.json)
 
-Operating point (issue #8): ε = 0.4, Λ = 2, S = 1, L/D = 1, simple foundation (axial-mean
+Operating point: ε = 0.4, Λ = 2, S = 1, L/D = 1, simple foundation (axial-mean
 law), periodic film, 144 × 36.  Times are split: the CasADi/IPOPT build, the static solve +
 linearisation + linear threshold, the linear mode (one sparse LU), and the transient search
 or orbit alone (what this work changes).
@@ -21,13 +21,13 @@ or orbit alone (what this work changes).
    216 × 54 with rk4 and rkc: time, evaluations; exponents of time ∝ nodes^p fitted by least
    squares on log–log (RK4: step ∝ Δ², so p ≈ 2; RKC: stages ∝ √ρ ∝ 1/Δ, so p ≈ 1.5).
 
-4. Structural damping (issue #9): the critical mass with η = 0.3 at 144 × 36, rkc, from the
+4. Structural damping: the critical mass with η = 0.3 at 144 × 36, rkc, from the
    damped linear mode, with the Kelvin–Voigt foil state (ν_ref = the linear threshold whirl
    ratio): the axial-mean law at the point above, and the local law with a seam 180° from the
    load.  Seconds of the search and its deviation from the damped linear critical mass
    (target: 1 %), beside the same search without damping (the cost of the foil state).
 
-Targets (issue #8): critical mass ≤ 10 s within 0.5 % of the linear threshold; the orbit
+Targets: critical mass ≤ 10 s within 0.5 % of the linear threshold; the orbit
 example ≤ 10 s.  Wall and CPU seconds are both recorded: on a shared machine the wall time
 also counts the time spent waiting for a core (the load average is recorded too).
 """

@@ -1,4 +1,4 @@
-"""The design optimiser's own cost per evaluation against one real evaluation (issue 20:
+"""The design optimiser's own cost per evaluation against one real evaluation (target:
 overhead ≤ 2 % of an evaluation), in one run.
 
 Measured (serial, one process, so nothing else hides in the numbers):

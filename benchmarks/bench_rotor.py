@@ -11,7 +11,7 @@
 * a 20-speed Campbell diagram at 72 × 20 (full-system eigenvalues), after the builds.
 
 Wall and CPU time are both reported: the machine is shared (the load average before and after
-is recorded), and CPU time is what the code costs.  Targets from the issue: onsets ≤ 10 s at
+is recorded), and CPU time is what the code costs.  Targets: onsets ≤ 10 s at
 the default grid, ≤ 3 s at 72 × 20; Campbell ≤ 30 s.
 
     OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1 PYTHONPATH=. python benchmarks/bench_rotor.py \\

@@ -16,8 +16,7 @@ Measures
 * the cost of one impedance evaluation (one sparse complex LU), the unit of everything;
 * ``stability()`` with three searches for the least-stable mode, in one run (``mode_search``):
   "near_threshold" — 0.2's search (shift-invert eigenvalues near the threshold whirl only, then
-  the secant polish on the characteristic equation; it can miss the least-damped root, issue
-  14), "eigs" — the wide reference (three shift-invert searches over whirl ratios 0.02–3),
+  the secant polish on the characteristic equation; it can miss the least-damped root), "eigs" — the wide reference (three shift-invert searches over whirl ratios 0.02–3),
   "krylov" — the default (one LU, one Krylov space, roots of its reduced model); their
   ratios to "near_threshold" (target for "krylov": ≤ 1.3) and the largest difference of the
   mode found by "krylov" and "eigs".

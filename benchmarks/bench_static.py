@@ -38,7 +38,7 @@ Usage::
 Prints a table and writes a JSON file with the machine, date and library versions.
 Targets: build ≤ 1 s at 72 × 20; solve ≤ 0.1 s warm, ≤ 0.3 s cold and no slower than the
 Newton reference; Tables 3.1 + 3.2 ≤ 5 s including the build; at the default grid
-``gfbopt static`` ≤ 2 s and ``gfbopt linear`` ≤ 4 s end to end on the second call (issue 8).
+``gfbopt static`` ≤ 2 s and ``gfbopt linear`` ≤ 4 s end to end on the second call.
 """
 from __future__ import annotations
 
