@@ -2,7 +2,7 @@
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field
 from typing import Optional
 
 from ..errors import ParameterError
@@ -153,9 +153,11 @@ class BearingGeometry:
         compliance = 0.0 if foil == "rigid" else self.compliance
         if self.build is not None and "as_built" not in kwargs:
             built = self.build.nondimensional(self)
-            if foil == "rigid":       # a rigid comparison keeps the bore, not the foils
-                built = replace(built, zones=(), pads=())
-            elif built.zones:
+            if foil == "rigid" and (built.zones or built.pads):
+                raise ParameterError("foil", foil, "a rigid bearing has no top foil or bumps: "
+                                     "the bearing's [[zones]] and [[pads]] would be ignored "
+                                     "(remove them, or choose foil 'simple' or 'beam')")
+            if built.zones:
                 compliance = built.mean_compliance()
             kwargs["as_built"] = built
         return BearingModel(bearing_number=self.bearing_number(speed_rpm),

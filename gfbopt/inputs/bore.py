@@ -39,6 +39,22 @@ BORE_KINDS = ("round", "shims", "lobes", "table")
 TWO_PI = 2.0 * math.pi
 #: two angles closer than this are the same [rad] (pads and zones meeting end to end)
 ANGLE_TOLERANCE = 1e-9
+#: the range of a starting angle (shim or lobe offset, pad leading end, zone start) [deg]: a
+#: turn either way; 1e300° has no angle left after wrapping (the shims vanished)
+START_RANGE_DEG = (-360.0, 360.0)
+#: the range of a zone's end [deg] (above 360: through 0°)
+END_RANGE_DEG = (-360.0, 720.0)
+#: the range of any angle of the non-dimensional description [deg] (built in code, e.g. a
+#: seam plus k × 120°): three turns either way, so that wrapping keeps the angle's digits
+ANGLE_RANGE_DEG = (-1080.0, 1080.0)
+#: most shims, lobes or pads: a bore of more is a surface finish, not a preload profile, and
+#: the default grid's 144 rows resolve 12 of them at 12 rows each (10⁶ lobes on 36 rows were
+#: aliased into a different bore)
+MAX_FEATURES = 12
+#: most bump zones (each zone at least a few grid rows on the default grid)
+MAX_ZONES = 24
+#: fewest θ rows of the grid per shim, lobe or pad period (below it the profile is aliased)
+MIN_ROWS_PER_FEATURE = 3
 
 
 def _deg(angle: float) -> float:
@@ -85,6 +101,13 @@ class BoreProfile:
         if self.kind in ("shims", "lobes"):
             if isinstance(self.count, bool) or not isinstance(self.count, int) or self.count < 1:
                 raise ParameterError("bore.count", self.count, "must be a whole number >= 1")
+            if self.count > MAX_FEATURES:
+                raise ParameterError("bore.count", self.count, f"must be <= {MAX_FEATURES} "
+                                     "(more shims or lobes are a surface finish, not a preload "
+                                     "profile, and no grid of gfbopt's would resolve them)")
+            degrees_in("bore.offset_deg", math.degrees(check_finite("bore.offset",
+                                                                    self.offset)),
+                       *ANGLE_RANGE_DEG)
             r = check_finite("bore.preload_ratio", self.preload)
             if r < 0:
                 raise ParameterError("bore.preload_ratio", self.preload, "must be >= 0 (a "
@@ -184,9 +207,13 @@ class Zone:
 
 def check_pads(pads: tuple) -> tuple:
     """Pads sorted by leading end, checked: arcs > 0, no two overlapping, within 360°."""
+    if len(pads) > MAX_FEATURES:
+        raise ParameterError("pads", f"{len(pads)} pads", f"at most {MAX_FEATURES} top-foil "
+                             "pads (segmented foil bearings have 2 to 8)")
     out = []
     for k, pad in enumerate(pads):
-        lead = check_finite(f"pads[{k}].leading_end_deg", math.degrees(pad.leading_end))
+        lead = degrees_in(f"pads[{k}].leading_end_deg", math.degrees(
+            check_finite(f"pads[{k}].leading_end", pad.leading_end)), *ANGLE_RANGE_DEG)
         arc = check_finite(f"pads[{k}].arc_deg", math.degrees(pad.arc))
         if arc <= 0:
             raise ParameterError(f"pads[{k}].arc_deg", arc, "must be > 0 (negative or zero "
@@ -212,11 +239,15 @@ def check_pads(pads: tuple) -> tuple:
 
 def check_zones(zones: tuple) -> tuple:
     """Zones sorted by start, checked: positive spans and S, no overlap, covering the bore."""
+    if len(zones) > MAX_ZONES:
+        raise ParameterError("zones", f"{len(zones)} zones", f"at most {MAX_ZONES} bump zones")
     out = []
     for k, z in enumerate(zones):
         s = check_positive(f"zones[{k}].compliance", z.compliance)
         start, end = check_finite(f"zones[{k}].start_deg", z.start), check_finite(
             f"zones[{k}].end_deg", z.end)
+        degrees_in(f"zones[{k}].start_deg", math.degrees(start), *ANGLE_RANGE_DEG)
+        degrees_in(f"zones[{k}].end_deg", math.degrees(end), *ANGLE_RANGE_DEG)
         if end <= start:
             raise ParameterError(f"zones[{k}].end_deg", math.degrees(end), "must be greater "
                                  f"than start_deg = {math.degrees(start):.6g} (negative or "
@@ -332,6 +363,25 @@ class AsBuilt:
                             or None)
         out["zones_compliance"] = [z.compliance for z in self.zones] or None
         return out
+
+
+def check_grid_resolves(as_built, n_theta: int) -> None:
+    """Refuse a grid of ``n_theta`` θ intervals too coarse for the bearing as built: fewer
+    than :data:`MIN_ROWS_PER_FEATURE` rows per shim or lobe period or per pad, or a shim
+    narrower than one row (the profile would be aliased into another bearing)."""
+    if as_built is None:
+        return
+    bore = as_built.bore
+    count = max(bore.count if bore.kind in ("shims", "lobes") and not bore.is_round else 0,
+                len(as_built.pads) if not as_built.single_pad else 0)
+    if count and n_theta < MIN_ROWS_PER_FEATURE * count:
+        raise ParameterError("grid n_theta", n_theta, f"must be >= {MIN_ROWS_PER_FEATURE} × "
+                             f"{count} = {MIN_ROWS_PER_FEATURE * count} to resolve {count} "
+                             "shims, lobes or pads (the profile would be aliased)")
+    if bore.kind == "shims" and not bore.is_round and bore.width < TWO_PI / n_theta:
+        raise ParameterError("grid n_theta", n_theta, f"must give rows closer than the shim "
+                             f"width {math.degrees(bore.width):.4g}° (rows every "
+                             f"{360.0 / n_theta:.4g}°)")
 
 
 def check_as_built(model) -> None:

@@ -4,12 +4,12 @@ non-dimensional :class:`~gfbopt.inputs.bore.AsBuilt` (conventions in :mod:`.bore
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Optional
 
 from ..errors import ParameterError
-from .bore import BORE_KINDS, AsBuilt, BoreProfile, Pad, Zone, degrees_in
-from .checks import check_finite, check_positive
+from .bore import BORE_KINDS, START_RANGE_DEG, AsBuilt, BoreProfile, Pad, Zone, degrees_in
+from .checks import check_finite
 
 
 # ------------------------------------------------------------------ SI descriptions
@@ -51,9 +51,11 @@ class BoreSpec:
             else:
                 ratio = check_finite("bore.preload_ratio", self.preload_ratio)
             return BoreProfile(self.kind, self.count, ratio,
-                               math.radians(degrees_in("bore.width_deg", self.width_deg))
+                               math.radians(degrees_in("bore.width_deg", self.width_deg,
+                                                       0.0, 360.0, low_open=True))
                                if self.kind == "shims" else 0.0,
-                               math.radians(degrees_in("bore.offset_deg", self.offset_deg)))
+                               math.radians(degrees_in("bore.offset_deg", self.offset_deg,
+                                                       *START_RANGE_DEG)))
         if self.kind == "table":
             angles = tuple(math.radians(degrees_in("bore.angle_deg", a, 0.0, 360.0))
                            for a in self.angle_deg)
@@ -112,11 +114,15 @@ class BearingBuild:
 
         zones = []
         for k, z in enumerate(self.zones):
-            geo = {key: (getattr(geometry, key) if getattr(z, key) is None else
-                         check_positive(f"zones[{k}].{key}", getattr(z, key)))
-                   for key in ("bump_pitch", "bump_half_length", "bump_thickness")}
-            alpha = bump_compliance(geo["bump_pitch"], geo["bump_half_length"],
-                                    geo["bump_thickness"], geometry.bump_youngs_modulus,
+            geo = {key: getattr(z, key) for key in ("bump_pitch", "bump_half_length",
+                                                    "bump_thickness")
+                   if getattr(z, key) is not None}
+            try:        # one set of rules: the zone's bumps are checked as [bearing]'s are
+                zoned = replace(geometry, build=None, **geo)
+            except ParameterError as exc:
+                raise ParameterError(f"zones[{k}].{exc.name}", exc.value, exc.rule) from None
+            alpha = bump_compliance(zoned.bump_pitch, zoned.bump_half_length,
+                                    zoned.bump_thickness, geometry.bump_youngs_modulus,
                                     geometry.poisson_ratio)
             s = compliance_coefficient(alpha, geometry.ambient_pressure,
                                        geometry.radial_clearance)

@@ -22,11 +22,11 @@ from __future__ import annotations
 
 import difflib
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Any, Optional
 
 from ..errors import ParameterError
-from .bore import BORE_KINDS
+from .bore import BORE_KINDS, END_RANGE_DEG, MAX_FEATURES, MAX_ZONES, START_RANGE_DEG
 from .model import DEFLECTION_LAWS, FILM_MODELS, FOIL_MODELS
 
 #: default of a required field
@@ -233,6 +233,7 @@ def check_file(data: dict, fmt: FileFormat, where: str) -> dict:
 # ------------------------------------------------------------------ the bearing file
 _WHY_SIZE = "a journal bearing of 1 mm to 1 m radius"
 _WHY_MODULUS = "a metal foil: 1 MPa to 10 TPa"
+_WHY_TURN = "a turn either way from the load line"
 
 #: the ``[bearing]`` table: the bearing in SI units (:class:`~gfbopt.inputs.BearingGeometry`)
 BEARING = Table("bearing", "the bearing's dimensions and materials, SI units", required=True,
@@ -300,36 +301,42 @@ BORE = Table("bore", "the bore profile (shims, lobes or a measured table) that p
              "bearing; a round bore when absent", fields=(
     Field("kind", "choice", "text", "bore profile", choices=BORE_KINDS),
     Field("count", "integer", "-", "number of shims or lobes (shims, lobes)", default=None,
-          low=1),
+          low=1, high=MAX_FEATURES, why="more are a surface finish, not a preload profile"),
     Field("preload_depth", "number", "m", "preload: depth of the shims or lobes (or "
           "preload_ratio)", default=None, positive=True),
     Field("preload_ratio", "number", "-", "preload over the radial clearance (or "
           "preload_depth)", default=None),
-    Field("width_deg", "number", "deg", "shim width (shims: required)", default=None),
+    Field("width_deg", "number", "deg", "shim width (shims: required)", default=None,
+          positive=True, why="negative or zero shim width"),
     Field("offset_deg", "number", "deg", "centre of the first shim or lobe from the load "
-          "line", default=None),
+          "line", default=None, low=START_RANGE_DEG[0], high=START_RANGE_DEG[1],
+          why=_WHY_TURN),
     Field("angle_deg", "numbers", "deg", "angles of a measured bore (kind table), in [0, 360)",
           default=None),
     Field("clearance_change", "numbers", "m", "change of the radial clearance at those angles "
           "(kind table)", default=None)),
-    rules=("shims and lobes: count >= 1 and exactly one of preload_depth, preload_ratio",
+    rules=(f"shims and lobes: 1 <= count <= {MAX_FEATURES} and exactly one of preload_depth, "
+           "preload_ratio",
            "preload_depth < radial_clearance (the film must stay open with the journal "
            "concentric)"))
 PADS = Table("pads", "one table per top foil (pad): a segmented bearing; one 360° top foil "
              "when absent", array=True, fields=(
-    Field("leading_end_deg", "number", "deg", "welded (leading) end from the load line"),
-    Field("arc_deg", "number", "deg", "arc of the pad")),
-    rules=("pads need a seamed film; with a seam stated, it sits on a pad's leading end",))
+    Field("leading_end_deg", "number", "deg", "welded (leading) end from the load line",
+          low=START_RANGE_DEG[0], high=START_RANGE_DEG[1], why=_WHY_TURN),
+    Field("arc_deg", "number", "deg", "arc of the pad", positive=True,
+          why="negative or zero pad width")),
+    rules=("pads need a seamed film; with a seam stated, it sits on a pad's leading end",
+           f"at most {MAX_FEATURES} pads; a rigid foil has none"))
 ZONES = Table("zones", "bump zones with their own bump geometry, covering 360° once; a "
               "uniform foundation when absent", array=True, fields=(
-    Field("start_deg", "number", "deg", "start of the zone from the load line"),
-    Field("end_deg", "number", "deg", "end of the zone (> start; above 360 through 0°)"),
-    Field("bump_pitch", "number", "m", "bump pitch s (default: [bearing]'s)", default=None,
-          positive=True),
-    Field("bump_half_length", "number", "m", "half bump length l0 (default: [bearing]'s)",
-          default=None, positive=True),
-    Field("bump_thickness", "number", "m", "bump thickness t_b (default: [bearing]'s)",
-          default=None, positive=True)))
+    Field("start_deg", "number", "deg", "start of the zone from the load line",
+          low=START_RANGE_DEG[0], high=START_RANGE_DEG[1], why=_WHY_TURN),
+    Field("end_deg", "number", "deg", "end of the zone (> start; above 360 through 0°)",
+          low=END_RANGE_DEG[0], high=END_RANGE_DEG[1]),
+    *(replace(BEARING.field(key), doc=f"{BEARING.field(key).doc} (default: [bearing]'s)",
+              default=None) for key in ("bump_pitch", "bump_half_length", "bump_thickness"))),
+    rules=(f"at most {MAX_ZONES} zones; each zone's bumps obey [bearing]'s rules (2 l0 <= s, "
+           "t_b < l0, s <= π R, S <= 1000); zones need a bump foil (not foil 'rigid')",))
 
 #: the tables of a bearing file; adding a table is one entry here (module docstring)
 BEARING_TABLES = (BEARING, MODEL, BORE, PADS, ZONES)
