@@ -194,6 +194,12 @@ def _critical_mass(method: str) -> dict:
                 if r["method"] == method and r["start"] == "linear mode")
 
 
+def _rt(dotted: str, fmt: str, loaded: bool = False) -> Quoted:
+    """A rotor-transient benchmark figure: the latest run, or the one under load."""
+    path = f"{BENCH}/rotor_transient{'_preloaded' if loaded else ''}.json"
+    return Quoted(path, lambda: key(path, dotted), fmt)
+
+
 def _run_up(quantity: str) -> float:
     return cell(f"{RUN_UP}/summary.csv", "value", quantity=quantity)
 
@@ -297,6 +303,8 @@ QUOTED: dict[str, Quoted] = {
     "profile_pressure_pct": _comparison("thesis_profile", "thesis_seam: max_mean_pressure", 100,
                                         "{:.0f}"),
     "profile_min_film_pct": _comparison("thesis_profile", "thesis_seam: min_film", 100, "{:.1f}"),
+    "nonlinear_vs_linear_pct": Quoted("results/nonlinear_vs_linear/summary.json", lambda: 100 * max(
+        c["value"] for c in key("results/nonlinear_vs_linear/summary.json", "checks")), "{:.3f}"),
     "ausman_pct": _comparison("ausman_concentric_impedance", "impedance against Ausman", 100,
                               "{:.2f}"),
     # timings and counts of the benchmarks
@@ -308,6 +316,27 @@ QUOTED: dict[str, Quoted] = {
         _critical_mass(m)["rel_to_linear"] for m in ("rkc", "rk4")), "{:.3f}"),
     "rkc_evaluation_ratio": Quoted(f"{BENCH}/critical_mass.json", lambda: key(
         f"{BENCH}/critical_mass.json", "orbit_example.evaluation_ratio_rk4_over_rkc"), "{:.1f}"),
+    # the rotor transient's cost (docs/rotor_transient.md)
+    "rt_rotor_cpu_per_rev_s": _rt("per_revolution.rotor_cpu_s_per_revolution", "{:.3f}"),
+    "rt_one_bearing_cpu_per_rev_s": _rt("per_revolution.one_bearing_cpu_s_per_revolution",
+                                        "{:.3f}"),
+    "rt_ratio": _rt("per_revolution.ratio", "{:.2f}"),
+    "rt_ratio_loaded": _rt("per_revolution.ratio", "{:.2f}", loaded=True),
+    "rt_revolutions": _rt("run_up_preloaded.revolutions", "{:.0f}"),
+    "rt_preloaded_film_a_um": _rt("run_up_preloaded.min_film_um.0", "{:.2f}"),
+    "rt_preloaded_film_b_um": _rt("run_up_preloaded.min_film_um.1", "{:.2f}"),
+    "rt_preloaded_sync_a_um": _rt("run_up_preloaded.peak_sync_amplitude_um.0", "{:.2f}"),
+    "rt_preloaded_sync_b_um": _rt("run_up_preloaded.peak_sync_amplitude_um.1", "{:.2f}"),
+    "rt_preloaded_cpu_s": _rt("run_up_preloaded.cpu_time_s", "{:.0f}"),
+    "rt_preloaded_wall_s": _rt("run_up_preloaded.wall_time_s", "{:.0f}"),
+    "rt_preloaded_cpu_loaded_s": _rt("run_up_preloaded.cpu_time_s", "{:.0f}", loaded=True),
+    "rt_preloaded_wall_loaded_s": _rt("run_up_preloaded.wall_time_s", "{:.0f}", loaded=True),
+    "rt_study_contact_rpm": _rt("run_up_study.contact_speed_rpm", "{:,.0f}"),
+    "rt_study_subsync_rpm": _rt("run_up_study.subsync_appearance_rpm", "{:,.0f}"),
+    "rt_study_cpu_s": _rt("run_up_study.cpu_time_s", "{:.1f}"),
+    "rt_study_cpu_loaded_s": _rt("run_up_study.cpu_time_s", "{:.1f}", loaded=True),
+    "rt_study_cpu_before_s": _rt("run_up_study.before_speed_following_step.cpu_time_s", "{:.1f}",
+                                 loaded=True),
 }
 
 
