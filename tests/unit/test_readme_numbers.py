@@ -194,6 +194,12 @@ def _critical_mass(method: str) -> dict:
                 if r["method"] == method and r["start"] == "linear mode")
 
 
+def _static_build(grid: str, which: str) -> Quoted:
+    path = f"{BENCH}/static_speed.json"
+    return Quoted(path, lambda: next(f[which]["median_s"] for f in key(path, "formulations")
+                                     if f["grid"] == grid), "{:.1f}")
+
+
 def _rt(dotted: str, fmt: str, loaded: bool = False) -> Quoted:
     """A rotor-transient benchmark figure: the latest run, or the one under load."""
     path = f"{BENCH}/rotor_transient{'_preloaded' if loaded else ''}.json"
@@ -316,6 +322,10 @@ QUOTED: dict[str, Quoted] = {
         _critical_mass(m)["rel_to_linear"] for m in ("rkc", "rk4")), "{:.3f}"),
     "rkc_evaluation_ratio": Quoted(f"{BENCH}/critical_mass.json", lambda: key(
         f"{BENCH}/critical_mass.json", "orbit_example.evaluation_ratio_rk4_over_rkc"), "{:.1f}"),
+    "static_build_72_s": _static_build("72x20", "build"),
+    "static_build_144_s": _static_build("144x36", "build"),
+    "static_flat_build_72_s": _static_build("72x20", "flat_reference_build"),
+    "static_flat_build_144_s": _static_build("144x36", "flat_reference_build"),
     # the rotor transient's cost (docs/rotor_transient.md)
     "rt_rotor_cpu_per_rev_s": _rt("per_revolution.rotor_cpu_s_per_revolution", "{:.3f}"),
     "rt_one_bearing_cpu_per_rev_s": _rt("per_revolution.one_bearing_cpu_s_per_revolution",
