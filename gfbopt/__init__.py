@@ -7,8 +7,9 @@ and transients (:mod:`gfbopt.transient`) → analyses as table rows (:mod:`gfbop
 executors (:mod:`gfbopt.parallel`), studies (:mod:`gfbopt.studies`), figures
 (:mod:`gfbopt.plotting`) and the command line (:mod:`gfbopt.cli`).
 
-Importing gfbopt changes no global state: thread limits are applied by the command line and
-the worker processes (:func:`gfbopt.parallel.limit_blas_threads`), never at import.
+Importing gfbopt changes no global state: BLAS/OpenMP threads are limited to one inside its
+solver calls and given back after each (:mod:`gfbopt.threads`); the command line and the pool
+workers pin them for the whole process; nothing is set at import.
 """
 from .errors import ConvergenceError, GfboptError, ParameterError
 from .inputs import DEFAULT_GRID, BearingGeometry, BearingModel, Grid, load_bearing

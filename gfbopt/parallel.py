@@ -59,6 +59,7 @@ from .runtime import (  # noqa: F401 - re-exported: the executors' failures and 
     interrupted,
 )
 from .static import SolverCache
+from .threads import THREAD_VARIABLES, pin_threads, solver_threads
 
 #: The per-worker solver cache (set in each pool worker by :func:`_start_worker`).
 _WORKER_CACHE: SolverCache | None = None
@@ -69,12 +70,10 @@ DEFAULT_RETRIES = 2
 
 
 def limit_blas_threads() -> None:
-    """One BLAS/OpenMP thread in this process (threadpoolctl): gfbopt's linear algebra is
-    many small sparse factorisations, which multi-threaded BLAS slows down, and the
-    workers of a pool would otherwise compete for the same cores."""
-    from threadpoolctl import threadpool_limits
-
-    threadpool_limits(1)
+    """One BLAS/OpenMP thread for the rest of this process, whatever the environment says
+    (:func:`gfbopt.threads.pin_threads`): the workers of a pool would otherwise compete for
+    the same cores."""
+    pin_threads(keep_user_choice=False)
 
 
 def _start_worker() -> None:
@@ -88,7 +87,7 @@ def _start_worker() -> None:
     signal.signal(signal.SIGTERM, signal.SIG_IGN)
     # libraries loaded later in the worker (IPOPT/MUMPS and their OpenMP runtime, when the
     # first solver is built) read these at load time; threadpoolctl covers those already loaded
-    for var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
+    for var in THREAD_VARIABLES:
         os.environ[var] = "1"
     limit_blas_threads()
     _WORKER_CACHE = SolverCache()
@@ -261,11 +260,12 @@ def run_points(function: Callable, points: Sequence[dict], *, workers: int = 1,
         if cache is None:
             cache = run_pool.cache if run_pool is not None else SolverCache()
         results = []
-        for k, point in enumerate(points):
-            results.append(_evaluate(function, point, cache))
-            check_interrupted()          # a solver may have swallowed SIGTERM/SIGINT
-            if progress is not None:
-                progress((k + 1) / len(points))
+        with solver_threads():           # one BLAS thread for the whole batch
+            for k, point in enumerate(points):
+                results.append(_evaluate(function, point, cache))
+                check_interrupted()          # a solver may have swallowed SIGTERM/SIGINT
+                if progress is not None:
+                    progress((k + 1) / len(points))
     else:
         results = [None] * len(points)
         for k, result in stream_tasks(_call_points, [(function, p) for p in points],

@@ -34,6 +34,8 @@ import numpy as np
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
+from .threads import single_threaded
+
 #: SuperLU's fill-reducing ordering of the first factorisation of a pattern
 ORDERING = "MMD_AT_PLUS_A"
 #: patterns a factoriser keeps (a build meets a handful: real and complex, bordered or not)
@@ -90,6 +92,7 @@ class Factoriser:
         self._patterns: dict = {}
         self.factorisations = 0
 
+    @single_threaded
     def __call__(self, matrix: sp.spmatrix):
         """The LU of ``matrix`` (square, sparse): an object with ``solve``."""
         a = sp.csc_matrix(matrix)
@@ -110,6 +113,7 @@ class Factoriser:
                          pattern.inverse)
 
 
+@single_threaded
 def factor(matrix: sp.spmatrix, factoriser: Optional[Factoriser] = None):
     """Sparse LU of ``matrix``: with ``factoriser``, its kept order; without, SuperLU with
     :data:`ORDERING` computed afresh.  That ordering gives ~30 % less fill and ~1.5× faster

@@ -39,6 +39,7 @@ from scipy.optimize import brentq
 
 from .krylov import TOLERANCE, ShiftedImpedance
 from ..sparse_lu import factor
+from ..threads import single_threaded
 from .model import Linearisation
 
 #: tolerance of a crossing's whirl ratio (absolute, Brent's xtol) [-]
@@ -143,6 +144,7 @@ def _real_root(r: np.ndarray) -> complex:
     return r[np.argmin(np.abs(r.imag))]
 
 
+@single_threaded
 def scan_crossings(lin: Linearisation, gammas: np.ndarray, cost: Cost) -> list:
     """The reference search: every Z(iγ) from its own LU.  Crossings with u > 0."""
     direct = DirectImpedance(lin, cost)
@@ -158,6 +160,7 @@ def scan_crossings(lin: Linearisation, gammas: np.ndarray, cost: Cost) -> list:
     return found
 
 
+@single_threaded
 def krylov_crossings(lin: Linearisation, gammas: np.ndarray, cost: Cost) -> list:
     """The search on the Krylov model, crossings checked on the exact impedance (module
     docstring).  Crossings with u > 0 that can be the threshold, with their LU."""
@@ -274,6 +277,7 @@ class LocalCrossing:
     factorisations: int
 
 
+@single_threaded
 def local_crossing(lin: Linearisation, whirl: float, root: complex,
                    whirl_range: tuple = (0.02, 1.2),
                    max_steps: int = LOCAL_STEPS) -> Optional[LocalCrossing]:
@@ -327,6 +331,7 @@ def local_crossing(lin: Linearisation, whirl: float, root: complex,
     return None
 
 
+@single_threaded
 def direct_local_crossing(lin: Linearisation, whirl: float, root: complex,
                           whirl_range: tuple = (0.02, 1.2), max_steps: int = LOCAL_STEPS,
                           spent: int = 0) -> Optional[LocalCrossing]:

@@ -44,6 +44,7 @@ import numpy as np
 from scipy.linalg import lapack
 
 from ..sparse_lu import factor
+from ..threads import single_threaded
 from .model import Linearisation
 
 #: LAPACK's complex least-squares solver (3× faster than numpy's qr + solve on these sizes)
@@ -69,6 +70,7 @@ class ShiftedImpedance:
     LU (each with two right-hand sides);  factorisations : sparse LUs (1)
     """
 
+    @single_threaded
     def __init__(self, lin: Linearisation, whirl_range: Sequence[float],
                  max_blocks: int = MAX_BLOCKS):
         low, high = float(whirl_range[0]), float(whirl_range[1])
@@ -108,6 +110,7 @@ class ShiftedImpedance:
         first 2k + 2 filled)."""
         return self._fv
 
+    @single_threaded
     def extend(self) -> bool:
         """One block Arnoldi step (block classical Gram–Schmidt, applied twice).  False when
         the process cannot grow: at ``max_blocks`` or at a breakdown."""
@@ -167,6 +170,7 @@ class ShiftedImpedance:
         before = self.evaluate(gamma, self.blocks - 1)[0]
         return bool(np.abs(z - before).max() <= tol * np.abs(z).max())
 
+    @single_threaded
     def converge(self, gammas: Sequence[float], tol: float = TOLERANCE) -> np.ndarray:
         """Extend the space until Z has converged (:meth:`converged`) at every γ in
         ``gammas``; returns the mask of converged whirl ratios (False where ``max_blocks`` or

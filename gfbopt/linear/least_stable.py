@@ -41,6 +41,7 @@ import numpy as np
 import scipy.linalg as sla
 
 from ..errors import ConvergenceError, ParameterError
+from ..threads import single_threaded
 from .krylov import ShiftedImpedance
 from .model import Linearisation
 from .threshold import LinearThreshold, semi_discrete_eigenvalues
@@ -65,6 +66,7 @@ BOUNDARY_POINTS = 24
 FIRST_BLOCKS = 4
 
 
+@single_threaded
 def whirling_modes(lin: Linearisation, mass: float, count: int = 8,
                    shifts: tuple = MODE_SHIFTS) -> np.ndarray:
     """The eigenvalues s of the rotor–bearing system at mass M̄ [-] with whirl ratio |Im s|
@@ -171,6 +173,7 @@ def _krylov_mode(lin: Linearisation, mass: float) -> Optional[complex]:
             return best
 
 
+@single_threaded
 def least_stable_mode(lin: Linearisation, mass: float,
                       threshold: Optional[LinearThreshold] = None,
                       method: str = "krylov") -> complex:

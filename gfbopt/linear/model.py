@@ -25,6 +25,7 @@ from ..physics.foil_laws import foil_law
 from ..static import StaticSolution, StaticSolver, solver_for
 from ..static.build import row_values
 from ..sparse_lu import Factoriser, factor
+from ..threads import single_threaded
 
 
 @dataclass(frozen=True, eq=False)
@@ -66,6 +67,7 @@ class Linearisation:
         return self.compliance.apply(self.a, self.b, k)
 
 
+@single_threaded
 def linearise(solution: StaticSolution, solver: Optional[StaticSolver] = None) -> Linearisation:
     """Linearise the bearing about ``solution`` (a converged static equilibrium).
 
@@ -175,6 +177,7 @@ def film_sensitivity(st: disc.Stencil, p_full: np.ndarray, h_full: np.ndarray,
     return sp.csr_matrix((values[keep], (rows[keep], cols[keep])), shape=(n_u, n_u))
 
 
+@single_threaded
 def impedance(lin: Linearisation, s: complex,
               stiffness_factor: Optional[complex] = None) -> np.ndarray:
     """Z(s) = f (A + sB)⁻¹ C_ξ, the 2 × 2 complex impedance at complex frequency s [-].
@@ -235,6 +238,7 @@ def _check_whirl(values: Iterable[float]) -> np.ndarray:
     return g
 
 
+@single_threaded
 def coefficients(lin: Linearisation, whirl_ratios: Sequence[float]) -> Coefficients:
     """K̄(γ) and C̄(γ) at each whirl ratio γ ≥ 0 in one call.
 

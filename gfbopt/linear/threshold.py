@@ -46,6 +46,7 @@ import scipy.sparse.linalg as spla
 from ..errors import ConvergenceError, ParameterError
 from .crossings import Cost, DirectImpedance, krylov_crossings, scan_crossings
 from ..sparse_lu import factor
+from ..threads import single_threaded
 from .model import Linearisation, impedance
 
 #: ways to evaluate the impedance in :func:`linear_threshold` (module docstring)
@@ -89,6 +90,7 @@ class LinearThreshold:
         return math.isfinite(self.critical_mass) or self.stable_for_all_masses
 
 
+@single_threaded
 def linear_threshold(lin: Linearisation, whirl_range: tuple = (0.02, 1.2),
                      samples: int = 24, method: str = "krylov") -> LinearThreshold:
     """The critical mass and whirl ratio where det(−M̄W̄0γ² I + K + iγC) = 0 (module doc).
@@ -216,6 +218,7 @@ def _bordered_eigenvalues(lin: Linearisation, mass: float, shift: complex, lu, x
     return shift + 1.0 / mu
 
 
+@single_threaded
 def characteristic_root(lin: Linearisation, mass: float, guess: complex,
                         tol: float = 1e-10, max_iter: int = 40) -> complex:
     """A root s of det(M̄ W̄0 s² I + Z(s)) = 0 near ``guess`` (secant iteration in s).
@@ -250,6 +253,7 @@ def _check_positive_mass(mass: float) -> float:
     return m
 
 
+@single_threaded
 def semi_discrete_eigenvalues(lin: Linearisation, mass: float, shift: complex,
                               count: int = 6) -> np.ndarray:
     """Eigenvalues nearest ``shift`` of the linearised semi-discrete system (pressure and

@@ -28,6 +28,7 @@ from ..inputs.rotor import OperatingPoint, Rotor
 from ..linear import (STABILITY_TOLERANCE, Linearisation, LinearThreshold, least_stable_mode,
                       linear_threshold, linearise)
 from ..static import SolverCache, StaticSolution, solve_static
+from ..threads import single_threaded
 
 
 @dataclass(frozen=True)
@@ -106,6 +107,7 @@ class LoadCapacityError(ParameterError):
     """The static load exceeds what the bearing carries at this speed (no equilibrium)."""
 
 
+@single_threaded
 def equilibrium(case: Case, speed_rpm: float,
                 initial: Optional[StaticSolution] = None) -> StaticSolution:
     """The static equilibrium under W0 at ``speed_rpm``; :class:`LoadCapacityError` (with the
@@ -126,6 +128,7 @@ def equilibrium(case: Case, speed_rpm: float,
         f"to {case.bearing.load_newton(case.load / 64):.3g} N converged"))
 
 
+@single_threaded
 def largest_converged_load(model: BearingModel, load: float, solver, steps: int = 6) -> float:
     """The largest W̄ ≤ ``load`` [-] with a converged equilibrium, by a short continuation:
     from W̄/64 up by factors of 2 with warm starts, then ``steps`` bisections between the last
@@ -153,6 +156,7 @@ def largest_converged_load(model: BearingModel, load: float, solver, steps: int 
     return good
 
 
+@single_threaded
 def threshold_at(case: Case, speed_rpm: float, initial: Optional[StaticSolution] = None,
                  **threshold_options) -> tuple[StaticSolution, Linearisation, LinearThreshold]:
     """(equilibrium, linearisation, linear threshold) at ``speed_rpm`` [rpm]."""
@@ -275,6 +279,7 @@ def plausibility(case: Case, sol: StaticSolution, speed_rpm: float,
     return tuple(flags)
 
 
+@single_threaded
 def stability(bearing: BearingGeometry, rotor: Rotor, operating_point: OperatingPoint, *,
               film: Optional[str] = None, seam_angle_deg: Union[float, str, None] = None,
               foil: Optional[str] = None, deflection_law: Optional[str] = None,
@@ -313,6 +318,7 @@ def stability(bearing: BearingGeometry, rotor: Rotor, operating_point: Operating
     return assess(case, operating_point.speed_rpm, initial, t0)
 
 
+@single_threaded
 def assess(case: Case, speed_rpm: float, initial: Optional[StaticSolution] = None,
            t0: Optional[float] = None) -> StabilityResult:
     """:func:`stability` for a resolved :class:`Case` at ``speed_rpm`` [rpm]."""

@@ -80,6 +80,7 @@ from ..inputs.options import ModelOptions
 from ..inputs.rotor import Rotor
 from ..progress import progress as progress_bar
 from ..static import SolverCache
+from ..threads import single_threaded
 from .analysis import resolve_case
 from .speed_line import Guide, GuideFailed, SpeedLine, onset_whirl_ratio, secant_root
 
@@ -213,6 +214,7 @@ class OnsetResult:
         return out
 
 
+@single_threaded
 def onset_speed(bearing: BearingGeometry, rotor: Rotor, load_newton: Optional[float],
                 speed_range, *, film: Optional[str] = None,
                 seam_angle_deg: Union[float, str, None] = None, foil: Optional[str] = None,

@@ -36,6 +36,7 @@ from ..inputs.conversions import film_thickness_um
 from ..linear import linear_threshold, linearise
 from ..linear.crossings import local_crossing
 from ..static import StaticSolution, consistent_state, solve_static
+from ..threads import single_threaded
 from .analysis import Case, equilibrium
 
 #: a coarse guide's equilibrium or crossing at a speed is preferred to this grid's own at
@@ -79,6 +80,7 @@ class SpeedLine:
         return self._solutions
 
     # ----------------------------------------------------------------- evaluations
+    @single_threaded
     def full(self, speed: float) -> dict:
         """The row at ``speed`` with the full threshold (cached)."""
         row = self._rows.get(speed)
@@ -91,6 +93,7 @@ class SpeedLine:
         return self._record(speed, sol, thr.critical_mass, thr.whirl_ratio, root, "full",
                             thr.message)
 
+    @single_threaded
     def local(self, speed: float, near: Optional[dict] = None) -> dict:
         """The row at ``speed`` with a local threshold from the crossing of ``near`` (default:
         the nearest row with a finite crossing, on this grid or the guide's); the full
@@ -240,6 +243,7 @@ class Guide(SpeedLine):
             raise GuideFailed(str(exc)) from exc
 
 
+@single_threaded
 def secant_root(line: SpeedLine, low: float, high: float, tol: float, start=None,
                 first: Optional[float] = None, error_tol: float = 0.0) -> Optional[tuple]:
     """(u*, dg/du) with g(u*) = 0, u = ln N [rpm], by secant steps safeguarded by bisection.

@@ -40,6 +40,7 @@ from ..inputs.rotor_system import RotorSystem
 from ..linear import Linearisation, impedance, linearise
 from ..linear.krylov import ShiftedImpedance
 from ..static import SolverCache, StaticSolution, solve_static
+from ..threads import single_threaded
 from .analysis import Case, LoadCapacityError, equilibrium, resolve_case
 from .reduced import ReducedImpedance
 from .rigid import BearingLoad, bearing_loads, seam_from_load, transformations
@@ -98,6 +99,7 @@ FRAME = ("z along the rotor axis from the centre of gravity; x, y in the bearing
          "(X along its static load, Y ahead of it)")
 
 
+@single_threaded
 def resolve_rotor(system: RotorSystem, grid: Grid = DEFAULT_GRID,
                   cache: Optional[SolverCache] = None,
                   options: Optional[ModelOptions] = None) -> RotorCase:
@@ -151,6 +153,7 @@ class BearingState:
                 self._model = False
         return self._model or None
 
+    @single_threaded
     def prepare(self, whirl_ratios) -> None:
         """Converge the Krylov space at these whirl ratios (the threshold's scan)."""
         if self._krylov() is not None:
@@ -195,6 +198,7 @@ class BearingState:
         """True when the Krylov space gives Z̄(s) to its tolerance as it is."""
         return self._krylov() is not None and self._reduced.evaluate(complex(s))[1]
 
+    @single_threaded
     def extend_at(self, s: complex) -> bool:
         """Extend the Krylov space until it gives Z̄(s); True when it grew."""
         if self._krylov() is None:
@@ -245,6 +249,7 @@ class SpeedStates:
         return rpm_to_rad_per_s(self.speed_rpm)
 
 
+@single_threaded
 def support_states(rotor: RotorCase, speed_rpm: float, initial: Optional[tuple] = None,
                    whirl_range=WHIRL_RANGE, guesses: Optional[tuple] = None) -> SpeedStates:
     """Each bearing's equilibrium and linearisation at ``speed_rpm`` [rpm]; warm starts from

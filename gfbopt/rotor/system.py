@@ -43,6 +43,7 @@ from ..inputs.options import ModelOptions
 from ..inputs.rotor_system import RotorSystem
 from ..progress import progress
 from ..static import SolverCache
+from ..threads import single_threaded
 from .matched_whirl import ModeCrossing, crossings
 from .mode_search import (ONSET, SECANT_TOLERANCE, STABLE, UNSTABLE_LOW,  # noqa: F401
                           ModeOnset, guided_onset, mode_onset)
@@ -110,6 +111,7 @@ class SpeedLine:
         """The speeds whose support states were asked for so far [rpm], in order."""
         return sorted(self._states)
 
+    @single_threaded
     def states(self, speed: float) -> SpeedStates:
         if speed not in self._states:
             ok = sorted((s for s, st in self._states.items() if st.ok),
@@ -121,6 +123,7 @@ class SpeedLine:
                                                  guesses=guesses)
         return self._states[speed]
 
+    @single_threaded
     def crossings(self, speed: float) -> list:
         if speed not in self._crossings:
             st = self.states(speed)
@@ -176,6 +179,7 @@ def scan_speeds(low: float, high: float) -> list:
     return [low * (high / low) ** (k / (count - 1)) for k in range(count)]
 
 
+@single_threaded
 def rotor_onsets(system: RotorSystem, speed_range, *, grid: Grid = DEFAULT_GRID,
                  options: Optional[ModelOptions] = None, cache: Optional[SolverCache] = None,
                  whirl_range=WHIRL_RANGE, speed_tolerance: float = SPEED_TOLERANCE,

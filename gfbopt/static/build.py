@@ -22,6 +22,7 @@ from ..inputs.grid import DEFAULT_GRID, Grid
 from ..inputs.model import FILM_MODELS, BearingModel
 from ..physics.foil_laws import FOIL_LAWS, static_structure
 from ..sparse_lu import Factoriser
+from ..threads import single_threaded
 from .model import build_problem, n_parameters
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -235,6 +236,7 @@ class StaticSolver:
         return PerturbationBlocks(a, c_xi, force, st.n_unknown,
                                   lay.film.start + st.row)
 
+    @single_threaded
     def run(self, x0: np.ndarray, p: np.ndarray) -> tuple[np.ndarray, dict]:
         """One IPOPT solve from ``x0``; returns (x, stats)."""
         sol = self._nlp(x0=x0, p=p, lbx=self._lbx, ubx=self._ubx, lbg=0, ubg=0)

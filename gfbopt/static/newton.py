@@ -41,6 +41,8 @@ from typing import Optional
 import numpy as np
 import scipy.sparse as sp
 
+from ..threads import single_threaded
+
 #: largest number of steps (Newton and chord) before the fast path gives up: at the
 #: largest chord rate, :data:`CHORD_RATE`, ten steps gain ten digits
 MAX_STEPS = 16
@@ -143,6 +145,7 @@ def _bound(function, *arrays):
     return run
 
 
+@single_threaded
 def solve(system: NewtonSystem, x0: np.ndarray, p: np.ndarray,
           max_steps: Optional[int] = None, reuse: bool = True) -> NewtonOutcome:
     """Newton's method with chord steps on g(x, p) = 0 from ``x0`` (module docstring); at
@@ -207,6 +210,7 @@ def _iterate(system: NewtonSystem, x0: np.ndarray, p: np.ndarray, max_steps: int
         g = system.residual(x, p)
 
 
+@single_threaded
 def warm_solve(solver, x0: np.ndarray, p: np.ndarray) -> NewtonOutcome:
     """The fast path from a warm start ``x0`` with the parameters ``p`` of
     :meth:`StaticSolver.parameters`, on the solver's own :class:`NewtonSystem`."""

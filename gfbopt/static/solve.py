@@ -23,6 +23,7 @@ from ..inputs.model import BearingModel, radian_keyword_migration
 from ..physics.closed_forms import first_order_pressure, small_eccentricity_limit
 from ..physics.bore import first_order_bore_pressure
 from ..physics.film import force_gauge, rigid_film_polar
+from ..threads import single_threaded
 from . import newton
 from .build import StaticSolver, fixed_origin, row_values, solver_for
 from .solution import StaticSolution, foil_parameters
@@ -175,6 +176,7 @@ def _minimum_film(hmat: np.ndarray, theta: np.ndarray, periodic: bool) -> tuple[
     return float(hrow[k]), float(theta[k])
 
 
+@single_threaded
 def solve_static(model: BearingModel, *, eccentricity: Optional[float] = None,
                  load: Optional[float] = None, attitude_angle_deg: Optional[float] = None,
                  grid: Grid = DEFAULT_GRID,

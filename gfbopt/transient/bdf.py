@@ -26,6 +26,7 @@ import scipy.sparse as sp
 from scipy.integrate import solve_ivp
 
 from ..errors import ParameterError
+from ..threads import single_threaded
 from .result import OrbitBatch, finish_orbits
 from .system import RightHandSide, State, TransientModel, equilibrium_state, pressure_and_film
 
@@ -193,6 +194,7 @@ class FlatRotor:
         return float(h.min())
 
 
+@single_threaded
 def integrate_bdf(tm: TransientModel, mass: np.ndarray, revolutions: float, *,
                   kick: float, initial: Optional[State], sample_every: float,
                   contact_film: float, settle: float, rtol: float = 1e-6,

@@ -17,6 +17,7 @@ from __future__ import annotations
 from typing import Callable, Optional
 
 from ..errors import ParameterError
+from ..threads import single_threaded
 from .bdf import integrate_bdf
 from .result import OrbitBatch, check_masses, check_positive
 from .rk4 import integrate_rk4
@@ -31,6 +32,7 @@ METHODS: dict[str, tuple[Callable, tuple]] = {
 }
 
 
+@single_threaded
 def integrate_orbits(tm: TransientModel, mass, revolutions: float = 10.0, *,
                      kick: float = 1e-3, initial: Optional[State] = None,
                      sample_every: float = 0.2, contact_film: float = 0.02,

@@ -15,6 +15,7 @@ from typing import Optional
 import numpy as np
 
 from ..errors import ParameterError
+from ..threads import single_threaded
 from .result import OrbitBatch, check_positive, finish_orbits
 from .system import RightHandSide, State, TransientModel, equilibrium_state, stiffness_bound
 from .system import pressure_and_film
@@ -70,6 +71,7 @@ def stable_time_step(tm: TransientModel, state: State, safety: float = STEP_SAFE
     return safety * RK4_STABILITY_RADIUS / stiffness_bound(state, tm)
 
 
+@single_threaded
 def integrate_rk4(tm: TransientModel, mass: np.ndarray, revolutions: float, *,
                   kick: float, initial: Optional[State], sample_every: float,
                   contact_film: float, settle: float, time_step: Optional[float] = None,

@@ -91,6 +91,7 @@ from typing import Optional
 import numpy as np
 
 from ..errors import ConvergenceError, ParameterError
+from ..threads import single_threaded
 from .result import OrbitBatch, check_positive, finish_orbits
 from .system import (RightHandSide, State, TransientModel, equilibrium_state,
                      pressure_and_film, stiffness_bound)
@@ -331,6 +332,7 @@ class _Packed:
         return pack(self.rhs(_unpack(z, self.tm)))
 
 
+@single_threaded
 def integrate_rkc(tm: TransientModel, mass: np.ndarray, revolutions: float, *,
                   kick: float, initial: Optional[State], sample_every: float,
                   contact_film: float, settle: float, progress=None,

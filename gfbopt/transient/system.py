@@ -41,6 +41,7 @@ from ..physics.film import rigid_film_tabulated
 from ..physics.foil_laws import FoilLaw, foil_law
 from ..static import StaticSolution
 from ..static.build import row_values, solution_stencil
+from ..threads import single_threaded
 from .foil_state import KelvinVoigtFoil, foil_bound, kelvin_voigt_foil
 
 
@@ -82,6 +83,7 @@ class TransientModel:
         return self.static.pressure.shape
 
 
+@single_threaded
 def transient_model(solution: StaticSolution, reference_whirl_ratio: Optional[float] = None,
                     solver=None, threshold=None) -> TransientModel:
     """The transient model around a converged static equilibrium ``solution``.
