@@ -20,13 +20,17 @@ from __future__ import annotations
 import csv
 import json
 import re
-import tomllib
 from dataclasses import dataclass
 from functools import lru_cache
 from pathlib import Path
 from typing import Callable
 
 import pytest
+
+try:
+    import tomllib
+except ModuleNotFoundError:  # Python 3.10
+    import tomli as tomllib
 
 ROOT = Path(__file__).resolve().parents[2]
 PAGES = ["README.md", *sorted(p.relative_to(ROOT).as_posix()
@@ -237,6 +241,9 @@ QUOTED: dict[str, Quoted] = {
         f"{BENCH}/rotor_design_main_job.json", "main_job.workers_2.wall_s")),
     "main_job_wall_1_worker_s": Quoted(f"{BENCH}/rotor_design_main_job.json", lambda: key(
         f"{BENCH}/rotor_design_main_job.json", "main_job.workers_1.wall_s")),
+    "all_studies_minutes": Quoted("results/*/summary.json", lambda: sum(
+        json.loads(f.read_text(encoding="utf-8")).get("wall_time_s") or 0.0
+        for f in (ROOT / "results").glob("*/summary.json")) / 60.0, "{:.0f}"),
     # the blower rotor on two bearings, ROSS beside it, its run-up
     "blower_first_mode": Quoted(f"{BLOWER}/modes.csv", lambda: _first_mode()["label"]),
     "blower_first_onset_rpm": Quoted(f"{BLOWER}/modes.csv",
