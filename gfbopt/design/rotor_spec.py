@@ -166,6 +166,40 @@ def _problem(spec: dict, where, variables: tuple) -> DesignProblem:
     return DesignProblem(variables, objectives, tuple(constraints))
 
 
+def _check_buildable(study, system, variables: tuple, settings: EvaluationSettings) -> None:
+    """The fixed inputs every design is built with, checked at plan time (a bore of 500°
+    shims or a pad offset of 1e300° would make every design fail, and the search end in "no
+    design meets every limit"): the bore's form and the pad offset on their own, then the
+    design at the middle of every range (the largest whole number) built on the rotor — each
+    refusal one line naming the study key."""
+    from ..inputs.bore import START_RANGE_DEG, degrees_in
+    from ..inputs.bore_si import BoreSpec
+    from .rotor_objectives import apply_design
+
+    bore = BoreSpec(settings.bore_kind, settings.preload_count, preload_ratio=0.5,
+                    width_deg=settings.bore_width_deg if settings.bore_kind == "shims" else 0.0,
+                    offset_deg=settings.bore_offset_deg)
+    try:
+        bore.profile(None)
+    except ParameterError as exc:
+        raise study.where("bore", exc.name.split(".")[-1]).error(exc.value, exc.rule) \
+            from None
+    try:
+        degrees_in("pad_offset_deg", settings.pad_offset_deg, *START_RANGE_DEG)
+        if settings.zone_edges_deg:
+            degrees_in("zone_edges_deg", settings.zone_edges_deg[0], *START_RANGE_DEG)
+    except ParameterError as exc:
+        raise study.where(exc.name).error(exc.value, exc.rule) from None
+    probe = {v.name: v.decode(1.0 - 1e-9 if v.discrete else 0.5) for v in variables
+             if v.name.split(":")[-1] != "compliance"}        # (the GP realises compliance)
+    try:
+        apply_design(system, probe, settings)
+    except ParameterError as exc:
+        raise study.where("variables").error(probe, f"the design at the middle of every "
+                                             f"range cannot be built with the study's fixed "
+                                             f"inputs: {exc}") from None
+
+
 def plan_rotor_design(study, study_hash: str = "") -> RotorDesignPlan:
     """Validate a ``rotor_bearing_design`` study (:mod:`gfbopt.studies.rotor_design`) and
     build its plan — no solve."""
@@ -244,6 +278,7 @@ def plan_rotor_design(study, study_hash: str = "") -> RotorDesignPlan:
         raise study.where("capacity_film_um").error(None, "is needed by min_capacity_margin")
     settings = EvaluationSettings(grid=Grid.parse(s["search_grid"]), **common)
     default = EvaluationSettings(grid=Grid.parse(s["grid"]), **common)
+    _check_buildable(study, system, variables, settings)
     return RotorDesignPlan(system, problem, search, settings, default, band, s["goal"],
                            robustness, study_hash, s["regrid_designs"],
                            s["limit_cycle_revolutions"], Grid.parse(s["limit_cycle_grid"]))
