@@ -3,8 +3,13 @@ speed, the Campbell diagram and the imbalance response.  A thin layer over
 :func:`gfbopt.rotor.analyse.analyse_rotor`::
 
     gfbopt rotor ROTOR.toml --speed-range LOW HIGH [--speed-rpm N] [--campbell]
-                 [--imbalance-response] [--half-mass] [--grid NTxNZ] [--json] [--csv DIR]
+                 [--imbalance-response [--imbalance-plane G_MM PHASE_DEG POSITION_M … |
+                 --imbalance-grade G]] [--half-mass] [--grid NTxNZ] [--json] [--csv DIR]
                  [--plot DIR]
+
+The transient's options (:mod:`.rotor_time`) are refused without a transient, one line each
+with what they set; ``--imbalance-plane``/``--imbalance-grade`` replace the file's imbalance
+for ``--imbalance-response`` too (a grade's top speed is HIGH of ``--speed-range``).
 
 The rotor file (docs/formats/rotor_file.md) is read and checked, with every bearing file,
 before anything is solved.  JSON fields: ``onset_speed_rpm`` (first onset over all modes; null
@@ -15,6 +20,7 @@ with ``onset_reason`` when none in the range), ``first_mode``, ``onset_whirl_fre
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 from pathlib import Path
 
 from ..errors import ParameterError
@@ -60,12 +66,16 @@ def _check(args) -> None:
     if not (math.isfinite(low) and math.isfinite(high) and 0 < low < high):
         raise ParameterError("--speed-range", args.speed_range,
                              "must be two speeds 0 < LOW < HIGH [rpm]")
+    from ..rotor.analyse import check_speed_span
+
+    check_speed_span(args.speed_range, name="--speed-range")
     if args.speed_rpm is not None and not args.speed_rpm > 0:
         raise ParameterError("--speed-rpm", args.speed_rpm, "must be > 0 [rpm]")
     if args.campbell_speeds < 2:
         raise ParameterError("--campbell-speeds", args.campbell_speeds, "must be >= 2")
     if not args.campbell and args.campbell_speeds != 20:
         raise ParameterError("--campbell-speeds", args.campbell_speeds, "needs --campbell")
+    rotor_time.check_unused(args)
     if args.plot and not (args.campbell or args.imbalance_response or args.half_mass):
         raise ParameterError("--plot", args.plot, "needs --campbell, --imbalance-response or "
                              "--half-mass (there is no figure of the onsets alone)")
@@ -74,16 +84,22 @@ def _check(args) -> None:
 def run(args) -> int:
     from ..inputs import Grid
     from ..inputs.rotor_system import load_rotor
-    from ..rotor.analyse import analyse_rotor
+    from ..rotor.analyse import analyse_rotor, check_speed_span
 
     if rotor_time.requested(args):
         return rotor_time.handle(args)
     _check(args)
     grid = Grid.parse(args.grid)
     system = load_rotor(args.rotor_file)
+    check_speed_span(args.speed_range, system, name="--speed-range")
+    planes = rotor_time.imbalance_planes(args, system, args.speed_range[1])
+    if planes is not None:
+        system = replace(system, imbalance=planes)
     if args.imbalance_response and not system.imbalance:
         raise ParameterError(f"{args.rotor_file}: imbalance", None, "--imbalance-response "
-                             "needs at least one [[imbalance]] plane in the rotor file")
+                             "needs an imbalance: an [[imbalance]] plane in the rotor file, "
+                             "--imbalance-plane G_MM PHASE_DEG POSITION_M or "
+                             "--imbalance-grade G")
     result = analyse_rotor(system, tuple(args.speed_range), speed_rpm=args.speed_rpm,
                            campbell=args.campbell, imbalance=args.imbalance_response,
                            half_mass=args.half_mass, grid=grid,
@@ -122,7 +138,8 @@ def _figures(result, folder: Path, top: float) -> list:
         paths.append(save_figure(ax.figure, folder / "campbell.png"))
     if result.imbalance is not None and len(result.imbalance.table):
         ax, _ = plot_imbalance_response(result.imbalance.table, result.imbalance.peaks,
-                                        onsets, top)
+                                        onsets, top,
+                                        unstable_from_rpm=result.imbalance.unstable_from_rpm)
         paths.append(save_figure(ax.figure, folder / "imbalance_response.png"))
     if result.half_mass is not None:
         ax = plot_onsets([m.to_dict() for m in result.onsets.modes], result.half_mass, top)
@@ -135,6 +152,7 @@ def _report(out: dict) -> str:
                       f"{b['load_direction_deg']:.4g}°" for b in out["bearing_loads"])
     lines = [f"gfbopt rotor — {out['rotor']} ({out['rotor_file']}), grid {out['grid']}",
              f"  bearing loads: {loads}"]
+    lines += [f"  {note}" for note in out["bearing_notes"]]
     for name, conv in out["conventions"]["bearings"].items():
         lines.append(f"  bearing {name}: {conv['film_convention']}; {conv['foil']} foil, "
                      f"{conv['deflection_law']} law, loss factor {conv['loss_factor']:g}")
@@ -159,9 +177,7 @@ def _report(out: dict) -> str:
         lines.append(f"  per-bearing (half-mass) approximation: {h['onset_speed_rpm']:,.0f} rpm"
                      f" ({h['error_of_approximation']:+.1%} against the two-bearing onset)")
     if "imbalance_response" in out:
-        for name, p in out["imbalance_response"]["peaks"].items():
-            lines.append(f"  imbalance response peak at {name}: {p['peak_amplitude_um']:.3g} µm"
-                         f" at {p['peak_speed_rpm']:,.0f} rpm")
+        lines += _imbalance_lines(out["imbalance_response"])
     if "campbell" in out and out["campbell"]["least_stable"]:
         ls = out["campbell"]["least_stable"]
         lines.append(f"  Campbell: {out['campbell']['modes']} modes over "
@@ -172,7 +188,29 @@ def _report(out: dict) -> str:
                                            f"{t['track_zero_rpm']:,.0f} rpm)"
                                            if math.isfinite(t["track_zero_rpm"]) else "")
             for t in out["campbell"]["tracks"]))
+    for warning in out["warnings"]:
+        lines.append(f"  warning: {warning}")
     for key in ("csv", "figures"):
         if key in out:
             lines.append(f"  {key}: {', '.join(out[key])}")
     return "\n".join(lines)
+
+
+def _imbalance_lines(ir: dict) -> list:
+    """The text of the imbalance response: each station's peak, flagged when it lies above the
+    first onset (not physical there), with the largest response below the onset."""
+    lines = []
+    for name, p in ir["peaks"].items():
+        text = (f"  imbalance response peak at {name}: {p['peak_amplitude_um']:.3g} µm at "
+                f"{p['peak_speed_rpm']:,.0f} rpm")
+        if p["above_first_onset"]:
+            text += " — above the first onset, not physical"
+            if math.isfinite(p["largest_below_onset_um"]):
+                text += (f"; largest below the onset {p['largest_below_onset_um']:.3g} µm at "
+                         f"{p['largest_below_onset_rpm']:,.0f} rpm")
+        lines.append(text)
+    if math.isfinite(ir["unstable_from_rpm"]):
+        lines.append(f"    above {ir['unstable_from_rpm']:,.0f} rpm (the first onset) the "
+                     "linear response is that of an unstable rotor, not an orbit that would be "
+                     "observed (shaded in the figure)")
+    return lines

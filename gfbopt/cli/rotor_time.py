@@ -25,6 +25,29 @@ from pathlib import Path
 
 from .common import number
 
+#: defaults of --kick [clearances per rad] and --window-revolutions [revolutions]
+KICK, WINDOW_REVOLUTIONS = 1e-3, 20.0
+#: the transient's options, with what each sets: refused without --orbit/--run-up/
+#: --coast-down (:func:`check_unused`)
+TRANSIENT_ONLY = {
+    "revolutions": ("--revolutions", "the length of an --orbit"),
+    "rate": ("--rate", "the speed ramp of a --run-up/--coast-down"),
+    "method": ("--method", "the time integration of a transient"),
+    "time_step": ("--time-step", "the time step of a transient"),
+    "stages": ("--stages", "the RKC stages of a transient"),
+    "perturbation": ("--perturbation", "the starting kick of a transient"),
+    "kick": ("--kick", "the starting kick of a transient"),
+    "reference_whirl_ratio": ("--reference-whirl-ratio", "the damped foil of a transient"),
+    "foil_travel_um": ("--foil-travel-um", "the contact check of a transient"),
+    "window_revolutions": ("--window-revolutions", "the waterfall of a run-up/coast-down"),
+    "subsync_threshold_um": ("--subsync-threshold-um", "the waterfall of a "
+                             "run-up/coast-down"),
+    "force": ("--force", "the revolution limit of a transient"),
+}
+#: the imbalance options: used by a transient and by --imbalance-response
+IMBALANCE_OPTIONS = {"imbalance_grade": "--imbalance-grade",
+                     "imbalance_plane": "--imbalance-plane"}
+
 METHOD_HELP = ("integration method: rkc (default; damped Runge–Kutta–Chebyshev, stages from "
                "the stiffness bound, step from accuracy) or rk4 (the reference)")
 
@@ -43,7 +66,7 @@ def add_arguments(parser) -> None:
                    help="shaft revolutions of an --orbit")
     g.add_argument("--rate", type=number("rate"), default=None,
                    help="speed ramp rate [rpm/s] of a run-up or coast-down (> 0)")
-    g.add_argument("--method", default="rkc", choices=("rkc", "rk4"), help=METHOD_HELP)
+    g.add_argument("--method", default=None, choices=("rkc", "rk4"), help=METHOD_HELP)
     g.add_argument("--time-step", type=number("time-step"), default=None,
                    help="Δτ [rad of rotation at the top speed] (default: from accuracy for "
                    "rkc, 0.9 × the stability limit for rk4)")
@@ -52,25 +75,27 @@ def add_arguments(parser) -> None:
     g.add_argument("--perturbation", default=None, choices=("none", "cylindrical", "conical"),
                    help="starting kick of both journals (default: cylindrical for an orbit, "
                    "none for a ramp)")
-    g.add_argument("--kick", type=number("kick"), default=1e-3,
-                   help="journal speed of the kick [clearances per rad] (default 1e-3)")
+    g.add_argument("--kick", type=number("kick"), default=None,
+                   help=f"journal speed of the kick [clearances per rad] (default {KICK:g})")
     g.add_argument("--imbalance-grade", type=number("imbalance-grade"), default=None,
-                   help="balance grade G [mm/s] (ISO 21940-11): U = m G/ω_max split over two "
-                   "planes at the bearings by their static load shares, phase 0 (replaces "
-                   "the file's imbalance)")
+                   help="balance grade G [mm/s] (ISO 21940-11): U = m G/ω_max (ω_max the "
+                   "transient's top speed, or HIGH of --speed-range with --imbalance-response) "
+                   "split over two planes at the bearings by their static load shares, phase "
+                   "0 (replaces the file's imbalance; also for --imbalance-response)")
     g.add_argument("--imbalance-plane", nargs=3, action="append", type=number("imbalance-plane"),
                    metavar=("G_MM", "PHASE_DEG", "POSITION_M"), default=None,
                    help="an imbalance plane: amount [g mm], phase [deg], axial position [m] "
-                   "from the CG (repeat; replaces the file's imbalance)")
+                   "from the CG (repeat; replaces the file's imbalance; also for "
+                   "--imbalance-response)")
     g.add_argument("--reference-whirl-ratio", type=number("reference-whirl-ratio"),
                    default=None, help="ν_ref of a damped foil (η > 0; default each bearing's "
                    "linear threshold whirl ratio)")
     g.add_argument("--foil-travel-um", type=number("foil-travel-um"), default=None,
                    help="bump travel [µm] before the foil is exhausted (contact); default: "
                    "not checked")
-    g.add_argument("--window-revolutions", type=number("window-revolutions"), default=20.0,
+    g.add_argument("--window-revolutions", type=number("window-revolutions"), default=None,
                    help="waterfall window [revolutions at the mean speed; at most 1/10 of "
-                   "the record] (default 20)")
+                   f"the record] (default {WINDOW_REVOLUTIONS:g})")
     g.add_argument("--subsync-threshold-um", type=number("subsync-threshold-um"), default=None,
                    help="amplitude [µm] from which the subsynchronous line counts as present "
                    "(default 2 %% of the clearance)")
@@ -92,6 +117,24 @@ def requested(args) -> bool:
     """True when a transient was asked for."""
     return bool(getattr(args, "orbit", False) or getattr(args, "run_up", None)
                 or getattr(args, "coast_down", None))
+
+
+def check_unused(args) -> None:
+    """Refuse, one line each, the transient's options on a run without a transient, and the
+    imbalance options without --imbalance-response (ParameterError, before any solve)."""
+    from ..errors import ParameterError
+
+    for key, (option, sets) in TRANSIENT_ONLY.items():
+        value = getattr(args, key, None)
+        if value is not None and value is not False:
+            raise ParameterError(option, value, f"sets {sets}: it is used only with --orbit, "
+                                 "--run-up or --coast-down")
+    if not getattr(args, "imbalance_response", False):
+        for key, option in IMBALANCE_OPTIONS.items():
+            value = getattr(args, key, None)
+            if value is not None:
+                raise ParameterError(option, value, "is used only by --imbalance-response "
+                                     "or a transient (--orbit, --run-up, --coast-down)")
 
 
 def _rotor_path(args) -> str:
@@ -146,8 +189,9 @@ def _check(args):
     return ramp_profile(start, end, args.rate, kind, args.force)
 
 
-def _imbalance(args, system, profile):
-    """The imbalance planes the options ask for (None: the file's)."""
+def imbalance_planes(args, system, top_rpm: float):
+    """The imbalance planes the options ask for (None: the file's); a balance grade is
+    turned into an amount with the top speed ``top_rpm`` [rpm]."""
     from ..errors import ParameterError
     from ..inputs.rotor_system import ImbalancePlane
     from ..rotor.rigid import bearing_loads
@@ -166,7 +210,7 @@ def _imbalance(args, system, profile):
         return tuple(planes)
     if args.imbalance_grade is None:
         return None
-    total = iso_g_imbalance(args.imbalance_grade, system.body.mass, profile.top_rpm)
+    total = iso_g_imbalance(args.imbalance_grade, system.body.mass, top_rpm)
     loads = bearing_loads(system)
     share = [w.magnitude for w in loads]
     return tuple(ImbalancePlane(total * s / sum(share), b.position, 0.0, f"at {b.name}")
@@ -185,11 +229,12 @@ def handle(args) -> int:
     from ..transient.rotor_analysis import progress_units, run_profile
 
     profile = _check(args)
-    if args.stages is not None and args.method != "rkc":
+    method = args.method or "rkc"
+    if args.stages is not None and method != "rkc":
         raise ParameterError("--stages", args.stages, "applies to --method rkc only")
     grid = Grid.parse(args.grid)
     system = load_rotor(_rotor_path(args))
-    planes = _imbalance(args, system, profile)
+    planes = imbalance_planes(args, system, profile.top_rpm)
     if planes is not None:
         system = replace(system, imbalance=planes)
     perturbation = args.perturbation or ("cylindrical" if profile.kind == "orbit" else "none")
@@ -197,12 +242,15 @@ def handle(args) -> int:
     total, unit = progress_units(profile)
     with progress(total=total, desc=f"rotor {profile.kind}", unit=unit) as bar:
         result = run_profile(
-            system, profile, grid=grid, method=args.method, perturbation=perturbation,
-            kick=args.kick, imbalance_scale=scale, time_step=args.time_step,
+            system, profile, grid=grid, method=method, perturbation=perturbation,
+            kick=KICK if args.kick is None else args.kick, imbalance_scale=scale,
+            time_step=args.time_step,
             stages=None if args.stages is None else int(args.stages),
             reference_whirl_ratio=args.reference_whirl_ratio,
             foil_travel_m=None if args.foil_travel_um is None else args.foil_travel_um * 1e-6,
-            progress=bar, system=system, window_revolutions=args.window_revolutions,
+            progress=bar, system=system,
+            window_revolutions=(WINDOW_REVOLUTIONS if args.window_revolutions is None
+                                else args.window_revolutions),
             subsync_threshold_um=args.subsync_threshold_um)
     out = result.to_dict()
     if args.csv:

@@ -1,7 +1,7 @@
 """Figures of a rigid rotor on two foil bearings (:mod:`gfbopt.rotor.diagrams`): the Campbell
 diagram (damped natural frequencies and log decrement against speed, the 1× line, each mode's
 onset and the top speed marked) and the imbalance response (Bode: amplitude and phase against
-speed, the peak and the onset marked)."""
+speed, the peak and the onset marked, the range above the first onset shaded)."""
 from __future__ import annotations
 
 import math
@@ -63,25 +63,46 @@ def plot_campbell(table, onsets: dict | None = None, top_speed_rpm: float | None
 
 
 def plot_imbalance_response(table, peaks: dict | None = None, onsets: dict | None = None,
-                            top_speed_rpm: float | None = None, axes=None, title: str = ""):
+                            top_speed_rpm: float | None = None, axes=None, title: str = "",
+                            unstable_from_rpm: float | None = None):
     """Bode diagram from an :class:`~gfbopt.rotor.diagrams.ImbalanceResponse` table: the
     orbit's major semi-axis [µm] and the phase of x [deg] against speed [rpm], one line per
-    station; the peak of each station marked; the onsets and the top speed as vertical
-    lines (above the first onset the linear response belongs to an unstable rotor)."""
+    station; the onsets and the top speed as vertical lines.  Above ``unstable_from_rpm`` (the
+    first onset) the linear response belongs to an unstable rotor and is not physical: that
+    range is shaded (as the Campbell diagram shades negative damping), the curve drawn thin
+    and dashed there, and a peak there drawn as an open marker labelled so; a peak below it
+    as a filled marker."""
     if axes is None:
         axes = new_axes(figsize=(7.2, 6.0), nrows=2, sharex=True)
     ax_a, ax_p = axes
     peaks = peaks or {}
+    limit = (unstable_from_rpm if unstable_from_rpm is not None
+             and math.isfinite(unstable_from_rpm) else math.inf)
     for k, (station, part) in enumerate(table.groupby("station", sort=False)):
         part = part.sort_values("speed_rpm")
         color = f"C{k % 10}"
-        ax_a.plot(part["speed_rpm"], part["amplitude_um"], color=color, label=str(station))
-        ax_p.plot(part["speed_rpm"], part["phase_x_deg"], color=color)
+        below = part[part["speed_rpm"] < limit]
+        above = part.iloc[max(len(below) - 1, 0):] if len(below) < len(part) else below[:0]
+        for piece, style, width, label in ((below, "-", 1.5, str(station)),
+                                           (above, "--", 0.8, None)):
+            if len(piece):
+                ax_a.plot(piece["speed_rpm"], piece["amplitude_um"], style, lw=width,
+                          color=color, label=label if len(below) else str(station))
+                ax_p.plot(piece["speed_rpm"], piece["phase_x_deg"], style, lw=width,
+                          color=color)
         if station in peaks:
             p = peaks[station]
+            unstable = p["peak_speed_rpm"] >= limit
             ax_a.plot([p["peak_speed_rpm"]], [p["peak_amplitude_um"]], "v", color=color,
+                      mfc="none" if unstable else color,
                       label=f"peak {station}: {p['peak_amplitude_um']:.3g} µm at "
-                      f"{p['peak_speed_rpm']:,.0f} rpm")
+                      f"{p['peak_speed_rpm']:,.0f} rpm"
+                      + (" (above the onset: not physical)" if unstable else ""))
+    if math.isfinite(limit):
+        right = max(float(table["speed_rpm"].max()), top_speed_rpm or 0.0) * 1.05
+        for ax, label in ((ax_a, f"unstable above {limit:,.0f} rpm: linear response not "
+                           "physical"), (ax_p, None)):
+            ax.axvspan(limit, right, color="mistyrose", zorder=0, label=label)
     _mark_speeds(ax_a, onsets or {}, top_speed_rpm)
     _mark_speeds(ax_p, onsets or {}, top_speed_rpm, legend=False)
     ax_a.set_ylabel("orbit major semi-axis [µm]")

@@ -21,17 +21,25 @@ import numpy as np
 import pandas as pd
 
 from ..errors import ParameterError
+from ..inputs.conversions import rpm_to_rad_per_s
 from ..inputs.grid import DEFAULT_GRID, Grid
 from ..inputs.options import ModelOptions
 from ..inputs.rotor_system import RotorSystem
 from ..static import SolverCache
+from .analysis import plausibility
 from .campbell import system_modes
 from .diagrams import (CampbellDiagram, ImbalanceResponse, campbell_diagram, half_mass_onsets,
                        imbalance_response, reference_whirl)
 from .onset import check_speed_range
 from .supports import resolve_rotor
+from .mode_search import UNSTABLE_LOW
 from .system import RotorOnsets, SpeedLine, rotor_onsets
 
+#: the widest speed range analysed at once: HIGH/LOW at most this [-]
+MAX_SPEED_RATIO = 1000.0
+#: the fastest surface speed ω R of a bearing analysed [m/s]: the speed of sound in air at
+#: 20 °C — the film model is isothermal and subsonic
+MAX_SURFACE_SPEED = 343.0
 #: speeds of the Campbell diagram and of the imbalance response by default
 CAMPBELL_SPEEDS = 20
 IMBALANCE_SPEEDS = 40
@@ -46,10 +54,13 @@ class RotorAnalysis:
     campbell: Optional[CampbellDiagram]
     imbalance: Optional[ImbalanceResponse]
     half_mass: Optional[list]
+    warnings: tuple = ()
 
     def to_dict(self) -> dict:
         out = self.onsets.to_dict()
         out["at_speed"] = self.at_speed
+        out["warnings"] = list(self.warnings)
+        out["bearing_notes"] = load_notes(self.onsets)
         if self.campbell is not None:
             table = self.campbell.table
             out["campbell"] = {"speeds": int(table["speed_rpm"].nunique()) if len(table)
@@ -59,8 +70,10 @@ class RotorAnalysis:
                                "tracks": self.campbell.tracks(),
                                "load_capacity_exceeded": self.campbell.capacity}
         if self.imbalance is not None:
+            above = self.imbalance.unstable_from_rpm
             out["imbalance_response"] = {"peaks": self.imbalance.peaks,
-                                         "note": _IMBALANCE_NOTE,
+                                         "unstable_from_rpm": above,
+                                         "note": imbalance_note(above),
                                          "load_capacity_exceeded": self.imbalance.capacity}
         if self.half_mass is not None:
             first = min((h["onset_speed_rpm"] for h in self.half_mass
@@ -89,9 +102,22 @@ class RotorAnalysis:
         return out
 
 
-_IMBALANCE_NOTE = ("synchronous response from the bearings' impedance at the running speed "
-                   "(γ = 1); above the first onset it is the linear response of an unstable "
-                   "rotor, not an orbit that would be observed")
+def unstable_from(onsets: RotorOnsets, low: float) -> float:
+    """Where the rotor is unstable from [rpm]: its first onset, ``low`` when a mode is
+    unstable at the lowest speed, nan when it is stable over the range."""
+    if any(m.status == UNSTABLE_LOW for m in onsets.modes):
+        return float(low)
+    return float(onsets.onset_speed_rpm)
+
+
+def imbalance_note(unstable_from_rpm: float) -> str:
+    """What the linear imbalance response is, and where it is not physical."""
+    text = ("synchronous response from the bearings' impedance at the running speed (γ = 1)")
+    if not math.isfinite(unstable_from_rpm):
+        return text + "; the rotor is stable over the range"
+    return (text + f"; above the first onset ({unstable_from_rpm:,.0f} rpm) it is the linear "
+            "response of an unstable rotor, not an orbit that would be observed: not physical "
+            "there (peaks there are flagged above_first_onset; the figure shades that range)")
 
 
 def _shape_columns(shape: dict) -> dict:
@@ -101,6 +127,71 @@ def _shape_columns(shape: dict) -> dict:
         for key, value in at.items():
             out[f"{key}_{name}"] = value
     return out
+
+
+def load_notes(onsets: RotorOnsets) -> list:
+    """A plain sentence for each bearing whose static load points against gravity (the
+    rotor's geometry or its side loads pull it upwards), saying where its seam now is: in
+    the loaded arc when the top foil's welded end is within 90° of its load line."""
+    loads = onsets.bearing_loads
+    one_side = len(loads) == 2 and loads[0].position * loads[1].position > 0
+    notes = []
+    for load in loads:
+        away = load.away_from_gravity_deg
+        if not (math.isfinite(away) and abs((away + 180.0) % 360.0 - 180.0) > 90.0):
+            continue
+        text = (f"bearing {load.name} is pulled upwards: its load is {load.magnitude:.4g} N at "
+                f"{away:.4g}° from gravity")
+        if one_side:
+            text += " (both bearings lie on one side of the centre of gravity)"
+        conv = onsets.conventions.get("bearings", {}).get(load.name, {})
+        seam = conv.get("seam_angle_deg")
+        if conv.get("film") == "seam" and isinstance(seam, (int, float)):
+            arc = abs((seam + 180.0) % 360.0 - 180.0) < 90.0
+            text += (", and its seam is now in the loaded arc" if arc else
+                     ", and its seam stays out of the loaded arc") + (
+                f" (the top foil's welded end {seam:.4g}° from its load line)")
+        notes.append(text)
+    return notes
+
+
+def check_speed_span(speed_range, system: Optional[RotorSystem] = None,
+                     name: str = "speed_range") -> tuple[float, float]:
+    """(low, high) [rpm] of a speed range the rotor analyses can mean: 0 < low < high,
+    high/low ≤ :data:`MAX_SPEED_RATIO` and, with ``system``, every bearing's surface speed
+    ω R ≤ :data:`MAX_SURFACE_SPEED` at ``high`` (ParameterError naming ``name``)."""
+    low, high = check_speed_range(speed_range)
+    if high / low > MAX_SPEED_RATIO:
+        raise ParameterError(name, [low, high], f"HIGH/LOW = {high / low:.3g} exceeds "
+                             f"{MAX_SPEED_RATIO:g}: one analysis spans at most "
+                             f"{MAX_SPEED_RATIO:g}× in speed")
+    for support in (system.bearings if system is not None else ()):
+        surface = rpm_to_rad_per_s(high) * support.geometry.radius
+        if surface > MAX_SURFACE_SPEED:
+            raise ParameterError(name, [low, high], f"bearing {support.name}'s surface speed "
+                                 f"ω R = {surface:.4g} m/s at {high:.6g} rpm exceeds "
+                                 f"{MAX_SURFACE_SPEED:g} m/s, the speed of sound in air: the "
+                                 "isothermal, subsonic film model means nothing there")
+    return low, high
+
+
+def plausibility_warnings(line: SpeedLine) -> tuple:
+    """The statics' plausibility flags (:func:`gfbopt.rotor.analysis.plausibility`: a film
+    thinner than surface roughness, a load above the rule-of-thumb capacity) of each bearing,
+    each kind of flag at the lowest speed solved that has it, with how far up it reaches."""
+    flagged: dict = {}
+    for speed in line.speeds_solved:
+        for st in line.states(speed).states:
+            for flag in (plausibility(st.case, st.solution, speed, math.nan) if st else ()):
+                kind = flag.split(" = ", 1)[0]          # e.g. "minimum film h_min"
+                flagged.setdefault((st.load.name, kind), []).append((speed, flag))
+    out = []
+    for (name, _), rows in flagged.items():
+        speed, flag = rows[0]
+        more = (f" (at {len(rows)} of the speeds solved, up to {rows[-1][0]:,.0f} rpm)"
+                if len(rows) > 1 else "")
+        out.append(f"bearing {name} at {speed:,.6g} rpm: {flag}{more}")
+    return tuple(out)
 
 
 def modes_at_speed(line: SpeedLine, speed_rpm: float) -> dict:
@@ -134,7 +225,7 @@ def analyse_rotor(system: RotorSystem, speed_range, *, speed_rpm: Optional[float
                   show_progress: bool = True) -> RotorAnalysis:
     """Onset of every mode in ``speed_range`` [rpm] and what else is asked (module docstring).
     Every input is checked before anything is solved."""
-    low, high = check_speed_range(speed_range)
+    low, high = check_speed_span(speed_range, system)
     if speed_rpm is not None and not (isinstance(speed_rpm, (int, float))
                                       and math.isfinite(speed_rpm) and speed_rpm > 0):
         raise ParameterError("speed_rpm", speed_rpm, "must be finite and > 0 [rpm]")
@@ -151,6 +242,7 @@ def analyse_rotor(system: RotorSystem, speed_range, *, speed_rpm: Optional[float
     cd = (campbell_diagram(line, list(np.linspace(low, high, campbell_speeds)),
                            show_progress, onsets=onsets.modes) if campbell else None)
     ir = (imbalance_response(line, list(np.linspace(low, high, imbalance_speeds)),
-                             show_progress) if imbalance else None)
+                             show_progress, unstable_from_rpm=unstable_from(onsets, low))
+          if imbalance else None)
     hm = half_mass_onsets(line, (low, high)) if half_mass else None
-    return RotorAnalysis(onsets, at, cd, ir, hm)
+    return RotorAnalysis(onsets, at, cd, ir, hm, plausibility_warnings(line))

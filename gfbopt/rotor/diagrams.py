@@ -119,12 +119,17 @@ def campbell_diagram(line: SpeedLine, speeds, show_progress: bool = True,
 class ImbalanceResponse:
     """table : one row per (speed, station): speed_rpm, station, position_m, amplitude_um
     (major semi-axis), amplitude_x_um, phase_x_deg, amplitude_y_um, phase_y_deg,
-    forward_radius_um, backward_radius_um; peaks : station → (peak speed [rpm], amplitude
-    [µm]); capacity : speeds skipped."""
+    forward_radius_um, backward_radius_um; peaks : station → peak_speed_rpm,
+    peak_amplitude_um, at_range_end, above_first_onset (the peak lies where the rotor is
+    unstable: the linear response there is not an orbit that would be observed), and
+    largest_below_onset_um / largest_below_onset_rpm (the largest tabulated amplitude below
+    the first onset; nan when none); unstable_from_rpm : the first onset [rpm] (the lowest
+    speed when unstable there; nan: stable over the range); capacity : speeds skipped."""
 
     table: pd.DataFrame
     peaks: dict
     capacity: list = field(default_factory=list)
+    unstable_from_rpm: float = math.nan
 
 
 def synchronous_response(line: SpeedLine, speed: float) -> dict:
@@ -154,8 +159,10 @@ def _row(speed, name, pos, xy) -> dict:
 
 
 def imbalance_response(line: SpeedLine, speeds, show_progress: bool = True,
-                       refine_peaks: bool = True) -> ImbalanceResponse:
-    """The synchronous imbalance response at ``speeds`` [rpm] (module docstring)."""
+                       refine_peaks: bool = True,
+                       unstable_from_rpm: float = math.nan) -> ImbalanceResponse:
+    """The synchronous imbalance response at ``speeds`` [rpm] (module docstring);
+    ``unstable_from_rpm``: the first onset (nan: none), above which a peak is flagged."""
     positions = line.rotor.system.station_positions()
     rows, skipped = [], []
     with progress(total=len(speeds), desc="imbalance response", unit="speed",
@@ -187,9 +194,16 @@ def imbalance_response(line: SpeedLine, speeds, show_progress: bool = True,
             if -opt.fun >= amp:
                 speed, amp = float(opt.x), float(-opt.fun)
         at_end = k in (0, len(part) - 1)
+        below = part[~(part["speed_rpm"] >= unstable_from_rpm)]
+        best = below.loc[below["amplitude_um"].idxmax()] if len(below) else None
         peaks[name] = {"peak_speed_rpm": speed, "peak_amplitude_um": amp,
-                       "at_range_end": bool(at_end)}
-    return ImbalanceResponse(table, peaks, skipped)
+                       "at_range_end": bool(at_end),
+                       "above_first_onset": bool(speed >= unstable_from_rpm),
+                       "largest_below_onset_um": (math.nan if best is None
+                                                  else float(best["amplitude_um"])),
+                       "largest_below_onset_rpm": (math.nan if best is None
+                                                   else float(best["speed_rpm"]))}
+    return ImbalanceResponse(table, peaks, skipped, unstable_from_rpm)
 
 
 def half_mass_onsets(line: SpeedLine, speed_range, show_progress: bool = False) -> list:

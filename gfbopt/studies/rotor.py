@@ -83,7 +83,8 @@ def run_rotor(study: Study, plan: dict, ctx: RunContext) -> StudyResult:
                           title=f"Campbell diagram: {name} (grid {study.grid})")
     figs["campbell.png"] = ax.figure
     ax, _ = plot_imbalance_response(result.imbalance.table, result.imbalance.peaks, onsets, top,
-                                    title=f"Imbalance response: {name}")
+                                    title=f"Imbalance response: {name}",
+                                    unstable_from_rpm=result.imbalance.unstable_from_rpm)
     figs["imbalance_response.png"] = ax.figure
     ax = plot_onsets([m.to_dict() for m in result.onsets.modes], result.half_mass, top,
                      title=f"Onset of each mode against the half-mass rule: {name}")
@@ -140,6 +141,8 @@ def _tracking_check(result) -> dict:
 
 
 def _notes(result, plain, out: dict, top: float) -> list:
+    from ..rotor.analyse import imbalance_note
+
     notes = []
     r = result.onsets
     loads = ", ".join(f"{l.name} {l.magnitude:.3g} N" for l in r.bearing_loads)
@@ -165,9 +168,12 @@ def _notes(result, plain, out: dict, top: float) -> list:
         "answer, and it cannot say which mode whirls (it has no conical mode).")
     for station, p in result.imbalance.peaks.items():
         notes.append(f"Imbalance response at {station}: peak {p['peak_amplitude_um']:.3g} µm at "
-                     f"{p['peak_speed_rpm']:,.0f} rpm.")
-    notes.append("The imbalance response uses the synchronous impedances (γ = 1); above the "
-                 "first onset it is the linear response of an unstable rotor.")
+                     f"{p['peak_speed_rpm']:,.0f} rpm" + (
+                         f", above the first onset: not physical (largest below the onset "
+                         f"{p['largest_below_onset_um']:.3g} µm at "
+                         f"{p['largest_below_onset_rpm']:,.0f} rpm)"
+                         if p["above_first_onset"] else "") + ".")
+    notes.append(f"The imbalance response: {imbalance_note(result.imbalance.unstable_from_rpm)}.")
     least = result.campbell.least_stable()
     notes.append(f"Campbell diagram: least log decrement {least['log_decrement']:.3g} "
                  f"({least['track_label']}, {least['speed_rpm']:,.0f} rpm); "

@@ -54,7 +54,9 @@ def test_imbalance_response_without_planes_is_refused(tmp_path, capsys):
         f=BEARING, z=0.05)
     code = main(["rotor", _file(tmp_path, text), "--speed-range", "5000", "10000",
                  "--imbalance-response"])
-    assert code == 2 and "needs at least one [[imbalance]]" in capsys.readouterr().err
+    err = capsys.readouterr().err
+    assert code == 2 and "needs an imbalance: an [[imbalance]] plane" in err
+    assert "--imbalance-plane" in err and "--imbalance-grade" in err
 
 
 def test_json_carries_the_issue_fields(capsys):
