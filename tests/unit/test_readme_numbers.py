@@ -360,8 +360,10 @@ QUOTED: dict[str, Quoted] = {
 # ---------------------------------------------------------------- reading the pages
 
 def _prose(text: str) -> str:
-    """The text without fenced code blocks (commands are not quotations)."""
-    return re.sub(r"^```.*?^```", "", text, flags=re.S | re.M)
+    """The text without fenced code blocks (commands are not quotations) and without inline
+    code that shows a marker (documentation of the marker, not one)."""
+    text = re.sub(r"^```.*?^```", "", text, flags=re.S | re.M)
+    return re.sub(r"`[^`\n]*<!--[^`\n]*`", "", text)
 
 
 def _normalised(text: str) -> str:
