@@ -177,6 +177,11 @@ def describe(column: str, references: tuple = ()) -> tuple[str, str]:
                 return unit, f"deviation of {quantity} from {ref}: {kind}"
         if column == f"verdicts_{ref}":
             return "text", f"verdicts published ({ref})"
+    for suffix, where in _SUFFIXES:
+        base = column[:-len(suffix)] if column.endswith(suffix) else ""
+        if base:
+            unit, meaning = describe(base, references)
+            return unit, f"{meaning}, {where}"
     for pattern, unit, meaning in _PATTERNS:
         match = re.fullmatch(pattern, column)
         if match:
@@ -364,7 +369,7 @@ for _name, _entry in {
 
 
 # ---------------------------------------------------------------- rotor bearing-pair design
-# Columns of gfbopt.studies.rotor_design (issue 20); added without overriding others.
+# Columns of gfbopt.studies.rotor_design; added without overriding others.
 for _name, _entry in {
     "first_onset_speed_rpm": ("rpm", "first onset of whirl over all modes of the rotor (the "
                               "end of the search when every mode is stable there)"),
@@ -393,14 +398,25 @@ for _name, _entry in {
     "bump_thickness_um": ("µm", "bump foil thickness t_b"),
     "preload_count": ("-", "number of shims or lobes"),
     "pads": ("-", "number of top-foil pads"),
-    "nominal_onset_speed_rpm": ("rpm", "first onset of the design as searched"),
-    "worst_onset_speed_rpm": ("rpm", "lowest first onset over the tolerance sample"),
-    "p05_onset_speed_rpm": ("rpm", "5th percentile of the first onset over the tolerance "
-                            "sample"),
-    "stable_to_top_fraction": ("-", "fraction of the tolerance sample stable to the top "
-                               "speed"),
-    "samples": ("-", "designs in the tolerance sample"),
-    "failed_samples": ("-", "samples whose evaluation failed"),
+    "nominal_onset_speed_rpm": ("rpm", "first onset of the design as searched (at the "
+                                "search's loss factor, the band's low end)"),
+    "loss_factor_low": ("-", "low end of the uncertain loss-factor band η"),
+    "loss_factor_high": ("-", "high end of the uncertain loss-factor band η"),
+    "band_low_onset_speed_rpm": ("rpm", "first onset of the design at the band's low "
+                                 "loss factor"),
+    "band_high_onset_speed_rpm": ("rpm", "first onset of the design at the band's high "
+                                  "loss factor"),
+    "worst_loss_factor": ("-", "the band's end where the design's first onset is lower: "
+                          "the loss factor of the tolerance check"),
+    "worst_onset_speed_rpm": ("rpm", "lowest first onset over the design and its tolerance "
+                              "samples, at the worst loss factor"),
+    "p05_onset_speed_rpm": ("rpm", "5th percentile of the first onset over the design and "
+                            "its tolerance samples, at the worst loss factor"),
+    "stable_to_top_fraction": ("-", "fraction of the design and its tolerance samples "
+                               "stable to the top speed, at the worst loss factor"),
+    "samples": ("-", "evaluations of the tolerance check: the design and its tolerance "
+                "samples"),
+    "failed_samples": ("-", "of those, evaluations that failed"),
     "first_mode_default_grid": ("text", "the mode that whirls first, on the default grid"),
     "onset_status_default_grid": ("text", "onset status on the default grid"),
     "feasible_default_grid": ("-", "the design meets every limit on the default grid"),
@@ -410,10 +426,11 @@ for _name, _entry in {
 }.items():
     GLOSSARY.setdefault(_name, _entry)
 _PATTERNS = _PATTERNS + (
-    (r"(.+)_search_grid", "-", "{0} on the search grid"),
-    (r"(.+)_default_grid", "-", "{0} on the default grid"),
     (r"(.+)_relative_change", "-", "{0}: default grid over search grid − 1"),
 )
+#: suffixes naming where a column's quantity was computed: the column has the unit and
+#: meaning of the quantity it suffixes (``first_onset_speed_rpm_search_grid``: rpm)
+_SUFFIXES = (("_search_grid", "on the search grid"), ("_default_grid", "on the default grid"))
 
 
 # ---------------------------------------------------------------- rotor transients

@@ -16,14 +16,21 @@ One helper for every long loop (speed scans, studies, design searches, transient
   ETA 19 s`` — and one final line when the work ends, so a log shows the run is alive;
 * ``enabled=False`` (or ``GFBOPT_PROGRESS=0`` in the environment): silent.
 
+A run of several stages reports one fraction through :class:`Stages`: each stage is weighed
+by the work it will do (its evaluations or solves, the cost of one against the others, and
+how many run at once), so the bar and its ETA count every stage, not the first one only.
+
 Progress goes to stderr only, so ``--json`` on stdout stays machine-readable.  Nothing here is
 module-level state: each ``progress(...)`` is its own object.
 """
 from __future__ import annotations
 
+import math
 import os
 import sys
 import time
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass
 from typing import IO, Optional
 
 #: seconds between two status lines when stderr is not a terminal
@@ -61,15 +68,17 @@ class StatusLine:
     def line(self) -> str:
         """The status line for the current count (what is written)."""
         elapsed = self._clock() - self._start
-        if self.total:
+        if self.total and self.unit == "%" and self.total == 100:    # a fraction of a run
+            text = f"gfbopt: {self.desc} {self.n} %, {_format_seconds(elapsed)}"
+        elif self.total:
             fraction = self.n / self.total
             text = (f"gfbopt: {self.desc} {self.n}/{self.total} {self.unit} "
                     f"({100.0 * fraction:.0f} %), {_format_seconds(elapsed)}")
-            if 0 < self.n < self.total:
-                eta = elapsed * (self.total - self.n) / self.n
-                text += f", ETA {_format_seconds(eta)}"
         else:
             text = f"gfbopt: {self.desc} {self.n} {self.unit}, {_format_seconds(elapsed)}"
+        if self.total and 0 < self.n < self.total:
+            eta = elapsed * (self.total - self.n) / self.n
+            text += f", ETA {_format_seconds(eta)}"
         if self._postfix:
             text += f" [{self._postfix}]"
         return text
@@ -138,3 +147,91 @@ def progress(total: Optional[int] = None, desc: str = "working", unit: str = "st
         return tqdm(total=total, desc=f"gfbopt: {desc}", unit=f" {unit}", file=stream,
                     dynamic_ncols=True, leave=True)
     return StatusLine(total, desc, unit, stream, interval_s=interval_s)
+
+
+@dataclass(frozen=True)
+class Stage:
+    """One stage of a run: ``tasks`` evaluations or solves of ``cost`` each (in any unit
+    shared by the run's stages), ``slots`` of them at once (the workers)."""
+
+    name: str
+    tasks: int
+    cost: float = 1.0
+    slots: int = 1
+
+    @property
+    def work(self) -> float:
+        """Wall-time units of the stage: rounds of ``slots`` tasks times the cost of one."""
+        if self.tasks <= 0:
+            return 0.0
+        return math.ceil(self.tasks / max(1, min(self.slots, self.tasks))) * self.cost
+
+
+class Fraction:
+    """A reporter with the API of :func:`progress` (``update``, ``set_postfix_str``,
+    ``close``) that passes the fraction of ``total`` done to ``report`` — for a solver that
+    counts its own units (revolutions of an orbit) inside one stage of a run."""
+
+    def __init__(self, total: float, report: Callable[[float], None]) -> None:
+        self.total, self.report, self.n = total, report, 0
+
+    def update(self, n: int = 1) -> None:
+        self.n += n
+        self.report(min(1.0, self.n / self.total) if self.total else 1.0)
+
+    def set_postfix_str(self, text: str) -> None:
+        pass
+
+    def close(self) -> None:
+        pass
+
+
+class Stages:
+    """One fraction of a whole run from the progress of its stages (:class:`Stage`).
+
+    A stage that may end early (an orbit that ends at contact) is counted at its full
+    length: the ETA is then an upper bound, and the bar jumps ahead when the stage ends.
+
+    ``report(fraction)`` is called with the work of the finished stages plus the done part
+    of the current one, over the work of all; ``stage(name)`` gives that stage's own
+    callback (the fraction of its tasks finished).  A stage that turns out to be skipped
+    is passed over by the next ``stage()`` or by :meth:`finish`.  ``None`` as ``report``:
+    silent."""
+
+    def __init__(self, report: Optional[Callable[[float], None]], stages: Sequence[Stage]):
+        names = [s.name for s in stages]
+        if len(set(names)) != len(names):
+            raise ValueError(f"stage names must differ: {names}")
+        self.report = report
+        self.stages = tuple(stages)
+        self.total = sum(s.work for s in self.stages)
+        self.fraction = 0.0
+
+    def start(self, name: str) -> float:
+        """The fraction of the run done when stage ``name`` starts."""
+        done = 0.0
+        for s in self.stages:
+            if s.name == name:
+                return done / self.total if self.total else 0.0
+            done += s.work
+        raise KeyError(f"no stage {name!r} (stages: {', '.join(x.name for x in self.stages)})")
+
+    def share(self, name: str) -> float:
+        """The fraction of the run that stage ``name`` is."""
+        work = next(s.work for s in self.stages if s.name == name)
+        return work / self.total if self.total else 0.0
+
+    def _emit(self, fraction: float) -> None:
+        self.fraction = max(self.fraction, min(1.0, fraction))      # never backwards
+        if self.report is not None:
+            self.report(self.fraction)
+
+    def stage(self, name: str) -> Callable[[float], None]:
+        """The callback of stage ``name``: called with the fraction of its tasks done."""
+        start, share = self.start(name), self.share(name)
+        self._emit(start)
+        return lambda fraction: self._emit(start + share * min(1.0, max(0.0, fraction)))
+
+    def finish(self) -> None:
+        """The run is done (every stage, skipped ones included)."""
+        self._emit(1.0)

@@ -31,6 +31,14 @@ How a run goes:
    3-4 % of a one-second evaluation);
 4. the batch's objectives and constraint violations are *told* to the method.
 
+**A lost design is not an evaluation.**  A task the executor could not run (its worker died
+on every pool it was retried on, a lost cluster: :class:`gfbopt.runtime.InfrastructureFailure`)
+is never stored and never told to the method as a failed design — that would steer the search
+away from a design nobody evaluated.  The batch's other designs finish and are stored, then
+:func:`optimise` raises :class:`gfbopt.runtime.InfrastructureError`: nothing of the lost
+designs, and nothing asked after them, is kept, so a resume asks the same batch again and
+evaluates only the lost designs.
+
 The proposals depend only on the seed and on the values told, and the values of a stored
 design are read back bit for bit, so a resumed run asks the same designs, answers the stored
 ones from the store and evaluates only the rest: every design is evaluated once, and the
@@ -57,8 +65,11 @@ from .search import SearchSettings, proposer
 
 #: columns every optimisation table has besides the variables and the outputs
 BOOK_KEEPING = {"point": "string", "evaluation": "int64", "batch": "int64",
-                "success": "bool", "message": "string", "wall_time_s": "float64",
-                "worker": "string"}
+                "success": "bool", "feasible": "bool", "message": "string",
+                "wall_time_s": "float64", "worker": "string"}
+#: book-keeping columns a store must have to be searched into (``feasible`` is derived from
+#: the row and the problem: an older store without it is still read)
+REQUIRED = tuple(k for k in BOOK_KEEPING if k != "feasible")
 
 
 def store_schema(problem: DesignProblem, outputs: dict) -> dict:
@@ -147,19 +158,36 @@ def executor(workers: int = 1, client=None) -> Callable:
     return partial(stream_tasks, workers=workers, client=client)
 
 
-def evaluate_points(function: Callable, points: list, run_tasks: Optional[Callable] = None
-                    ) -> list:
+def lost_designs(lost: list, of: int, what: str) -> str:
+    """The sentence of an InfrastructureError for ``lost`` (exceptions) of ``of`` tasks."""
+    first = lost[0]
+    return (f"{len(lost)} of {of} {what} could not be evaluated "
+            f"({type(first).__name__}: {first}); they are not results")
+
+
+def evaluate_points(function: Callable, points: list, run_tasks: Optional[Callable] = None,
+                    progress: Optional[Callable[[float], None]] = None) -> list:
     """``function(**point)`` for every point through an executor (``run_tasks``, default
-    this process), the rows in the order of ``points``; a task the executor lost is a row
-    with ``success = False`` and ``executor:`` in its message."""
+    this process), the rows in the order of ``points``; ``progress`` is called with the
+    fraction finished.  A task the executor lost (a worker that kept dying) is not a result:
+    when every other task has finished, :class:`gfbopt.runtime.InfrastructureError`."""
+    from ..runtime import InfrastructureError
+
     run_tasks = run_tasks or _serial
     rows: list = [None] * len(points)
+    lost, done = [], 0
     for k, result in run_tasks(_task, [{"function": function, "point": p} for p in points]):
         if k is None:
             continue
-        rows[k] = (result if not isinstance(result, BaseException) else
-                   {"success": False, "message": f"executor: {type(result).__name__}: "
-                    f"{result}"})
+        if isinstance(result, BaseException):
+            lost.append(result)
+        else:
+            rows[k] = result
+        done += 1
+        if progress is not None:
+            progress(done / len(points))
+    if lost:
+        raise InfrastructureError(lost_designs(lost, len(points), "evaluations"))
     return rows
 
 
@@ -231,8 +259,14 @@ def optimise(problem: DesignProblem, evaluate: Callable, settings: SearchSetting
         task finishes (default: this process; :func:`executor` for a pool or Dask)
     initial : designs (dicts) put first in the initial sample (e.g. the baseline)
     flush_rows, flush_seconds : most rows per Parquet part / longest time rows wait (step 3)
-    progress : called with the fraction of the budget asked
+    progress : called with the fraction of the budget done (designs evaluated or answered
+        from the store), after every finished evaluation
+
+    Raises :class:`gfbopt.runtime.InfrastructureError` when the executor lost designs of a
+    batch (module docstring): the batch's finished designs are stored, nothing is told.
     """
+    from ..runtime import InfrastructureError
+
     t_start = time.perf_counter()
     fixed = dict(fixed or {})
     run_tasks = run_tasks or _serial
@@ -241,7 +275,7 @@ def optimise(problem: DesignProblem, evaluate: Callable, settings: SearchSetting
         raise ParameterError("fixed", clash[0], "is also a design variable")
     schema = store.schema if store is not None else None
     if store is not None:
-        missing = [n for n in [*BOOK_KEEPING, *problem.names] if n not in schema]
+        missing = [n for n in [*REQUIRED, *problem.names] if n not in schema]
         if missing:
             raise ParameterError("store", missing[0], "is not a column of the store's schema "
                                  "(make it with store_schema)")
@@ -275,30 +309,39 @@ def optimise(problem: DesignProblem, evaluate: Callable, settings: SearchSetting
                 else:
                     todo.append((key, design, len(order) - 1))
             driver += time.perf_counter() - t0
+            lost: list = []
             if todo:
                 arguments = [{"function": evaluate, "point": {**fixed, **d}}
                              for _, d, _ in todo]
+                waiting = len(todo)
                 for k, result in run_tasks(_task, arguments):
                     if k is None:                   # an executor's tick: nothing finished
                         writer.tick()
                         continue
                     t1 = time.perf_counter()
+                    waiting -= 1
                     key, design, index = todo[k]
-                    lost = isinstance(result, BaseException)
-                    if lost:    # the executor lost the task (a worker died): not a result
-                        result = {"success": False, "wall_time_s": math.nan, "message":
-                                  f"executor: {type(result).__name__}: {result}"}
+                    if isinstance(result, BaseException):   # lost by the executor: neither
+                        lost.append(result)                  # stored nor told (docstring)
+                        continue
                     row = {**{n: v for n, v in result.items() if n not in fixed}, **design,
                            "point": key, "evaluation": index, "batch": batch}
+                    row["feasible"] = problem.feasible(row)
                     spent = _number(row.get("wall_time_s"))
                     evaluation_time += spent if math.isfinite(spent) else 0.0
                     known[key] = row
-                    if not lost:    # a lost task stays out of the store: a resume retries it
-                        writer.add(row)
+                    writer.add(row)
                     evaluated += 1
+                    if progress is not None:
+                        progress(min(1.0, (len(order) - waiting) / settings.budget))
                     driver += time.perf_counter() - t1
             t2 = time.perf_counter()
             writer.flush()
+            if lost:
+                raise InfrastructureError(
+                    lost_designs(lost, len(todo), f"designs of batch {batch}") + "; the "
+                    f"{evaluated + reused} designs evaluated so far are stored and the "
+                    "search stopped before telling the optimiser anything of this batch")
             rows = [known[key] for key in keys]
             F = np.array([problem.objective_vector(r) for r in rows])
             G = np.array([problem.violation_vector(r) for r in rows])
@@ -316,6 +359,7 @@ def optimise(problem: DesignProblem, evaluate: Callable, settings: SearchSetting
             table[column] = math.nan
     table["success"] = table["success"].map(lambda v: bool(v) if v is not None and
                                             v == v else False)
+    table["feasible"] = [problem.feasible(r) for r in table.to_dict(orient="records")]
     front = pareto_front(table, problem)
     best = front.iloc[0].to_dict() if len(problem.objectives) == 1 and len(front) else None
     return OptimisationResult(problem, settings, table, front, best, evaluated, reused,

@@ -2,9 +2,11 @@
 over the loss-factor band, and its answer on the default grid (grid honesty).
 
 * :func:`tolerance_sample` — a seeded Latin hypercube (:mod:`gfbopt.doe.sampling`) of the
-  ± tolerances of the design variables and of the loss factor over its band, around one
-  design; :func:`robustness` evaluates the samples (through the executors) and reports the
-  nominal first onset next to the worst case and the 5th percentile.
+  ± tolerances of the design variables around one design; :func:`robustness` evaluates the
+  design at both ends of the uncertain loss-factor band, takes the end where its onset is
+  lower (the band's worst end) and evaluates the tolerance samples there: the worst case and
+  the 5th percentile are over the design and its samples at that loss factor, beside the
+  onset at each end of the band.
 * :func:`regrid` — the same designs evaluated on another grid (the default grid after a
   search on a coarse one), with the differences of the objectives.
 """
@@ -26,16 +28,13 @@ from .rotor_objectives import evaluate_rotor_design
 COMPARED = ("first_onset_speed_rpm", "total_power_loss_w", "min_film_lowest_speed_um")
 
 
-def tolerance_sample(design: dict, tolerances: dict, band: tuple, n: int, seed: int,
-                     problem: DesignProblem) -> list:
-    """``n`` perturbed designs: each toleranced variable uniform in value ± half-width
-    (a preload depth kept ≥ 0), the loss factor uniform in ``band`` (fixed when the band is
-    one value); each sample is (design dict, loss factor)."""
+def tolerance_sample(design: dict, tolerances: dict, n: int, seed: int) -> list:
+    """``n`` perturbed designs (dicts): each toleranced variable uniform in value ±
+    half-width (a preload depth kept ≥ 0), a seeded Latin hypercube; the design itself when
+    nothing is toleranced."""
+    if not tolerances:
+        return []
     variables = [Variable(name, -half, half) for name, half in tolerances.items()]
-    if band[1] > band[0]:
-        variables.append(Variable("loss_factor", band[0], band[1]))
-    if not variables:
-        return [(dict(design), band[0])]
     frame = sample(SamplePlan(tuple(variables), method="lhs", n=n, seed=seed))
     out = []
     for _, row in frame.iterrows():
@@ -45,48 +44,89 @@ def tolerance_sample(design: dict, tolerances: dict, band: tuple, n: int, seed: 
             if name.endswith("preload_depth_um"):
                 value = max(value, 0.0)
             d[name] = value
-        out.append((d, float(row["loss_factor"]) if "loss_factor" in row else band[0]))
+        out.append(d)
     return out
 
 
+def _onset(row: dict) -> float:
+    return float(row.get("first_onset_speed_rpm", math.nan)) if row.get("success") \
+        else math.nan
+
+
 def robustness(system, settings, designs: list, tolerances: dict, band: tuple, n: int,
-               seed: int, problem: DesignProblem, run_tasks: Optional[Callable] = None
-               ) -> pd.DataFrame:
-    """For each design (a stored row): nominal first onset, worst case and 5th percentile
-    over the tolerance sample, the fraction of samples stable to the top speed."""
+               seed: int, problem: DesignProblem, run_tasks: Optional[Callable] = None,
+               progress: Optional[Callable[[float], None]] = None) -> pd.DataFrame:
+    """For each design (a stored row, evaluated with ``settings``' loss factor): its first
+    onset at both ends of the loss-factor ``band``, the end where it is lower (the band's
+    worst end), and over the design and ``n`` tolerance samples evaluated at that end the
+    worst case, the 5th percentile and the fraction stable to the top speed — every figure
+    of the tolerance check is at one loss factor, so the worst case is never above the
+    nominal there.  ``progress``: the fraction of the evaluations finished."""
     names = problem.names
+    nominal = [{n_: float(row[n_]) for n_ in names} for row in designs]
+    samples = [tolerance_sample(d, tolerances, n, seed + k) for k, d in enumerate(nominal)]
+    others = [eta for eta in dict.fromkeys(band) if eta != settings.loss_factor]
+    total = len(others) * len(designs) + sum(len(x) for x in samples)
+    finished = [0]
+
+    def evaluate(points: list) -> list:
+        def step(fraction: float) -> None:
+            if progress is not None:
+                progress((finished[0] + fraction * len(points)) / total)
+        rows = evaluate_points(evaluate_rotor_design, points, run_tasks, step)
+        finished[0] += len(points)
+        return rows
+
+    # the design at each end of the band: the stored row at the search's loss factor
+    at = [{settings.loss_factor: dict(r)} for r in designs]
+    for eta in others:
+        rows = evaluate([{"system": system, "settings": dataclasses.replace(
+            settings, loss_factor=eta), **d} for d in nominal])
+        for k, row in enumerate(rows):
+            at[k][eta] = row
+    worst = [min((eta for eta in band), key=lambda eta, a=a: _order(a[eta])) for a in at]
     points, owner = [], []
-    for k, row in enumerate(designs):
-        design = {n_: float(row[n_]) for n_ in names}
-        for d, eta in tolerance_sample(design, tolerances, band, n, seed + k, problem):
+    for k, eta in enumerate(worst):
+        for d in samples[k]:
             points.append({"system": system,
                            "settings": dataclasses.replace(settings, loss_factor=eta), **d})
             owner.append(k)
-    rows = evaluate_points(evaluate_rotor_design, points, run_tasks)
+    rows = evaluate(points) if points else []
     out = []
     for k, row in enumerate(designs):
-        mine = [r for r, o in zip(rows, owner) if o == k]
-        onset = np.array([r.get("first_onset_speed_rpm", math.nan) if r.get("success")
-                          else math.nan for r in mine], float)
+        eta = worst[k]
+        onset = np.array([_onset(at[k][eta])] + [_onset(r) for r, o in zip(rows, owner)
+                                                  if o == k], float)
         ok = onset[np.isfinite(onset)]
         out.append({"point": row["point"], **{n_: row[n_] for n_ in names},
                     "nominal_onset_speed_rpm": row["first_onset_speed_rpm"],
+                    "loss_factor_low": band[0], "loss_factor_high": band[1],
+                    "band_low_onset_speed_rpm": _onset(at[k][band[0]]),
+                    "band_high_onset_speed_rpm": _onset(at[k][band[1]]),
+                    "worst_loss_factor": eta,
                     "worst_onset_speed_rpm": float(ok.min()) if ok.size else math.nan,
                     "p05_onset_speed_rpm": float(np.percentile(ok, 5)) if ok.size else math.nan,
                     "stable_to_top_fraction": float(np.mean(ok >= settings.top_speed_rpm))
                     if ok.size else math.nan,
-                    "samples": len(mine), "failed_samples": int(len(mine) - ok.size)})
+                    "samples": len(onset), "failed_samples": int(len(onset) - ok.size)})
     return pd.DataFrame.from_records(out)
 
 
+def _order(row: dict) -> float:
+    """Sort key of a band end: its onset, a failed evaluation first (the worst)."""
+    onset = _onset(row)
+    return onset if math.isfinite(onset) else -math.inf
+
+
 def regrid(system, settings, designs: list, problem: DesignProblem,
-           run_tasks: Optional[Callable] = None) -> pd.DataFrame:
+           run_tasks: Optional[Callable] = None,
+           progress: Optional[Callable[[float], None]] = None) -> pd.DataFrame:
     """The designs evaluated with ``settings`` (another grid): the objectives on both grids
     and their relative differences (new/stored − 1)."""
     names = problem.names
     points = [{"system": system, "settings": settings, **{n: float(r[n]) for n in names}}
               for r in designs]
-    rows = evaluate_points(evaluate_rotor_design, points, run_tasks)
+    rows = evaluate_points(evaluate_rotor_design, points, run_tasks, progress)
     out = []
     for stored, new in zip(designs, rows):
         line = {"point": stored["point"], **{n: stored[n] for n in names},
@@ -104,12 +144,14 @@ def regrid(system, settings, designs: list, problem: DesignProblem,
     return pd.DataFrame.from_records(out)
 
 
-def whirl_at_top_speed(system, design: dict, settings, revolutions: float) -> dict:
+def whirl_at_top_speed(system, design: dict, settings, revolutions: float,
+                       progress: Optional[Callable[[float], None]] = None) -> dict:
     """The rotor with ``design`` run at the top speed for ``revolutions`` from its
     equilibrium with a small cylindrical kick (:func:`gfbopt.transient.rotor_orbit`, the
     rotor transient, on the search grid, the loss factor of the search): per
     bearing the subsynchronous limit cycle [µm] (settled or not) and the smallest film
-    [µm], and whether the film closed (contact) first."""
+    [µm], and whether the film closed (contact) first; ``progress``: called with the fraction
+    of the revolutions integrated."""
     from ..inputs.options import ModelOptions, merge_options
     from ..transient.rotor_analysis import rotor_orbit
     from .rotor_objectives import apply_design
@@ -119,7 +161,11 @@ def whirl_at_top_speed(system, design: dict, settings, revolutions: float) -> di
         ModelOptions(loss_factor=settings.loss_factor), b.options))
         for b in designed.bearings)
     designed = dataclasses.replace(designed, bearings=supports)
-    result = rotor_orbit(designed, settings.top_speed_rpm, revolutions, grid=settings.grid)
+    from ..progress import Fraction
+
+    reporter = Fraction(int(revolutions), progress) if progress is not None else None
+    result = rotor_orbit(designed, settings.top_speed_rpm, revolutions, grid=settings.grid,
+                         progress=reporter)
     d = result.to_dict()
     out = {"revolutions": revolutions, "grid": str(settings.grid), "success": bool(d["success"]),
            "message": d.get("message", ""), "contact": bool(d.get("contact")),

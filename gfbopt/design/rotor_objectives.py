@@ -16,7 +16,8 @@ unprefixed names change both).  :func:`apply_design` turns it into a new
   ``heaviest_load_factor``), the smaller of the two bearings;
 * optionally the lift-off speed (the larger of the two bearings) and the load-capacity
   margin (capacity at the lowest speed over the static load, the smaller)
-  (:mod:`gfbopt.rotor.capacity`);
+  (:mod:`gfbopt.rotor.capacity`), only when their film limits are given (otherwise the
+  columns are absent, :func:`design_outputs`);
 * the bump foil's bending stress, the top-foil sag over the clearance and the bump closing
   ratio (2 l0 + gap)/s, with the formulas of :mod:`gfbopt.physics.bump` that the geometric
   program limits; a ``compliance`` variable is realised by the geometric program
@@ -80,6 +81,15 @@ OUTPUTS = {
     "top_foil_sag_ratio": "float64", "bump_closing_ratio": "float64",
     "compliance_a": "float64", "compliance_b": "float64", "grid": "string",
 }
+
+
+def design_outputs(settings: "EvaluationSettings") -> dict:
+    """The columns of :data:`OUTPUTS` an evaluation with ``settings`` computes: the lift-off
+    speed only with ``lift_off_film_um``, the capacity margin only with ``capacity_film_um``
+    (a column empty in every row is left out of the store and the tables)."""
+    skip = {"lift_off_speed_rpm": settings.lift_off_film_um is None,
+            "capacity_margin": settings.capacity_film_um is None}
+    return {k: v for k, v in OUTPUTS.items() if not skip.get(k, False)}
 
 
 @dataclass(frozen=True)
@@ -281,7 +291,7 @@ def _film_and_power(rotor, line, settings: EvaluationSettings, cache) -> dict:
 def _capacity_rows(rotor, settings: EvaluationSettings, cache) -> dict:
     from ..rotor.capacity import lift_off_speed, load_capacity
 
-    out = {"lift_off_speed_rpm": math.nan, "capacity_margin": math.nan}
+    out = {}
     if settings.lift_off_film_um is not None:
         speeds = [lift_off_speed(c.bearing, c.load_newton, settings.lift_off_film_um,
                                  max_speed_rpm=settings.top_speed_rpm, options=c.options,
@@ -360,8 +370,8 @@ def first_onset(line, settings: EvaluationSettings) -> dict:
 
 def evaluate_rotor_design(system, settings: EvaluationSettings, cache=None,
                           **design) -> dict:
-    """Every output of :data:`OUTPUTS` for one design (module docstring); a physics failure
-    is a row with ``success = False`` and its message."""
+    """Every output of :func:`design_outputs` for one design (module docstring); a physics
+    failure is a row with ``success = False`` and its message."""
     from ..inputs.options import ModelOptions
     from ..rotor.supports import resolve_rotor
     from ..rotor.system import SpeedLine

@@ -336,6 +336,13 @@ class ResultStore:
         frame = frame.drop_duplicates(subset="point", keep="last")
         return frame.sort_values("point").reset_index(drop=True)
 
+    def rows_written(self) -> int:
+        """Rows in every part, a point written twice counted twice (:meth:`read` keeps the
+        last of them)."""
+        import pyarrow.parquet as pq
+
+        return sum(pq.ParquetFile(p).metadata.num_rows for p in self.parts())
+
     def done_points(self) -> set:
         """Point keys already stored (skipped on resume); a row whose failure was
         infrastructural is not done."""

@@ -58,8 +58,11 @@ class StudyResult:
     """What a study computed, before anything is written.
 
     tables : file name → DataFrame (written as CSV); figures : file name → matplotlib
-    Figure; checks : internal-consistency checks; comparisons : deviations from published
-    values; options : the physics options of every variant; notes : computed remarks.
+    Figure; checks : internal-consistency checks of the computation (never a verdict on the
+    design or bearing studied); comparisons : deviations from published values; options :
+    the physics options of every variant; notes : computed remarks; verdict : the answer in
+    words; answer : what the study answers, as ``summary.json`` keys (a design study:
+    ``verdict``, ``stable_to_top_speed``, ``best_first_onset_rpm``, ``chosen_design``).
     """
 
     study: Study
@@ -70,13 +73,22 @@ class StudyResult:
     options: dict = field(default_factory=dict)
     notes: list = field(default_factory=list)
     wall_time_s: float = 0.0
-    #: the answer in words, written as the README's first line (design studies)
+    #: the answer in words, written as the README's first line and the console's last
+    #: (design studies)
     verdict: str = ""
+    #: the study's answer as summary.json keys (design studies; empty otherwise)
+    answer: dict = field(default_factory=dict)
+
+    @property
+    def checks_hold(self) -> bool:
+        """True when every internal consistency check holds (says nothing of whether a
+        design studied is good: that is the ``verdict``)."""
+        return all(c["passed"] for c in self.checks)
 
     @property
     def passed(self) -> bool:
-        """True when every internal check passed."""
-        return all(c["passed"] for c in self.checks)
+        """The same as :attr:`checks_hold` (the older name, kept for callers)."""
+        return self.checks_hold
 
     @property
     def agreement(self) -> str:

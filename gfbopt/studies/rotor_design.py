@@ -1,6 +1,6 @@
 """Study kind ``rotor_bearing_design``: design both bearings of a rotor against its top speed
 — which bearing pair keeps the rotor stable to its top speed, at what drag and film margin,
-and if none does, how far short the best one falls (issue 20).
+and if none does, how far short the best one falls.
 
 The study file (validated by :mod:`gfbopt.design.rotor_spec`) names a rotor file on two
 bearings, the lowest and top speeds, the goal, the limits, the design variables and the
@@ -17,8 +17,17 @@ search.  A run:
    loss-factor band, a Latin-hypercube sample: worst case and 5th percentile beside the
    nominal onset) and re-evaluates them on the default ``grid`` (grid honesty: the
    difference is reported and the verdict names both grids);
-4. writes the verdict in words as the README's first line, the tables (every evaluation,
-   the front, the robustness and the default-grid check) and figures that mark the top speed.
+4. writes the verdict in words as the README's first line (and the console's last line,
+   and ``verdict``, ``stable_to_top_speed``, ``best_first_onset_rpm`` and ``chosen_design``
+   in ``summary.json``), the tables (every evaluation, with the store's columns; the front,
+   the robustness and the default-grid check) and figures that mark the top speed.
+
+The run holds the store's lock from the search to the last file written, so a second run of
+the same study into the same folder is refused (one line) whatever phase the first is in.  A
+design lost by the executor (workers that keep dying) stops the run with the command that
+resumes it (:class:`gfbopt.runtime.InfrastructureError`); nothing is told to the optimiser
+about a design nobody evaluated.  The internal checks (every design stored once, the chosen
+design reproduced) check the computation; whether a design is good is the verdict's.
 
 When no design is stable to the top speed, the chosen one is run at the top speed in time
 (the rotor transient, :func:`gfbopt.design.robustness.whirl_at_top_speed`): the
@@ -32,7 +41,7 @@ import time
 from pathlib import Path
 
 from ..errors import ParameterError
-from ..design.rotor_objectives import OUTPUTS
+from ..design.rotor_objectives import design_outputs
 from ..design.rotor_spec import BORE_KINDS, GOALS, plan_rotor_design
 from ..design.search import METHODS
 from .base import Kind, LoadedStudy, RunContext, Study, StudyResult
@@ -150,6 +159,9 @@ def design_hash(study: Study) -> str:
     from ..inputs import read_toml
     from ..version import __version__
 
+    from ..design.optimiser import BOOK_KEEPING
+    from ..design.rotor_objectives import OUTPUTS
+
     spec = {k: v for k, v in study.spec.items() if k not in AFTER_SEARCH}
     rotor = study.directory / study.spec["rotor"]
     files = {"rotor": _digest(rotor)}
@@ -159,8 +171,9 @@ def design_hash(study: Study) -> str:
     except (ParameterError, OSError):  # an unreadable rotor file is refused by the plan
         pass
     version = ".".join(__version__.split(".")[:2])
-    text = json.dumps({"spec": spec, "files": files, "version": version}, sort_keys=True,
-                      default=str)
+    columns = [*BOOK_KEEPING, *OUTPUTS]          # a store with other columns is not resumed
+    text = json.dumps({"spec": spec, "files": files, "version": version, "columns": columns},
+                      sort_keys=True, default=str)
     return hashlib.sha256(text.encode()).hexdigest()
 
 
@@ -169,35 +182,93 @@ def plan(study: Study):
     return plan_rotor_design(study, design_hash(study))
 
 
+#: cost of an evaluation against one on a grid with ``cells`` times the nodes: measured on
+#: the blower (36x10 1.03 s, 72x20 1.84 s, 144x36 5.28 s CPU, one design), ≈ cells^0.6
+GRID_COST_EXPONENT = 0.6
+#: cost of 100 revolutions of the orbit at the top speed, in design evaluations on the
+#: orbit's grid (measured on the blower at 72x20: 0.28 s CPU per revolution, 1.84 s per
+#: evaluation); an orbit that ends at contact is shorter (the ETA is an upper bound)
+ORBIT_COST_PER_100_REVOLUTIONS = 15.0
+
+
+def grid_cost(grid, reference) -> float:
+    """Cost of one design evaluation on ``grid`` over one on ``reference``."""
+    return ((grid.n_theta * grid.n_z) / (reference.n_theta * reference.n_z)) \
+        ** GRID_COST_EXPONENT
+
+
+def run_stages(p, workers: int) -> list:
+    """The stages of a design run weighed by the evaluations each will do (at most: fewer
+    designs may need checking), the cost of one on its grid and the workers running them
+    at once (:class:`gfbopt.progress.Stage`)."""
+    from ..progress import Stage
+
+    s, r = p.settings, p.robustness
+    per_batch = p.search.population if p.search.method == "nsga2" else p.search.batch
+    ends = len(set(p.loss_factor_band) - {s.loss_factor})
+    samples = r.samples if r.tolerances else 0
+    tolerances = r.designs * (ends + samples) if (r.tolerances or ends) else 0
+    orbit = (grid_cost(p.limit_cycle_grid, s.grid) * ORBIT_COST_PER_100_REVOLUTIONS
+             * p.limit_cycle_revolutions / 100.0)
+    return [Stage("search", p.search.budget, 1.0, min(workers, per_batch)),
+            Stage("default-grid check", p.regrid_designs,
+                  grid_cost(p.default_settings.grid, s.grid), workers),
+            Stage("tolerances", tolerances, 1.0, workers),
+            Stage("whirl at top speed", 1 if p.limit_cycle_revolutions > 0 else 0,
+                  max(orbit, 1.0)),
+            Stage("reproduction", 1, 1.0)]
+
+
+def resume_command(study: Study, results_root) -> str:
+    """The command that resumes this design run into ``results_root``."""
+    from .base import DEFAULT_RESULTS
+
+    where = "" if str(results_root) == DEFAULT_RESULTS else f" --results {results_root}"
+    return f"gfbopt run {study.file}{where} --resume"
+
+
 def run_design(loaded: LoadedStudy, results_root="results", *, workers: int = 1,
                client=None, resume: bool = False, progress=None,
                write: bool = True, force: bool = False) -> StudyResult:
     """Run the design study into ``results_root/NAME/`` (module docstring); ``resume``
-    keeps the evaluations of an earlier (killed) run of the same study."""
+    keeps the evaluations of an earlier (killed) run of the same study.  The store's lock
+    is held until every file is written; a design the executor lost raises
+    :class:`gfbopt.runtime.InfrastructureError` naming the command that resumes."""
     from ..design.optimiser import executor, optimise, store_schema
     from ..design.rotor_objectives import evaluate_rotor_design
     from ..doe.store import ResultStore, lock_store
+    from ..progress import Stages
     from ..provenance import provenance
+    from ..runtime import InfrastructureError
     from .rotor_report import report
 
     study, p = loaded.study, loaded.plan
     out = Path(results_root) / study.name
     t0 = time.perf_counter()
     run_tasks = executor(workers, client)
-    with lock_store(out / "store"):
+    stages = Stages(progress, run_stages(p, workers))
+    with lock_store(out / "store"):                 # the whole run: search, report, files
         store = ResultStore.create(out / "store", study=study.name, study_hash=p.study_hash,
-                                   schema=store_schema(p.problem, OUTPUTS), resume=resume,
+                                   schema=store_schema(p.problem, design_outputs(p.settings)),
+                                   resume=resume,
                                    metadata={"study_file": study.file, "provenance":
                                              provenance(grid=str(p.settings.grid))})
-        fraction = (lambda f: progress(0.7 * f)) if progress else None
-        search = optimise(p.problem, evaluate_rotor_design, p.search,
-                          fixed={"system": p.system, "settings": p.settings}, store=store,
-                          run_tasks=run_tasks, progress=fraction)
-    result = report(study, p, search, run_tasks, progress, t0)
-    if write:
-        from .report import write_result
+        try:
+            search = optimise(p.problem, evaluate_rotor_design, p.search,
+                              fixed={"system": p.system, "settings": p.settings},
+                              store=store, run_tasks=run_tasks,
+                              progress=stages.stage("search"))
+            result = report(study, p, search, run_tasks, stages, t0, store)
+        except InfrastructureError as exc:
+            kept = len(store.read())
+            raise InfrastructureError(
+                f"{study.name}: {exc}. {kept} evaluated designs are stored in "
+                f"{out / 'store'}; `{resume_command(study, results_root)}` continues the "
+                "design with them") from None
+        if write:
+            from .report import write_result
 
-        write_result(result, Path(results_root), force=force)
+            write_result(result, Path(results_root), force=force)
     return result
 
 

@@ -124,42 +124,45 @@ def _reproduce(plan, chosen: dict) -> float:
     return worst if row.get("success") else math.inf
 
 
-def report(study, plan, search, run_tasks, progress, started: float) -> StudyResult:
-    """The StudyResult of a finished search (module docstring); ``started``: the run's
-    time.perf_counter() at its start (the wall time stated covers the whole study: search,
-    default-grid check, robustness, the orbit at the top speed and the reproduction)."""
+def report(study, plan, search, run_tasks, stages, started: float, store) -> StudyResult:
+    """The StudyResult of a finished search (module docstring); ``stages``: the run's
+    :class:`gfbopt.progress.Stages` (``"default-grid check"``, ``"tolerances"``, ``"whirl at
+    top speed"``, ``"reproduction"``); ``started``: the run's time.perf_counter() at its
+    start (the wall time stated covers the whole study: search, default-grid check,
+    robustness, the orbit at the top speed and the reproduction); ``store``: the search's
+    :class:`gfbopt.doe.ResultStore` (the table of every evaluation has its columns, and the
+    stored-once check counts the rows it holds)."""
     from ..design.robustness import regrid, robustness
     from ..plotting.design_front import plot_design_front, plot_onset_against_variables
 
     s, problem = plan.settings, plan.problem
-    table = search.table.copy()
-    table["feasible"] = [problem.feasible(r) for r in table.to_dict(orient="records")]
+    stored = store.read()
+    table = search.table.reindex(columns=list(store.schema))   # one schema: store and CSV
     front = search.front
     chosen, why = choose(table, problem, s.top_speed_rpm)
     checked = []
     if chosen is not None:
         checked = [chosen] + [r for r in front.to_dict(orient="records")
                               if r["point"] != chosen["point"]]
+    step = stages.stage("default-grid check")
     default = regrid(plan.system, plan.default_settings, checked[:plan.regrid_designs], problem,
-                     run_tasks) if checked else pd.DataFrame()
-    if progress:
-        progress(0.85)
+                     run_tasks, step) if checked else pd.DataFrame()
     robust = pd.DataFrame()
     r = plan.robustness
+    step = stages.stage("tolerances")
     if checked and (r.tolerances or plan.loss_factor_band[1] > plan.loss_factor_band[0]):
         robust = robustness(plan.system, s, checked[:r.designs], r.tolerances,
-                            plan.loss_factor_band, r.samples, r.seed, problem, run_tasks)
-    if progress:
-        progress(0.97)
+                            plan.loss_factor_band, r.samples, r.seed, problem, run_tasks, step)
     check = default.iloc[0].to_dict() if len(default) else None
     whirl = None
+    step = stages.stage("whirl at top speed")
     if (chosen is not None and chosen["first_onset_speed_rpm"] < s.top_speed_rpm
             and plan.limit_cycle_revolutions > 0):
         from ..design.robustness import whirl_at_top_speed
 
         whirl = whirl_at_top_speed(plan.system, {n: float(chosen[n]) for n in problem.names},
                                    dataclasses.replace(s, grid=plan.limit_cycle_grid),
-                                   plan.limit_cycle_revolutions)
+                                   plan.limit_cycle_revolutions, step)
     text = verdict(chosen, why, plan, check, whirl)
     notes = [text, f"Why this design: {why}."]
     mean = search.evaluation_time_s / search.evaluated if search.evaluated else math.nan
@@ -180,15 +183,7 @@ def report(study, plan, search, run_tasks, progress, started: float) -> StudyRes
                      f"{rel.max():.2%} (chosen design "
                      f"{check['first_onset_speed_rpm_relative_change']:+.2%}).")
     if len(robust):
-        c = robust.iloc[0]
-        notes.append(
-            f"Robustness of the chosen design ({r.samples} samples: ±"
-            + ", ±".join(f"{v:g} {variable_label(k).split('[')[-1].rstrip(']')} on {k}"
-                         for k, v in r.tolerances.items())
-            + f", loss factor {plan.loss_factor_band[0]:g}–{plan.loss_factor_band[1]:g}): "
-            f"first onset nominal {c['nominal_onset_speed_rpm']:,.0f} rpm, 5th percentile "
-            f"{c['p05_onset_speed_rpm']:,.0f} rpm, worst {c['worst_onset_speed_rpm']:,.0f} rpm"
-            f"; {c['stable_to_top_fraction']:.0%} of the samples stable to the top speed.")
+        notes.append(robustness_text(robust.iloc[0], r, plan.loss_factor_band))
     tables = {"evaluations.csv": table, "pareto_front.csv": front}
     if whirl is not None:
         tables["whirl_at_top_speed.csv"] = pd.DataFrame(
@@ -209,15 +204,19 @@ def report(study, plan, search, run_tasks, progress, started: float) -> StudyRes
     axes = plot_onset_against_variables(table, problem.names, s.top_speed_rpm,
                                         title="First onset against each design variable")
     figures["onset_vs_variables.png"] = np.atleast_1d(axes).ravel()[0].figure
-    checks = [{"what": "every design asked is stored exactly once (rows)",
-               "value": float(len(table)), "limit": float(search.evaluated + search.reused),
-               "passed": bool(len(table) == search.evaluated + search.reused
-                              and table["point"].is_unique)}]
+    asked = search.evaluated + search.reused
+    rows = store.rows_written()
+    checks = [{"what": "every design asked is stored exactly once (rows in the store)",
+               "value": float(rows), "limit": float(asked),
+               "passed": bool(rows == asked and stored["point"].is_unique
+                              and set(stored["point"]) == set(table["point"]))}]
+    stages.stage("reproduction")
     if chosen is not None:
         diff = _reproduce(plan, chosen)
         checks.append({"what": "chosen design evaluated again from scratch: largest "
                        "relative change of its objectives", "value": diff,
                        "limit": REPRODUCE_TOLERANCE, "passed": bool(diff <= REPRODUCE_TOLERANCE)})
+    stages.finish()
     options = {"variants": {"design": {"goal": plan.goal, "loss_factor_search":
                                        plan.loss_factor_band[0],
                                        "loss_factor_band": list(plan.loss_factor_band)}},
@@ -226,5 +225,41 @@ def report(study, plan, search, run_tasks, progress, started: float) -> StudyRes
                "seed": plan.search.seed, "top_speed_rpm": s.top_speed_rpm}
     return StudyResult(study, tables=tables, figures=figures, checks=checks, options=options,
                        notes=notes, wall_time_s=time.perf_counter() - started,
-                       verdict=text)
+                       verdict=text, answer=answer(text, chosen, table, plan))
+
+
+def answer(text: str, chosen, table: pd.DataFrame, plan) -> dict:
+    """The design's answer as summary.json keys: the verdict, whether the chosen design is
+    stable to the top speed, the best first onset of a feasible design [rpm] (None: none
+    feasible) and the chosen design (its variables and main outputs; None: none)."""
+    ok = feasible_rows(table, plan.problem)
+    top = plan.settings.top_speed_rpm
+    design = None
+    if chosen is not None:
+        keep = [*plan.problem.names, "first_onset_speed_rpm", "first_mode",
+                "total_power_loss_w", "min_film_lowest_speed_um", "point"]
+        design = {k: chosen[k] for k in keep if k in chosen}
+    return {"verdict": text,
+            "stable_to_top_speed": bool(chosen is not None
+                                        and chosen["first_onset_speed_rpm"] >= top),
+            "best_first_onset_rpm": float(ok["first_onset_speed_rpm"].max()) if len(ok)
+            else None,
+            "answer_grid": str(plan.settings.grid), "chosen_design": design}
+
+
+def robustness_text(c, r, band) -> str:
+    """The tolerance check of the chosen design in words, each figure with what it is
+    over (:func:`gfbopt.design.robustness.robustness`)."""
+    tolerances = ", ".join(f"±{v:g} {variable_label(k).split('[')[-1].rstrip(']')} on {k}"
+                           for k, v in r.tolerances.items()) or "no tolerances"
+    text = (f"Robustness of the chosen design: first onset "
+            f"{c['band_low_onset_speed_rpm']:,.0f} rpm at loss factor η = {band[0]:g}")
+    if band[1] != band[0]:
+        text += f" and {c['band_high_onset_speed_rpm']:,.0f} rpm at η = {band[1]:g}"
+    text += (f"; at the band's worst end (η = {c['worst_loss_factor']:g}), over the design "
+             f"and {int(c['samples']) - 1} samples of its tolerances ({tolerances}): "
+             f"5th percentile {c['p05_onset_speed_rpm']:,.0f} rpm, worst "
+             f"{c['worst_onset_speed_rpm']:,.0f} rpm; {c['stable_to_top_fraction']:.0%} "
+             "of them stable to the top speed.")
+    return text
 

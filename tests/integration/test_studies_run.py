@@ -83,14 +83,14 @@ def test_map_studies_write_tables_crossovers_and_summaries(tmp_path, text, name,
     assert 0.1 < crossovers.loc[0, "crossover"] < 0.6
     assert crossovers.loc[0, "crossover_thesis"] == 0.45
     meta = json.loads((folder / "summary.json").read_text())
-    assert meta["passed"] and meta["agrees_with_reference"] in ("yes", "no")
+    assert meta["consistency_checks_hold"] and meta["agrees_with_reference"] in ("yes", "no")
     prov = meta["provenance"]
     assert prov["options"]["grid"] == "24x8" and "source_commit" in prov
     assert prov["options"]["variants"]["S1"]["foil"] == "simple"
     assert prov["options"]["variants"]["S1"]["film"] == "seam"
     assert (folder / "critical_mass.png").is_file() and (folder / "README.md").is_file()
     index = (tmp_path / "results" / "index.md").read_text()
-    assert "| checks passed | agrees with the published reference |" in index
+    assert "| consistency checks hold | agrees with the published reference |" in index
     assert f"[{name}]" in index
     if name == "tiny_linear_map":          # thresholds beside the published critical mass
         points = pd.read_csv(folder / "published_points.csv")

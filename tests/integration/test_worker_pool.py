@@ -1,4 +1,4 @@
-"""One worker pool per run (issue 19): inside ``with WorkerPool(n)`` every run_points call
+"""One worker pool per run: inside ``with WorkerPool(n)`` every run_points call
 reuses the same worker processes and their solver caches, starts no more workers than the
 work needs, and the workers import gfbopt's numerical core only (no cvxpy).  On 0.2.0 each
 call started a new spawn pool (the main job: 9 pools, 18 workers, solvers rebuilt each time),

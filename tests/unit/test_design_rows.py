@@ -1,4 +1,4 @@
-"""The bump-design study's rows and notes say what they mean (issue 14, item 12)."""
+"""The bump-design study's rows and notes say what they mean."""
 from __future__ import annotations
 
 import math
