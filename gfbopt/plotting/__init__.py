@@ -12,6 +12,11 @@ module                 figures
                        coefficients, orbits, bifurcation; the shared helpers
 :mod:`.design`         stability-driven bump design (onset speed against S and pitch)
 :mod:`.stability`      onset speed against seam angle and loss factor
+:mod:`.bearing`        the bearing as built: capacity, lift-off, bore profile, levers
+:mod:`.design_front`   a rotor's bearing-pair design search: designs, front, choice
+:mod:`.doe`            Sobol sensitivity indices
+:mod:`.rotor`          Campbell diagram, imbalance response, onsets of a rotor
+:mod:`.waterfall`      rotor transients: waterfall, components against speed, orbits
 =====================  ==============================================================
 """
 from .design import plot_design_against_compliance, plot_design_against_pitch

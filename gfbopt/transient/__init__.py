@@ -17,6 +17,15 @@ module                      responsibility
 :mod:`.fits`                matrix-pencil growth rates and verdicts
 :mod:`.mode`                the least-stable linear mode shape as a starting perturbation
 :mod:`.critical_mass`       the critical-mass search and limit-cycle amplitudes
+*a rigid rotor on two bearing films*
+:mod:`.rotor_setup`         a rotor in SI as the transient model of the rotor and both films
+:mod:`.rotor_io`            the rotor file's dataclasses as :class:`~.rotor_setup.RotorInput`
+:mod:`.rotor_system`        the whole rotor and both films as one method-of-lines system
+:mod:`.rotor_batch`         a batch of rotor runs: speed profile, inertia and imbalance scales
+:mod:`.rotor_run`           integrating the rotor on both films (RKC default, RK4 reference)
+:mod:`.rotor_result`        the result post-processed for engineers (SI, µm)
+:mod:`.spectra`             waterfall, synchronous and subsynchronous components, limit cycles
+:mod:`.rotor_analysis`      an orbit at constant speed, a run-up or coast-down
 ==========================  ========================================================================
 
 Imports point one way: foil_state → system → methods → orbit → critical_mass (no cycle);

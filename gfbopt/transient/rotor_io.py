@@ -1,7 +1,7 @@
 """The rotor file's dataclasses (:class:`gfbopt.inputs.rotor_system.RotorSystem`) as the
 transient engine's :class:`~.rotor_setup.RotorInput`.
 
-The matrices, load sharing and seam rule are the rotor issue's (:mod:`gfbopt.rotor.rigid`):
+The matrices, load sharing and seam rule are :mod:`gfbopt.rotor.rigid`'s:
 M, G in the coordinates (x, y, ψx, ψy); each bearing's formulation is its file's ``[model]``
 table with the rotor file's overrides, a stated seam angle (fixed in the housing, stated
 from gravity) re-measured from that bearing's own load (:func:`~gfbopt.rotor.rigid.seam_from_load`),

@@ -9,7 +9,7 @@ with its file's formulation (a seam angle is measured from that bearing's load l
 
 The rotor description is the minimal interface :class:`RotorInput` (mass matrix,
 gyroscopic matrix, two :class:`RotorBearing`, Q_s, imbalance planes); the rotor file's
-dataclasses (gfbopt.inputs, rotor issue) convert to it in :mod:`gfbopt.transient.rotor_io`.
+dataclasses (gfbopt.inputs) convert to it in :mod:`gfbopt.transient.rotor_io`.
 """
 from __future__ import annotations
 

@@ -1,6 +1,6 @@
 """The whole rigid rotor and the films of both its bearings as one method-of-lines system.
 
-Rotor (4 degrees of freedom, SI, the rotor issue's convention)
+Rotor (4 degrees of freedom, SI, gfbopt.rotor.rigid's convention)
 --------------------------------------------------------------
 Global frame: x along gravity (the static load line by default), y 90° ahead of x in the
 direction of rotation, z along the shaft so that the spin ω is positive about +z.  The
@@ -69,7 +69,7 @@ DOF = ("x", "y", "psi_x", "psi_y")
 
 def rigid_rotor_matrices(mass: float, transverse_inertia: float,
                          polar_inertia: float) -> tuple[np.ndarray, np.ndarray]:
-    """(M, G) of a rigid rotor [kg, kg m²] in the coordinates :data:`DOF` (the rotor issue's
+    """(M, G) of a rigid rotor [kg, kg m²] in the coordinates :data:`DOF` (gfbopt.rotor.rigid's
     :func:`~gfbopt.rotor.rigid.mass_matrix` and :func:`~gfbopt.rotor.rigid.gyroscopic_matrix`;
     the inputs are checked by :class:`~gfbopt.inputs.rotor_system.RotorBody`)."""
     body = RotorBody(mass, transverse_inertia, polar_inertia)
