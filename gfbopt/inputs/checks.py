@@ -33,6 +33,21 @@ def check_nonnegative(name: str, value: float) -> float:
     return v
 
 
+#: largest magnitude of a stated direction or phase [deg]: a turn either way (1e300° has no
+#: direction left once wrapped)
+MAX_ANGLE_DEG = 360.0
+
+
+def check_angle_deg(name: str, value: float) -> float:
+    """Return a direction or phase [deg] as float; ParameterError unless finite and within
+    ±:data:`MAX_ANGLE_DEG`."""
+    v = check_finite(name, value)
+    if abs(v) > MAX_ANGLE_DEG:
+        raise ParameterError(name, value, f"must lie in [-{MAX_ANGLE_DEG:g}, "
+                             f"{MAX_ANGLE_DEG:g}] degrees (a direction, a turn either way)")
+    return v
+
+
 def check_choice(name: str, value: str, choices: tuple[str, ...]) -> str:
     """Return ``value`` unless it is not one of ``choices`` (ParameterError)."""
     if value not in choices:

@@ -30,6 +30,13 @@ length, p_a its ambient pressure, c the smaller radial clearance:
   rotor spins about its mass centre, so its journals would orbit through the clearance at
   every speed (ISO 21940 grade G6.3 at 10,000 rpm is an offset of 6 µm; the blower's 2 g mm
   on 3.2 kg is 0.6 µm).
+
+Speeds are not in the rotor file; :func:`check_rotor_speeds` refuses, before any solve, a
+speed no bearing of the rotor can run at: a journal surface speed ω R above
+:data:`MAX_SURFACE_SPEED` (steel and titanium rotors burst near 600–700 m/s; foil bearing
+journals run below about 300 m/s), or a bearing number Λ above the model's bound
+:data:`~gfbopt.inputs.model.MAX_BEARING_NUMBER`, which the solve itself would refuse only
+after the other speeds were computed.
 """
 from __future__ import annotations
 
@@ -46,6 +53,8 @@ MAX_RADIUS_DIAMETERS = 10.0
 MIN_LOAD_RATIO = 1e-4
 #: largest static load on a bearing, over p_a L D (the projected area)
 MAX_SPECIFIC_LOAD_RATIO = 100.0
+#: largest journal surface speed ω R [m/s]
+MAX_SURFACE_SPEED = 1000.0
 
 
 def check_rotor_limits(system, where: str = "") -> None:
@@ -135,3 +144,30 @@ def _check_imbalance(system, where: str) -> None:
                              f"{offset * 1e6:.4g} µm, more than the clearance "
                              f"{clearance * 1e6:.4g} µm (the journals would orbit through it "
                              "at every speed above the rigid-body criticals)")
+
+
+def check_rotor_speeds(system, speeds, name: str = "--speed-range") -> tuple:
+    """``speeds`` [rpm] as floats, each finite and > 0 and with every bearing's bearing
+    number Λ at most :data:`~gfbopt.inputs.model.MAX_BEARING_NUMBER` (one ParameterError
+    naming ``name``, before any solve)."""
+    from .checks import check_positive
+    from .model import MAX_BEARING_NUMBER
+
+    values = tuple(check_positive(name, v) for v in speeds)
+    top = max(values)
+    for support in system.bearings:
+        surface = top * math.pi / 30.0 * support.geometry.radius
+        if not surface <= MAX_SURFACE_SPEED:
+            fastest = MAX_SURFACE_SPEED / support.geometry.radius * 30.0 / math.pi
+            raise ParameterError(name, list(speeds), f"{top:.6g} rpm moves bearing "
+                                 f"{support.name}'s journal surface at {surface:.3g} m/s, "
+                                 f"above {MAX_SURFACE_SPEED:g} m/s (rotors burst near 600–700 "
+                                 f"m/s): at most {fastest:.6g} rpm")
+        number = support.geometry.bearing_number(top)
+        if not number <= MAX_BEARING_NUMBER:
+            fastest = top * MAX_BEARING_NUMBER / number
+            raise ParameterError(name, list(speeds), f"{top:.6g} rpm gives bearing "
+                                 f"{support.name} a bearing number Λ = {number:.3g}, above "
+                                 f"{MAX_BEARING_NUMBER:g} (real gas bearings run below Λ ≈ "
+                                 f"100): at most {fastest:.6g} rpm")
+    return values

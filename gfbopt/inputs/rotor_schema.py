@@ -40,7 +40,7 @@ SCHEMA: tuple[Key, ...] = (
         "finite, > 0, <= 2 × transverse_inertia (a rigid body's principal moments), "
         "<= m (10 D)²",
         "polar moment of inertia about the rotor axis (gyroscopic coupling I_p ω)"),
-    Key("rotor", "gravity_direction_deg", "number", "deg", False, 0.0, "finite",
+    Key("rotor", "gravity_direction_deg", "number", "deg", False, 0.0, "finite, in [-360, 360]",
         "direction of gravity in the x–y plane, from +x in the direction of rotation "
         "(default: along +x, the load line of both bearings)"),
     Key("rotor", "gravity", "number", "m/s²", False, STANDARD_GRAVITY, "finite, >= 0",
@@ -61,7 +61,7 @@ SCHEMA: tuple[Key, ...] = (
         "gravity (the housing), see the notes"),
     Key("side_loads", "force", "number", "N", True, None, "finite, > 0",
         "magnitude of a static force on the rotor"),
-    Key("side_loads", "direction_deg", "number", "deg", True, None, "finite",
+    Key("side_loads", "direction_deg", "number", "deg", True, None, "finite, in [-360, 360]",
         "direction of the force in the x–y plane, from +x in the direction of rotation"),
     Key("side_loads", "position", "number", "m", False, 0.0, "finite, within 50 D of the CG",
         "axial position where it acts, from the centre of gravity"),
@@ -71,7 +71,7 @@ SCHEMA: tuple[Key, ...] = (
     Key("imbalance", "amount_g_mm", "number", "g mm", False, None,
         "finite, > 0; exactly one of amount_kg_m and amount_g_mm; all planes together "
         "<= m c", "imbalance m e of the plane (1 g mm = 1e-6 kg m)"),
-    Key("imbalance", "phase_deg", "number", "deg", False, 0.0, "finite",
+    Key("imbalance", "phase_deg", "number", "deg", False, 0.0, "finite, in [-360, 360]",
         "angular position of the heavy spot on the rotor, from the rotor's reference mark "
         "(along +x at t = 0) in the direction of rotation"),
     Key("imbalance", "position", "number", "m", True, None, "finite, within 50 D of the CG",

@@ -43,9 +43,9 @@ horizontal rotor.
 Bad input raises one :class:`~gfbopt.errors.ParameterError` naming the file, the key, the value
 and the rule, before anything is solved; so does a rotor no machine can be (positions in
 millimetres, inertias beyond the mass's reach, an unloaded bearing, an imbalance displacing the
-mass centre beyond the clearance: :mod:`gfbopt.inputs.rotor_limits`).  A centre of gravity outside the bearing span
-(overhung rotor) and a bearing pushed away from gravity by the statics are legal
-(:mod:`gfbopt.rotor.rigid` rotates that bearing's frame).
+mass centre beyond the clearance: :mod:`gfbopt.inputs.rotor_limits`).  A centre of gravity
+outside the bearing span (overhung rotor) and a bearing pushed away from gravity by the
+statics are legal (:mod:`gfbopt.rotor.rigid` rotates that bearing's frame).
 """
 from __future__ import annotations
 
@@ -57,7 +57,7 @@ from typing import Optional, Union
 from ..errors import ParameterError
 from .bearing import BearingGeometry
 from .bearing_file import load_bearing_file, read_toml
-from .checks import check_finite, check_nonnegative, check_positive
+from .checks import check_angle_deg, check_finite, check_nonnegative, check_positive
 from .conversions import STANDARD_GRAVITY
 from .options import ModelOptions
 from .rotor_limits import check_rotor_limits
@@ -137,7 +137,7 @@ class SideLoad:
     def __post_init__(self) -> None:
         object.__setattr__(self, "force", check_positive("force", self.force))
         object.__setattr__(self, "direction_deg",
-                           check_finite("direction_deg", self.direction_deg))
+                           check_angle_deg("direction_deg", self.direction_deg))
         object.__setattr__(self, "position", check_finite("position", self.position))
 
     @property
@@ -160,7 +160,7 @@ class ImbalancePlane:
     def __post_init__(self) -> None:
         object.__setattr__(self, "amount_kg_m", check_positive("amount_kg_m", self.amount_kg_m))
         object.__setattr__(self, "position", check_finite("position", self.position))
-        object.__setattr__(self, "phase_deg", check_finite("phase_deg", self.phase_deg))
+        object.__setattr__(self, "phase_deg", check_angle_deg("phase_deg", self.phase_deg))
 
 
 @dataclass(frozen=True)
@@ -219,7 +219,7 @@ class RotorSystem:
             names.add(s.name)
         object.__setattr__(self, "gravity", check_nonnegative("gravity", self.gravity))
         object.__setattr__(self, "gravity_direction_deg",
-                           check_finite("gravity_direction_deg", self.gravity_direction_deg))
+                           check_angle_deg("gravity_direction_deg", self.gravity_direction_deg))
         check_rotor_limits(self, where)
 
     def static_shares(self) -> tuple:
@@ -294,8 +294,8 @@ def rotor_from_dict(data: dict, directory: Union[str, Path] = ".",
                        **_table(row, "stations", f"{where}: stations[{k}]"))
                 for k, row in enumerate(_rows(data, "stations", where), 1)]
     gravity = check_nonnegative(f"{where}: rotor.gravity", rotor["gravity"])
-    direction = check_finite(f"{where}: rotor.gravity_direction_deg",
-                             rotor["gravity_direction_deg"])
+    direction = check_angle_deg(f"{where}: rotor.gravity_direction_deg",
+                                rotor["gravity_direction_deg"])
     return RotorSystem(body, tuple(bearings), tuple(loads), tuple(planes), tuple(stations),
                        gravity=gravity, gravity_direction_deg=direction, source=where)
 

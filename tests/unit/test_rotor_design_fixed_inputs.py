@@ -42,8 +42,8 @@ def test_an_invalid_fixed_input_is_refused_at_plan_time(change, key, rule):
 def test_the_command_line_exits_2_before_any_solve(tmp_path):
     text = FILE.read_text().replace("width_deg = 60.0", "width_deg = 200.0")
     study = tmp_path / "rotor_bearing_design.toml"
-    study.write_text(text.replace('rotor = "rotors/blower.toml"',
-                                  f'rotor = "{(FILE.parent / "rotors" / "blower.toml").as_posix()}"'))
+    rotor = (FILE.parent / "rotors" / "blower.toml").as_posix()
+    study.write_text(text.replace('rotor = "rotors/blower.toml"', f'rotor = "{rotor}"'))
     out = run_cli("run", study, "--results", tmp_path / "results", "--workers", "1")
     assert out.returncode == 2, out.stderr[-500:]
     assert out.stderr.count("gfbopt: error:") == 1 and "bore.width_deg" in out.stderr

@@ -106,3 +106,32 @@ def test_the_command_line_refuses_a_rotor_in_millimetres_before_any_solve(tmp_pa
     lines = out.stderr.strip().splitlines()
     assert len(lines) == 1 and "bearings[1].position = -40" in lines[0]
     assert "50 journal diameters" in lines[0]
+
+
+@pytest.mark.parametrize("table, key", [("rotor", "gravity_direction_deg"),
+                                        ("side_loads", "direction_deg"),
+                                        ("imbalance", "phase_deg")])
+def test_directions_beyond_a_turn_are_refused(tmp_path, table, key):
+    extra = {"rotor": "", "side_loads": "[[side_loads]]\nforce = 5.0\ndirection_deg = 1e300\n",
+             "imbalance": "[[imbalance]]\namount_g_mm = 2.0\nphase_deg = 1e300\n"
+                          "position = 0.065\n"}[table]
+    rotor = "gravity_direction_deg = 1e300\n" if table == "rotor" else ""
+    path = _rotor(tmp_path, rotor=rotor, extra=extra)
+    with pytest.raises(ParameterError, match=rf"{key} = 1e\+300: must lie in \[-360, 360\]"):
+        load_rotor(path)
+    load_rotor(_rotor(tmp_path, rotor=rotor.replace("1e300", "-90.0"),
+                      extra=extra.replace("1e300", "-90.0")))
+
+
+def test_speeds_no_journal_can_run_at_are_refused(tmp_path):
+    from gfbopt.inputs.rotor_limits import MAX_SURFACE_SPEED, check_rotor_speeds
+
+    system = load_rotor(_rotor(tmp_path))
+    assert check_rotor_speeds(system, (5000, 30000)) == (5000.0, 30000.0)
+    fastest = MAX_SURFACE_SPEED / 19.05e-3 * 30 / 3.141592653589793
+    assert check_rotor_speeds(system, (1.0, 0.999 * fastest))[1] < fastest
+    with pytest.raises(ParameterError, match=r"--speed-range = \[1e-300, 1e\+300\]: .*"
+                       r"at most 501275 rpm"):
+        check_rotor_speeds(system, (1e-300, 1e300))
+    with pytest.raises(ParameterError, match="must be > 0"):
+        check_rotor_speeds(system, (0.0, 1000.0))
