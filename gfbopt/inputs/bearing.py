@@ -137,9 +137,19 @@ class BearingGeometry:
                                          self.radial_clearance)
 
     def nondimensional_load(self, load_newton: float) -> float:
-        """W̄ = W/(p_a R²) for a static load ``load_newton`` [N]."""
-        return load_to_nondimensional(check_positive("load_newton", load_newton),
-                                      self.ambient_pressure, self.radius)
+        """W̄ = W/(p_a R²) for a static load ``load_newton`` [N], > 0 and at most
+        :data:`~gfbopt.inputs.rotor_limits.MAX_SPECIFIC_LOAD_RATIO` p_a L D (100 bar on the
+        projected area at 1 bar ambient: no gas bearing carries it)."""
+        from .rotor_limits import MAX_SPECIFIC_LOAD_RATIO
+
+        load = check_positive("load_newton", load_newton)
+        ceiling = MAX_SPECIFIC_LOAD_RATIO * self.ambient_pressure * self.length * 2 * self.radius
+        if load > ceiling:
+            raise ParameterError("load_newton", load_newton, f"must be <= "
+                                 f"{MAX_SPECIFIC_LOAD_RATIO:g} p_a L D = {ceiling:.4g} N (100 "
+                                 "bar on the projected area at 1 bar ambient; gas foil "
+                                 "bearings carry at most about a tenth of it)")
+        return load_to_nondimensional(load, self.ambient_pressure, self.radius)
 
     def load_newton(self, load: float) -> float:
         """W [N] for a non-dimensional load W̄ [-]."""

@@ -1,9 +1,11 @@
 """The rotor and its operating point in SI units (the engineer's inputs to a stability check)."""
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from typing import Optional
 
+from ..errors import ParameterError
 from .checks import check_positive
 from .conversions import rotor_weight_newton
 
@@ -22,6 +24,9 @@ class Rotor:
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "mass_kg", check_positive("mass_kg", self.mass_kg))
+        if not math.isfinite(rotor_weight_newton(self.mass_kg)):
+            raise ParameterError("mass_kg", self.mass_kg, "must weigh a finite M g [N] (a "
+                                 "rotor mass per bearing)")
 
 
 @dataclass(frozen=True)

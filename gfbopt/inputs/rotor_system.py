@@ -334,7 +334,13 @@ def _table(table, name: str, where: str) -> dict:
             raise ParameterError(f"{where}.{key.name}", value, "must be a string")
         if key.kind == "table" and not isinstance(value, dict):
             raise ParameterError(f"{where}.{key.name}", value, "must be a table")
-        out[key.name] = float(value) if key.kind == "number" else value
+        if key.kind == "number":
+            try:
+                value = float(value)
+            except OverflowError:          # an integer beyond the float range
+                raise ParameterError(f"{where}.{key.name}", value, "must be finite (not NaN "
+                                     f"or infinite) [{key.unit}]") from None
+        out[key.name] = value
     if name == "rotor":
         out.setdefault("name", "rotor")
     return out

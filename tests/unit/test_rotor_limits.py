@@ -135,3 +135,23 @@ def test_speeds_no_journal_can_run_at_are_refused(tmp_path):
         check_rotor_speeds(system, (1e-300, 1e300))
     with pytest.raises(ParameterError, match="must be > 0"):
         check_rotor_speeds(system, (0.0, 1000.0))
+
+
+def test_a_bearing_load_no_gas_bearing_carries_is_refused():
+    """``static --load-newton 1e308`` ran IPOPT to "Restoration_Failed" (exit 1); the
+    stability route turned a 1e308 kg rotor into an infinite load."""
+    from gfbopt.inputs import load_bearing
+    from gfbopt.inputs.rotor import Rotor
+
+    bearing = load_bearing(ROOT / "problems" / "bearings" / "ruscitto.toml")
+    ceiling = 100 * 1e5 * 38.1e-3 * 38.1e-3
+    assert bearing.nondimensional_load(0.99 * ceiling) == pytest.approx(
+        0.99 * ceiling / (1e5 * 19.05e-3 ** 2))
+    with pytest.raises(ParameterError, match=r"load_newton = 1e\+308: must be <= 100 p_a L D "
+                       r"= 1\.452e\+04 N"):
+        bearing.nondimensional_load(1e308)
+    with pytest.raises(ParameterError, match=r"mass_kg = 1e\+308: must weigh a finite"):
+        Rotor(1e308)
+    out = run_cli("static", "--bearing", ROOT / "problems" / "bearings" / "ruscitto.toml",
+                  "--speed-rpm", "30000", "--load-newton", "1e308", "--grid", "12x4")
+    assert out.returncode == 2 and out.stdout == "" and "100 p_a L D" in out.stderr
