@@ -25,6 +25,7 @@ from __future__ import annotations
 
 import os
 import sys
+import tempfile
 from pathlib import Path
 from typing import Optional, Sequence
 
@@ -34,6 +35,7 @@ from . import design, formats, linear, run, stability, static, transient
 from . import rotor
 from . import capacity
 from .common import Parser
+from .size import GUARDED, add_limits, check_command
 
 COMMANDS = (static, linear, stability, transient, design, run, rotor, formats)
 COMMANDS += (capacity,)
@@ -46,6 +48,8 @@ def build_parser() -> Parser:
     sub = parser.add_subparsers(dest="command", required=True, parser_class=Parser)
     for module in COMMANDS:
         module.register(sub)
+    for name in GUARDED:                  # one memory and time guard (gfbopt.guard)
+        add_limits(sub.choices[name])
     return parser
 
 
@@ -59,26 +63,99 @@ def _limit_threads() -> None:
         threadpool_limits(1)
 
 
-#: options naming a file a command writes (checked before anything is solved)
-OUTPUT_OPTIONS = ("csv", "plot")
+#: options naming a file or a folder a command writes (checked before anything is solved);
+#: the folders (several files written in them) per command, the others name one file
+OUTPUT_OPTIONS = ("csv", "plot", "figure", "results")
+OUTPUT_FOLDERS = {"rotor": ("csv", "plot"), "run": ("results",)}
+
+
+def _probe(folder: Path, key: str, value) -> None:
+    """A file can really be created in ``folder`` (os.access says yes to root even where
+    nothing can be written, e.g. /proc): a temporary file is created and removed."""
+    try:
+        handle, name = tempfile.mkstemp(prefix=".gfbopt-probe-", dir=folder)
+    except OSError as exc:
+        raise ParameterError(f"--{key}", value, f"cannot be written: nothing can be created "
+                             f"in {str(folder)!r} ({exc.strerror or exc})") from None
+    os.close(handle)
+    os.unlink(name)
+
+
+#: the file options that name a figure (its suffix gives the format)
+FIGURE_OPTIONS = ("plot", "figure")
+
+
+def _check_file(key: str, value) -> None:
+    path = Path(value)
+    parent = path.parent if str(path.parent) else Path(".")
+    if path.is_dir():
+        raise ParameterError(f"--{key}", value, "is a directory: give a file name")
+    if key in FIGURE_OPTIONS:
+        from ..plotting.core import figure_format
+
+        try:
+            figure_format(path)
+        except ParameterError as exc:
+            raise ParameterError(f"--{key}", value, exc.rule) from None
+    if not parent.is_dir():
+        raise ParameterError(f"--{key}", value, f"cannot be written: the folder "
+                             f"{str(parent)!r} does not exist")
+    if path.exists():            # overwritten, as save_figure and to_csv do: writable?
+        try:
+            with open(path, "ab"):
+                pass
+        except OSError as exc:
+            raise ParameterError(f"--{key}", value, f"exists and cannot be overwritten "
+                                 f"({exc.strerror or exc})") from None
+    _probe(parent, key, value)
+
+
+def _check_folder(key: str, value) -> None:
+    path = Path(value)
+    if path.exists() and not path.is_dir():
+        raise ParameterError(f"--{key}", value, "is a file, not a folder: give a folder "
+                             "(several files are written in it) or remove the file")
+    existing = path
+    while not existing.exists():       # created with its parents: the first that exists
+        existing = existing.parent if str(existing.parent) != str(existing) else Path(".")
+    if not existing.is_dir():
+        raise ParameterError(f"--{key}", value, f"cannot be created: {str(existing)!r} is a "
+                             "file")
+    _probe(existing, key, value)
+
+
+def _check_bearing_names(args) -> None:
+    """``gfbopt rotor --orbit/--run-up/--coast-down`` names files after the bearings
+    (components_NAME.csv, waterfall_NAME.png): a name that cannot be part of a file name is
+    refused before anything is solved (not sanitised: the files keep the names a user
+    gave)."""
+    from . import rotor_time
+
+    if not (args.csv or args.plot) or not rotor_time.requested(args):
+        return
+    from ..inputs.rotor_system import load_rotor
+    from ..guard import check_file_name_part
+
+    for bearing in load_rotor(args.rotor_file).bearings:
+        check_file_name_part(bearing.name, f"{args.rotor_file}: bearing name",
+                             "--csv/--plot write components_NAME.csv and waterfall_NAME.png")
 
 
 def check_outputs(args) -> None:
     """Every output path a command will write must be writable: refused in one line before
-    anything is solved, not after (ParameterError)."""
+    anything is solved, not after (ParameterError).  An existing file is overwritten (the
+    policy of :func:`gfbopt.plotting.core.save_figure` and of the CSV writers), so it must be
+    writable; a folder is created with its parents where none exists."""
+    folders = OUTPUT_FOLDERS.get(getattr(args, "command", None), ())
     for key in OUTPUT_OPTIONS:
         value = getattr(args, key, None)
         if value is None:
             continue
-        path = Path(value)
-        parent = path.parent if str(path.parent) else Path(".")
-        if path.is_dir():
-            raise ParameterError(f"--{key}", value, "is a directory: give a file name")
-        if not parent.is_dir():
-            raise ParameterError(f"--{key}", value, f"cannot be written: the folder "
-                                 f"{str(parent)!r} does not exist")
-        if not os.access(parent, os.W_OK) or (path.exists() and not os.access(path, os.W_OK)):
-            raise ParameterError(f"--{key}", value, "cannot be written (permission denied)")
+        if not str(value):
+            raise ParameterError(f"--{key}", value, "is empty: give a file or folder name")
+        (_check_folder if key in folders else _check_file)(key, value)
+    if getattr(args, "command", None) == "rotor":
+        _check_bearing_names(args)
 
 
 def main(argv: Optional[Sequence[str]] = None) -> int:
@@ -89,6 +166,7 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
     _limit_threads()
     try:
         check_outputs(args)
+        check_command(args)
         return args.handler(args)
     except ConvergenceError as exc:
         print(f"gfbopt: error: the solver did not converge: {exc}", file=sys.stderr)

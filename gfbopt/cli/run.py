@@ -78,17 +78,19 @@ def register(subparsers) -> None:
 
 
 def _load(path: str, args):
-    """Validate and plan one study file, with --grid and --max-points applied."""
+    """Validate and plan one study file, with --grid and --max-points applied, refused when
+    its estimated memory or time is above --max-memory-gb or --max-minutes."""
     from pathlib import Path
 
     from ..errors import ParameterError
     from ..studies import SCHEMAS, study_from_dict
     from ..studies.runner import read_study_file
+    from .size import limits
 
     if args.grid is None and args.max_points is None:
         from ..studies import load_study
 
-        return load_study(path)
+        return load_study(path, limits(args))
     data = read_study_file(path)
     schema = SCHEMAS.get(data.get("kind"), {})
     if args.grid is not None:
@@ -99,7 +101,7 @@ def _load(path: str, args):
     if args.max_points is not None and "max_points" in schema:
         data["max_points"] = args.max_points
     return study_from_dict(data, name=Path(path).stem, file=str(path),
-                           directory=Path(path).parent)
+                           directory=Path(path).parent, limits=limits(args))
 
 
 class _Progress:

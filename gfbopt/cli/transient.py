@@ -125,10 +125,10 @@ def _refuse_method_options(args) -> None:
     if getattr(args, "stages", None) is not None and (not float(args.stages).is_integer()
                                                       or not 2 <= args.stages <= MAX_STAGES):
         raise ParameterError("--stages", args.stages, f"must be an integer in [2, {MAX_STAGES}]")
-    _check_run_length(args)
+    check_run_length(args)
 
 
-def _check_run_length(args) -> None:
+def check_run_length(args) -> None:
     """--revolutions, --time-step and --kick within bounds, and the number of steps the run
     would take within --max-steps (one line with the estimate, before anything is built)."""
     from ..errors import ParameterError
@@ -306,7 +306,7 @@ def run_critical_mass(args) -> int:
                              f"±{args.tolerance * (args.batch - 1) / 2:.0%} of the centre "
                              f"with --tolerance {args.tolerance:g}: (batch − 1) × tolerance "
                              "must be < 1 so that every mass is > 0")
-    _check_run_length(args)
+    check_run_length(args)
     op = _operating_point(args)
     solver, sol = _solve(op)
     lin = linearise(sol, solver)

@@ -44,10 +44,25 @@ def set_title(ax, title: str, fontsize: float = 9.0) -> None:
     ax.set_title("\n".join(textwrap.wrap(title, chars)), fontsize=fontsize)
 
 
+def figure_format(path) -> str:
+    """The file format of ``path`` from its suffix (png when it has none), or ParameterError
+    naming the formats matplotlib writes — checked before a figure's work starts."""
+    from ..errors import ParameterError
+
+    suffix = Path(path).suffix.lower().lstrip(".")
+    formats = Figure().canvas.get_supported_filetypes()
+    if suffix and suffix not in formats:
+        raise ParameterError("figure file", str(path), "has a suffix matplotlib cannot write:"
+                             f" use one of {', '.join('.' + f for f in sorted(formats))}")
+    return suffix or "png"
+
+
 def save_figure(fig, path) -> str:
-    """Write ``fig`` to ``path`` (format from the suffix, 120 dpi, cropped to what is drawn
-    so that no title or legend outside the axes is cut); returns the path."""
-    fig.savefig(Path(path), dpi=120, bbox_inches="tight")
+    """Write ``fig`` to ``path`` (format from the suffix, png without one; 120 dpi, cropped
+    to what is drawn so that no title or legend outside the axes is cut); returns the path.
+    An existing file is overwritten (as the CSV tables are); the command line checks that it
+    can be before anything is solved (gfbopt.cli.check_outputs)."""
+    fig.savefig(Path(path), dpi=120, bbox_inches="tight", format=figure_format(path))
     return str(path)
 
 

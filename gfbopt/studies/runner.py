@@ -16,6 +16,7 @@ from pathlib import Path
 from typing import Callable, Optional, Union
 
 from ..errors import ParameterError
+from ..guard import Limits, check
 from ..inputs import read_toml
 from . import design, maps, sweeps, tables, transients
 from . import doe
@@ -27,6 +28,7 @@ from .base import DEFAULT_RESULTS, Kind, LoadedStudy, RunContext, Study, StudyRe
 from .output import check_name
 from .report import prepare_output, write_result
 from .spec import SCHEMAS, validate
+from .work import check_file_names, study_work
 
 
 KINDS: dict[str, Kind] = {
@@ -71,27 +73,33 @@ assert set(KINDS) == set(SCHEMAS), "every schema has a runner and vice versa"
 
 
 def study_from_dict(data: dict, *, name: Optional[str] = None, file: str = "<dict>",
-                    directory: Union[str, Path] = ".") -> LoadedStudy:
+                    directory: Union[str, Path] = ".",
+                    limits: Optional[Limits] = None) -> LoadedStudy:
     """Validate a study given as a dict (the same keys as a study file) and plan it.
 
     ``file`` names it in error messages; ``directory`` is where relative paths (a
-    ``bearing`` file) are looked up.
+    ``bearing`` file) are looked up.  A study whose estimated memory or time is above
+    ``limits`` (:class:`gfbopt.guard.Limits`, default 4 GB and 60 min) is refused before it
+    is planned (:mod:`.work`).
     """
     spec = validate(data, file)
     name = spec["name"] if spec["name"] is not None else (name or Path(file).stem)
     check_name(name, f"{file}: name")
+    check(study_work(spec, file), limits)
+    check_file_names(spec, directory, file)
     spec = {**spec, "name": name}
     study = Study(file=file, name=name, kind=spec["kind"], spec=spec,
                   directory=Path(directory))
     return LoadedStudy(study, KINDS[study.kind].plan(study))
 
 
-def load_study(path: Union[str, Path]) -> LoadedStudy:
+def load_study(path: Union[str, Path], limits: Optional[Limits] = None) -> LoadedStudy:
     """Read, validate and plan the study file ``path``; any mistake raises one
-    ParameterError naming the file and the key, before anything is solved."""
+    ParameterError naming the file and the key, before anything is solved (a study above
+    ``limits`` too)."""
     path = Path(path)
     return study_from_dict(read_study_file(path), name=path.stem, file=str(path),
-                           directory=path.parent)
+                           directory=path.parent, limits=limits)
 
 
 def read_study_file(path: Union[str, Path]) -> dict:
