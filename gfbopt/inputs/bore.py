@@ -53,6 +53,9 @@ ANGLE_RANGE_DEG = (-1080.0, 1080.0)
 MAX_FEATURES = 12
 #: most bump zones (each zone at least a few grid rows on the default grid)
 MAX_ZONES = 24
+#: narrowest shim or pad [deg]: one row of the finest grid gfbopt builds (2000 rows round the
+#: bearing); a narrower one cannot be represented on any grid
+MIN_WIDTH_DEG = 360.0 / 2000
 #: fewest θ rows of the grid per shim, lobe or pad period (below it the profile is aliased)
 MIN_ROWS_PER_FEATURE = 3
 
@@ -117,6 +120,9 @@ class BoreProfile:
             if w <= 0:
                 raise ParameterError("bore.width_deg", w, "must be > 0 (negative or zero "
                                      "shim width)")
+            if w < MIN_WIDTH_DEG:
+                raise ParameterError("bore.width_deg", w, f"must be >= {MIN_WIDTH_DEG:g} (one "
+                                     "row of the finest grid: a narrower shim is on no grid)")
             if self.count * self.width > TWO_PI + ANGLE_TOLERANCE:
                 raise ParameterError("bore.width_deg", round(w, 10), f"{self.count} shims of "
                                      "this width overlap (N × width must be <= 360°)")
@@ -218,6 +224,9 @@ def check_pads(pads: tuple) -> tuple:
         if arc <= 0:
             raise ParameterError(f"pads[{k}].arc_deg", arc, "must be > 0 (negative or zero "
                                  "pad width)")
+        if arc < MIN_WIDTH_DEG:
+            raise ParameterError(f"pads[{k}].arc_deg", arc, f"must be >= {MIN_WIDTH_DEG:g} "
+                                 "(one row of the finest grid: a narrower pad is on no grid)")
         if arc > 360.0 + 1e-9:
             raise ParameterError(f"pads[{k}].arc_deg", arc, "must be <= 360")
         out.append(Pad(float(_wrap(math.radians(lead))), math.radians(arc)))

@@ -36,7 +36,7 @@ speed no bearing of the rotor can run at: a journal surface speed ω R above
 :data:`MAX_SURFACE_SPEED` (steel and titanium rotors burst near 600–700 m/s; foil bearing
 journals run below about 300 m/s), or a bearing number Λ above the model's bound
 :data:`~gfbopt.inputs.model.MAX_BEARING_NUMBER`, which the solve itself would refuse only
-after the other speeds were computed.
+after the other speeds were computed; or a bearing number below :data:`MIN_BEARING_NUMBER`.
 """
 from __future__ import annotations
 
@@ -55,6 +55,9 @@ MIN_LOAD_RATIO = 1e-4
 MAX_SPECIFIC_LOAD_RATIO = 100.0
 #: largest journal surface speed ω R [m/s]
 MAX_SURFACE_SPEED = 1000.0
+#: smallest bearing number Λ of a speed: the film force grows as Λ from zero, and a
+#: millionth of its order-one value carries no rotor (1e-300 rpm is no speed)
+MIN_BEARING_NUMBER = 1e-6
 
 
 def check_rotor_limits(system, where: str = "") -> None:
@@ -156,6 +159,11 @@ def check_rotor_speeds(system, speeds, name: str = "--speed-range") -> tuple:
     values = tuple(check_positive(name, v) for v in speeds)
     top = max(values)
     for support in system.bearings:
+        slowest = support.geometry.bearing_number(min(values))
+        if not slowest >= MIN_BEARING_NUMBER:
+            raise ParameterError(name, list(speeds), f"{min(values):.6g} rpm gives bearing "
+                                 f"{support.name} a bearing number Λ = {slowest:.3g}, below "
+                                 f"{MIN_BEARING_NUMBER:g}: no film carries the rotor there")
         surface = top * math.pi / 30.0 * support.geometry.radius
         if not surface <= MAX_SURFACE_SPEED:
             fastest = MAX_SURFACE_SPEED / support.geometry.radius * 30.0 / math.pi

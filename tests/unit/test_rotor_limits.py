@@ -130,11 +130,14 @@ def test_speeds_no_journal_can_run_at_are_refused(tmp_path):
     assert check_rotor_speeds(system, (5000, 30000)) == (5000.0, 30000.0)
     fastest = MAX_SURFACE_SPEED / 19.05e-3 * 30 / 3.141592653589793
     assert check_rotor_speeds(system, (1.0, 0.999 * fastest))[1] < fastest
-    with pytest.raises(ParameterError, match=r"--speed-range = \[1e-300, 1e\+300\]: .*"
+    with pytest.raises(ParameterError, match=r"--speed-range = \[1000.0, 1e\+300\]: .*"
                        r"at most 501275 rpm"):
-        check_rotor_speeds(system, (1e-300, 1e300))
+        check_rotor_speeds(system, (1000.0, 1e300))
     with pytest.raises(ParameterError, match="must be > 0"):
         check_rotor_speeds(system, (0.0, 1000.0))
+    with pytest.raises(ParameterError, match=r"1e-300 rpm gives bearing A a bearing number "
+                       r"Λ = 1\.7e-304, below 1e-06"):
+        check_rotor_speeds(system, (1e-300, 1000.0))
 
 
 def test_a_bearing_load_no_gas_bearing_carries_is_refused():
