@@ -189,14 +189,13 @@ class Fraction:
 class Stages:
     """One fraction of a whole run from the progress of its stages (:class:`Stage`).
 
-    A stage that may end early (an orbit that ends at contact) is counted at its full
-    length: the ETA is then an upper bound, and the bar jumps ahead when the stage ends.
-
-    ``report(fraction)`` is called with the work of the finished stages plus the done part
-    of the current one, over the work of all; ``stage(name)`` gives that stage's own
-    callback (the fraction of its tasks finished).  A stage that turns out to be skipped
-    is passed over by the next ``stage()`` or by :meth:`finish`.  ``None`` as ``report``:
-    silent."""
+    ``stage(name)`` starts a stage and returns its callback (the fraction of its own work
+    done); starting the next stage, or :meth:`finish`, closes it.  The run's fraction is the
+    work done over the work done plus the work still planned, so a stage that ends early
+    (an orbit that stops at contact) or is skipped counts only the work it did: the bar
+    moves ahead and the ETA (elapsed × remaining / done) is re-based on the work left,
+    never on work that will not be done.  A stage that does its work without reporting
+    must call its callback with 1.0 when it ends.  ``None`` as ``report``: silent."""
 
     def __init__(self, report: Optional[Callable[[float], None]], stages: Sequence[Stage]):
         names = [s.name for s in stages]
@@ -204,34 +203,51 @@ class Stages:
             raise ValueError(f"stage names must differ: {names}")
         self.report = report
         self.stages = tuple(stages)
-        self.total = sum(s.work for s in self.stages)
+        self.done = 0.0                 # work of the closed stages, as they did it
+        self.current: Optional[int] = None
+        self.current_fraction = 0.0
         self.fraction = 0.0
 
-    def start(self, name: str) -> float:
-        """The fraction of the run done when stage ``name`` starts."""
-        done = 0.0
-        for s in self.stages:
+    def _index(self, name: str) -> int:
+        for k, s in enumerate(self.stages):
             if s.name == name:
-                return done / self.total if self.total else 0.0
-            done += s.work
-        raise KeyError(f"no stage {name!r} (stages: {', '.join(x.name for x in self.stages)})")
+                return k
+        raise KeyError(f"no stage {name!r} (stages: {', '.join(s.name for s in self.stages)})")
 
-    def share(self, name: str) -> float:
-        """The fraction of the run that stage ``name`` is."""
-        work = next(s.work for s in self.stages if s.name == name)
-        return work / self.total if self.total else 0.0
+    def _close(self) -> None:
+        if self.current is not None:
+            self.done += self.stages[self.current].work * self.current_fraction
+        self.current, self.current_fraction = None, 0.0
 
-    def _emit(self, fraction: float) -> None:
-        self.fraction = max(self.fraction, min(1.0, fraction))      # never backwards
+    def _emit(self) -> None:
+        k = self.current                # a stage is running
+        now = self.stages[k].work * self.current_fraction
+        total = self.done + sum(s.work for s in self.stages[k:])    # skipped ones: none
+        fraction = (self.done + now) / total if total > 0 else 0.0
+        self.fraction = max(self.fraction, min(1.0, fraction))
         if self.report is not None:
             self.report(self.fraction)
 
     def stage(self, name: str) -> Callable[[float], None]:
-        """The callback of stage ``name``: called with the fraction of its tasks done."""
-        start, share = self.start(name), self.share(name)
-        self._emit(start)
-        return lambda fraction: self._emit(start + share * min(1.0, max(0.0, fraction)))
+        """Start stage ``name`` (the stages before it not started are skipped: no work);
+        returns its callback, to be called with the fraction of its work done."""
+        k = self._index(name)
+        if self.current is not None and k <= self.current:
+            raise ValueError(f"stage {name!r} is not after {self.stages[self.current].name!r}")
+        self._close()
+        self.current = k
+        self._emit()
+
+        def step(fraction: float) -> None:
+            if self.current == k:
+                self.current_fraction = max(self.current_fraction,
+                                            min(1.0, max(0.0, float(fraction))))
+                self._emit()
+        return step
 
     def finish(self) -> None:
-        """The run is done (every stage, skipped ones included)."""
-        self._emit(1.0)
+        """The run is done (the stages not started were skipped)."""
+        self._close()
+        self.fraction = 1.0
+        if self.report is not None:
+            self.report(1.0)

@@ -162,7 +162,7 @@ def lost_designs(lost: list, of: int, what: str) -> str:
     """The sentence of an InfrastructureError for ``lost`` (exceptions) of ``of`` tasks."""
     first = lost[0]
     return (f"{len(lost)} of {of} {what} could not be evaluated "
-            f"({type(first).__name__}: {first}); they are not results")
+            f"({type(first).__name__}: {first})")
 
 
 def evaluate_points(function: Callable, points: list, run_tasks: Optional[Callable] = None,
@@ -339,9 +339,8 @@ def optimise(problem: DesignProblem, evaluate: Callable, settings: SearchSetting
             writer.flush()
             if lost:
                 raise InfrastructureError(
-                    lost_designs(lost, len(todo), f"designs of batch {batch}") + "; the "
-                    f"{evaluated + reused} designs evaluated so far are stored and the "
-                    "search stopped before telling the optimiser anything of this batch")
+                    lost_designs(lost, len(todo), f"designs of batch {batch}") + ": the "
+                    "search stopped without telling the optimiser anything of them")
             rows = [known[key] for key in keys]
             F = np.array([problem.objective_vector(r) for r in rows])
             G = np.array([problem.violation_vector(r) for r in rows])

@@ -187,7 +187,8 @@ def plan(study: Study):
 GRID_COST_EXPONENT = 0.6
 #: cost of 100 revolutions of the orbit at the top speed, in design evaluations on the
 #: orbit's grid (measured on the blower at 72x20: 0.28 s CPU per revolution, 1.84 s per
-#: evaluation); an orbit that ends at contact is shorter (the ETA is an upper bound)
+#: evaluation); an orbit that ends at contact is shorter (the ETA is an upper bound until
+#: it ends, then re-based on the work left: gfbopt.progress.Stages)
 ORBIT_COST_PER_100_REVOLUTIONS = 15.0
 
 
@@ -211,11 +212,10 @@ def run_stages(p, workers: int) -> list:
     orbit = (grid_cost(p.limit_cycle_grid, s.grid) * ORBIT_COST_PER_100_REVOLUTIONS
              * p.limit_cycle_revolutions / 100.0)
     return [Stage("search", p.search.budget, 1.0, min(workers, per_batch)),
+            Stage("whirl at top speed", 1 if p.limit_cycle_revolutions > 0 else 0, orbit),
             Stage("default-grid check", p.regrid_designs,
                   grid_cost(p.default_settings.grid, s.grid), workers),
             Stage("tolerances", tolerances, 1.0, workers),
-            Stage("whirl at top speed", 1 if p.limit_cycle_revolutions > 0 else 0,
-                  max(orbit, 1.0)),
             Stage("reproduction", 1, 1.0)]
 
 

@@ -126,8 +126,8 @@ def _reproduce(plan, chosen: dict) -> float:
 
 def report(study, plan, search, run_tasks, stages, started: float, store) -> StudyResult:
     """The StudyResult of a finished search (module docstring); ``stages``: the run's
-    :class:`gfbopt.progress.Stages` (``"default-grid check"``, ``"tolerances"``, ``"whirl at
-    top speed"``, ``"reproduction"``); ``started``: the run's time.perf_counter() at its
+    :class:`gfbopt.progress.Stages` (``"whirl at top speed"``, ``"default-grid check"``,
+    ``"tolerances"``, ``"reproduction"``); ``started``: the run's time.perf_counter() at its
     start (the wall time stated covers the whole study: search, default-grid check,
     robustness, the orbit at the top speed and the reproduction); ``store``: the search's
     :class:`gfbopt.doe.ResultStore` (the table of every evaluation has its columns, and the
@@ -144,6 +144,15 @@ def report(study, plan, search, run_tasks, stages, started: float, store) -> Stu
     if chosen is not None:
         checked = [chosen] + [r for r in front.to_dict(orient="records")
                               if r["point"] != chosen["point"]]
+    whirl = None            # first: its length (it ends at contact) is the least known
+    step = stages.stage("whirl at top speed")
+    if (chosen is not None and chosen["first_onset_speed_rpm"] < s.top_speed_rpm
+            and plan.limit_cycle_revolutions > 0):
+        from ..design.robustness import whirl_at_top_speed
+
+        whirl = whirl_at_top_speed(plan.system, {n: float(chosen[n]) for n in problem.names},
+                                   dataclasses.replace(s, grid=plan.limit_cycle_grid),
+                                   plan.limit_cycle_revolutions, step)
     step = stages.stage("default-grid check")
     default = regrid(plan.system, plan.default_settings, checked[:plan.regrid_designs], problem,
                      run_tasks, step) if checked else pd.DataFrame()
@@ -154,15 +163,6 @@ def report(study, plan, search, run_tasks, stages, started: float, store) -> Stu
         robust = robustness(plan.system, s, checked[:r.designs], r.tolerances,
                             plan.loss_factor_band, r.samples, r.seed, problem, run_tasks, step)
     check = default.iloc[0].to_dict() if len(default) else None
-    whirl = None
-    step = stages.stage("whirl at top speed")
-    if (chosen is not None and chosen["first_onset_speed_rpm"] < s.top_speed_rpm
-            and plan.limit_cycle_revolutions > 0):
-        from ..design.robustness import whirl_at_top_speed
-
-        whirl = whirl_at_top_speed(plan.system, {n: float(chosen[n]) for n in problem.names},
-                                   dataclasses.replace(s, grid=plan.limit_cycle_grid),
-                                   plan.limit_cycle_revolutions, step)
     text = verdict(chosen, why, plan, check, whirl)
     notes = [text, f"Why this design: {why}."]
     mean = search.evaluation_time_s / search.evaluated if search.evaluated else math.nan
@@ -210,12 +210,13 @@ def report(study, plan, search, run_tasks, stages, started: float, store) -> Stu
                "value": float(rows), "limit": float(asked),
                "passed": bool(rows == asked and stored["point"].is_unique
                               and set(stored["point"]) == set(table["point"]))}]
-    stages.stage("reproduction")
+    step = stages.stage("reproduction")
     if chosen is not None:
         diff = _reproduce(plan, chosen)
         checks.append({"what": "chosen design evaluated again from scratch: largest "
                        "relative change of its objectives", "value": diff,
                        "limit": REPRODUCE_TOLERANCE, "passed": bool(diff <= REPRODUCE_TOLERANCE)})
+        step(1.0)
     stages.finish()
     options = {"variants": {"design": {"goal": plan.goal, "loss_factor_search":
                                        plan.loss_factor_band[0],

@@ -135,3 +135,37 @@ def test_ctrl_c_writes_the_rows_waiting_for_their_part(tmp_path):
     stored = store.read()
     assert len(stored) == finished
     assert len(store.parts()) == 1
+
+
+def test_lost_designs_are_neither_stored_nor_told_and_a_resume_ends_as_a_clean_run(tmp_path):
+    """The executor loses every design of the third generation (their workers died on every
+    pool: gfbopt.parallel.stream_tasks yields InfrastructureFailure for them).  They must not
+    be told to NSGA-II as failed designs (its next generation would differ from a clean
+    run's): the search stops with InfrastructureError, the store holds the two generations
+    evaluated and nothing else, and the resume ends with the clean run's table."""
+    from gfbopt.parallel import stream_tasks
+    from gfbopt.runtime import InfrastructureError, InfrastructureFailure
+
+    def losing(function, arguments):
+        for k, result in stream_tasks(function, arguments, workers=1):
+            lost = losing.ran >= 16
+            losing.ran += 1
+            yield k, InfrastructureFailure("the worker process died on 3 pools") if lost \
+                else result
+    losing.ran = 0
+
+    schema = store_schema(ZDT, OUTPUTS)
+    store = ResultStore.create(tmp_path / "store", study="t", study_hash="h" * 64,
+                               schema=schema)
+    with pytest.raises(InfrastructureError, match="8 of 8 designs of batch 2"):
+        optimise(ZDT, surrogates.zdt1, SETTINGS, store=store, run_tasks=losing)
+    clean = optimise(ZDT, surrogates.zdt1, SETTINGS)
+    stored = store.read()
+    first_two = clean.table[clean.table["batch"] < 2]
+    assert sorted(stored["point"]) == sorted(first_two["point"])
+    assert store.rows_written() == 16
+    resumed = optimise(ZDT, surrogates.zdt1, SETTINGS, store=ResultStore.create(
+        tmp_path / "store", study="t", study_hash="h" * 64, schema=schema, resume=True))
+    assert resumed.reused == 16 and resumed.evaluated == 32
+    cols = ["point", "evaluation", "batch", "f1", "f2", "feasible"]
+    assert resumed.table[cols].equals(clean.table[cols])

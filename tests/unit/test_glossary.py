@@ -35,3 +35,18 @@ def test_deviation_is_relative_except_for_angles():
     assert deviation("load", 1.03, 1.0) == pytest.approx(0.03)
     assert deviation("attitude_angle_deg", 30.5, 30.0) == pytest.approx(0.5)
     assert math.isnan(deviation("load", 1.0, 0.0))
+
+
+@pytest.mark.parametrize("column, unit", [
+    ("first_onset_speed_rpm_search_grid", "rpm"), ("first_onset_speed_rpm_default_grid", "rpm"),
+    ("total_power_loss_w_search_grid", "W"), ("total_power_loss_w_default_grid", "W"),
+    ("min_film_lowest_speed_um_search_grid", "µm"), ("first_mode_default_grid", "text"),
+    ("first_onset_speed_rpm_relative_change", "-")])
+def test_a_grid_suffix_keeps_the_unit_of_the_quantity(column, unit):
+    """default_grid_check.csv: a quantity computed on the search or the default grid has
+    that quantity's unit (was "-" for every suffixed column)."""
+    got, meaning = describe(column)
+    assert got == unit
+    base = column.rsplit("_search_grid", 1)[0].rsplit("_default_grid", 1)[0]
+    if base in GLOSSARY and base != column:
+        assert meaning.startswith(GLOSSARY[base][1])
