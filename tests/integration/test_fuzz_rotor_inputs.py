@@ -25,6 +25,7 @@ from pathlib import Path
 import pytest
 
 from tests.cli_inprocess import run_cli
+from tests.integration.test_study_fuzz import toml_value
 
 ROOT = Path(__file__).resolve().parents[2]
 RUSCITTO = ROOT / "problems" / "bearings" / "ruscitto.toml"
@@ -67,34 +68,19 @@ ALLOWED = {
 }
 
 
-def _scalar(v) -> str:
-    if isinstance(v, bool):
-        return "true" if v else "false"
-    if isinstance(v, float):
-        return "nan" if math.isnan(v) else ("inf" if v > 0 else "-inf") if math.isinf(v) \
-            else repr(v)
-    if isinstance(v, int):
-        return str(v)
-    if isinstance(v, str):
-        return '"' + v.replace("\\", "\\\\").replace('"', '\\"') + '"'
-    if isinstance(v, list):
-        return "[" + ", ".join(_scalar(x) for x in v) + "]"
-    return "{" + ", ".join(f"{k} = {_scalar(x)}" for k, x in v.items()) + "}"
-
-
 def _toml(data: dict) -> str:
     out = []
     for name, value in data.items():
         if isinstance(value, dict) and name in ("rotor", "bore", "bearing", "model", "search",
                                                 "robustness"):
             out.append(f"[{name}]")
-            out += [f"{k} = {_scalar(v)}" for k, v in value.items()]
+            out += [f"{k} = {toml_value(v)}" for k, v in value.items()]
         elif isinstance(value, list) and value and all(isinstance(v, dict) for v in value):
             for row in value:
                 out.append(f"[[{name}]]")
-                out += [f"{k} = {_scalar(v)}" for k, v in row.items()]
+                out += [f"{k} = {toml_value(v)}" for k, v in row.items()]
         else:
-            out.insert(0, f"{name} = {_scalar(value)}")
+            out.insert(0, f"{name} = {toml_value(value)}")
     return "\n".join(out) + "\n"
 
 

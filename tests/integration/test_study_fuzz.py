@@ -142,27 +142,30 @@ CASES = _cases()
 FAST = CASES[::5]
 
 
+def toml_value(v) -> str:
+    """One TOML value (floats written so that NaN/inf survive; used by the other fuzz sets)."""
+    if isinstance(v, bool):
+        return "true" if v else "false"
+    if isinstance(v, float):
+        if math.isnan(v):
+            return "nan"
+        if math.isinf(v):
+            return "inf" if v > 0 else "-inf"
+        return repr(v)
+    if isinstance(v, int):
+        return str(v)
+    if isinstance(v, str):
+        return '"' + v.replace("\\", "\\\\").replace('"', '\\"') + '"'
+    if isinstance(v, list):
+        return "[" + ", ".join(toml_value(x) for x in v) + "]"
+    if isinstance(v, dict):
+        return "{" + ", ".join(f'"{k}" = {toml_value(x)}' for k, x in v.items()) + "}"
+    raise TypeError(v)
+
+
 def _toml(data: dict) -> str:
-    """A minimal TOML writer for the fuzz inputs (floats written so that NaN/inf survive)."""
-    def scalar(v):
-        if isinstance(v, bool):
-            return "true" if v else "false"
-        if isinstance(v, float):
-            if math.isnan(v):
-                return "nan"
-            if math.isinf(v):
-                return "inf" if v > 0 else "-inf"
-            return repr(v)
-        if isinstance(v, int):
-            return str(v)
-        if isinstance(v, str):
-            return '"' + v.replace("\\", "\\\\").replace('"', '\\"') + '"'
-        if isinstance(v, list):
-            return "[" + ", ".join(scalar(x) for x in v) + "]"
-        if isinstance(v, dict):
-            return "{" + ", ".join(f'"{k}" = {scalar(x)}' for k, x in v.items()) + "}"
-        raise TypeError(v)
-    return "\n".join(f'"{k}" = {scalar(v)}' for k, v in data.items()) + "\n"
+    """A minimal TOML writer for the fuzz inputs."""
+    return "\n".join(f'"{k}" = {toml_value(v)}' for k, v in data.items()) + "\n"
 
 
 def _run(tmp_path: Path, label: str, data, text) -> tuple:

@@ -1,26 +1,11 @@
 """A design study's fixed inputs (the bore's form, the pad offset, the zone edges) are checked
 when it is planned: before, a 3 × 200° shim bore or an offset of 1e300° made every design fail
 and the run ended "No design in this space meets every limit" with exit 0."""
-import copy
-from pathlib import Path
-
 import pytest
 
 from gfbopt.errors import ParameterError
-from gfbopt.inputs import read_toml
-from gfbopt.studies import study_from_dict
 from tests.cli_inprocess import run_cli
-
-ROOT = Path(__file__).resolve().parents[2]
-FILE = ROOT / "problems" / "rotor_bearing_design.toml"
-BASE = read_toml(FILE)
-
-
-def _plan(change):
-    data = copy.deepcopy(BASE)
-    change(data)
-    return study_from_dict(data, name="t", file="problems/rotor_bearing_design.toml",
-                           directory=FILE.parent).plan
+from tests.unit.test_rotor_design_spec import FILE, _plan
 
 
 @pytest.mark.parametrize("change, key, rule", [
