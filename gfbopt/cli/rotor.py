@@ -107,6 +107,12 @@ def run(args) -> int:
                            show_progress=not args.json)
     out = {"rotor_file": args.rotor_file, "rotor": system.body.name, "grid": str(grid),
            **result.to_dict()}
+    if args.imbalance_response:
+        out["imbalance_planes"] = [
+            {"name": p.name, "amount_g_mm": p.amount_kg_m * 1e6, "phase_deg": p.phase_deg,
+             "position_m": p.position,
+             "source": "rotor file" if planes is None else "command line"}
+            for p in system.imbalance]
     for key in ("scan", "equilibria"):       # in the CSV files; the JSON keeps the answers
         out[key] = out[key] if not args.csv else f"{key}.csv"
     if args.csv:
