@@ -51,6 +51,12 @@ def plan_rotor(study: Study) -> dict:
     if not 0 < low < high:
         raise study.where("speed_range_rpm").error([low, high], "must be [low, high] with "
                                                    "0 < low < high [rpm]")
+    from ..rotor.analyse import check_speed_span
+
+    try:
+        check_speed_span((low, high), system)
+    except ParameterError as exc:
+        raise study.where("speed_range_rpm").error([low, high], exc.rule) from None
     if not system.imbalance:
         raise study.where("rotor").error(str(study.spec["rotor"]), "has no [[imbalance]] "
                                          "plane: the study shows the imbalance response")
