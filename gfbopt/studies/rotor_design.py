@@ -186,10 +186,11 @@ def plan(study: Study):
 #: the blower (36x10 1.03 s, 72x20 1.84 s, 144x36 5.28 s CPU, one design), ≈ cells^0.6
 GRID_COST_EXPONENT = 0.6
 #: cost of 100 revolutions of the orbit at the top speed, in design evaluations on the
-#: orbit's grid (measured on the blower at 72x20: 0.28 s CPU per revolution, 1.84 s per
-#: evaluation); an orbit that ends at contact is shorter (the ETA is an upper bound until
-#: it ends, then re-based on the work left: gfbopt.progress.Stages)
-ORBIT_COST_PER_100_REVOLUTIONS = 15.0
+#: orbit's grid (measured on the blower at 72x20: 0.18 s CPU per revolution at 45,000 rpm,
+#: 0.28 s at 12,000 rpm, 1.84 s per evaluation); an orbit that ends at contact is shorter:
+#: until it ends the ETA is an upper bound, then it is re-based on the work left
+#: (gfbopt.progress.Stages)
+ORBIT_COST_PER_100_REVOLUTIONS = 10.0
 
 
 def grid_cost(grid, reference) -> float:

@@ -120,7 +120,7 @@ def test_design_run_stages_count_the_evaluations_of_the_main_job():
         (24, 2), (1, 1), (2, 2), (2 * (1 + 6), 2), (1, 1)]
     assert stages["default-grid check"].cost == pytest.approx((144 * 36 / 360) ** 0.6)
     assert stages["whirl at top speed"].cost == pytest.approx(
-        grid_cost(plan.limit_cycle_grid, plan.settings.grid) * 15.0 * 2)
+        grid_cost(plan.limit_cycle_grid, plan.settings.grid) * 10.0 * 2)
     total = sum(s.work for s in stages.values())
     run = Stages(None, list(stages.values()))
     run.stage("search")(1.0)
