@@ -195,8 +195,9 @@ def plausibility_warnings(line: SpeedLine) -> tuple:
 
 
 def modes_at_speed(line: SpeedLine, speed_rpm: float) -> dict:
-    """Each bearing's equilibrium and the rotor's modes (full system) at one speed, with
-    every mode's matched-whirl threshold μ_c there."""
+    """Each bearing's equilibrium and the rotor's modes (full system) at one speed, each with
+    its shape class there (``shape_label``: one speed's eigenvector, not a mode's name), and
+    every matched-whirl threshold μ_c there (``label``: the mode's name)."""
     states = line.states(speed_rpm)
     if not states.ok:
         return {"speed_rpm": speed_rpm, "load_capacity_exceeded": states.failure}
@@ -205,7 +206,7 @@ def modes_at_speed(line: SpeedLine, speed_rpm: float) -> dict:
     modes = system_modes(line.rotor, states, reference_whirl=ref)
     return {"speed_rpm": speed_rpm, "bearings": [s.summary() for s in states.states],
             "reference_whirl_ratio": ref,
-            "modes": [{"label": m.label, "whirl_frequency_hz": m.whirl_frequency_hz,
+            "modes": [{"shape_label": m.label, "whirl_frequency_hz": m.whirl_frequency_hz,
                        "whirl_ratio": m.whirl_ratio, "log_decrement": m.log_decrement,
                        "damping_ratio": m.damping_ratio,
                        "growth_rate_per_s": m.growth_rate_per_s, "shape": m.shape}
