@@ -101,23 +101,19 @@ def _rotor(args, grid: Grid) -> list:
 
     b = ROTOR_BEARINGS
     if rotor_time.requested(args):
+        profile = rotor_time._check(args)       # its own rules first (direction, --force)
         step = getattr(args, "time_step", None)
         if step is not None and not guard.positive(step):
             return []
-        if args.orbit:
-            revolutions = args.revolutions
-            if not guard.positive(revolutions):
-                return []
-            count = guard.orbit_steps(revolutions, step)
-            option, value = ("--time-step", step) if step else ("--revolutions", revolutions)
+        if profile.kind == "orbit":
+            count = guard.orbit_steps(profile.revolutions, step)
+            option, value = ("--time-step", step) if step else ("--revolutions",
+                                                                args.revolutions)
         else:
-            ramp = args.run_up or args.coast_down
-            rate = args.rate
-            if not (all(guard.positive(v) for v in ramp) and guard.positive(rate)):
-                return []
-            count = guard.ramp_steps(ramp[0], ramp[1], rate, step)
+            count = guard.ramp_steps(profile.start_rpm, profile.end_rpm,
+                                     profile.rate_rpm_per_s, step)
             option, value = (("--time-step", step) if step else
-                             ("--run-up" if args.run_up else "--coast-down", list(ramp)))
+                             (f"--{profile.kind}", [profile.start_rpm, profile.end_rpm]))
         return [guard.steps(option, value, count, grid, b)]
     parts = _scan(args, grid, b)
     if not parts:

@@ -59,7 +59,7 @@ def _refused(r, option: str, value: str, raises: str) -> str:
       "100000"], "--campbell-speeds", "100000", "--max-minutes"),
     (["rotor", BLOWER, "--orbit", "--speed-rpm", "13000", "--revolutions", "40",
       "--time-step", "1e-12"], "--time-step", "1e-12", "--max-minutes"),
-    (["rotor", BLOWER, "--run-up", "5000", "60000", "--rate", "1e-3"], "--run-up",
+    (["rotor", BLOWER, "--run-up", "5000", "60000", "--rate", "1e-3", "--force"], "--run-up",
      "[5000.0, 60000.0]", "--max-minutes"),
     (["rotor", BLOWER, "--orbit", "--speed-rpm", "13000", "--revolutions", "10",
       "--max-minutes", "0.001"], "--revolutions", "10.0", "--max-minutes"),
