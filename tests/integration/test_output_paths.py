@@ -127,3 +127,16 @@ def test_the_writability_probe_leaves_nothing_behind(tmp_path, no_handler):
     _refused(ORBIT + ["--csv", str(tmp_path / "o.csv"), "--plot", str(tmp_path / "o.xyz")],
              "--plot", "suffix")
     assert list(tmp_path.iterdir()) == []
+
+
+@pytest.mark.parametrize("option", ["--csv", "--plot"])
+def test_an_existing_folder_is_a_folder_target(tmp_path, option, monkeypatch):
+    """``gfbopt rotor --csv DIR`` / ``--plot DIR`` write several files in DIR: an existing
+    folder is accepted (it was refused as "a directory: give a file name"), the command
+    starts, and the probe leaves the folder as it was."""
+    started = []
+    monkeypatch.setattr(rotor, "run", lambda args: started.append(args) or 0)
+    (tmp_path / "kept.txt").write_text("kept\n")
+    r = run_cli(*ROTOR, option, str(tmp_path))
+    assert r.returncode == 0 and len(started) == 1, r.stderr
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["kept.txt"]
