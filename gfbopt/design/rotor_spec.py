@@ -190,8 +190,20 @@ def _check_buildable(study, system, variables: tuple, settings: EvaluationSettin
             degrees_in("zone_edges_deg", settings.zone_edges_deg[0], *START_RANGE_DEG)
     except ParameterError as exc:
         raise study.where(exc.name).error(exc.value, exc.rule) from None
-    probe = {v.name: v.decode(1.0 - 1e-9 if v.discrete else 0.5) for v in variables
-             if v.name.split(":")[-1] != "compliance"}        # (the GP realises compliance)
+    built = [v for v in variables if v.name.split(":")[-1] != "compliance"]  # (GP's own)
+    for k, v in enumerate(variables):         # each range's ends, alone on the rotor's bearings
+        if v not in built:
+            continue
+        for end, u in (("low", 0.0), ("high", 1.0 - 1e-12)):
+            value = v.decode(u)
+            try:
+                apply_design(system, {v.name: value}, settings)
+            except ParameterError as exc:
+                key = ("values" if v.discrete else end)
+                raise study.where("variables", k, key).error(value, f"{v.name} = {value:g} "
+                                                             f"cannot be built on the rotor's "
+                                                             f"bearings: {exc}") from None
+    probe = {v.name: v.decode(1.0 - 1e-9 if v.discrete else 0.5) for v in built}
     try:
         apply_design(system, probe, settings)
     except ParameterError as exc:
@@ -204,6 +216,7 @@ def plan_rotor_design(study, study_hash: str = "") -> RotorDesignPlan:
     """Validate a ``rotor_bearing_design`` study (:mod:`gfbopt.studies.rotor_design`) and
     build its plan — no solve."""
     from ..inputs.grid import Grid
+    from ..inputs.rotor_limits import check_rotor_speeds
     from ..inputs.rotor_system import load_rotor
 
     s = study.spec
@@ -223,10 +236,16 @@ def plan_rotor_design(study, study_hash: str = "") -> RotorDesignPlan:
     if not 0.0 <= band[0] <= band[1] <= 1.0:
         raise study.where("loss_factor_band").error(list(band), "must be [low, high] with "
                                                     "0 <= low <= high <= 1")
-    if s["min_film_um"] >= min(b.geometry.radial_clearance for b in system.bearings) * 1e6 \
-            and not any(v["name"].endswith("radial_clearance_um") for v in s["variables"]):
-        raise study.where("min_film_um").error(s["min_film_um"], "must be below the radial "
-                                               "clearance")
+    widest = max([min(b.geometry.radial_clearance for b in system.bearings) * 1e6]
+                 + [x for v in s["variables"] if v["name"].endswith("radial_clearance_um")
+                    for x in (v["values"] or [v["high"]]) if isinstance(x, (int, float))])
+    if not s["min_film_um"] < widest:
+        raise study.where("min_film_um").error(s["min_film_um"], f"must be below the radial "
+                                               f"clearance ({widest:g} µm at the most)")
+    try:
+        check_rotor_speeds(system, (low, top, high), name="speed_range_rpm")
+    except ParameterError as exc:
+        raise study.where("speed_range_rpm").error(exc.value, exc.rule) from None
     if not s["variables"]:
         raise study.where("variables").error([], "must name at least one design variable")
     bearings = tuple(b.name for b in system.bearings)

@@ -15,8 +15,11 @@ from tests.unit.test_rotor_design_spec import FILE, _plan
     (lambda d: (d.update(pad_offset_deg=-1e300),
                 d["variables"].append({"name": "pads", "values": [1, 3]})),
      "pad_offset_deg", "degrees"),
-    (lambda d: d["variables"].append({"name": "pads", "values": [1, 30]}), "variables",
-     "at most 12 top-foil pads"),
+    (lambda d: d["variables"].append({"name": "pads", "values": [1, 30]}),
+     "variables[2].values", "at most 12 top-foil pads"),
+    (lambda d: d["variables"][0].update(low=1e-300), "variables[0].low", "radial_clearance"),
+    (lambda d: d.update(min_film_um=1e300), "min_film_um", "below the radial clearance"),
+    (lambda d: d.update(speed_range_rpm=[1000.0, 1e7]), "speed_range_rpm", "surface"),
 ])
 def test_an_invalid_fixed_input_is_refused_at_plan_time(change, key, rule):
     with pytest.raises(ParameterError) as exc:
