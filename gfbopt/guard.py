@@ -78,7 +78,7 @@ def _duration(seconds: float) -> str:
         return f"{seconds:.3g} s"
     if seconds < 7200:
         return f"{seconds / 60:.3g} min"
-    if seconds < 3.2e7 * 10:
+    if seconds < 3.15e7:
         return f"{seconds / 3600:.3g} h"
     return f"{seconds / 3.15e7:.3g} years"
 

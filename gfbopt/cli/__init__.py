@@ -14,10 +14,12 @@ module                 commands
 :mod:`.formats`        ``gfbopt formats`` (file formats and study kinds, from the schemas)
 :mod:`.common`         operating-point options, refusal of ignored options, JSON output
 :mod:`.si`             a bearing file's [model] options merged with the command line
+:mod:`.size`           the memory and time estimate of a command (gfbopt.guard)
 =====================  =================================================================
 
 Bad input prints one line naming the parameter, its value and the rule, and exits with
-status 2, before anything is solved (output paths that cannot be written included).  A solve
+status 2, before anything is solved (output paths that cannot be written included, and a
+run whose estimated memory or time is above ``--max-memory-gb`` or ``--max-minutes``).  A solve
 that does not converge (:class:`~gfbopt.errors.ConvergenceError`) exits with status 1 and says
 why, with the solver's status and residual.  Every JSON output carries a ``provenance`` block (version, source commit, options).
 """

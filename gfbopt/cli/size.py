@@ -6,8 +6,6 @@ line, when above ``--max-memory-gb`` or ``--max-minutes``; ``gfbopt run`` passes
 limits on to the study runner, which estimates each study from its file."""
 from __future__ import annotations
 
-from typing import Optional
-
 from .. import guard
 from ..inputs.grid import DEFAULT_GRID, DEFAULT_MAX_MEMORY_GB, Grid
 from .common import number
@@ -45,7 +43,7 @@ def limits(args) -> guard.Limits:
                         getattr(args, "max_minutes", guard.DEFAULT_MAX_MINUTES))
 
 
-def _grid(args) -> Optional[Grid]:
+def _grid(args) -> Grid:
     text = getattr(args, "grid", None)
     return Grid.parse(text) if text is not None else DEFAULT_GRID
 
