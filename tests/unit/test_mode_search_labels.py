@@ -59,3 +59,43 @@ def test_a_class_appearing_where_the_others_are_stable_is_still_refined():
     assert m.status == ONSET
     # μ_c = 1 at t = 1/2: N = 30000 (4/3)^(1/2)
     assert m.onset_speed_rpm == pytest.approx(30000.0 * (4 / 3) ** 0.5, rel=1e-6)
+
+
+# ------------------------------------------------------------ names of the Campbell tracks
+def _mode(label, decrement, hz):
+    return SimpleNamespace(label=label, log_decrement=decrement, whirl_frequency_hz=hz)
+
+
+def _onset(label, speed, hz, status=ONSET):
+    return SimpleNamespace(label=label, onset_speed_rpm=speed, whirl_frequency_hz=hz,
+                           status=status)
+
+
+def test_tracks_take_the_onsets_names_one_to_one_and_no_two_alike():
+    """Two tracks lose their damping in one diagram interval, at nearly one frequency (the
+    5 kg blower at 24 × 8): the first to lose it is the first onset's mode, whatever shape
+    its rows have there; the other tracks of a shape class already named are numbered."""
+    from gfbopt.rotor.tracking import name_tracks
+
+    speeds = (10000.0, 13000.0, 16000.0)
+    first = [(s, _mode("forward cylindrical", d, f)) for s, d, f in
+             zip(speeds, (0.4, -0.2, -0.6), (93.0, 112.0, 127.0))]     # zero at 12,000
+    second = [(s, _mode(lab, d, f)) for s, lab, d, f in
+              zip(speeds, ("forward cylindrical", "forward mixed", "forward conical"),
+                  (0.8, -0.1, -0.5), (96.0, 108.0, 116.0))]          # zero at 12,667
+    stable = [(s, _mode("forward cylindrical", 1.0, 230.0)) for s in speeds]
+    lone = [(s, _mode("backward conical", 1.5, 140.0)) for s in speeds]
+    onsets = [_onset("forward conical", 12050.0, 103.0),
+              _onset("forward cylindrical", 12700.0, 106.0),
+              _onset("forward mixed", math.nan, 80.0, status="stable over the range")]
+    names = name_tracks([first, second, stable, lone], onsets)
+    assert [n for n, _ in names] == ["forward conical", "forward cylindrical",
+                                     "forward cylindrical (2)", "backward conical"]
+    assert names[0][1] == pytest.approx(12000.0) and names[1][1] == pytest.approx(12666.67,
+                                                                                  rel=1e-6)
+    assert math.isnan(names[2][1])
+    # an onset no track matches (its frequency is 30 % off) keeps its name to itself
+    far = [_onset("forward conical", 12050.0, 150.0)]
+    names = name_tracks([first, [(s, _mode("forward conical", 1.0, 300.0)) for s in speeds]],
+                        far)
+    assert [n for n, _ in names] == ["forward cylindrical", "forward conical (2)"]
