@@ -137,12 +137,18 @@ class BearingGeometry:
                                          self.radial_clearance)
 
     def nondimensional_load(self, load_newton: float) -> float:
-        """W̄ = W/(p_a R²) for a static load ``load_newton`` [N], > 0 and at most
-        :data:`~gfbopt.inputs.rotor_limits.MAX_SPECIFIC_LOAD_RATIO` p_a L D (100 bar on the
-        projected area at 1 bar ambient: no gas bearing carries it)."""
-        from .rotor_limits import MAX_SPECIFIC_LOAD_RATIO
+        """W̄ = W/(p_a R²) for a static load ``load_newton`` [N], at least
+        :data:`~gfbopt.inputs.rotor_limits.MIN_LOAD_RATIO` p_a R² (below it the bearing is
+        unloaded) and at most :data:`~gfbopt.inputs.rotor_limits.MAX_SPECIFIC_LOAD_RATIO`
+        p_a L D (100 bar on the projected area at 1 bar ambient: no gas bearing carries it)."""
+        from .rotor_limits import MAX_SPECIFIC_LOAD_RATIO, MIN_LOAD_RATIO
 
         load = check_positive("load_newton", load_newton)
+        floor = MIN_LOAD_RATIO * self.ambient_pressure * self.radius ** 2
+        if load < floor:
+            raise ParameterError("load_newton", load_newton, f"must be >= {MIN_LOAD_RATIO:g} "
+                                 f"p_a R² = {floor:.3g} N: below it the bearing is unloaded "
+                                 "(a foil bearing's film needs a load to find its equilibrium)")
         ceiling = MAX_SPECIFIC_LOAD_RATIO * self.ambient_pressure * self.length * 2 * self.radius
         if load > ceiling:
             raise ParameterError("load_newton", load_newton, f"must be <= "

@@ -153,6 +153,9 @@ def test_a_bearing_load_no_gas_bearing_carries_is_refused():
     with pytest.raises(ParameterError, match=r"load_newton = 1e\+308: must be <= 100 p_a L D "
                        r"= 1\.452e\+04 N"):
         bearing.nondimensional_load(1e308)
+    with pytest.raises(ParameterError, match=r"load_newton = 1e-300: must be >= 0\.0001 p_a "
+                       r"R² = 0\.00363 N: below it the bearing is unloaded"):
+        bearing.nondimensional_load(1e-300)
     with pytest.raises(ParameterError, match=r"mass_kg = 1e\+308: must weigh a finite"):
         Rotor(1e308)
     out = run_cli("static", "--bearing", ROOT / "problems" / "bearings" / "ruscitto.toml",
