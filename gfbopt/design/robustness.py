@@ -163,7 +163,8 @@ def whirl_at_top_speed(system, design: dict, settings, revolutions: float,
     designed = dataclasses.replace(designed, bearings=supports)
     from ..progress import Fraction
 
-    reporter = Fraction(int(revolutions), progress) if progress is not None else None
+    reporter = (Fraction(max(1, math.ceil(revolutions)), progress) if progress is not None
+                else None)
     result = rotor_orbit(designed, settings.top_speed_rpm, revolutions, grid=settings.grid,
                          progress=reporter)
     d = result.to_dict()

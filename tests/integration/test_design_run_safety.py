@@ -237,3 +237,21 @@ def test_a_second_run_while_the_first_reports_or_writes_is_refused(study, tmp_pa
         assert "is being written by another gfbopt run" in refused.stderr
     assert not list(results.glob("rd_safety/store.previous-*"))
     assert len(read_results(results / "rd_safety" / "store")) == 8
+
+
+def test_the_orbit_at_the_top_speed_reports_its_revolutions(study):
+    """The orbit's progress is its revolutions (the design run's bar moves through the
+    orbit instead of standing still): fractions rising to 1 unless the film closed first."""
+    import dataclasses
+
+    from gfbopt.design.robustness import whirl_at_top_speed
+    from gfbopt.inputs.grid import Grid
+    from gfbopt.studies import load_study
+
+    plan = load_study(study).plan
+    seen = []
+    whirl = whirl_at_top_speed(plan.system, {"radial_clearance_um": 25.0},
+                               dataclasses.replace(plan.settings, grid=Grid(24, 8)), 3.0,
+                               seen.append)
+    assert seen and seen == sorted(seen) and 0.0 < seen[-1] <= 1.0
+    assert seen[-1] == 1.0 or whirl["contact"]
