@@ -40,6 +40,10 @@ MAX_SPEED_RATIO = 1000.0
 #: the fastest surface speed ω R of a bearing analysed [m/s]: the speed of sound in air at
 #: 20 °C — the film model is isothermal and subsonic
 MAX_SURFACE_SPEED = 343.0
+#: the slowest surface speed ω R analysed [m/s]: a gas film dragged this slowly carries a
+#: rotor's load only far below any surface roughness (the blower at 0.6 m/s, 300 rpm: 0.23 µm
+#: at 24 × 8), so an answer there means nothing (and its statics are slow to solve)
+MIN_SURFACE_SPEED = 0.1
 #: speeds of the Campbell diagram and of the imbalance response by default
 CAMPBELL_SPEEDS = 20
 IMBALANCE_SPEEDS = 40
@@ -159,13 +163,20 @@ def check_speed_span(speed_range, system: Optional[RotorSystem] = None,
                      name: str = "speed_range") -> tuple[float, float]:
     """(low, high) [rpm] of a speed range the rotor analyses can mean: 0 < low < high,
     high/low ≤ :data:`MAX_SPEED_RATIO` and, with ``system``, every bearing's surface speed
-    ω R ≤ :data:`MAX_SURFACE_SPEED` at ``high`` (ParameterError naming ``name``)."""
+    ω R ≤ :data:`MAX_SURFACE_SPEED` at ``high`` and ≥ :data:`MIN_SURFACE_SPEED` at ``low``
+    (ParameterError naming ``name``)."""
     low, high = check_speed_range(speed_range)
     if high / low > MAX_SPEED_RATIO:
         raise ParameterError(name, [low, high], f"HIGH/LOW = {high / low:.3g} exceeds "
                              f"{MAX_SPEED_RATIO:g}: one analysis spans at most "
                              f"{MAX_SPEED_RATIO:g}× in speed")
     for support in (system.bearings if system is not None else ()):
+        slow = rpm_to_rad_per_s(low) * support.geometry.radius
+        if slow < MIN_SURFACE_SPEED:
+            raise ParameterError(name, [low, high], f"bearing {support.name}'s surface speed "
+                                 f"ω R = {slow:.3g} m/s at {low:.6g} rpm is below "
+                                 f"{MIN_SURFACE_SPEED:g} m/s: no gas film that slow carries "
+                                 "a load above surface roughness")
         surface = rpm_to_rad_per_s(high) * support.geometry.radius
         if surface > MAX_SURFACE_SPEED:
             raise ParameterError(name, [low, high], f"bearing {support.name}'s surface speed "

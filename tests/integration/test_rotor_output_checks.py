@@ -174,6 +174,7 @@ def test_a_film_thinner_than_a_real_surface_is_warned_of():
 @pytest.mark.parametrize("speeds, says", [
     (["10", "60000"], "HIGH/LOW = 6e+03 exceeds 1000"),
     (["5000", "400000"], "surface speed ω R = 798 m/s at 400000 rpm exceeds 343 m/s"),
+    (["1e-5", "1e-3"], "surface speed ω R = 1.99e-08 m/s at 1e-05 rpm is below 0.1 m/s"),
 ])
 def test_meaningless_speed_ranges_are_refused_before_any_solve(speeds, says, no_solve):
     r = run_cli("rotor", BLOWER, "--speed-range", *speeds)
@@ -182,7 +183,8 @@ def test_meaningless_speed_ranges_are_refused_before_any_solve(speeds, says, no_
     assert err.startswith("gfbopt: error: --speed-range ")
 
 
-@pytest.mark.parametrize("speeds", [(1e-300, 1e300), (1.0, 1e12), (10.0, 60000.0)])
+@pytest.mark.parametrize("speeds", [(1e-300, 1e300), (1.0, 1e12), (10.0, 60000.0),
+                                    (1e-5, 1e-3)])
 def test_the_api_refuses_them_too(speeds):
     from gfbopt.rotor.analyse import analyse_rotor
 
