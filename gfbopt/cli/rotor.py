@@ -15,7 +15,15 @@ The rotor file (docs/formats/rotor_file.md) is read and checked, with every bear
 before anything is solved.  JSON fields: ``onset_speed_rpm`` (first onset over all modes; null
 with ``onset_reason`` when none in the range), ``first_mode``, ``onset_whirl_frequency_hz``,
 ``modes`` (label, onset speed, whirl frequency, shape), ``bearing_loads_newton``,
-``conventions`` and ``provenance``.
+``bearing_notes`` (a bearing pulled upwards, in one sentence), ``warnings`` (the statics'
+plausibility flags: a film thinner than surface roughness, a load above the rule-of-thumb
+capacity, each with its bearing and speed), ``campbell.tracks`` (every tracked mode's name:
+one name per mode in the text, JSON, CSV and figures, :mod:`gfbopt.rotor.tracking`),
+``imbalance_response`` (``unstable_from_rpm``; each peak's ``above_first_onset``: the linear
+response there is not physical), ``imbalance_planes``, ``conventions`` and ``provenance``.
+
+Speed ranges: HIGH/LOW ≤ 1000 and every bearing's surface speed ω R between 0.1 m/s (at
+LOW) and 343 m/s (at HIGH) (:func:`gfbopt.rotor.analyse.check_speed_span`).
 """
 from __future__ import annotations
 
