@@ -71,6 +71,8 @@ class StaticSolution:
         # the concentric journal it is (never a negative eccentricity)
         if abs(self.eccentricity) < CONCENTRIC_TOLERANCE:
             object.__setattr__(self, "eccentricity", 0.0)
+        if abs(self.attitude_angle_rad) < CONCENTRIC_TOLERANCE:      # (−0.000 deg printed)
+            object.__setattr__(self, "attitude_angle_rad", 0.0)
         if self.eccentricity == 0.0:
             # concentric: no line of centres (φ undefined), and the film force of a preloaded
             # bore need not lie on the load line, so the load carried is its magnitude |F|

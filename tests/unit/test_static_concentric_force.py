@@ -53,3 +53,14 @@ def test_a_round_bore_at_the_centre_has_no_force_and_no_direction():
                        grid=GRID)
     assert sol.eccentricity == 0.0 and sol.load == pytest.approx(0.0, abs=1e-12)
     assert math.isnan(sol.film_force_angle_deg) and math.isnan(sol.attitude_angle_deg)
+
+
+def test_round_off_never_reads_as_a_negative_eccentricity_or_attitude():
+    from dataclasses import replace
+
+    sol = solve_static(BearingModel(bearing_number=2.0, compliance=1.0), load=0.3, grid=GRID)
+    tilted = replace(sol, attitude_angle_rad=-1e-15)
+    assert tilted.attitude_angle_deg == 0.0 and math.copysign(1, tilted.attitude_angle_deg) == 1
+    assert replace(sol, attitude_angle_rad=-1e-3).attitude_angle_rad == -1e-3   # a real angle
+    centred = replace(sol, eccentricity=-3.9e-48)
+    assert centred.eccentricity == 0.0 and math.isnan(centred.attitude_angle_deg)
