@@ -162,6 +162,8 @@ def _figures(result, folder: Path, top: float) -> list:
 
 
 def _report(out: dict) -> str:
+    from ..rotor.mode_search import UNSTABLE_LOW
+
     loads = ", ".join(f"{b['bearing']} {b['load_newton']:.4g} N at "
                       f"{b['load_direction_deg']:.4g}°" for b in out["bearing_loads"])
     lines = [f"gfbopt rotor — {out['rotor']} ({out['rotor_file']}), grid {out['grid']}",
@@ -175,7 +177,11 @@ def _report(out: dict) -> str:
                      f"{out['onset_speed_rpm']:,.0f} rpm at {out['onset_whirl_frequency_hz']:.4g}"
                      " Hz")
     else:
-        lines.append(f"  onset: none — {out['onset_reason']}")
+        low = [m["label"] for m in out["modes"] if m["status"] == UNSTABLE_LOW]
+        lines.append(f"  onset: none — {out['onset_reason']}" if not low else
+                     f"  onset: none — unstable already at {out['speed_range_rpm'][0]:,.0f} "
+                     f"rpm, the lowest speed, in {', '.join(low)}: the onset lies below the "
+                     "range (why: under the mode)")
     for m in out["modes"]:
         speed = (f"{m['onset_speed_rpm']:,.0f} rpm" if math.isfinite(m["onset_speed_rpm"])
                  else m["status"])
