@@ -153,6 +153,8 @@ def _notes(result, plain, out: dict, top: float) -> list:
     r = result.onsets
     loads = ", ".join(f"{l.name} {l.magnitude:.3g} N" for l in r.bearing_loads)
     notes.append(f"Bearing loads from the statics: {loads}.")
+    notes += [f"{n[0].upper()}{n[1:]}." for n in out["bearing_notes"]]
+    notes += [f"Warning: {w}." for w in out["warnings"]]
     if math.isfinite(r.onset_speed_rpm):
         notes.append(f"First to whirl: {r.first_mode} from {r.onset_speed_rpm:,.0f} rpm at "
                      f"{r.onset_whirl_frequency_hz:.4g} Hz; the top speed {top:,.0f} rpm is "
