@@ -214,7 +214,7 @@ def test_orbit_json_contract(tmp_path):
     assert data["verdict"] == "unstable" and data["growth_rate"] > 0
     assert png.is_file() and csv.read_text().startswith("tau,x,y,eccentricity")
     # off a terminal: one status line (gfbopt.progress), no bar; stdout is the JSON alone
-    assert out.stderr.startswith("gfbopt: orbit 100/100 %") and out.stderr.count("\n") == 1
+    assert out.stderr.startswith("gfbopt: orbit 100 %,") and out.stderr.count("\n") == 1
 
 
 def test_critical_mass_json_contract():

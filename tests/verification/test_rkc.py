@@ -301,7 +301,7 @@ def test_cli_defaults_to_rkc_and_keeps_stdout_json(capsys):
     code, out, err = _cli(capsys, "orbit", *OP, "--mass", "2.5", "--revolutions", "2",
                           "--json")
     data = json.loads(out)
-    assert code == 0 and err.startswith("gfbopt: orbit 100/100 %") and err.count("\n") == 1
+    assert code == 0 and err.startswith("gfbopt: orbit 100 %,") and err.count("\n") == 1
     assert data["method"] == "rkc" and data["success"]
     code, out, err = _cli(capsys, "critical-mass", *OP, "--json")
     data = json.loads(out)
