@@ -224,13 +224,13 @@ def _imbalance_lines(ir: dict) -> list:
         text = (f"  imbalance response peak at {name}: {p['peak_amplitude_um']:.3g} µm at "
                 f"{p['peak_speed_rpm']:,.0f} rpm")
         if p["above_first_onset"]:
-            text += " — above the first onset, not physical"
+            text += " — where the rotor is unstable, not physical"
             if math.isfinite(p["largest_below_onset_um"]):
                 text += (f"; largest below the onset {p['largest_below_onset_um']:.3g} µm at "
                          f"{p['largest_below_onset_rpm']:,.0f} rpm")
         lines.append(text)
     if math.isfinite(ir["unstable_from_rpm"]):
-        lines.append(f"    above {ir['unstable_from_rpm']:,.0f} rpm (the first onset) the "
-                     "linear response is that of an unstable rotor, not an orbit that would be "
-                     "observed (shaded in the figure)")
+        lines.append(f"    above {ir['unstable_from_rpm']:,.0f} rpm the rotor is unstable: the "
+                     "linear response there is not an orbit that would be observed (shaded in "
+                     "the figure)")
     return lines

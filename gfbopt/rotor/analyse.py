@@ -119,9 +119,10 @@ def imbalance_note(unstable_from_rpm: float) -> str:
     text = ("synchronous response from the bearings' impedance at the running speed (γ = 1)")
     if not math.isfinite(unstable_from_rpm):
         return text + "; the rotor is stable over the range"
-    return (text + f"; above the first onset ({unstable_from_rpm:,.0f} rpm) it is the linear "
-            "response of an unstable rotor, not an orbit that would be observed: not physical "
-            "there (peaks there are flagged above_first_onset; the figure shades that range)")
+    return (text + f"; above {unstable_from_rpm:,.0f} rpm, where the rotor is unstable, it is "
+            "the linear response of an unstable rotor, not an orbit that would be observed: "
+            "not physical there (peaks there are flagged above_first_onset; the figure shades "
+            "that range)")
 
 
 def _shape_columns(shape: dict) -> dict:

@@ -107,11 +107,13 @@ def run_rotor(study: Study, plan: dict, ctx: RunContext) -> StudyResult:
 
 def _campbell_check(result) -> dict:
     """Campbell below/above the first onset against the matched-whirl onset (a count of
-    speeds where they disagree, 0 expected)."""
+    speeds where they disagree, 0 expected); a rotor unstable at the lowest speed is unstable
+    from there."""
+    from ..rotor.analyse import unstable_from
     from . import checks
 
     table = result.campbell.table
-    onset = result.onsets.onset_speed_rpm
+    onset = unstable_from(result.onsets, result.onsets.speed_range_rpm[0])
     worst = table.groupby("speed_rpm")["log_decrement"].min()
     if math.isfinite(onset):
         # speeds within 1 % of the onset are left out (the onset's tolerance and the grid)
@@ -177,10 +179,12 @@ def _notes(result, plain, out: dict, top: float) -> list:
     for station, p in result.imbalance.peaks.items():
         notes.append(f"Imbalance response at {station}: peak {p['peak_amplitude_um']:.3g} µm at "
                      f"{p['peak_speed_rpm']:,.0f} rpm" + (
-                         f", above the first onset: not physical (largest below the onset "
-                         f"{p['largest_below_onset_um']:.3g} µm at "
+                         ", where the rotor is unstable: not physical" if p["above_first_onset"]
+                         else "") + (
+                         f" (largest below the onset {p['largest_below_onset_um']:.3g} µm at "
                          f"{p['largest_below_onset_rpm']:,.0f} rpm)"
-                         if p["above_first_onset"] else "") + ".")
+                         if p["above_first_onset"] and math.isfinite(
+                             p["largest_below_onset_um"]) else "") + ".")
     notes.append(f"The imbalance response: {imbalance_note(result.imbalance.unstable_from_rpm)}.")
     least = result.campbell.least_stable()
     notes.append(f"Campbell diagram: least log decrement {least['log_decrement']:.3g} "

@@ -69,7 +69,7 @@ def test_peaks_above_the_onset_are_flagged_in_json_and_text():
     out = json.loads(run_cli(*args, "--json").stdout)
     ir, onset = out["imbalance_response"], out["onset_speed_rpm"]
     assert 5000 < onset < 25000 and ir["unstable_from_rpm"] == onset
-    assert f"above the first onset ({onset:,.0f} rpm)" in ir["note"]
+    assert f"above {onset:,.0f} rpm, where the rotor is unstable" in ir["note"]
     assert "not physical" in ir["note"]
     assert ir["peaks"]
     for p in ir["peaks"].values():
@@ -80,8 +80,8 @@ def test_peaks_above_the_onset_are_flagged_in_json_and_text():
     text = run_cli(*args).stdout
     for name, p in ir["peaks"].items():
         line = [ln for ln in text.splitlines() if f"peak at {name}:" in ln][0]
-        assert ("above the first onset, not physical" in line) == p["above_first_onset"]
-    assert f"above {onset:,.0f} rpm (the first onset) the linear response" in text
+        assert ("where the rotor is unstable, not physical" in line) == p["above_first_onset"]
+    assert f"above {onset:,.0f} rpm the rotor is unstable: the linear response there" in text
 
 
 # ------------------------------------------------------------ a bearing pulled upwards
