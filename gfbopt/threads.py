@@ -111,14 +111,16 @@ def solver_threads() -> Iterator[None]:
         yield
         return
     token = _INSIDE.set(True)
-    limit = not user_set_threads()
-    if limit:
-        _PROCESS.acquire()
     try:
-        yield
-    finally:
+        limit = not user_set_threads()
         if limit:
-            _PROCESS.release()
+            _PROCESS.acquire()
+        try:
+            yield
+        finally:
+            if limit:
+                _PROCESS.release()
+    finally:
         _INSIDE.reset(token)
 
 

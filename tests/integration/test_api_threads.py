@@ -46,7 +46,14 @@ result = rotor_onsets(load_rotor("problems/rotors/blower.toml"), (8000, 16000),
                       grid=Grid(24, 8), show_progress=False)
 after_analysis = counts()
 factor(sp.csc_matrix(np.array([[4.0, 1.0], [1.0, 3.0]])))      # the sparse LU called alone
-print(json.dumps({"before": before, "after_analysis": after_analysis, "after": counts(),
+after_lu = counts()
+raised = False
+try:                                       # a call that raises inside the limit
+    rotor_onsets(load_rotor("problems/rotors/blower.toml"), (9000, 8000), grid=Grid(24, 8))
+except ValueError:
+    raised = True
+print(json.dumps({"before": before, "after_analysis": after_analysis, "after_lu": after_lu,
+                  "after": counts(), "raised": raised,
                   "seen": {k: sorted(v) for k, v in seen.items()},
                   "onset": result.onset_speed_rpm}))
 """
@@ -67,7 +74,8 @@ def test_one_blas_thread_inside_library_calls_and_the_users_setting_after():
     assert limited["before"] == [3]
     assert set(limited["seen"]) == {"eigvals", "splu"}, limited["seen"]
     assert limited["seen"] == {"eigvals": [1], "splu": [1]}
-    assert limited["after_analysis"] == [3] and limited["after"] == [3]
+    assert limited["raised"]
+    assert limited["after_analysis"] == limited["after_lu"] == limited["after"] == [3]
     # a user who chose the count in the environment keeps what they have inside gfbopt
     # too, and the answer is the same to round-off whichever count the solves ran with
     chosen = _run(3, OPENBLAS_NUM_THREADS="2", OMP_NUM_THREADS="2")
