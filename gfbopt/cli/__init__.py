@@ -56,13 +56,12 @@ def build_parser() -> Parser:
 
 
 def _limit_threads() -> None:
-    """One BLAS thread unless the user set one: gfbopt's linear algebra is many small sparse
-    factorisations, which multi-threaded BLAS slows 10–100× on small machines."""
-    if not any(os.environ.get(v) for v in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS",
-                                           "MKL_NUM_THREADS")):
-        from threadpoolctl import threadpool_limits
+    """One BLAS thread for the whole command unless the user set one (:mod:`gfbopt.threads`,
+    the mechanism the library's own calls use): gfbopt's linear algebra is many small sparse
+    factorisations and dense solves, which multi-threaded BLAS slows 10–100× on small machines."""
+    from ..threads import pin_threads
 
-        threadpool_limits(1)
+    pin_threads()
 
 
 #: options naming a file or a folder a command writes (checked before anything is solved);
