@@ -22,8 +22,8 @@ one name per mode in the text, JSON, CSV and figures, :mod:`gfbopt.rotor.trackin
 ``imbalance_response`` (``unstable_from_rpm``; each peak's ``above_first_onset``: the linear
 response there is not physical), ``imbalance_planes``, ``conventions`` and ``provenance``.
 
-Speed ranges: HIGH/LOW ≤ 1000 and every bearing's surface speed ω R between 0.1 m/s (at
-LOW) and 343 m/s (at HIGH) (:func:`gfbopt.rotor.analyse.check_speed_span`).
+Speed ranges: HIGH/LOW ≤ 1000, and speeds every bearing can run at (surface speed and bearing
+number, :func:`gfbopt.rotor.analyse.check_speed_span`).
 """
 from __future__ import annotations
 

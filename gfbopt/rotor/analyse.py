@@ -21,9 +21,9 @@ import numpy as np
 import pandas as pd
 
 from ..errors import ParameterError
-from ..inputs.conversions import rpm_to_rad_per_s
 from ..inputs.grid import DEFAULT_GRID, Grid
 from ..inputs.options import ModelOptions
+from ..inputs.rotor_limits import check_rotor_speeds
 from ..inputs.rotor_system import RotorSystem
 from ..static import SolverCache
 from .analysis import plausibility
@@ -37,13 +37,6 @@ from .system import RotorOnsets, SpeedLine, rotor_onsets
 
 #: the widest speed range analysed at once: HIGH/LOW at most this [-]
 MAX_SPEED_RATIO = 1000.0
-#: the fastest surface speed ω R of a bearing analysed [m/s]: the speed of sound in air at
-#: 20 °C — the film model is isothermal and subsonic
-MAX_SURFACE_SPEED = 343.0
-#: the slowest surface speed ω R analysed [m/s]: a gas film dragged this slowly carries a
-#: rotor's load only far below any surface roughness (the blower at 0.6 m/s, 300 rpm: 0.23 µm
-#: at 24 × 8), so an answer there means nothing (and its statics are slow to solve)
-MIN_SURFACE_SPEED = 0.1
 #: speeds of the Campbell diagram and of the imbalance response by default
 CAMPBELL_SPEEDS = 20
 IMBALANCE_SPEEDS = 40
@@ -163,27 +156,16 @@ def load_notes(onsets: RotorOnsets) -> list:
 def check_speed_span(speed_range, system: Optional[RotorSystem] = None,
                      name: str = "speed_range") -> tuple[float, float]:
     """(low, high) [rpm] of a speed range the rotor analyses can mean: 0 < low < high,
-    high/low ≤ :data:`MAX_SPEED_RATIO` and, with ``system``, every bearing's surface speed
-    ω R ≤ :data:`MAX_SURFACE_SPEED` at ``high`` and ≥ :data:`MIN_SURFACE_SPEED` at ``low``
-    (ParameterError naming ``name``)."""
+    high/low ≤ :data:`MAX_SPEED_RATIO` and, with ``system``, speeds every bearing can run at
+    (:func:`gfbopt.inputs.rotor_limits.check_rotor_speeds`: surface speed and bearing number);
+    one ParameterError naming ``name``."""
     low, high = check_speed_range(speed_range)
     if high / low > MAX_SPEED_RATIO:
         raise ParameterError(name, [low, high], f"HIGH/LOW = {high / low:.3g} exceeds "
                              f"{MAX_SPEED_RATIO:g}: one analysis spans at most "
                              f"{MAX_SPEED_RATIO:g}× in speed")
-    for support in (system.bearings if system is not None else ()):
-        slow = rpm_to_rad_per_s(low) * support.geometry.radius
-        if slow < MIN_SURFACE_SPEED:
-            raise ParameterError(name, [low, high], f"bearing {support.name}'s surface speed "
-                                 f"ω R = {slow:.3g} m/s at {low:.6g} rpm is below "
-                                 f"{MIN_SURFACE_SPEED:g} m/s: no gas film that slow carries "
-                                 "a load above surface roughness")
-        surface = rpm_to_rad_per_s(high) * support.geometry.radius
-        if surface > MAX_SURFACE_SPEED:
-            raise ParameterError(name, [low, high], f"bearing {support.name}'s surface speed "
-                                 f"ω R = {surface:.4g} m/s at {high:.6g} rpm exceeds "
-                                 f"{MAX_SURFACE_SPEED:g} m/s, the speed of sound in air: the "
-                                 "isothermal, subsonic film model means nothing there")
+    if system is not None:
+        check_rotor_speeds(system, (low, high), name)
     return low, high
 
 
