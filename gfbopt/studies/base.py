@@ -46,11 +46,15 @@ DEFAULT_RESULTS = "runs"
 @dataclass(frozen=True)
 class RunContext:
     """How to run: number of worker processes, an optional progress callback (fraction
-    done) and the results folder (where sampled studies keep their store)."""
+    done), the results folder (where sampled studies keep their store) and, for a kind that
+    writes its own folder (``Kind.writes``), whether to write it (``write``, over files it
+    did not write when ``force``)."""
 
     workers: int = 1
     progress: Optional[Callable[[float], None]] = None
     results_root: str = DEFAULT_RESULTS
+    write: bool = False
+    force: bool = False
 
 
 @dataclass(frozen=True, eq=False)
@@ -211,11 +215,14 @@ def frame(rows: list, columns_first: tuple = (), ensure: tuple = ()) -> pd.DataF
 @dataclass(frozen=True)
 class Kind:
     """A study kind: ``plan(study)`` builds its points (no solving), ``run(study, plan,
-    context)`` computes; ``parallel`` kinds use the process pool."""
+    context)`` computes; ``parallel`` kinds use the process pool; a kind that ``writes``
+    writes its folder itself inside its run when ``context.write`` (the design study, whose
+    store lock must cover the writing)."""
 
     plan: Callable
     run: Callable
     parallel: bool = False
+    writes: bool = False
 
 
 @dataclass(frozen=True)

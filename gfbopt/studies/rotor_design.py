@@ -277,7 +277,7 @@ def _run(study: Study, plan_, context: RunContext) -> StudyResult:
     """``gfbopt run``/``run_study``: a fresh store in the results folder, the run's pool."""
     root = getattr(context, "results_root", "results")
     return run_design(LoadedStudy(study, plan_), root, workers=context.workers,
-                      progress=context.progress, write=False)
+                      progress=context.progress, write=context.write, force=context.force)
 
 
-KINDS = {"rotor_bearing_design": Kind(plan, _run, parallel=True)}
+KINDS = {"rotor_bearing_design": Kind(plan, _run, parallel=True, writes=True)}

@@ -114,12 +114,14 @@ def read_study_file(path: Union[str, Path]) -> dict:
 
 def compute(loaded: LoadedStudy, *, workers: int = 1,
             progress: Optional[Callable[[float], None]] = None,
-            results_root: Union[str, Path] = DEFAULT_RESULTS) -> StudyResult:
+            results_root: Union[str, Path] = DEFAULT_RESULTS, write: bool = False,
+            force: bool = False) -> StudyResult:
     """Run a loaded study and return its results (nothing is written, except the store of
-    a sampled study, kept in ``results_root/NAME/store/``)."""
+    a sampled or design study, kept in ``results_root/NAME/store/``; with ``write`` a kind
+    that writes its own folder, ``Kind.writes``, writes it inside its run)."""
     kind = KINDS[loaded.study.kind]
     context = RunContext(workers=workers if kind.parallel else 1, progress=progress,
-                         results_root=str(results_root))
+                         results_root=str(results_root), write=write, force=force)
     t0 = time.perf_counter()
     result = kind.run(loaded.study, loaded.plan, context)
     return replace(result, wall_time_s=time.perf_counter() - t0)
@@ -133,12 +135,14 @@ def run_study(path: Union[str, Path, LoadedStudy],
 
     The folder is checked before computing (writable, not a symlink out of
     ``results_root``, no file gfbopt did not write unless ``force``; :mod:`.output`).
-    Returns the :class:`StudyResult` (``passed``, ``agreement``, tables, checks).
+    Returns the :class:`StudyResult` (``checks_hold``, ``agreement``, tables, checks).
     """
     loaded = path if isinstance(path, LoadedStudy) else load_study(path)
     prepare_output(Path(results_root), loaded.study.name, force=force)
-    result = compute(loaded, workers=workers, progress=progress, results_root=results_root)
-    write_result(result, Path(results_root), force=force)
+    result = compute(loaded, workers=workers, progress=progress, results_root=results_root,
+                     write=True, force=force)
+    if not KINDS[loaded.study.kind].writes:      # a kind that writes did so inside its run
+        write_result(result, Path(results_root), force=force)
     return result
 
 

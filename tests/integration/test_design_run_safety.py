@@ -255,3 +255,35 @@ def test_the_orbit_at_the_top_speed_reports_its_revolutions(study):
                                seen.append)
     assert seen and seen == sorted(seen) and 0.0 < seen[-1] <= 1.0
     assert seen[-1] == 1.0 or whirl["contact"]
+
+
+def test_the_python_api_holds_the_lock_while_it_writes(study, tmp_path, monkeypatch):
+    """``gfbopt.studies.run_study`` (the Python route) writes the design's folder inside the
+    run, under the store's lock, as ``gfbopt run`` does: a second run started while the
+    first writes its files is refused (exit 2) and the first run's store is untouched.  The
+    previous runner wrote the files after the lock was released, and the second run was
+    accepted."""
+    import gfbopt.studies.report as report_module
+    import gfbopt.studies.runner as runner
+    from gfbopt.studies.runner import run_study
+
+    results = tmp_path / "results"
+    second = []
+
+    def intruder(real):
+        def wrapped(*args, **kwargs):
+            if not second:
+                second.append(run_cli("run", study, "--results", results, "--workers", "1"))
+            return real(*args, **kwargs)
+        return wrapped
+
+    monkeypatch.setattr(report_module, "write_result", intruder(report_module.write_result))
+    monkeypatch.setattr(runner, "write_result", intruder(runner.write_result))
+    result = run_study(study, results)
+    assert result.checks_hold
+    assert len(second) == 1
+    assert second[0].returncode == 2, (second[0].stdout, second[0].stderr)
+    assert "is being written by another gfbopt run" in second[0].stderr
+    assert not list(results.glob("rd_safety/store.previous-*"))
+    assert (results / "rd_safety" / "summary.json").exists()
+    assert len(read_results(results / "rd_safety" / "store")) == 8
