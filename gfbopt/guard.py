@@ -155,7 +155,8 @@ def scan_count(low, high) -> Optional[int]:
         return None
     if not (math.isfinite(low) and math.isfinite(high) and 0 < low < high):
         return None
-    return max(2, math.ceil(math.log(high / low) / math.log(SCAN_RATIO) - 1e-9) + 1)
+    span = math.log(high) - math.log(low)       # not log(high/low): 1e300/1e-300 overflows
+    return max(2, math.ceil(span / math.log(SCAN_RATIO) - 1e-9) + 1)
 
 
 def orbit_steps(revolutions: float, time_step: Optional[float]) -> float:

@@ -81,8 +81,8 @@ def check_command(args) -> None:
                                       what="frequencies"))
         if command == "stability":
             parts += _scan(args, grid, 1)
+    _top_speed(args)              # a range no model can run is refused as such, not as work
     guard.check(parts, check)
-    _top_speed(args)
 
 
 def _scan(args, grid: Grid, bearings: int) -> list:
@@ -128,7 +128,9 @@ def _rotor(args, grid: Grid) -> list:
 
 
 def _top_speed(args) -> None:
-    """A top speed beyond the model's Λ limit refused before the scan below it."""
+    """A speed range beyond the model's limits (Λ at the top speed; for a rotor also the
+    surface speed and Λ at the lowest speed, :func:`~gfbopt.inputs.rotor_limits.check_rotor_speeds`)
+    refused before its cost is estimated and before the scan below it."""
     span = getattr(args, "speed_range", None)
     if not span or guard.scan_count(*span) is None:
         return
@@ -137,11 +139,10 @@ def _top_speed(args) -> None:
 
         if rotor_time.requested(args):
             return
+        from ..inputs.rotor_limits import check_rotor_speeds
         from ..inputs.rotor_system import load_rotor
 
-        system = load_rotor(args.rotor_file)
-        guard.top_speed([(b.name, b.geometry) for b in system.bearings], span[1],
-                        "--speed-range")
+        check_rotor_speeds(load_rotor(args.rotor_file), span)
     elif args.command == "stability" and getattr(args, "bearing", None):
         from ..inputs import load_bearing
 
