@@ -26,6 +26,7 @@ from ..inputs.options import ModelOptions
 from ..inputs.rotor_limits import check_rotor_speeds
 from ..inputs.rotor_system import RotorSystem
 from ..static import SolverCache
+from ..threads import single_threaded
 from .analysis import plausibility
 from .campbell import system_modes
 from .diagrams import (CampbellDiagram, ImbalanceResponse, campbell_diagram, half_mass_onsets,
@@ -212,6 +213,7 @@ def modes_at_speed(line: SpeedLine, speed_rpm: float) -> dict:
                            for c in line.crossings(speed_rpm)]}
 
 
+@single_threaded
 def analyse_rotor(system: RotorSystem, speed_range, *, speed_rpm: Optional[float] = None,
                   campbell: bool = False, imbalance: bool = False, half_mass: bool = False,
                   grid: Grid = DEFAULT_GRID, options: Optional[ModelOptions] = None,

@@ -47,6 +47,7 @@ import scipy.sparse.linalg as spla
 from ..errors import ParameterError
 from ..linear.model import impedance
 from ..sparse_lu import Factoriser, factor
+from ..threads import single_threaded
 from .modes import shape
 from .rigid import gyroscopic_matrix, mass_matrix
 from .supports import RotorCase, SpeedStates
@@ -271,6 +272,7 @@ def _secant(f, guess: complex, tol: float = 1e-11, max_iter: int = 40) -> Option
     return None
 
 
+@single_threaded
 def system_modes(rotor: RotorCase, states: SpeedStates, inertia_scale: float = 1.0,
                  reference_whirl: Optional[float] = None, guesses=()) -> list:
     """The rotor's modes at one speed, lowest whirl ratio first.

@@ -34,6 +34,7 @@ from scipy.optimize import minimize_scalar
 from ..errors import ParameterError
 from ..inputs.conversions import rpm_to_rad_per_s
 from ..progress import progress
+from ..threads import single_threaded
 from .campbell import system_modes
 from .tracking import assign, guesses, name_tracks
 from .onset import onset_speed
@@ -74,6 +75,7 @@ def reference_whirl(line: SpeedLine, speed: float) -> float:
     return found[0].whirl_ratio if found else FALLBACK_REFERENCE_WHIRL
 
 
+@single_threaded
 def campbell_diagram(line: SpeedLine, speeds, show_progress: bool = True,
                      onsets=None) -> CampbellDiagram:
     """The Campbell diagram at ``speeds`` [rpm] (module docstring).  ``onsets``: the
@@ -158,6 +160,7 @@ def _row(speed, name, pos, xy) -> dict:
             "backward_radius_um": b * 1e6}
 
 
+@single_threaded
 def imbalance_response(line: SpeedLine, speeds, show_progress: bool = True,
                        refine_peaks: bool = True,
                        unstable_from_rpm: float = math.nan) -> ImbalanceResponse:
@@ -206,6 +209,7 @@ def imbalance_response(line: SpeedLine, speeds, show_progress: bool = True,
     return ImbalanceResponse(table, peaks, skipped, unstable_from_rpm)
 
 
+@single_threaded
 def half_mass_onsets(line: SpeedLine, speed_range, show_progress: bool = False) -> list:
     """Each bearing alone with its share of mass and load (module docstring): one dict per
     bearing (bearing, mass_share_kg, load_newton, onset_speed_rpm, whirl_frequency_hz,

@@ -35,6 +35,7 @@ def probe(name, real):
 
 np.linalg.eigvals = probe("eigvals", np.linalg.eigvals)
 spla.splu = probe("splu", spla.splu)
+spla.eigs = probe("eigs", spla.eigs)          # ARPACK: the Campbell diagram's modes
 
 from gfbopt.inputs.grid import Grid
 from gfbopt.inputs.rotor_system import load_rotor
@@ -45,6 +46,10 @@ before = counts()
 result = rotor_onsets(load_rotor("problems/rotors/blower.toml"), (8000, 16000),
                       grid=Grid(24, 8), show_progress=False)
 after_analysis = counts()
+from gfbopt.rotor.analyse import analyse_rotor   # the Campbell diagram's path too
+analyse_rotor(load_rotor("problems/rotors/blower.toml"), (8000, 16000), campbell=True,
+              campbell_speeds=2, grid=Grid(24, 8), show_progress=False)
+after_campbell = counts()
 factor(sp.csc_matrix(np.array([[4.0, 1.0], [1.0, 3.0]])))      # the sparse LU called alone
 after_lu = counts()
 raised = False
@@ -53,6 +58,7 @@ try:                                       # a call that raises inside the limit
 except ValueError:
     raised = True
 print(json.dumps({"before": before, "after_analysis": after_analysis, "after_lu": after_lu,
+                  "after_campbell": after_campbell,
                   "after": counts(), "raised": raised,
                   "seen": {k: sorted(v) for k, v in seen.items()},
                   "onset": result.onset_speed_rpm}))
@@ -72,15 +78,16 @@ def test_one_blas_thread_inside_library_calls_and_the_users_setting_after():
     # a program that asked for 3 threads: gfbopt's solves see 1, the program 3 again after
     limited = _run(3)
     assert limited["before"] == [3]
-    assert set(limited["seen"]) == {"eigvals", "splu"}, limited["seen"]
-    assert limited["seen"] == {"eigvals": [1], "splu": [1]}
+    assert set(limited["seen"]) == {"eigvals", "splu", "eigs"}, limited["seen"]
+    assert limited["seen"] == {"eigvals": [1], "splu": [1], "eigs": [1]}
     assert limited["raised"]
-    assert limited["after_analysis"] == limited["after_lu"] == limited["after"] == [3]
+    assert (limited["after_analysis"] == limited["after_campbell"] == limited["after_lu"]
+            == limited["after"] == [3])
     # a user who chose the count in the environment keeps what they have inside gfbopt
     # too, and the answer is the same to round-off whichever count the solves ran with
     chosen = _run(3, OPENBLAS_NUM_THREADS="2", OMP_NUM_THREADS="2")
     assert chosen["before"] == [3]
-    assert chosen["seen"] == {"eigvals": [3], "splu": [3]}
+    assert chosen["seen"] == {"eigvals": [3], "splu": [3], "eigs": [3]}
     assert chosen["after"] == [3]
     assert 8000 < limited["onset"] < 16000
     assert abs(chosen["onset"] / limited["onset"] - 1) <= 1e-12
