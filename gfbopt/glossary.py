@@ -20,7 +20,8 @@ import re
 GLOSSARY: dict[str, tuple[str, str]] = {
     # ---------------------------------------------------------------- labels
     "variant": ("text", "label of the model variant (formulation) within the study"),
-    "label": ("text", "label of the operating point or case within the study"),
+    "label": ("text", "label of the operating point or case within the study; in a rotor's "
+              "tables (modes, threshold scan) the mode's name, as track_label"),
     "against": ("text", "the variant whose curve is crossed"),
     "variable": ("text", "the swept input (a column name of this glossary)"),
     "where": ("text", "table or figure of the published source the value is read from"),
@@ -306,9 +307,13 @@ for _name, _entry in {
     "station": ("text", "axial station of the rotor: a bearing or a named station"),
     "position_m": ("m", "axial position from the rotor's centre of gravity"),
     "mode": ("-", "number of the mode tracked over speed in the Campbell diagram"),
-    "track_label": ("text", "the tracked mode's name: its label where its log decrement "
-                    "falls through zero (the matched-whirl onset's label), else where it is "
-                    "least stable"),
+    "track_label": ("text", "the mode's name, the same in the text, JSON, CSV and figures: "
+                    "the label of the matched-whirl onset at which the track loses its "
+                    "damping, else its shape class; ' (2)', ' (3)' when another track has "
+                    "that name (gfbopt.rotor.tracking)"),
+    "shape_label": ("text", "shape class of the tracked mode at this speed: forward/backward, "
+                    "cylindrical/conical/mixed; it may change along a track, whose name is "
+                    "track_label"),
     "track_zero_rpm": ("rpm", "where the tracked mode's log decrement falls through zero, "
                        "interpolated between the diagram's speeds (empty: it does not)"),
     "note": ("text", "why the mode is unstable for every inertia scale (μ_c = 0: the "
