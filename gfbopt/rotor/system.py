@@ -204,12 +204,12 @@ def rotor_onsets(system: RotorSystem, speed_range, *, grid: Grid = DEFAULT_GRID,
                        line.whirl_range) if guide_grid is not None else None)
     scan_line = guide or line
     speeds = scan_speeds(low, high)
-    with progress(total=len(speeds), desc="rotor onset scan", unit="speed",
-                  enabled=show_progress) as bar:
+    with progress(total=len(speeds), desc=f"rotor onset scan on {scan_line.rotor.grid}",
+                  unit="speed", enabled=show_progress) as bar:
         for speed in speeds:
             scan_line.crossings(speed)
             bar.update(1)
-    modes = _modes(line, guide, speeds, speed_tolerance, method)
+    modes = _modes(line, guide, speeds, speed_tolerance, method, show_progress)
     modes.sort(key=lambda m: (math.isnan(m.onset_speed_rpm), m.onset_speed_rpm, m.label))
     first = next((m for m in modes if m.status == ONSET), None)
     low_unstable = [m.label for m in modes if m.status == UNSTABLE_LOW]
@@ -242,29 +242,45 @@ def rotor_onsets(system: RotorSystem, speed_range, *, grid: Grid = DEFAULT_GRID,
 
 
 def _modes(line: SpeedLine, guide: Optional[SpeedLine], speeds: list, tol: float,
-           method: str) -> list:
+           method: str, show_progress: bool = False) -> list:
     """Every mode's onset: on ``line`` alone, or guided by the coarse ``guide``'s scan (a
     mode the fine grid contradicts is searched on ``line`` alone; a bearing over capacity
-    on either grid: everything on ``line`` alone)."""
+    on either grid: everything on ``line`` alone).  The refinement after the scan is a stage
+    of its own in the progress (one step a mode; on a fine grid it is most of the work)."""
     def fine_alone(label):
         valid = [s for s in speeds if line.crossings(s) is not None]
         return mode_onset(line, valid, label, tol, method)
+
+    def refined(labels, search) -> list:
+        out = []
+        with progress(total=len(labels), desc=f"rotor onset refinement on {line.rotor.grid}",
+                      unit="mode", enabled=show_progress) as bar:
+            for label in labels:
+                out.append(search(label))
+                bar.update(1)
+        return out
 
     if guide is not None and all(guide.crossings(s) is not None for s in speeds) and \
             line.crossings(speeds[0]) is not None:
         labels = sorted({c.label for s in speeds for c in guide.crossings(s)}
                         | {c.label for c in line.crossings(speeds[0])})
-        out = []
-        for label in labels:
+
+        def guided(label):
             found = guided_onset(line, guide, speeds, label, tol)
-            out.append(found if found is not None else fine_alone(label))
+            return found if found is not None else fine_alone(label)
+
+        out = refined(labels, guided)
         if not any(line.states(s).failure for s in line.speeds_solved):
             return out
-    for speed in speeds:
-        line.crossings(speed)
+    if guide is not None:                 # the fine grid's own scan (on line: done above)
+        with progress(total=len(speeds), desc=f"rotor onset scan on {line.rotor.grid}",
+                      unit="speed", enabled=show_progress) as bar:
+            for speed in speeds:
+                line.crossings(speed)
+                bar.update(1)
     valid = [s for s in speeds if line.crossings(s) is not None]
     labels = sorted({c.label for s in valid for c in line.crossings(s)})
-    return [fine_alone(label) for label in labels]
+    return refined(labels, fine_alone)
 
 
 def without_gyroscopics(system: RotorSystem) -> RotorSystem:
