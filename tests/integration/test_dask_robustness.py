@@ -136,3 +136,70 @@ def test_a_lost_scheduler_stops_the_run_in_one_line_and_resume_finishes(tmp_path
     assert done.returncode == 0, done.stderr
     frame = read_results(results / "dasky" / "store")
     assert sorted(frame["point"]) == list(range(80)) and frame["success"].all()
+
+
+def square(x):
+    """A task's function (module level: the workers import it)."""
+    return x * x
+
+
+def die_at_seven(argument):
+    """``value ** 2``, but the worker process kills itself at value 7 (only once when a
+    marker path is given: the marker records the first death)."""
+    value, marker = argument
+    if value == 7 and (marker is None or not os.path.exists(marker)):
+        if marker is not None:
+            Path(marker).write_text("killed")
+        os.kill(os.getpid(), signal.SIGKILL)
+    return value * value
+
+
+def test_chunks_travel_in_few_tasks_and_every_result_comes_once():
+    """400 chunks in at most 60 Dask tasks (the old stream_dask sent 400, one client.submit
+    each) and every (k, result) once, right."""
+    from gfbopt.cluster import stream_dask
+
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=False,
+                                  dashboard_address=":0") as cluster, \
+            distributed.Client(cluster) as client:
+        sent = []
+        for name in ("map", "submit"):
+            def counting(*args, _original=getattr(client, name), **kwargs):
+                futures = _original(*args, **kwargs)
+                sent.append(len(futures) if isinstance(futures, list) else 1)
+                return futures
+            setattr(client, name, counting)
+        seen = {}
+        for k, result in stream_dask(square, list(range(400)), client, tick=0.2):
+            if k is not None:
+                assert k not in seen
+                seen[k] = result
+    assert seen == {k: k * k for k in range(400)}
+    assert 1 < sum(sent) <= 60, sent
+
+
+@pytest.mark.slow  # a cluster of processes and four worker deaths (about 20 s)
+def test_a_killed_worker_is_retried_and_a_chunk_that_always_kills_is_reported():
+    """KilledWorker (allowed-failures = 0: the first death of a worker under a task) is sent
+    again; a chunk that kills every worker it runs on ends as InfrastructureFailure after
+    the retries, and the chunks beside it are still computed."""
+    import dask
+
+    from gfbopt.cluster import stream_dask
+    from gfbopt.parallel import InfrastructureFailure
+
+    marker = str(Path(os.environ.get("TMPDIR", "/tmp")) / f"gfbopt-die-{os.getpid()}")
+    Path(marker).unlink(missing_ok=True)
+    with dask.config.set({"distributed.scheduler.allowed-failures": 0}), \
+            distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
+                                     dashboard_address=":0") as cluster, \
+            distributed.Client(cluster) as client:
+        once = dict(stream_dask(die_at_seven, [(v, marker) for v in range(24)], client))
+        always = dict(stream_dask(die_at_seven, [(v, None) for v in range(24)], client,
+                                  retries=2))
+    Path(marker).unlink(missing_ok=True)
+    assert once == {k: k * k for k in range(24)}
+    failed = sorted(k for k, r in always.items() if isinstance(r, InfrastructureFailure))
+    assert 7 in failed and len(failed) < 24 and "lost 3 times" in str(always[7])
+    assert all(always[k] == k * k for k in range(24) if k not in failed)
+    assert sorted(always) == list(range(24))

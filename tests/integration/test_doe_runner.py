@@ -167,15 +167,22 @@ def test_unreachable_scheduler_is_one_line_and_writes_nothing(tmp_path, monkeypa
 
 
 def test_dask_local_cluster_gives_the_process_pool_table(tmp_path):
+    """40 points in 20 chunks of 2: Dask sends them in fewer tasks (several whole chunks a
+    task, sized from the measured work) and the rows are the process pool's, exactly."""
     distributed = pytest.importorskip("distributed")
-    text = STUDY.format(n=8, chunk=2, batch=3, s_low=0.2)
+    text = STUDY.format(n=40, chunk=2, batch=3, s_low=0.2)
     loaded = study_from_dict(__import__("tomllib").loads(text), name="same", file="same.toml")
     run_sampled(loaded, tmp_path / "pool", workers=2)
     with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
                                   dashboard_address=":0") as cluster, \
             distributed.Client(cluster) as client:
+        sent = []
+        original = client.map
+        client.map = lambda *a, **k: sent.append(len(a[1])) or original(*a, **k)
         result = run_sampled(loaded, tmp_path / "dask", client=client)
     assert "dask" in result.options["executor"]
+    assert 1 < len(sent) and sum(sent) < 20, sent
     pool = _outputs(read_results(tmp_path / "pool" / "same" / "store"))
     dask = _outputs(read_results(tmp_path / "dask" / "same" / "store"))
-    pd.testing.assert_frame_equal(pool, dask, check_exact=False, rtol=1e-7)
+    assert len(pool) == 40 and pool["success"].all()
+    pd.testing.assert_frame_equal(pool, dask, check_exact=True)
