@@ -329,7 +329,9 @@ for _name, _entry in {
     "node_position_m": ("m", "axial position where the mode's whirl amplitude is least"),
     "phase_b_from_a_deg": ("deg", "phase of the dominant whirl at bearing B from bearing A "
                            "(0 cylindrical, ±180 conical)"),
-    "amplitude_um": ("µm", "major semi-axis of the synchronous orbit"),
+    "amplitude_um": ("µm", "synchronous amplitude: major semi-axis of the 1× orbit ellipse, "
+                     "(|X̂ + iŶ| + |X̂ − iŶ|)/2, the forward plus the backward radius (the "
+                     "rotor transient's sync_amplitude_um)"),
     "amplitude_x_um": ("µm", "amplitude of x (x = Re(X e^{iωt}))"),
     "amplitude_y_um": ("µm", "amplitude of y"),
     "phase_x_deg": ("deg", "phase of x against the rotor's reference mark"),
@@ -445,6 +447,10 @@ for _name, _entry in {
     "time_s": ("s", "time since the start of the run"),
     "shaft_angle_deg": ("deg", "shaft angle since the start of the run (the imbalance phase "
                         "origin)"),
+    "sync_amplitude_um": ("µm", "synchronous amplitude: major semi-axis of the order-tracked "
+                          "1× orbit ellipse over the window, (|X̂ + iŶ| + |X̂ − iŶ|)/2 (the "
+                          "linear imbalance response's amplitude_um); of an orbit, over its "
+                          "last window, ending at the record's end"),
     "sync_amplitude_x_um": ("µm", "order-tracked 1× amplitude of the journal's x (along "
                             "gravity), zero to peak"),
     "sync_phase_x_deg": ("deg", "phase of that 1× component: x peaks when the shaft angle is "
@@ -452,10 +458,13 @@ for _name, _entry in {
     "sync_amplitude_y_um": ("µm", "order-tracked 1× amplitude of the journal's y, zero to "
                             "peak"),
     "sync_phase_y_deg": ("deg", "phase of the 1× component of y"),
-    "sub_amplitude_um": ("µm", "largest subsynchronous spectral peak (0.05–0.95 × shaft "
-                         "speed), 1× removed, zero to peak"),
-    "sub_frequency_hz": ("Hz", "frequency of that peak (positive: forward whirl)"),
-    "sub_whirl_ratio": ("-", "that frequency over the shaft frequency"),
+    "sub_amplitude_um": ("µm", "largest subsynchronous spectral peak (a local maximum inside "
+                         "0.05–0.95 × shaft speed), 1× removed, zero to peak (empty: no peak "
+                         "inside the band)"),
+    "sub_frequency_hz": ("Hz", "frequency of that peak (positive: forward whirl; empty: no "
+                         "peak)"),
+    "sub_whirl_ratio": ("-", "that frequency over the shaft frequency, inside 0.05–0.95 "
+                        "(empty: no peak)"),
     "quantity": ("text", "what the row reports"),
     "value": ("-", "its value, in the unit named by the quantity"),
 }.items():
@@ -470,14 +479,21 @@ for _name, _entry in {
     "speed_over_linear_onset": ("-", "shaft speed over the rotor's linear onset speed"),
     "contact": ("flag", "the run ended in contact (film ≤ 0.02 c or foil travel exhausted)"),
     "contact_time_s": ("s", "time of contact since the start of the run (empty: none)"),
+    "limit_cycle_status": ("text", "subsynchronous whirl at a constant speed: 'limit cycle' "
+                           "(settled), 'growing', 'decaying', or 'none' (no subsynchronous "
+                           "peak of at least the threshold and 5× the band's noise floor: "
+                           "the other limit_cycle_ columns are empty)"),
     "limit_cycle_amplitude_um": ("µm", "subsynchronous whirl at a constant speed: largest "
                                  "distance of the orbit (1× removed) from its centre over "
-                                 "the last window"),
-    "limit_cycle_frequency_hz": ("Hz", "frequency of that whirl (positive: forward)"),
+                                 "the last window (empty: limit_cycle_status none)"),
+    "limit_cycle_frequency_hz": ("Hz", "frequency of that whirl (positive: forward; empty: "
+                                 "none)"),
+    "limit_cycle_whirl_ratio": ("-", "that frequency over the shaft frequency, inside "
+                                "0.05–0.95 (empty: none)"),
     "limit_cycle_settled": ("flag", "the whirl amplitude changed by ≤ the settle tolerance "
-                            "between the last two windows"),
+                            "between the last two windows (empty: no whirl)"),
     "limit_cycle_change": ("-", "relative change of the whirl amplitude between the last two "
-                           "windows"),
+                           "windows (empty: no whirl)"),
     "min_film_um": ("µm", "smallest film thickness over the run (0: the film closed)"),
     "revolutions": ("-", "shaft revolutions integrated"),
 }.items():

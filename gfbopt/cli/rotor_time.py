@@ -39,9 +39,10 @@ TRANSIENT_ONLY = {
     "kick": ("--kick", "the starting kick of a transient"),
     "reference_whirl_ratio": ("--reference-whirl-ratio", "the damped foil of a transient"),
     "foil_travel_um": ("--foil-travel-um", "the contact check of a transient"),
-    "window_revolutions": ("--window-revolutions", "the waterfall of a run-up/coast-down"),
-    "subsync_threshold_um": ("--subsync-threshold-um", "the waterfall of a "
-                             "run-up/coast-down"),
+    "window_revolutions": ("--window-revolutions", "the waterfall windows of a transient "
+                           "(an orbit's synchronous amplitude is its last window's)"),
+    "subsync_threshold_um": ("--subsync-threshold-um", "the subsynchronous threshold of a "
+                             "run-up's waterfall and an orbit's whirl"),
     "force": ("--force", "the revolution limit of a transient"),
 }
 #: the imbalance options: used by a transient and by --imbalance-response
@@ -95,10 +96,12 @@ def add_arguments(parser) -> None:
                    "not checked")
     g.add_argument("--window-revolutions", type=number("window-revolutions"), default=None,
                    help="waterfall window [revolutions at the mean speed; at most 1/10 of "
-                   f"the record] (default {WINDOW_REVOLUTIONS:g})")
+                   "a ramp, 1/2 of an orbit, whose synchronous amplitude is its last "
+                   f"window's] (default {WINDOW_REVOLUTIONS:g})")
     g.add_argument("--subsync-threshold-um", type=number("subsync-threshold-um"), default=None,
                    help="amplitude [µm] from which the subsynchronous line counts as present "
-                   "(default 2 %% of the clearance)")
+                   "(a ramp's appearance; an orbit's whirl, below it 'no subsynchronous "
+                   "whirl') (default 2 %% of the clearance)")
     g.add_argument("--force", action="store_true", help="run more than the revolution limit "
                    "(gfbopt.transient.rotor_analysis.MAX_REVOLUTIONS)")
 
@@ -305,6 +308,7 @@ def _emit(out: dict, as_json: bool, result) -> None:
     import json
 
     from ..provenance import jsonable, provenance
+    from ..transient.rotor_result import whirl_words
 
     if as_json:
         print(json.dumps(jsonable({**out, "provenance": provenance(**result.settings)})))
@@ -318,12 +322,13 @@ def _emit(out: dict, as_json: bool, result) -> None:
         text = (f"  bearing {b['bearing']}: load {b['load_newton']:.4g} N, min film "
                 f"{b['min_film_um']:.3g} µm at {b['min_film_speed_rpm']:,.0f} rpm "
                 f"(t = {b['min_film_time_s']:.4g} s)")
-        if "limit_cycle_amplitude_um" in b:
-            text += (f"; whirl {b['limit_cycle_amplitude_um']:.3g} µm at "
-                     f"{b['limit_cycle_frequency_hz']:.4g} Hz ("
-                     + ("settled" if b["limit_cycle_settled"] else
-                        f"not settled: {100 * b['limit_cycle_change']:+.2g} % over the last "
-                        "window") + ")")
+        if b.get("sync_amplitude_um") is not None:
+            text += f"; 1× {b['sync_amplitude_um']:.3g} µm (last window)"
+        if b.get("peak_amplitude_um") is not None:
+            text += (f"; 1× peak {b['peak_amplitude_um']:.3g} µm at "
+                     f"{b['peak_speed_rpm']:,.0f} rpm")
+        if "limit_cycle_status" in b:
+            text += "; " + whirl_words(b)
         lines.append(text)
     if p.kind != "orbit":
         lines.append(f"  subsynchronous line (≥ {out['subsync_threshold_um']:.3g} µm) appears "

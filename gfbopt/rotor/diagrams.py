@@ -16,9 +16,11 @@ answer.
   the column ``reference_whirl_ratio``; 1/2 when no mode crosses).
 * :func:`imbalance_response` — the synchronous response q̂ = D(iω)⁻¹ Q̂ (Ω = ω, γ = 1: the
   bearings' impedance at the running speed, which is right for a synchronous forcing) at each
-  bearing and named station: major semi-axis of the orbit [µm], x and y amplitudes [µm] and
-  phases [deg] (x = Re(X̂ e^{iωt})), forward and backward radii; the peak (critical speed)
-  of each station refined by a bounded scalar search.
+  bearing and named station: major semi-axis of the orbit [µm] (``amplitude_um``, the
+  forward plus the backward radius: :func:`gfbopt.transient.spectra.ellipse_radii`, the
+  rotor transient's ``sync_amplitude_um`` by the same function), x and y amplitudes [µm]
+  and phases [deg] (x = Re(X̂ e^{iωt})), forward and backward radii; the peak (critical
+  speed) of each station refined by a bounded scalar search.
 * :func:`half_mass_onsets` — each bearing alone, carrying its share of the weight and the same
   share of the mass (m |W_k|/Σ|W|), in cylindrical whirl: :func:`gfbopt.rotor.onset_speed`.
 """
@@ -35,6 +37,7 @@ from ..errors import ParameterError
 from ..inputs.conversions import rpm_to_rad_per_s
 from ..progress import progress
 from ..threads import single_threaded
+from ..transient.spectra import ellipse_radii
 from .campbell import system_modes
 from .tracking import assign, guesses, name_tracks
 from .onset import onset_speed
@@ -133,6 +136,17 @@ class ImbalanceResponse:
     capacity: list = field(default_factory=list)
     unstable_from_rpm: float = math.nan
 
+    def to_dict(self) -> dict:
+        """JSON-ready: the peaks, where the rotor is unstable from, the speeds skipped, and
+        the amplitude table itself (``table``: one record per speed and station, the CSV's
+        columns and numbers; ``amplitude_um`` is the major semi-axis of the synchronous
+        orbit, the rotor transient's ``sync_amplitude_um``)."""
+        from ..provenance import jsonable
+
+        return jsonable({"peaks": self.peaks, "unstable_from_rpm": self.unstable_from_rpm,
+                         "load_capacity_exceeded": self.capacity,
+                         "table": self.table.to_dict(orient="records")})
+
 
 def synchronous_response(line: SpeedLine, speed: float) -> dict:
     """station → (X̂, Ŷ) [m] at ``speed`` [rpm], or None when a bearing is over capacity."""
@@ -152,9 +166,9 @@ def synchronous_response(line: SpeedLine, speed: float) -> dict:
 
 def _row(speed, name, pos, xy) -> dict:
     x, y = xy
-    f, b = abs(x + 1j * y) / 2, abs(x - 1j * y) / 2
+    f, b, major = (float(r) for r in ellipse_radii(x, y))
     return {"speed_rpm": speed, "station": name, "position_m": pos,
-            "amplitude_um": (f + b) * 1e6, "amplitude_x_um": abs(x) * 1e6,
+            "amplitude_um": major * 1e6, "amplitude_x_um": abs(x) * 1e6,
             "phase_x_deg": math.degrees(np.angle(x)), "amplitude_y_um": abs(y) * 1e6,
             "phase_y_deg": math.degrees(np.angle(y)), "forward_radius_um": f * 1e6,
             "backward_radius_um": b * 1e6}

@@ -99,6 +99,7 @@ def run_rotor_run_up(study: Study, plan: dict, ctx: RunContext) -> StudyResult:
     from ..plotting.waterfall import plot_components, plot_journal_orbits, plot_waterfall
     from ..progress import progress
     from ..transient.rotor_analysis import progress_units, run_profile
+    from ..transient.rotor_result import whirl_words
 
     spec, system = study.spec, plan["system"]
     grid = Grid.parse(spec["grid"])
@@ -125,11 +126,7 @@ def run_rotor_run_up(study: Study, plan: dict, ctx: RunContext) -> StudyResult:
             notes.append(f"{r['speed_rpm']:,.0f} rpm ({r['speed_over_linear_onset']:.3g} × the "
                          f"linear onset), bearing {r['bearing']}: " + (
                              f"contact after {r['contact_time_s']:.4g} s" if r["contact"] else
-                             f"whirl {r['limit_cycle_amplitude_um']:.3g} µm at "
-                             f"{r['limit_cycle_frequency_hz']:.4g} Hz, "
-                             + ("settled" if r["limit_cycle_settled"] else
-                                f"not settled ({100 * r['limit_cycle_change']:+.2g} % over "
-                                "the last window)")))
+                             whirl_words(r)))
     what = (f"run-up {ramp.start_rpm:,.0f} → {ramp.end_rpm:,.0f} rpm at "
             f"{ramp.rate_rpm_per_s:,.0f} rpm/s, {grid}")
     lin = up.onset.get("linear_onset_speed_rpm", math.nan)
@@ -166,7 +163,7 @@ def run_rotor_run_up(study: Study, plan: dict, ctx: RunContext) -> StudyResult:
         rows.append((f"run_up_min_film_{b['bearing']}_um", b["min_film_um"]))
     for b in top_d["bearings"]:
         for key in ("limit_cycle_amplitude_um", "limit_cycle_frequency_hz",
-                    "limit_cycle_change", "min_film_um"):
+                    "limit_cycle_change", "sync_amplitude_um", "min_film_um"):
             if key in b:
                 rows.append((f"top_speed_{key}_{b['bearing']}", b[key]))
     rows.append(("top_speed_contact", float(top_d["contact"])))
@@ -185,12 +182,7 @@ def run_rotor_run_up(study: Study, plan: dict, ctx: RunContext) -> StudyResult:
                      "limit cycle with a film (the design is not acceptable there).")
     else:
         for b in top_d["bearings"]:
-            lc = b.get("limit_cycle_amplitude_um")
-            notes.append(f"Top speed, bearing {b['bearing']}: whirl {lc:.3g} µm at "
-                         f"{b['limit_cycle_frequency_hz']:.4g} Hz, "
-                         + ("settled" if b["limit_cycle_settled"] else
-                            f"not settled ({100 * b['limit_cycle_change']:+.2g} % over the "
-                            "last window)"))
+            notes.append(f"Top speed, bearing {b['bearing']}: {whirl_words(b)}")
     notes.append(f"Linear onset: {up.onset.get('linear_onset_source')}.")
     notes += orbit.notes[:1]
     options = {"grid": str(grid), "method": spec["method"], "rotor": spec["rotor"],
@@ -221,15 +213,20 @@ def _cycles_past_onset(system, spec, onset: float, common: dict):
             rows.append({"speed_rpm": profile.start_rpm, "speed_over_linear_onset": ratio,
                          "bearing": b["bearing"], "contact": d["contact"],
                          "contact_time_s": d["contact_time_s"],
-                         "limit_cycle_amplitude_um": b.get("limit_cycle_amplitude_um",
-                                                           math.nan),
-                         "limit_cycle_frequency_hz": b.get("limit_cycle_frequency_hz",
-                                                           math.nan),
-                         "limit_cycle_settled": b.get("limit_cycle_settled", False),
-                         "limit_cycle_change": b.get("limit_cycle_change", math.nan),
+                         "limit_cycle_status": b.get("limit_cycle_status", "none"),
+                         **{key: _number(b.get(key)) for key in (
+                             "limit_cycle_amplitude_um", "limit_cycle_frequency_hz",
+                             "limit_cycle_whirl_ratio", "limit_cycle_change",
+                             "sync_amplitude_um")},
+                         "limit_cycle_settled": b.get("limit_cycle_settled"),
                          "min_film_um": b["min_film_um"],
                          "revolutions": result.run.revolutions})
     return pd.DataFrame(rows)
+
+
+def _number(value) -> float:
+    """A JSON number of a result (None: not there) as a table's float (NaN: empty)."""
+    return math.nan if value is None else float(value)
 
 
 KINDS: dict = {"rotor_run_up": Kind(plan_rotor_run_up, run_rotor_run_up)}

@@ -4,7 +4,10 @@ Per run of the batch and per bearing: the journal orbit [µm, global frame from 
 centre], the smallest film over the run with the time and speed it happened, contact (film
 H ≤ ``contact_film`` or the foil's travel exhausted) with its time, speed and bearing, the
 waterfall, 1× and subsynchronous components against speed (:mod:`.spectra`), and at a
-constant speed the limit cycle with its settledness.  For a run-up the speed where the
+constant speed the subsynchronous whirl's status (a limit cycle, growing, decaying, or none:
+then no amplitude, frequency or ratio) and the settled synchronous amplitude (the major
+semi-axis of the 1× orbit over the last window, the linear imbalance response's
+``amplitude_um``; a ramp's peak of it over its windows).  For a run-up the speed where the
 subsynchronous line appears is set beside the rotor's linear onset (gfbopt.rotor's
 matched-whirl threshold, when that is available in this build).
 """
@@ -96,20 +99,45 @@ class RotorTransientResult:
             lc = self.limit_cycles[run][k]
             if lc is not None:
                 entry.update(lc.to_dict("limit_cycle_"))
-            w = self.waterfalls[run][k]
-            if w.time_s.size:
-                sync = np.abs(w.synchronous).max(axis=1)
-                j = int(np.argmax(sync))
-                entry.update(peak_sync_amplitude_um=float(sync[j]),
-                             peak_sync_speed_rpm=float(w.speed_rpm[j]),
-                             final_sub_amplitude_um=float(w.sub_amplitude[-1]),
-                             final_sub_frequency_hz=float(w.sub_frequency_hz[-1]))
+            entry.update(self._synchronous(self.waterfalls[run][k]))
             out["bearings"].append(entry)
         out.update(self.contacts[run])
         out.update(self.onset)
         out["rotor"] = self.description
         out["notes"] = list(self.notes)
         return jsonable(out)
+
+
+    def _synchronous(self, w) -> dict:
+        """The synchronous amplitude (major semi-axis of the 1× orbit, the components
+        table's ``sync_amplitude_um``): of an orbit over its last window, the end of the
+        record, with its change from the window before it; of a ramp its peak over the
+        ramp's windows (glossary names)."""
+        if not w.time_s.size:
+            return {}
+        amp = w.sync_amplitude
+        if self.profile.kind == "orbit":
+            before = len(amp) - 1 - round(w.window_s / w.hop_s) if w.hop_s > 0 else -1
+            change = float(amp[-1] / amp[before] - 1.0) if before >= 0 and amp[before] > 0 \
+                else math.nan
+            return {"sync_amplitude_um": float(amp[-1]), "sync_time_s": float(w.time_s[-1]),
+                    "sync_window_s": w.window_s, "sync_amplitude_change": change}
+        j = int(np.argmax(amp))
+        return {"peak_amplitude_um": float(amp[j]), "peak_speed_rpm": float(w.speed_rpm[j]),
+                "sync_window_s": w.window_s,
+                "final_sub_amplitude_um": float(w.sub_amplitude[-1]),
+                "final_sub_frequency_hz": float(w.sub_frequency_hz[-1])}
+
+
+def whirl_words(b: dict, prefix: str = "limit_cycle_") -> str:
+    """A constant-speed orbit's subsynchronous whirl in words, from its JSON entry (or a
+    table row) ``b``: 'no subsynchronous whirl' when its status is 'none'."""
+    if b.get(f"{prefix}status") in (None, "none"):
+        return "no subsynchronous whirl"
+    return (f"whirl {b[f'{prefix}amplitude_um']:.3g} µm at {b[f'{prefix}frequency_hz']:.4g} Hz "
+            f"({b[f'{prefix}whirl_ratio']:.3f}×, {b[f'{prefix}status']}"
+            + ("" if b[f"{prefix}settled"] else
+               f": {100 * b[f'{prefix}change']:+.2g} % over the last window") + ")")
 
 
 def _equilibrium(sol, film, load_newton: float) -> dict:
@@ -142,8 +170,8 @@ def summarise(run: RotorRun, profile, rotor, solutions, settings: dict, *, syste
     mean_speed = (float(np.mean(run.speed_rpm(0))) if run.tau.size
                   else 0.5 * (profile.start_rpm + profile.end_rpm))
     window_s = window_revolutions * 60.0 / mean_speed
-    if profile.kind != "orbit" and span > 0:
-        window_s = min(window_s, span / 10.0)
+    if span > 0:       # a ramp keeps ≥ 10 windows, an orbit ≥ 2 (the last one settled)
+        window_s = min(window_s, span / (10.0 if profile.kind != "orbit" else 2.0))
     films, contacts, falls, cycles = [], [], [], []
     t = run.time_s
     for b in range(run.runs.size):
@@ -165,7 +193,7 @@ def summarise(run: RotorRun, profile, rotor, solutions, settings: dict, *, syste
                                           max_order=max_order))
             cyc.append(spectra.limit_cycle(t, x * 1e6, y * 1e6, angle,
                                            profile.start_rpm / 60.0, settle_periods,
-                                           settle_tolerance)
+                                           settle_tolerance, threshold_um=threshold)
                        if profile.kind == "orbit" and not run.contact[b] else None)
         films.append(per)
         falls.append(fall)
@@ -174,6 +202,11 @@ def summarise(run: RotorRun, profile, rotor, solutions, settings: dict, *, syste
     onset, notes = {}, []
     if profile.kind != "orbit":
         onset = _onset(falls[0], names, threshold, profile, system, settings, linear_onset)
+        notes.append("Synchronous amplitude: sync_amplitude_um of the components table, "
+                     "the major semi-axis of each window's order-tracked 1× orbit (as the "
+                     "linear imbalance response's amplitude_um); peak_amplitude_um is its "
+                     "largest value over the ramp's windows (the ramp starts from the "
+                     "static equilibrium: its first windows carry the 1× build-up).")
         notes.append(f"Subsynchronous line: the largest spectral peak between "
                      f"{spectra.SUB_BAND[0]:g}× and {spectra.SUB_BAND[1]:g}× of the shaft "
                      f"speed after the tracked 1× component is removed; it 'appears' at the "
@@ -185,7 +218,17 @@ def summarise(run: RotorRun, profile, rotor, solutions, settings: dict, *, syste
         notes.append(f"Limit cycle: subsynchronous orbit (tracked 1× removed), largest "
                      f"distance from its centre over the last {settle_periods:g} whirl "
                      f"periods; settled when it differs from the previous "
-                     f"{settle_periods:g} periods by ≤ {100 * settle_tolerance:g} %.")
+                     f"{settle_periods:g} periods by ≤ {100 * settle_tolerance:g} %. A "
+                     f"whirl only where that window has a spectral peak inside "
+                     f"{spectra.SUB_BAND[0]:g}–{spectra.SUB_BAND[1]:g}× of at least "
+                     f"{threshold:.3g} µm and {spectra.NOISE_FACTOR:g}× the band's noise "
+                     f"floor; otherwise status 'none' and no amplitude, frequency or ratio.")
+        notes.append(f"Synchronous amplitude sync_amplitude_um: major semi-axis of the "
+                     f"order-tracked 1× orbit over the last window ({window_s * 1e3:.3g} ms, "
+                     f"{window_s * profile.start_rpm / 60.0:.3g} revolutions, ending at the "
+                     f"record's end: the settled response, not the start-up), as the linear "
+                     f"imbalance response's amplitude_um; the last row of the components "
+                     f"table.")
     if settings.get("foil_travel_m") is None:
         notes.append("Foil travel not checked (no bump travel given): contact is the film "
                      f"reaching H ≤ {settings['contact_film']:g} c only.")

@@ -96,7 +96,12 @@ def test_run_up_json_and_csv(tmp_path, capsys):
     assert d["provenance"]["gfbopt_version"] and d["provenance"]["options"]["method"] == "rkc"
     assert [b["bearing"] for b in d["bearings"]] == ["A", "B"]
     for b in d["bearings"]:
-        assert 0 < b["min_film_um"] < 20.0 and b["peak_sync_amplitude_um"] > 0
+        assert 0 < b["min_film_um"] < 20.0 and b["peak_amplitude_um"] > 0
+        # the ramp's 1× peak is the largest synchronous amplitude of its components table
+        comp = pd.read_csv(out / f"components_{b['bearing']}.csv")
+        k = comp["sync_amplitude_um"].idxmax()
+        assert b["peak_amplitude_um"] == pytest.approx(comp["sync_amplitude_um"][k], rel=1e-7)
+        assert b["peak_speed_rpm"] == pytest.approx(comp["speed_rpm"][k], rel=1e-7)
     for name in ("orbit.csv", "components_A.csv", "components_B.csv"):
         table = pd.read_csv(out / name)
         for column in table.columns:

@@ -72,3 +72,46 @@ def test_limit_cycle_settledness_is_judged_on_the_last_two_windows():
     assert abs(lc.frequency_hz - 230) < 0.5 and abs(lc.whirl_ratio - 0.46) < 0.001
     lg = spectra.limit_cycle(t, growing.real, growing.imag, angle, 500.0, periods=10)
     assert not lg.settled and lg.change > 0.3          # e^(window/0.1) − 1 with 43 ms
+    assert lc.status == spectra.LIMIT_CYCLE and lg.status == spectra.GROWING
+
+
+def test_a_band_without_an_interior_peak_has_no_subsynchronous_component():
+    """The band's largest value on its edge is the skirt of something outside it, not a
+    whirl: a strongly decaying record (its mean-removed spectrum peaks at 0 Hz) gave a
+    negative frequency and a negative amplitude (−1.9e-7) before, a tone at 0.97× a whirl
+    ratio outside 0.05–0.95; both are 'no peak' now.  On noise every peak found has an
+    amplitude ≥ 0 and a ratio inside the band."""
+    t = np.linspace(0.0, 0.2, 4001)
+    shaft = 150.0
+    decaying = 1e-3 * np.exp((2j * math.pi * 75 - 200) * t)
+    near_1x = 0.5 * np.exp(2j * math.pi * 0.97 * shaft * t)
+    for z in (decaying, near_1x):
+        f, a = spectra.subsynchronous_peak(t, z, shaft)
+        assert math.isnan(f) and math.isnan(a), (f, a)
+    rng = np.random.default_rng(2)
+    for _ in range(50):
+        z = rng.standard_normal(t.size) + 1j * rng.standard_normal(t.size)
+        f, a = spectra.subsynchronous_peak(t, z, shaft)
+        if math.isfinite(f):
+            assert a >= 0 and 0.05 <= abs(f) / shaft <= 0.95, (f, a)
+    # a real tone is still found to a fraction of a bin, with its amplitude
+    f, a = spectra.subsynchronous_peak(t, 2.0 * np.exp(2j * math.pi * 61.3 * t), shaft)
+    assert abs(f - 61.3) < 0.05 and abs(a - 2.0) < 0.01
+
+
+def test_a_stable_orbit_has_no_subsynchronous_whirl():
+    """A settled 1× orbit with a decaying kick below the threshold (what a stable rotor's
+    orbit is): status 'none', no amplitude, frequency, ratio or settledness — before, its
+    residual noise was reported as a whirl at a ratio above 1 and 'not settled'."""
+    t = np.linspace(0.0, 0.4, 16001)
+    angle = 2 * math.pi * 150 * t                      # 9,000 rpm
+    z = 0.2 * np.exp(1j * angle) + 0.004 * np.exp((2j * math.pi * 76 - 2) * t)
+    lc = spectra.limit_cycle(t, z.real, z.imag, angle, 150.0, threshold_um=0.4)
+    assert lc.status == spectra.NO_WHIRL and "no subsynchronous whirl" in lc.reason
+    assert lc.settled is None
+    assert all(math.isnan(v) for v in (lc.amplitude_um, lc.frequency_hz, lc.whirl_ratio,
+                                       lc.change))
+    # the same whirl made large enough is a whirl again (decaying: not settled)
+    z = 0.2 * np.exp(1j * angle) + 4.0 * np.exp((2j * math.pi * 76 - 2) * t)
+    lc = spectra.limit_cycle(t, z.real, z.imag, angle, 150.0, threshold_um=0.4)
+    assert lc.status == spectra.DECAYING and abs(lc.whirl_ratio - 76 / 150) < 0.002
