@@ -5,7 +5,7 @@ and returns the rows in the order of ``points``, whichever executor ran them:
 
 * ``workers <= 1`` (or a single point): in this process, with one :class:`SolverCache`
   (the ``cache`` given, the run's serial cache inside :class:`WorkerPool`, or a new one);
-* ``workers > 1``: a pool of ``spawn`` processes.  IPOPT/MUMPS is not thread-safe and a CasADi
+* ``workers > 1``: a pool of processes (:func:`start_method`).  IPOPT/MUMPS is not thread-safe and a CasADi
   solver cannot be pickled, so only the points travel; every worker builds its solvers
   itself, once per (grid, film, structure), in its **per-worker solver cache** — created by
   the worker initialiser (:func:`_start_worker`) and living as long as the worker process.
@@ -17,17 +17,33 @@ and returns the rows in the order of ``points``, whichever executor ran them:
 the block: every ``run_points``/``stream_tasks`` call with ``workers > 1`` reuses its
 processes (and so their solver caches and imports) instead of starting a pool per batch —
 ``gfbopt run`` opens one around all its studies.  The pool starts workers only as tasks
-need them (at most ``workers``), and workers import only gfbopt's numerical core
-(``gfbopt.static``) until a task's function needs more (cvxpy only where a geometric program
-runs).  Outside such a block each call starts and ends its own pool, as before.
+need them (at most ``workers``); a forked worker holds the modules the driver had imported, a
+spawned one imports gfbopt's numerical core (``gfbopt.static``) and then what a task's
+function needs (cvxpy only where a geometric program runs).  Outside such a block each call starts and ends its own pool, as before.
 
 **Infrastructure failures are not results.**  A worker that dies (SIGKILL, the OOM killer)
 breaks the pool: the tasks that had not finished are run again on a fresh pool, up to
 ``retries`` times each; a task that still cannot run is reported as
 :class:`InfrastructureFailure` (never as a failed point of the analysis).
 
-Workers are started with ``spawn``: a script that runs points on workers must guard its
-top level with ``if __name__ == "__main__":`` (as any multiprocessing program).
+**How workers start** (:func:`start_method`, the pool's fixed cost).  A spawned worker starts a
+new interpreter and imports what its tasks need: about 2.3 s CPU per worker for the
+bearing-pair design (``gfbopt.design.optimiser`` and the studies behind it), so on a busy
+machine ``--workers 2`` cost more CPU than it saved.  On Linux the pool now **forks** the
+driver, which has imported everything already (a few ms per worker,
+benchmarks/bench_pool.py), *when forking is safe*: no other Python thread runs in the
+driver (a lock another thread holds would stay locked in the child) and no OpenMP runtime is
+loaded (libgomp's thread pool does not survive a fork).  The native threads gfbopt's
+libraries do start — OpenBLAS's and jemalloc's (pyarrow) — re-create themselves after a fork
+(pthread_atfork); CasADi starts none, and a worker never uses the driver's solvers: it gets
+an empty cache of its own and forgets the driver's run pool and signal state.  A fork pool
+starts its workers all at once, so it is sized to the first batch (at most ``workers``) and
+re-made larger when a later batch could use more; a broken pool's threads are joined before
+the restart, so the new pool forks too.  Otherwise (a Dask client's threads, an OpenMP
+runtime, a thread of the calling program, macOS) the workers come from a
+``forkserver`` that has preloaded the gfbopt modules the driver had imported: one import for
+the whole pool, then a fork per worker.  A script that runs points on workers must still
+guard its top level with ``if __name__ == "__main__":`` (as any multiprocessing program).
 
 A function that accepts a ``cache`` keyword receives the solver cache.  It returns one row
 (a dict) or a list of rows; a point that raises becomes one row with ``success = False``
@@ -41,9 +57,12 @@ import contextlib
 import contextvars
 import inspect
 import multiprocessing
+import re
 import signal
+import sys
 import threading
 import time
+import warnings
 from collections.abc import Callable, Sequence
 from concurrent.futures import FIRST_COMPLETED, CancelledError, ProcessPoolExecutor, wait
 from concurrent.futures.process import BrokenProcessPool
@@ -56,6 +75,7 @@ from .runtime import (  # noqa: F401 - re-exported: the executors' failures and 
     call_task as _call_task,
     check_interrupted,
     interrupt_on_signals,
+    forget_signals,
     interrupted,
 )
 from .static import SolverCache
@@ -67,6 +87,50 @@ _WORKER_CACHE: SolverCache | None = None
 _ACTIVE_POOL: contextvars.ContextVar = contextvars.ContextVar("gfbopt_pool", default=None)
 #: times a task is run again after the pool it ran on broke
 DEFAULT_RETRIES = 2
+#: start methods a pool accepts (None: :func:`start_method` decides)
+START_METHODS = ("fork", "forkserver", "spawn")
+#: OpenMP runtimes, whose thread pool does not survive a fork (a loaded one rules fork out)
+_OPENMP = re.compile(r"/lib(gomp|iomp5|omp)[-.][^/]*$")
+
+
+def choose_start_method(platform: str, other_threads: int, openmp_loaded: bool) -> str:
+    """The start method of a pool's workers: ``fork`` on Linux when the driver runs no other
+    Python thread and has loaded no OpenMP runtime, else ``forkserver`` (POSIX), else
+    ``spawn`` (Windows).  macOS is never forked (its system frameworks are not fork-safe)."""
+    if platform.startswith("linux") and other_threads == 0 and not openmp_loaded:
+        return "fork"
+    return "spawn" if platform.startswith("win") else "forkserver"
+
+
+def default_workers(cores: int, load: float) -> int:
+    """Worker processes the machine can give: its free cores, ``cores - load`` (``load`` the
+    one-minute load average) rounded to the nearest whole core (a core counts as free when at
+    least half of it is idle), at most ``cores`` and at least 1.  On 2 cores: 2 workers up to
+    a load of 0.5, 1 above; on 8 cores at a load of 2.7: 5."""
+    import math
+
+    free = float(cores) - max(0.0, float(load)) if math.isfinite(load) else 1.0
+    return max(1, min(int(cores), math.floor(free + 0.5)))
+
+
+def _openmp_loaded() -> bool:
+    try:
+        with open("/proc/self/maps") as maps:
+            return any(_OPENMP.search(line.rstrip()) for line in maps)
+    except OSError:                  # no /proc: assume the worst
+        return True
+
+
+def start_method() -> str:
+    """How this process would start pool workers now (:func:`choose_start_method` on its
+    platform, its other Python threads and its loaded libraries)."""
+    return choose_start_method(sys.platform, threading.active_count() - 1,
+                               sys.platform.startswith("linux") and _openmp_loaded())
+
+
+def _preloaded_modules() -> list[str]:
+    """The gfbopt modules this process has imported: what the forkserver imports once."""
+    return sorted(name for name in list(sys.modules) if name.split(".")[0] == "gfbopt")
 
 
 def limit_blas_threads() -> None:
@@ -91,6 +155,8 @@ def _start_worker() -> None:
         os.environ[var] = "1"
     limit_blas_threads()
     _WORKER_CACHE = SolverCache()
+    _ACTIVE_POOL.set(None)          # a forked worker forgets the driver's pool and signals
+    forget_signals()
     _exit_with_parent()
 
 
@@ -113,29 +179,50 @@ def _exit_with_parent(period: float = 1.0) -> None:
 
 # ====================================================================== the run's pool
 class WorkerPool:
-    """One pool of spawn worker processes for a whole run (see the module docstring).
+    """One pool of worker processes for a whole run (see the module docstring).
 
     ``with WorkerPool(workers) as pool:`` makes it the pool of every ``run_points`` and
     ``stream_tasks`` call inside the block; it is closed (workers ended) when the block
     ends, terminated at once on an exception or Ctrl-C.  ``workers <= 1`` runs everything
     in this process with one solver cache for the whole run (:attr:`cache`).
-    ``started`` counts the worker processes started (restarts after a broken pool too).
+    ``started`` counts the worker processes started (restarts after a broken pool too);
+    ``method`` is the start method of the current (or last) executor.  ``start_method``
+    forces one of :data:`START_METHODS` (default: :func:`start_method` when the executor is
+    made).
     """
 
-    def __init__(self, workers: int = 1):
+    def __init__(self, workers: int = 1, start_method: Optional[str] = None):
+        if start_method is not None and start_method not in START_METHODS:
+            raise ValueError(f"start_method = {start_method!r}: one of {START_METHODS}")
         self.workers = max(1, int(workers))
         self.cache = SolverCache()
         self.started = 0
         self.restarts = 0
+        self.start_method = start_method
+        self.method: Optional[str] = None
+        self._size = 0
         self._executor: Optional[ProcessPoolExecutor] = None
         self._token = None
 
-    def executor(self) -> ProcessPoolExecutor:
-        """The live executor (created on first use; processes start as tasks need them)."""
+    def executor(self, tasks: Optional[int] = None) -> ProcessPoolExecutor:
+        """The live executor for a batch of ``tasks`` (created on first use).  Spawn and
+        forkserver workers start as tasks need them; a fork pool starts all its workers at
+        once, so it gets ``min(workers, tasks)`` and is re-made when a batch could use more."""
+        wanted = self.workers if tasks is None else max(1, min(self.workers, tasks))
+        if self._executor is not None and self._size < wanted:
+            self.close()                               # a fork pool too small for this batch
         if self._executor is None:
-            self._executor = ProcessPoolExecutor(
-                max_workers=self.workers, mp_context=multiprocessing.get_context("spawn"),
-                initializer=_start_worker)
+            method = self.start_method or start_method()
+            context = multiprocessing.get_context(method)
+            if method == "forkserver":
+                context.set_forkserver_preload(_preloaded_modules())  # once per forkserver
+            elif method == "fork":
+                sys.stdout.flush()                     # or the children write it again
+                sys.stderr.flush()
+            self._size = wanted if method == "fork" else self.workers
+            self.method = method
+            self._executor = ProcessPoolExecutor(max_workers=self._size, mp_context=context,
+                                                 initializer=_start_worker)
         return self._executor
 
     def _processes(self) -> list:
@@ -152,12 +239,15 @@ class WorkerPool:
             return
         processes = self._processes()
         self.started += len(processes)
+        manager = getattr(self._executor, "_executor_manager_thread", None)   # no public API
         self._executor.shutdown(wait=False, cancel_futures=True)
         for process in processes:
             if process.is_alive():
                 process.kill()            # workers ignore SIGINT and SIGTERM
         for process in processes:
             process.join(timeout=5)
+        if manager is not None and manager is not threading.current_thread():
+            manager.join(timeout=5)       # its threads gone, the next pool may fork again
         self._executor = None
 
     def close(self) -> None:
@@ -287,7 +377,7 @@ def _call_points(argument) -> list[dict]:
 # Design-of-experiments studies (gfbopt.studies.doe, gfbopt.doe.run_doe) send *tasks* — a
 # function and a chunk of neighbouring points — and want the rows as each task finishes, to
 # write them to the results store.  :func:`stream_tasks` yields ``(index, result)`` in
-# completion order from this process, a pool of spawn processes, or a Dask cluster.
+# completion order from this process, a pool of worker processes, or a Dask cluster.
 
 def worker_cache() -> SolverCache:
     """The solver cache of this process: the per-worker cache of a pool worker or of a Dask
@@ -356,9 +446,12 @@ def _stream_pool(function: Callable, arguments: list, pool: WorkerPool, retries:
     attempts = [0] * len(arguments)
     while todo:
         try:
-            executor = pool.executor()
-            futures = {executor.submit(_call_task, function, arguments[k]): k
-                       for k in sorted(todo)}
+            executor = pool.executor(len(todo))
+            with warnings.catch_warnings():    # Python >= 3.12 warns of fork with any thread
+                warnings.filterwarnings("ignore", r".*use of fork\(\) may lead to deadlocks",
+                                        DeprecationWarning)
+                futures = {executor.submit(_call_task, function, arguments[k]): k
+                           for k in sorted(todo)}
         except BrokenProcessPool:
             futures = {}
         broken = not futures

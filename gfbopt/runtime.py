@@ -59,6 +59,12 @@ def check_interrupted() -> None:
         state.check()
 
 
+def forget_signals() -> None:
+    """In a forked worker: drop the signal state inherited from the driver (the driver
+    handles the signals; the worker ignores them)."""
+    _SIGNALS.set(None)
+
+
 def interrupted() -> bool:
     """True once SIGTERM/SIGINT arrived inside :func:`interrupt_on_signals`."""
     state = _SIGNALS.get()

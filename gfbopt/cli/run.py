@@ -32,6 +32,18 @@ def _cores() -> int:
         return max(1, os.cpu_count() or 1)
 
 
+def _default_workers() -> int:
+    """--workers when not given: the free cores (gfbopt.parallel.default_workers: the
+    available cores minus the one-minute load average, rounded, at least 1)."""
+    from ..parallel import default_workers
+
+    try:
+        load = os.getloadavg()[0]
+    except (AttributeError, OSError):  # pragma: no cover - no load average (Windows)
+        load = 0.0
+    return default_workers(_cores(), load)
+
+
 def _positive(name: str):
     import argparse
 
@@ -55,8 +67,8 @@ def register(subparsers) -> None:
                      "results/ are regenerated with --results results, docs/studies.md)")
     run.add_argument("--workers", type=_positive("workers"), default=None,
                      help="worker processes (one pool for the whole run); default: the "
-                     f"number of available cores; at most {WORKERS_PER_CORE} per core unless "
-                     "--max-workers")
+                     "free cores (available cores minus the 1-minute load average, rounded, "
+                     f"at least 1); at most {WORKERS_PER_CORE} per core unless --max-workers")
     run.add_argument("--max-workers", type=_positive("max-workers"), default=None,
                      help=f"raise the limit on --workers ({WORKERS_PER_CORE} × cores)")
     run.add_argument("--grid", default=None, metavar="NTHETAxNZ",
@@ -130,7 +142,7 @@ def _check_options(args, loaded) -> int:
     from ..errors import ParameterError
     from ..studies.doe import KINDS as SAMPLED
 
-    workers = args.workers or _cores()
+    workers = args.workers or _default_workers()
     limit = args.max_workers or WORKERS_PER_CORE * _cores()
     if workers > limit:
         raise ParameterError("--workers", workers, f"is more than {WORKERS_PER_CORE} × the "

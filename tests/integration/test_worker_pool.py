@@ -48,3 +48,86 @@ def test_one_worker_keeps_one_solver_cache_for_the_whole_run():
         rows = run_points(report, [{"eccentricity": 0.3}], workers=1)
     assert rows[0]["pid"] == os.getpid() and rows[0]["solvers"] == 1
     assert len(pool.cache) == 1 and pool.started == 0
+
+
+def fresh_worker(eccentricity, cache):
+    """What a worker sees before it solves: its cache (empty in a new worker), the run's
+    pool (the driver's; none in a worker)."""
+    from gfbopt.parallel import active_pool
+    from gfbopt.runtime import interrupted
+
+    before = len(cache)
+    row = analyses.static_point(MODEL, eccentricity=eccentricity, grid=GRID, cache=cache)
+    return {**row, "pid": os.getpid(), "cache_before": before,
+            "sees_pool": active_pool() is not None, "interrupted": interrupted()}
+
+
+def test_forked_workers_start_clean_and_give_the_serial_rows():
+    """The driver has built a solver and holds the run's pool and signal state when it forks:
+    the workers must not use any of it (a copied CasADi solver, the driver's cache)."""
+    from gfbopt.parallel import interrupt_on_signals
+
+    points = [{"eccentricity": e} for e in (0.2, 0.3, 0.4, 0.5)]
+    serial = run_points(fresh_worker, points, workers=1)
+    with interrupt_on_signals(), WorkerPool(2) as pool:
+        run_points(fresh_worker, points[:1], workers=2)        # one point: in the driver
+        assert len(pool.cache) == 1
+        rows = run_points(fresh_worker, points, workers=2)
+    assert pool.method == "fork" and pool.restarts == 0
+    assert os.getpid() not in {r["pid"] for r in rows}
+    first = {}
+    for r in rows:
+        first.setdefault(r["pid"], r)
+    assert all(r["cache_before"] == 0 for r in first.values())   # a new worker: empty cache
+    assert not any(r["sees_pool"] or r["interrupted"] for r in rows)
+    for a, b in zip(serial, rows):
+        assert (a["load"], a["success"]) == (b["load"], b["success"])
+
+
+def test_with_another_thread_in_the_driver_workers_come_from_the_forkserver():
+    import threading
+
+    points = [{"eccentricity": e} for e in (0.2, 0.3, 0.4)]
+    serial = run_points(report, points, workers=1)
+    stop = threading.Event()
+    thread = threading.Thread(target=stop.wait, daemon=True)
+    thread.start()
+    try:
+        with WorkerPool(2) as pool:
+            rows = run_points(report, points, workers=2)
+    finally:
+        stop.set()
+        thread.join()
+    assert pool.method == "forkserver"
+    assert [r["load"] for r in rows] == [r["load"] for r in serial]
+    assert os.getpid() not in {r["pid"] for r in rows}
+
+
+def kill_once(value, marker, always=False):
+    """``value ** 2``, but at value 3 the worker kills itself (once, or every time)."""
+    import signal
+    from pathlib import Path
+
+    if value == 3 and (always or not Path(marker).exists()):
+        Path(marker).write_text("killed")
+        os.kill(os.getpid(), signal.SIGKILL)
+    return {"square": value ** 2, "pid": os.getpid()}
+
+
+def test_a_killed_fork_worker_is_retried_and_one_that_always_dies_is_reported(tmp_path):
+    points = [{"value": v, "marker": str(tmp_path / "once")} for v in range(6)]
+    methods = []
+    with WorkerPool(2) as pool:
+        methods.append(pool.executor(6) and pool.method)
+        rows = run_points(kill_once, points, workers=2)
+        methods.append(pool.method)
+    assert methods == ["fork", "fork"]    # the old pool's threads ended before the restart
+    assert [r["square"] for r in rows] == [v * v for v in range(6)]
+    assert pool.restarts == 1 and all(r["success"] for r in rows)
+    always = [{"value": v, "marker": str(tmp_path / "always"), "always": True}
+              for v in (2, 3, 4)]
+    with WorkerPool(2) as pool:
+        rows = run_points(kill_once, always, workers=2)
+    assert not rows[1]["success"] and "died on 3 pools in a row" in rows[1]["message"]
+    for row, value in ((rows[0], 2), (rows[2], 4)):     # done, or lost with the killer
+        assert row.get("square") == value ** 2 or "died on 3 pools" in row["message"]
