@@ -99,7 +99,8 @@ class RotorTransientResult:
             lc = self.limit_cycles[run][k]
             if lc is not None:
                 entry.update(lc.to_dict("limit_cycle_"))
-            entry.update(self._synchronous(self.waterfalls[run][k]))
+            entry.update(self._synchronous(self.waterfalls[run][k],
+                                           bool(self.contacts[run]["contact"])))
             out["bearings"].append(entry)
         out.update(self.contacts[run])
         out.update(self.onset)
@@ -108,14 +109,18 @@ class RotorTransientResult:
         return jsonable(out)
 
 
-    def _synchronous(self, w) -> dict:
+    def _synchronous(self, w, contact: bool) -> dict:
         """The synchronous amplitude (major semi-axis of the 1× orbit, the components
         table's ``sync_amplitude_um``): of an orbit over its last window, the end of the
-        record, with its change from the window before it; of a ramp its peak over the
-        ramp's windows (glossary names)."""
+        record, with its change from the window before it (null when the orbit ends in
+        contact: no settled response); of a ramp its peak over the ramp's windows
+        (glossary names)."""
         if not w.time_s.size:
             return {}
         amp = w.sync_amplitude
+        if self.profile.kind == "orbit" and contact:
+            return {"sync_amplitude_um": math.nan, "sync_time_s": math.nan,
+                    "sync_window_s": w.window_s, "sync_amplitude_change": math.nan}
         if self.profile.kind == "orbit":
             before = len(amp) - 1 - round(w.window_s / w.hop_s) if w.hop_s > 0 else -1
             change = float(amp[-1] / amp[before] - 1.0) if before >= 0 and amp[before] > 0 \

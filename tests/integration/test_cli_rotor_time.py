@@ -82,6 +82,8 @@ def test_contact_is_a_result_with_time_speed_and_bearing_and_the_record_is_kept(
     low = [b for b in d["bearings"] if b["bearing"] == d["contact_bearing"]][0]
     assert low["min_film_um"] <= 0.02 * 20.0 + 1e-9
     assert low["min_film_time_s"] == pytest.approx(d["contact_time_s"])
+    # a whirl into contact has no settled synchronous response to report
+    assert all(b.get("sync_amplitude_um") is None for b in d["bearings"])
 
 
 def test_run_up_json_and_csv(tmp_path, capsys):
