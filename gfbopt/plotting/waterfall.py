@@ -53,15 +53,20 @@ def plot_waterfall(waterfall, ax=None, title: str = "", bearing: str = "",
 
 def plot_components(tables: dict, axes=None, title: str = "",
                     linear_onset_rpm: float = math.nan, threshold_um: float = math.nan):
-    """1× amplitude (x and y) and subsynchronous amplitude [µm] against speed (top) and the
-    subsynchronous whirl ratio (bottom), one colour per bearing (``tables``: bearing →
-    components table of :meth:`~gfbopt.transient.spectra.Waterfall.table`)."""
+    """Synchronous amplitude (the 1× orbit's major semi-axis, ``sync_amplitude_um``, as in
+    the JSON and the linear imbalance response), its x and y amplitudes, and the
+    subsynchronous amplitude [µm] against speed (top) and the subsynchronous whirl ratio
+    (bottom), one colour per bearing (``tables``: bearing → components table of
+    :meth:`~gfbopt.transient.spectra.Waterfall.table`)."""
     axes = new_axes(figsize=(6.6, 6.4), nrows=2, sharex=True) if axes is None else axes
     top, bottom = axes
     for name, t in tables.items():
-        line, = top.semilogy(t["speed_rpm"], t["sync_amplitude_x_um"], label=f"{name}: 1×, x")
-        top.semilogy(t["speed_rpm"], t["sync_amplitude_y_um"], ls="--", color=line.get_color(),
-                     label=f"{name}: 1×, y")
+        line, = top.semilogy(t["speed_rpm"], t["sync_amplitude_um"],
+                             label=f"{name}: 1× (major semi-axis)")
+        top.semilogy(t["speed_rpm"], t["sync_amplitude_x_um"], ls="--", lw=0.8,
+                     color=line.get_color(), label=f"{name}: 1×, x")
+        top.semilogy(t["speed_rpm"], t["sync_amplitude_y_um"], ls="-.", lw=0.8,
+                     color=line.get_color(), label=f"{name}: 1×, y")
         top.semilogy(t["speed_rpm"], t["sub_amplitude_um"], ls=":", lw=2,
                      color=line.get_color(), label=f"{name}: subsynchronous")
         bottom.plot(t["speed_rpm"], t["sub_whirl_ratio"], ".", color=line.get_color(),

@@ -32,6 +32,10 @@ def test_waterfall_components_and_orbits_figures(tmp_path):
     assert plot_waterfall(w, ax=given) is given and given.has_data()
     axes = plot_components({"A": w.table()}, linear_onset_rpm=14_000, threshold_um=0.4)
     assert len(axes) == 2 and axes[0].has_data()
+    # the figure's 1× line is the synchronous amplitude of the JSON and the CSV
+    first = axes[0].get_lines()[0]
+    assert first.get_label() == "A: 1× (major semi-axis)"
+    assert np.allclose(first.get_ydata(), w.table()["sync_amplitude_um"])
     frame = {"x_A_um": np.cos(np.linspace(0, 6, 50)), "y_A_um": np.sin(np.linspace(0, 6, 50))}
     ax = plot_journal_orbits(frame, ["A"], clearance_um=20.0)
     assert ax.yaxis_inverted() and ax.has_data()
