@@ -31,6 +31,7 @@ from __future__ import annotations
 import itertools
 import math
 from dataclasses import dataclass, field
+from typing import Optional
 
 import numpy as np
 from scipy.optimize import brentq, linear_sum_assignment
@@ -38,6 +39,7 @@ from scipy.optimize import brentq, linear_sum_assignment
 from .modes import shape
 from .probe import probe, probe_scale
 from .rigid import gyroscopic_matrix, mass_matrix
+from ..linear.krylov import ShiftedImpedance
 from .supports import WHIRL_RANGE, RotorCase, SpeedStates
 
 #: absolute tolerance of a crossing's whirl ratio (Brent) [-] (that of gfbopt.linear)
@@ -81,16 +83,18 @@ def bearing_stiffness(rotor: RotorCase, states: SpeedStates, whirl_ratio: float)
     return kb
 
 
-def inertia_roots(rotor: RotorCase, states: SpeedStates, whirl_ratio: float
-                  ) -> tuple[np.ndarray, np.ndarray]:
-    """(ν (4,), eigenvectors (4, 4) as columns) of A v = ν K_b v at whirl ratio γ."""
+def inertia_roots(rotor: RotorCase, states: SpeedStates, whirl_ratio: float,
+                  stiffness: Optional[np.ndarray] = None) -> tuple[np.ndarray, np.ndarray]:
+    """(ν (4,), eigenvectors (4, 4) as columns) of A v = ν K_b v at whirl ratio γ
+    (``stiffness``: K_b when given, else :func:`bearing_stiffness`)."""
     omega = states.omega
     big = whirl_ratio * omega
     body = rotor.system.body
     a = big**2 * mass_matrix(body) - 1j * big * omega * gyroscopic_matrix(body)
+    kb = bearing_stiffness(rotor, states, whirl_ratio) if stiffness is None else stiffness
     # K_b is the bearings' dynamic stiffness, regular wherever Z_k is: the standard problem
     # K_b⁻¹A v = ν v has the pencil's eigenpairs (numpy's driver costs a third of scipy's)
-    nu, vec = np.linalg.eig(np.linalg.solve(bearing_stiffness(rotor, states, whirl_ratio), a))
+    nu, vec = np.linalg.eig(np.linalg.solve(kb, a))
     return nu, vec
 
 
@@ -243,3 +247,77 @@ def by_mode(found: list) -> dict:
         if c.label not in out or c.inertia_scale < out[c.label].inertia_scale:
             out[c.label] = c
     return out
+
+
+#: half-width of the whirl-ratio window of a local search's Krylov spaces (their shift sits
+#: over the start, a quarter of the window's width into the right half plane) [-]
+LOCAL_WINDOW = 0.05
+#: Newton steps on the whirl ratio before a local search gives up (the caller then scans)
+LOCAL_STEPS = 12
+#: step of the central difference for dν/dγ on the Krylov spaces [-]
+SLOPE_STEP = 1e-6
+
+
+def local_crossing(rotor: RotorCase, states: SpeedStates, near: ModeCrossing
+                   ) -> Optional[ModeCrossing]:
+    """The crossing Im ν(γ) = 0 of the root branch through the crossing ``near`` (of a nearby
+    speed, or of the same mode on another grid), by Newton's method on the whirl ratio; None
+    when it does not converge in :data:`LOCAL_STEPS` steps, leaves the whirl range, or ends
+    on a root that is not real and > 0 (the caller then computes every crossing,
+    :func:`crossings`, which also decides between branches: this search follows one).
+
+    For the onset's refinement, where one mode is followed from speed to speed.  Each
+    bearing's Z̄(iγ) comes from a Krylov space on one LU with its shift over the start
+    (:class:`~gfbopt.linear.krylov.ShiftedImpedance` on ±:data:`LOCAL_WINDOW`, a new one
+    when a step leaves half of it), converged to its tolerance (1e-11) at every γ used, and
+    dν/dγ from a central difference on it; the branch is the root nearest the previous step's.
+    The search stops when the Newton step is at most :data:`WHIRL_TOLERANCE` (the scan's own
+    tolerance on γ, by Brent's method), so the crossing is the scan's on the same branch to
+    ~1e-10 in γ and μ_c, for one LU and a few block steps per bearing instead of a converged
+    space over the whole whirl range, the scan's refinements and the probe."""
+    if not (near.inertia_scale > 0 and states.ok):
+        return None
+    low, high = states.states[0].whirl_range
+    gamma, ref = float(near.whirl_ratio), complex(1.0 / near.inertia_scale)
+    models, centre = None, math.nan
+    for _ in range(LOCAL_STEPS):
+        if not low <= gamma <= high:
+            return None
+        if models is None or abs(gamma - centre) > 0.5 * LOCAL_WINDOW:
+            window = (max(gamma - LOCAL_WINDOW, 0.5 * gamma), gamma + LOCAL_WINDOW)
+            try:
+                models = [ShiftedImpedance(st.linearisation, window) for st in states.states]
+            except RuntimeError:                 # A + s0 B exactly singular
+                return None
+            centre = gamma
+        points = (gamma - SLOPE_STEP, gamma, gamma + SLOPE_STEP)
+        if not all(m.converge(points[1:2]).all() for m in models):   # ±1e-6 with it
+            return None
+        roots = [_local_roots(rotor, states, models, g) for g in points]
+        j = int(np.argmin(np.abs(roots[1][0] - ref)))
+        nu = roots[1][0][j]
+        left, right = (r[0][np.argmin(np.abs(r[0] - nu))] for r in (roots[0], roots[2]))
+        slope = (right - left) / (2 * SLOPE_STEP)
+        if not (math.isfinite(slope.imag) and slope.imag != 0):
+            return None
+        step = -nu.imag / slope.imag
+        if abs(step) <= WHIRL_TOLERANCE:
+            nu_star = (nu + slope * step).real
+            gamma += step
+            if not (nu_star > 0 and low <= gamma <= high):
+                return None
+            q = roots[1][1][:, j]
+            positions = [b.position for b in rotor.system.bearings]
+            sh = shape(q, positions, rotor.names)
+            return ModeCrossing(1.0 / nu_star, float(gamma),
+                                float(gamma * states.omega / (2 * math.pi)), sh["label"], sh, q)
+        gamma, ref = gamma + step, nu
+    return None
+
+
+def _local_roots(rotor, states, models, gamma: float) -> tuple[np.ndarray, np.ndarray]:
+    """(ν, eigenvectors) of :func:`inertia_roots` with each bearing's Z̄ from ``models``."""
+    kb = np.zeros((4, 4), dtype=complex)
+    for t, st, m in zip(rotor.transforms, states.states, models):
+        kb += t.T @ (st.scale * m.evaluate(gamma)[0]) @ t
+    return inertia_roots(rotor, states, gamma, kb)

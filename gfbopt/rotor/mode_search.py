@@ -132,10 +132,10 @@ def _refined(line, label, stable, unstable, tol, method, margin, seed=None) -> M
     if method == "secant":
         a, b = math.log(stable[0]), math.log(unstable[0])
         if seed is None:
-            first = (a, _log_scale(stable[1])), (b, _log_scale(unstable[1]))
+            first = (a, _log_scale(stable[1])), (b, _log_scale(unstable[1])), unstable[1]
         else:
             first = seed(line, label, whirl)
-        root = _secant(line, label, a, b, *first, whirl)[0]
+        root = _secant(line, label, a, b, *first[:2], whirl, first[2])[0]
     if root is None:
         root = brentq(lambda x: line.margin(x, label, whirl), stable[0], unstable[0],
                       xtol=tol * stable[0], rtol=tol)
@@ -153,11 +153,13 @@ def _log_scale(crossing) -> float:
 
 
 def _secant(line, label: str, a: float, b: float, p0: tuple, p1: tuple,
-            whirl: float) -> tuple:
+            whirl: float, near=None) -> tuple:
     """(onset [rpm] or None, last slope dg/d ln N) of mode ``label`` in the bracket
     ln N ∈ (a, b), g = ln μ_c > 0 at a and ≤ 0 at b: secant steps from the points p0, p1 =
     (ln N, g), bisection whenever a step would leave the bracket or a value is not finite
-    (module docstring of :mod:`gfbopt.rotor.system`).  None when not converged."""
+    (module docstring of :mod:`gfbopt.rotor.system`).  None when not converged.  Each step
+    follows the mode from the latest crossing (``near`` at first: :meth:`SpeedLine.follow`
+    computes that crossing alone)."""
     (x0, g0), (x1, g1) = p0, p1
     slope = math.nan
     for _ in range(SECANT_STEPS):
@@ -165,10 +167,10 @@ def _secant(line, label: str, a: float, b: float, p0: tuple, p1: tuple,
         x = x1 - g1 * (x1 - x0) / (g1 - g0) if finite else 0.5 * (a + b)
         if not a < x < b:
             x = 0.5 * (a + b)
-        c = line.follow(math.exp(x), label, whirl)
+        c = line.follow(math.exp(x), label, whirl, near)
         gx = _log_scale(c)
         if c is not None:
-            whirl = c.whirl_ratio
+            whirl, near = c.whirl_ratio, c
         if gx > 0:
             a = x
         else:
@@ -209,12 +211,15 @@ def guided_onset(fine, coarse, speeds: list, label: str, tol: float) -> Optional
         """The fine secant's start: the coarse onset and the coarse slope."""
         a, b = math.log(coarse_stable[0]), math.log(coarse_unstable[0])
         root, slope = _secant(coarse, label, a, b, (a, _log_scale(coarse_stable[1])),
-                              (b, _log_scale(coarse_unstable[1])), whirl)
+                              (b, _log_scale(coarse_unstable[1])), whirl,
+                              coarse_unstable[1])
         x0 = math.log(root) if root is not None else 0.5 * (a + b)
-        g0 = _log_scale(line.follow(math.exp(x0), label, whirl))
+        near = coarse.follow(math.exp(x0), label, whirl) if root is not None else None
+        at = line.follow(math.exp(x0), label, whirl, near)
         if not (math.isfinite(slope) and slope < 0):
             slope = NOMINAL_SLOPE
-        return (x0 - 1.0, g0 - slope), (x0, g0)
+        g0 = _log_scale(at)
+        return (x0 - 1.0, g0 - slope), (x0, g0), at
 
     try:
         return _refined(fine, label, stable, unstable, tol, "secant", margin, seed=seed)

@@ -44,10 +44,11 @@ from ..inputs.rotor_system import RotorSystem
 from ..progress import progress
 from ..static import SolverCache
 from ..threads import single_threaded
-from .matched_whirl import ModeCrossing, crossings
+from .matched_whirl import LOCAL_WINDOW, ModeCrossing, crossings, local_crossing
 from .mode_search import (ONSET, SECANT_TOLERANCE, STABLE, UNSTABLE_LOW,  # noqa: F401
                           ModeOnset, guided_onset, mode_onset)
 from .onset import SCAN_RATIO, check_coarse_grid, check_speed_range
+from .speed_line import transferred_start
 from .supports import (WHIRL_RANGE, RotorCase, SpeedStates, predicted_starts, resolve_rotor,
                        support_states)
 
@@ -55,6 +56,11 @@ from .supports import (WHIRL_RANGE, RotorCase, SpeedStates, predicted_starts, re
 SPEED_TOLERANCE = 1e-4
 #: ways to refine each mode's onset (module docstring)
 METHODS = ("secant", "scan")
+#: a fine equilibrium starts from the coarse guide's (interpolated) when the guide solved a
+#: speed nearer than this grid's nearest by more than this, in |ln(speed ratio)| [-]
+#: (measured at 144 × 36: 6–7 Newton steps from the guide's at the same speed, 3–4 from this
+#: grid's own 8–15 % away, 9–12 from 4,000 rpm to 12,000 rpm)
+GUIDE_START = 0.3
 
 
 @dataclass(frozen=True)
@@ -99,12 +105,17 @@ class RotorOnsets:
 
 class SpeedLine:
     """Both bearings and every mode crossing at each speed asked, cached; each speed's
-    equilibria warm-start from the nearest speed solved."""
+    equilibria warm-start from the nearest speed solved.  ``local``: :meth:`follow` from a
+    nearby crossing computes that mode's crossing alone (:func:`~gfbopt.rotor.
+    matched_whirl.local_crossing`) where every crossing has not been computed (False: every
+    crossing at every speed, the reference)."""
 
-    def __init__(self, rotor: RotorCase, whirl_range=WHIRL_RANGE):
-        self.rotor, self.whirl_range = rotor, tuple(whirl_range)
+    def __init__(self, rotor: RotorCase, whirl_range=WHIRL_RANGE, local: bool = True):
+        self.rotor, self.whirl_range, self.local = rotor, tuple(whirl_range), bool(local)
         self._states: dict = {}
         self._crossings: dict = {}
+        self._local: dict = {}                   # (speed, label) -> ModeCrossing
+        self.guide: Optional["SpeedLine"] = None  # a coarse line whose equilibria start ours
 
     @property
     def speeds_solved(self) -> list:
@@ -119,9 +130,30 @@ class SpeedLine:
             guesses = (predicted_starts(self._states[ok[0]],
                                         self._states[ok[1]] if len(ok) > 1 else None, speed)
                        if ok else None)
+            guesses = self._guide_starts(speed, ok[0] if ok else None) or guesses
             self._states[speed] = support_states(self.rotor, speed, None, self.whirl_range,
                                                  guesses=guesses)
         return self._states[speed]
+
+    def _guide_starts(self, speed: float, nearest: Optional[float]) -> Optional[tuple]:
+        """Each bearing's start from the guide's equilibria at its nearest speed solved,
+        interpolated onto this grid (:func:`~gfbopt.rotor.speed_line.transferred_start`),
+        when that speed is nearer than ``nearest`` (this line's) by more than
+        :data:`GUIDE_START` in |ln(speed ratio)|; None otherwise."""
+        if self.guide is None:
+            return None
+        def distance(other):
+            return abs(math.log(other / speed))
+        near = min((s for s in self.guide.speeds_solved if self.guide.states(s).ok),
+                   key=distance, default=None)
+        if near is None or (nearest is not None
+                            and not distance(near) + GUIDE_START < distance(nearest)):
+            return None
+        out = []
+        for case, st in zip(self.rotor.cases, self.guide.states(near).states):
+            model = case.model(speed)
+            out.append(transferred_start(st.solution, case.cache(model, case.grid), model))
+        return tuple(out)
 
     @single_threaded
     def crossings(self, speed: float) -> list:
@@ -131,9 +163,23 @@ class SpeedLine:
                                       if st.ok else None)
         return self._crossings[speed]
 
-    def follow(self, speed: float, label: str, whirl: float) -> Optional[ModeCrossing]:
+    def follow(self, speed: float, label: str, whirl: float,
+               near: Optional[ModeCrossing] = None) -> Optional[ModeCrossing]:
         """The crossing at ``speed`` that continues a mode: same label, nearest whirl ratio
-        (any label when none has it)."""
+        (any label when none has it).  With ``near`` (the mode's crossing at a nearby speed
+        or on another grid) and ``local``, where every crossing at ``speed`` has not been
+        computed: the crossing of the branch through ``near`` alone when it has the label
+        and lies within :data:`~gfbopt.rotor.matched_whirl.LOCAL_WINDOW` of ``whirl``."""
+        key = (speed, label)
+        if key in self._local and speed not in self._crossings:
+            return self._local[key]
+        if near is not None and self.local and speed not in self._crossings:
+            st = self.states(speed)
+            found = local_crossing(self.rotor, st, near) if st.ok else None
+            if (found is not None and found.label == label
+                    and abs(found.whirl_ratio - whirl) <= LOCAL_WINDOW):
+                self._local[key] = found
+                return found
         found = self.crossings(speed) or []
         same = [c for c in found if c.label == label] or found
         return min(same, key=lambda c: abs(c.whirl_ratio - whirl), default=None)
@@ -148,11 +194,14 @@ class SpeedLine:
         """One row per (speed, crossing) evaluated (speed_rpm, label, inertia_scale, whirl
         ratio, whirl frequency [Hz], grid)."""
         grid = str(self.rotor.grid)
+        found = {s: c for s, c in self._crossings.items() if c}
+        for (s, _), c in self._local.items():
+            if s not in self._crossings:
+                found.setdefault(s, []).append(c)
         return [{"speed_rpm": s, "label": c.label, "inertia_scale": c.inertia_scale,
                  "whirl_ratio": c.whirl_ratio, "whirl_frequency_hz": c.whirl_frequency_hz,
                  "grid": grid}
-                for s in sorted(self._crossings) if self._crossings[s]
-                for c in self._crossings[s]]
+                for s in sorted(found) for c in found[s]]
 
     def equilibria(self) -> list:
         """One row per (speed, bearing) solved: the equilibrium (:meth:`~gfbopt.rotor.
@@ -201,7 +250,7 @@ def rotor_onsets(system: RotorSystem, speed_range, *, grid: Grid = DEFAULT_GRID,
     line = line or SpeedLine(rotor, whirl_range)
     guide = (SpeedLine(replace(rotor, grid=guide_grid,
                                cases=tuple(replace(c, grid=guide_grid) for c in rotor.cases)),
-                       line.whirl_range) if guide_grid is not None else None)
+                       line.whirl_range, line.local) if guide_grid is not None else None)
     scan_line = guide or line
     speeds = scan_speeds(low, high)
     with progress(total=len(speeds), desc=f"rotor onset scan on {scan_line.rotor.grid}",
@@ -209,7 +258,11 @@ def rotor_onsets(system: RotorSystem, speed_range, *, grid: Grid = DEFAULT_GRID,
         for speed in speeds:
             scan_line.crossings(speed)
             bar.update(1)
-    modes = _modes(line, guide, speeds, speed_tolerance, method, show_progress)
+    line.guide = guide
+    try:
+        modes = _modes(line, guide, speeds, speed_tolerance, method, show_progress)
+    finally:
+        line.guide = None
     modes.sort(key=lambda m: (math.isnan(m.onset_speed_rpm), m.onset_speed_rpm, m.label))
     first = next((m for m in modes if m.status == ONSET), None)
     low_unstable = [m.label for m in modes if m.status == UNSTABLE_LOW]
