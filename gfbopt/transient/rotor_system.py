@@ -59,9 +59,10 @@ from ..inputs.bearing import BearingGeometry
 from ..inputs.rotor_system import RotorBody
 from ..rotor.rigid import gyroscopic_matrix, mass_matrix, rotation, station_matrix
 from .foil_state import foil_bound
+from .rotor_films import FusedFilms, AtSpeed, largest_deflection, fusable
 from .rotor_batch import Runs, runs  # noqa: F401  (re-exported: the batch of runs)
 from .system import (State, TransientModel, film_force, flux_residual, pressure_and_film,
-                     rigid_film, stiffness_bound)
+                     stiffness_bound)
 
 #: names of the generalised coordinates, in order (gfbopt.rotor.rigid's q = (x, y, ψx, ψy))
 DOF = ("x", "y", "psi_x", "psi_y")
@@ -274,12 +275,13 @@ class RotorRightHandSide:
     """
 
     def __init__(self, model: RotorTransientModel, batch: Runs, stack: Optional[bool] = None,
-                 track_deflection: bool = False):
+                 track_deflection: bool = False, fuse: Optional[bool] = None):
         self.model = model
         self.runs = batch
         self.layout = layout(model)
         self.stack = stackable(model) if stack is None else stack
         self.track_deflection = track_deflection
+        self.fuse = fusable(model) if fuse is None else fuse   # fuse=False: one-bearing kernels
         k = len(model.bearings)
         self.to_local = np.vstack(list(model.to_local())).T.copy()        # (4, 2K)
         self.from_local = np.hstack(list(model.from_local())).T.copy()    # (2K, 4)
@@ -302,15 +304,18 @@ class RotorRightHandSide:
         self.base_lambda = [b.tm.bearing_number * (w / b.model_speed) for b in model.bearings]
         self.same_speed = bool(np.all(batch.speed == batch.speed[0])
                                and np.all(batch.ramp == batch.ramp[0])) if batch.size else True
-        self._kernels = [_AtSpeed(b.tm) for b in model.bearings]
+        self._kernels = [AtSpeed(b.tm) for b in model.bearings]
+        self.fused = FusedFilms(model, batch.size, self.film_divisor, self.foil_factor,
+                                self.base_lambda) if self.fuse else None
         self.evaluations = 0
+        self._rotor_start, self._filled = self.layout.rotor, self.layout.filled
         self.min_film = np.full((batch.size, k), np.inf)
         self.max_deflection = np.full((batch.size, k), -np.inf)
 
     def take(self, keep) -> "RotorRightHandSide":
         """The same system for the runs selected by ``keep`` (the counters restart)."""
         return RotorRightHandSide(self.model, self.runs.take(keep), self.stack,
-                                  self.track_deflection)
+                                  self.track_deflection, self.fuse)
 
     def reset(self) -> None:
         self.min_film[:] = np.inf
@@ -319,8 +324,7 @@ class RotorRightHandSide:
     # ---------------------------------------------------------------- pieces
     def journals(self, z: np.ndarray) -> np.ndarray:
         """(X_k, Y_k) of every run, (B, K, 2)."""
-        q = self.layout.rotor_of(z)[:, :4]
-        return (q @ self.to_local).reshape(z.shape[0], -1, 2)
+        return np.dot(self.layout.rotor_of(z)[:, :4], self.to_local).reshape(z.shape[0], -1, 2)
 
     def _speed(self, tau: np.ndarray):
         """ω/ω_ref: a float when every run turns at the same speed, else (B,)."""
@@ -359,14 +363,38 @@ class RotorRightHandSide:
     # ---------------------------------------------------------------- RHS
     def __call__(self, z: np.ndarray) -> np.ndarray:
         self.evaluations += 1
-        lay, model = self.layout, self.model
-        nb, k = z.shape[0], len(model.bearings)
-        rotor = lay.rotor_of(z)
+        nb, start = z.shape[0], self._rotor_start
+        rotor = z[:, 0, start:]                        # q̃, q̃', τ (Layout.rotor_of)
         tau = rotor[:, 8]
-        xy = self.journals(z)
+        xy = np.dot(rotor[:, :4], self.to_local).reshape(nb, -1, 2)       # journals()
         speed = self._speed(tau)
         out = np.empty_like(z)
-        out[:, :, lay.filled:] = 0.0                   # padding (the rotor's tail is set below)
+        out[:, :, self._filled:] = 0.0                 # padding (the rotor's tail is set below)
+        if self.fused is not None:                     # every film at once (.rotor_films)
+            forces = self.fused.evaluate(z, xy, speed, out, self.min_film,
+                                         self.max_deflection if self.track_deflection else None)
+        else:
+            forces = self._films_one_by_one(z, xy, speed, out)
+        load = np.dot(forces.reshape(nb, -1), self.from_local)
+        load += self.static
+        if self._planes:
+            load += self._imbalance(tau)
+        acc = (np.dot(load, self.accel) if self.accel is not None
+               else np.einsum("bij,bj->bi", self.accel_each, load))
+        velocity = rotor[:, 4:8]
+        turn = np.dot(velocity, self.gyro)
+        turn *= speed if isinstance(speed, float) else speed[:, None]
+        acc -= turn
+        tail = out[:, 0, start:]
+        tail[:, :4] = velocity
+        tail[:, 4:8] = acc
+        tail[:, 8] = 1.0
+        return out
+
+    def _films_one_by_one(self, z, xy, speed, out) -> np.ndarray:
+        """The films through the one-bearing kernels (stacked or bearing by bearing): writes
+        dΦ/dτ and dW/dτ into ``out``, returns the forces (B, K, 2)."""
+        lay, nb, k = self.layout, z.shape[0], len(self.model.bearings)
         forces = np.empty((nb, k, 2))
         for j, tm, phi, x, y, w in self._films(z, xy):
             jj = 0 if self.stack else j
@@ -397,27 +425,12 @@ class RotorRightHandSide:
                     dw *= self.foil_factor[jj]
                 view[:, n:n + dw[0].size] = dw.reshape(view.shape[0], -1)
             if self.track_deflection:
-                d = _deflection(h, x, y, tm)
+                d = largest_deflection(h, x, y, tm)
                 if self.stack:
                     np.maximum(self.max_deflection, d.reshape(nb, k), out=self.max_deflection)
                 else:
                     np.maximum(self.max_deflection[:, j], d, out=self.max_deflection[:, j])
-        load = forces.reshape(nb, 2 * k) @ self.from_local
-        load += self.static
-        if len(model.imbalance):
-            load += self._imbalance(tau)
-        acc = (load @ self.accel if self.accel is not None
-               else np.einsum("bij,bj->bi", self.accel_each, load))
-        velocity = rotor[:, 4:8]
-        if isinstance(speed, float):
-            acc -= speed * (velocity @ self.gyro)
-        else:
-            acc -= speed[:, None] * (velocity @ self.gyro)
-        tail = out[:, 0, lay.rotor:]
-        tail[:, :4] = velocity
-        tail[:, 4:8] = acc
-        tail[:, 8] = 1.0
-        return out
+        return forces
 
     def _imbalance(self, tau: np.ndarray) -> np.ndarray:
         """Q_u (B, 4) [N] of every run at τ (module docstring)."""
@@ -473,24 +486,3 @@ def _same(a, b) -> bool:
     if a is None or b is None:
         return a is None and b is None
     return bool(np.array_equal(a, b))
-
-
-class _AtSpeed:
-    """The one-bearing model seen by the flux kernel at the current bearing number: Λ is
-    set per evaluation (a run-up changes it continuously, without rebuilding anything);
-    every other attribute is the model's own."""
-
-    def __init__(self, tm: TransientModel):
-        self._tm = tm
-        self.bearing_number = tm.bearing_number
-
-    def __getattr__(self, name):
-        return getattr(self._tm, name)
-
-
-def _deflection(h: np.ndarray, x: np.ndarray, y: np.ndarray, tm: TransientModel):
-    """Largest foil deflection W = H − H_r of each run [clearances]."""
-    if tm.law.name == "rigid":
-        return np.zeros(x.shape)
-    hr = rigid_film(x, y, tm)                                     # (B, m), with the bore
-    return (h - hr[:, :, None]).max(axis=(1, 2))
