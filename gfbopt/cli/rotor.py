@@ -123,6 +123,8 @@ def run(args) -> int:
             for p in system.imbalance]
     for key in ("scan", "equilibria"):       # in the CSV files; the JSON keeps the answers
         out[key] = out[key] if not args.csv else f"{key}.csv"
+    if args.csv and "imbalance_response" in out:    # its table is imbalance_response.csv
+        out["imbalance_response"]["table"] = "imbalance_response.csv"
     if args.csv:
         folder = Path(args.csv)
         folder.mkdir(parents=True, exist_ok=True)

@@ -69,10 +69,8 @@ class RotorAnalysis:
                                "load_capacity_exceeded": self.campbell.capacity}
         if self.imbalance is not None:
             above = self.imbalance.unstable_from_rpm
-            out["imbalance_response"] = {"peaks": self.imbalance.peaks,
-                                         "unstable_from_rpm": above,
-                                         "note": imbalance_note(above),
-                                         "load_capacity_exceeded": self.imbalance.capacity}
+            out["imbalance_response"] = {**self.imbalance.to_dict(),
+                                         "note": imbalance_note(above)}
         if self.half_mass is not None:
             first = min((h["onset_speed_rpm"] for h in self.half_mass
                          if math.isfinite(h["onset_speed_rpm"])), default=math.nan)

@@ -93,3 +93,28 @@ def test_below_the_onset_there_is_no_subsynchronous_whirl(orbit):
         assert ((ratio >= 0.05) & (ratio <= 0.95)).all(), ratio
         assert (comp["sub_amplitude_um"].dropna() >= 0).all()
         assert "final_sub_amplitude_um" not in b     # an orbit's whirl is its limit cycle's
+
+
+def test_the_rotor_commands_json_carries_the_linear_response_table(tmp_path, capsys):
+    """``gfbopt rotor --imbalance-response --json`` gives the amplitude table itself (one
+    record per speed and station, the CSV's names and numbers), not the peaks only; with
+    ``--csv`` the JSON names the file that holds it."""
+    from pathlib import Path
+
+    blower = str(Path(__file__).resolve().parents[2] / "problems" / "rotors" / "blower.toml")
+    args = ["rotor", blower, "--speed-range", "5000", "20000", "--imbalance-response",
+            "--grid", "24x8", "--json"]
+    assert main(args) == 0
+    table = json.loads(capsys.readouterr().out)["imbalance_response"]["table"]
+    assert main(args + ["--csv", str(tmp_path)]) == 0
+    named = json.loads(capsys.readouterr().out)["imbalance_response"]["table"]
+    assert named == "imbalance_response.csv"
+    csv = pd.read_csv(tmp_path / named)
+    assert len(table) == len(csv) > 0
+    json_frame = pd.DataFrame(table)[list(csv.columns)]
+    for column in csv.columns:
+        if csv[column].dtype.kind == "f":
+            assert json_frame[column].to_numpy() == pytest.approx(csv[column].to_numpy(),
+                                                                   rel=1e-8)
+        else:
+            assert list(json_frame[column]) == list(csv[column])
