@@ -69,12 +69,19 @@ class _Schur:
 
 
     def solve_many(self, sigma: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """:meth:`solve` at every σ of an array: (Z̄ (n, 2, 2), relative residuals (n,))."""
-        matrix = sigma[:, None, None] * self.t[None]
-        matrix[:, self.diagonal[0], self.diagonal[1]] += 1.0
-        u = np.linalg.solve(matrix, np.broadcast_to(self.c, (sigma.size,) + self.c.shape))
+        """:meth:`solve` at every σ of an array: (Z̄ (n, 2, 2), relative residuals (n,)) —
+        the same triangular solves (a quarter cheaper than numpy's batched LU at m ≈ 24)."""
+        u = np.empty((sigma.size,) + self.c.shape, dtype=complex)
+        singular = np.zeros(sigma.size, dtype=bool)
+        for k, s in enumerate(sigma):
+            matrix = s * self.t
+            matrix[self.diagonal] += 1.0
+            u[k], info = _TRTRS(matrix, self.c)
+            singular[k] = info != 0
         residual = np.abs(sigma) * np.linalg.norm(self.tail @ u, axis=(1, 2)) / self.norm_r
-        return self.f @ u, residual
+        z = self.f @ u
+        z[singular], residual[singular] = np.nan, np.inf
+        return z, residual
 
 
 class ReducedImpedance:
@@ -85,6 +92,9 @@ class ReducedImpedance:
         self._blocks = -1
         self._last: Optional[_Schur] = None
         self._previous: Optional[_Schur] = None
+        #: (points, Z̄, accepted) of the last batch :meth:`converge` evaluated on the space as
+        #: it ended (the values a later :meth:`evaluate_many` would give)
+        self.last_batch: Optional[tuple] = None
 
     def _schur(self, previous: bool = False) -> Optional[_Schur]:
         """The Schur form on all the space's columns (``previous``: without the last block),
@@ -176,7 +186,9 @@ class ReducedImpedance:
             pending = np.flatnonzero(~done)
             far = pending[np.argmax(distance[pending])]
             if self._accepted_dense(points[far]):
-                done[pending] = self.evaluate_many(points[pending])[1]
+                z, done[pending] = self.evaluate_many(points[pending])
+                self.last_batch = (points[pending], z, done[pending].copy(),
+                                   self.model.blocks)
                 done[far] = True
                 if done.all():
                     return done

@@ -158,6 +158,11 @@ class BearingState:
         """Converge the Krylov space at these whirl ratios (the threshold's scan)."""
         if self._krylov() is not None:
             self._reduced.converge(1j * np.asarray(whirl_ratios, dtype=float))
+            batch = self._reduced.last_batch       # its values on the space as it ended
+            if batch is not None and batch[3] == self._model.blocks:
+                for s, z, ok in zip(*batch[:3]):
+                    if ok:
+                        self._values.setdefault(float(s.imag), z)
 
     def nondimensional(self, whirl_ratio: float) -> np.ndarray:
         """Z̄(iγ) (2 × 2, bearing load frame) [-]."""
