@@ -13,6 +13,11 @@ interleaved ``--repeats`` times and the medians taken (CPU time of this process;
 is shared, so the load average before and after is recorded).  Where the time goes: the
 rotor's CPU split by stage and grid (statics, full crossings, local crossings).
 
+``--baseline DIR``: the same measurement of the code in DIR (a ``git worktree`` of an older
+commit), a process of this script with PYTHONPATH=DIR after each repeat here (A B A B …);
+the JSON then has its medians, the ratio of the rotor's CPU new/old and the largest relative
+difference of the onsets and whirl ratios from the old code's.
+
     OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1 PYTHONPATH=. python \\
         benchmarks/bench_rotor_onset_ratio.py [--out results/benchmarks/rotor_onset_ratio.json]
         [--repeats 3] [--grids 144x36,72x20]
@@ -21,6 +26,7 @@ from __future__ import annotations
 
 import argparse
 import inspect
+import json
 import os
 import statistics
 import subprocess
@@ -93,7 +99,36 @@ def _breakdown(system, grid: Grid, cache) -> dict:
     return out
 
 
-def bench(system, grid: Grid, repeats: int) -> dict:
+def _baseline(tree: str, grid: str) -> dict:
+    """One repeat of this benchmark on the code in ``tree`` (a process of its own)."""
+    out = Path(f"/tmp/bench_rotor_onset_ratio_baseline_{os.getpid()}.json")
+    env = dict(os.environ, PYTHONPATH=str(Path(tree).resolve()))
+    subprocess.run([sys.executable, __file__, "--grids", grid, "--repeats", "1",
+                    "--out", str(out)], env=env, check=True, capture_output=True)
+    data = json.loads(out.read_text())
+    out.unlink()
+    return {"source": data["source"], **data["runs"][0]}
+
+
+def _compare(run: dict, old: list) -> dict:
+    """The old code's medians over its processes and how the new run compares."""
+    names = ("rotor", "bearing_A", "bearing_B")
+    med = {n: statistics.median(o["cpu_s_median"][n] for o in old) for n in names}
+    modes = old[-1]["rotor_modes"]
+    diff = {k: max((abs(m[k] / modes[label][k] - 1) for label, m in run["rotor_modes"].items()
+                    if m["status"] == "onset"), default=0.0)
+            for k in ("onset_speed_rpm", "whirl_ratio")}
+    return {"source": old[-1]["source"], "cpu_s_median": med,
+            "cpu_s": {n: [o["cpu_s_median"][n] for o in old] for n in names},
+            "ratio_rotor_over_two_bearings": med["rotor"] / (med["bearing_A"]
+                                                             + med["bearing_B"]),
+            "rotor_new_over_old_cpu": run["cpu_s_median"]["rotor"] / med["rotor"],
+            "rotor_modes": modes, "rotor_breakdown": old[-1]["rotor_breakdown"],
+            "max_relative_onset_difference_vs_old": diff["onset_speed_rpm"],
+            "max_relative_whirl_difference_vs_old": diff["whirl_ratio"]}
+
+
+def bench(system, grid: Grid, repeats: int, after_repeat=None) -> dict:
     cache = SolverCache(grid)
     rotor = resolve_rotor(system, grid, cache)
 
@@ -118,6 +153,8 @@ def bench(system, grid: Grid, repeats: int) -> dict:
         for name, f in variants.items():
             cpu, answers[name] = _cpu(f)
             cpus[name].append(cpu)
+        if after_repeat is not None:
+            after_repeat()
     med = {k: statistics.median(v) for k, v in cpus.items()}
     bearings = med["bearing_A"] + med["bearing_B"]
     rotor_res = answers["rotor"]
@@ -154,10 +191,19 @@ def main(argv=None) -> dict:
                                              "rotor_onset_ratio.json"))
     parser.add_argument("--repeats", type=int, default=3)
     parser.add_argument("--grids", default="144x36,72x20")
+    parser.add_argument("--baseline", default=None, help="source tree of the old code")
     args = parser.parse_args(argv)
     system = load_rotor(ROOT / "problems" / "rotors" / "blower.toml")
     load_before = os.getloadavg()
-    runs = [bench(system, Grid.parse(g), args.repeats) for g in args.grids.split(",")]
+    runs = []
+    for g in args.grids.split(","):
+        old = []
+        run = bench(system, Grid.parse(g), args.repeats,
+                    after_repeat=(lambda gg=g, o=old: o.append(_baseline(args.baseline, gg)))
+                    if args.baseline else None)
+        if old:
+            run["baseline"] = _compare(run, old)
+        runs.append(run)
     out = {"runs": runs, "source": _source(), "local_refinement": LOCAL,
            "machine": machine_info(load_average_before=load_before,
                                    load_average_after=os.getloadavg())}
@@ -170,6 +216,13 @@ def main(argv=None) -> dict:
                  f"{r['max_relative_onset_difference_vs_reference_line']:.1e}" if LOCAL else ""))
         for k, v in r["rotor_breakdown"].items():
             print(f"    {k}: {v}")
+        if "baseline" in r:
+            b = r["baseline"]
+            print(f"  old code ({b['source']['commit'][:8]}): rotor {b['cpu_s_median']['rotor']:.2f}"
+                  f" s, ratio {b['ratio_rotor_over_two_bearings']:.2f}; new/old rotor CPU "
+                  f"{b['rotor_new_over_old_cpu']:.2f}; onsets differ from the old by "
+                  f"{b['max_relative_onset_difference_vs_old']:.1e}, whirl by "
+                  f"{b['max_relative_whirl_difference_vs_old']:.1e}")
     print(f"load {load_before} -> {os.getloadavg()}; source {out['source']}")
     write_report(out, args.out)
     return out
