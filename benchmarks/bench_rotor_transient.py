@@ -32,6 +32,18 @@ Run:  PYTHONPATH=. python benchmarks/bench_rotor_transient.py [--case NAME ...] 
    For each: wall and CPU time, the machine's load (uptime) before and after, shaft
    revolutions, RHS evaluations, steps and stages, the record's size (what the run keeps:
    4 + K floats per run per sample, never the films).
+3. With ``--before TREE`` (a checkout of an earlier commit, e.g. ``git worktree add
+   /tmp/old <commit>``), old against new in one run:
+
+   * ``rhs_evaluation``: CPU time of one right-hand-side evaluation of the rotor (both
+     films, 72 × 20, one run on a ramp, near the 30,000 rpm equilibrium) for the
+     ``preloaded`` (damped, the bearings' τ_f differ) and ``study`` (undamped) rotors,
+     measured in child processes that alternate old and new (A B A B, ``--repeats``), each
+     the median of 5 batches of 1,000 evaluations; medians of the repeats and their ratio
+     (target ≥ 2);
+   * ``run_up_before``: the old tree's own run-up cases (its benchmark script, run before
+     the new code's), CPU time, evaluations and the answers beside the new ones
+     (``run_up_change``).
 """
 from __future__ import annotations
 
@@ -42,8 +54,12 @@ for _var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
 
 import argparse  # noqa: E402
 import dataclasses  # noqa: E402
+import json  # noqa: E402
 import math  # noqa: E402
+import statistics  # noqa: E402
+import subprocess  # noqa: E402
 import sys  # noqa: E402
+import tempfile  # noqa: E402
 import time  # noqa: E402
 from pathlib import Path  # noqa: E402
 
@@ -60,7 +76,7 @@ from gfbopt.transient.rotor_io import rotor_input  # noqa: E402
 from gfbopt.transient.rotor_run import integrate_rotor  # noqa: E402
 from gfbopt.transient.rotor_setup import (build_model, equilibrium_states,  # noqa: E402
                                           set_station_velocities)
-from gfbopt.transient.rotor_system import runs  # noqa: E402
+from gfbopt.transient.rotor_system import RotorRightHandSide, runs  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]
 GRID = Grid(72, 20)
@@ -70,6 +86,10 @@ PRELOAD = BoreSpec("shims", 3, preload_ratio=0.6, width_deg=60.0, offset_deg=0.0
 LOSS_FACTOR = 0.3
 SIDE_LOAD_N = 60.0
 LIGHT_INERTIA_SCALE = 0.02
+#: what the speed work changed (the measured code), for the tree-state record
+MEASURED = ["gfbopt/transient", "gfbopt/discretisation.py", "gfbopt/physics",
+            "benchmarks/bench_rotor_transient.py"]
+RHS_CASES = ("preloaded", "study")
 
 
 def load() -> str:
@@ -149,6 +169,88 @@ def run_up(case: str, rate: float) -> dict:
             "record_bytes": int(r.q.nbytes + r.min_film.nbytes + r.tau.nbytes)}
 
 
+def source(root: Path = ROOT) -> dict:
+    """The commit of ``root`` and whether its measured files or its tree differ from it."""
+    def git(*args):
+        return subprocess.run(["git", *args], cwd=root, capture_output=True,
+                              text=True).stdout.strip()
+    return {"commit": git("rev-parse", "HEAD"),
+            "measured_files_dirty": bool(git("status", "--porcelain", "--", *MEASURED)),
+            "tree_dirty": bool(git("status", "--porcelain", "--untracked-files=no"))}
+
+
+def rhs_probe(evaluations: int = 1000, batches: int = 5) -> dict:
+    """ms of CPU per rotor right-hand-side evaluation (median of ``batches``) per case, with
+    whatever gfbopt is importable (the child process of :func:`rhs_evaluation`)."""
+    import gfbopt
+    out = {"gfbopt_path": str(Path(gfbopt.__file__).parent)}
+    for case in RHS_CASES:
+        system = preloaded_system() if case == "preloaded" else study_system()
+        model, _ = build_model(rotor_input(system), 30_000.0, GRID, cache=SolverCache(GRID))
+        z = set_station_velocities(model, equilibrium_states(model, 1),
+                                   [[7e-4, 7e-4], [7e-4, 7e-4]])
+        z[:, 0, -1] = 0.3                                     # τ, on the ramp
+        rhs = RotorRightHandSide(model, runs(1, ramp=0.001))
+        for _ in range(100):
+            rhs(z)
+        times = []
+        for _ in range(batches):
+            t0 = time.process_time()
+            for _ in range(evaluations):
+                rhs(z)
+            times.append((time.process_time() - t0) / evaluations * 1e3)
+        out[case] = statistics.median(times)
+    return out
+
+
+def _child(tree: Path, args: list) -> subprocess.CompletedProcess:
+    env = {**os.environ, "PYTHONPATH": str(tree)}
+    return subprocess.run([sys.executable, *args], env=env, capture_output=True, text=True,
+                          check=True)
+
+
+def rhs_evaluation(before: Path, repeats: int) -> dict:
+    """Old (``before``) against new per-evaluation CPU, alternating child processes."""
+    rows = {"before": [], "after": []}
+    for _ in range(repeats):
+        for label, tree in (("before", before), ("after", ROOT)):
+            done = _child(tree, [__file__, "--rhs-probe"])
+            rows[label].append(json.loads(done.stdout.strip().splitlines()[-1]))
+    out = {"grid": str(GRID), "speed_rpm": 30_000.0, "runs": 1, "repeats": repeats,
+           "evaluations_per_batch": 1000, "batches": 5, "target_ratio": 2.0,
+           "before_source": source(before), "before_path": rows["before"][0]["gfbopt_path"],
+           "after_path": rows["after"][0]["gfbopt_path"]}
+    for case in RHS_CASES:
+        old = [r[case] for r in rows["before"]]
+        new = [r[case] for r in rows["after"]]
+        out[case] = {"before_ms": statistics.median(old), "after_ms": statistics.median(new),
+                     "ratio": statistics.median(old) / statistics.median(new),
+                     "before_ms_each": old, "after_ms_each": new}
+    return out
+
+
+def run_up_before(before: Path, case: str, rate: float) -> dict:
+    """The old tree's own benchmark of one run-up case."""
+    with tempfile.TemporaryDirectory() as tmp:
+        out = Path(tmp) / "before.json"
+        _child(before, [str(before / "benchmarks/bench_rotor_transient.py"), "--skip-ratio",
+                        "--case", case, "--rate", str(rate), "--out", str(out)])
+        return json.loads(out.read_text())[f"run_up_{case}"]
+
+
+ANSWERS = ("contact", "contact_speed_rpm", "subsync_appearance_rpm", "min_film_um",
+           "peak_sync_amplitude_um", "revolutions_integrated")
+
+
+def change(old: dict, new: dict) -> dict:
+    """CPU and evaluation ratios (before/after) and the answers side by side."""
+    return {"cpu_ratio": old["cpu_time_s"] / new["cpu_time_s"],
+            "evaluations_ratio": old["evaluations"] / new["evaluations"],
+            "cpu_per_evaluation_ms": [old["cpu_time_s"] / old["evaluations"] * 1e3,
+                                      new["cpu_time_s"] / new["evaluations"] * 1e3],
+            "answers_before_after": {k: [old.get(k), new.get(k)] for k in ANSWERS}}
+
+
 def main() -> None:
     parser = argparse.ArgumentParser()
     parser.add_argument("--rate", type=float, default=50_000.0)
@@ -158,14 +260,30 @@ def main() -> None:
                         help="no per-revolution ratio (run-ups only)")
     parser.add_argument("--ratio-only", action="store_true", help="no run-up")
     parser.add_argument("--out", default=str(ROOT / "results/benchmarks/rotor_transient.json"))
+    parser.add_argument("--before", type=Path, help="a checkout of the old code: old against "
+                        "new per evaluation and per run-up, in one run")
+    parser.add_argument("--repeats", type=int, default=5, help="A/B pairs of the RHS timing")
+    parser.add_argument("--rhs-probe", action="store_true", help=argparse.SUPPRESS)
     args = parser.parse_args()
-    out = {"machine": machine_info(load_before=load())}
+    if args.rhs_probe:
+        print(json.dumps(rhs_probe()))
+        return
+    out = {"machine": machine_info(load_before=load()), "source": source()}
+    if args.before is not None:
+        out["rhs_evaluation"] = rhs_evaluation(args.before, args.repeats)
+        print(out["rhs_evaluation"], flush=True)
     if not args.skip_ratio:
         out["per_revolution"] = per_revolution()
         print(out["per_revolution"], flush=True)
     for case in [] if args.ratio_only else args.case or ["preloaded"]:
+        if args.before is not None:
+            out.setdefault("run_up_before", {})[case] = run_up_before(args.before, case,
+                                                                      args.rate)
         out[f"run_up_{case}"] = run_up(case, args.rate)
         print(out[f"run_up_{case}"], flush=True)
+        if args.before is not None:
+            out.setdefault("run_up_change", {})[case] = change(out["run_up_before"][case],
+                                                               out[f"run_up_{case}"])
     out["machine"]["load_after"] = load()
     write_report(out, args.out)
 
