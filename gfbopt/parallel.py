@@ -55,6 +55,7 @@ from __future__ import annotations
 
 import contextlib
 import contextvars
+import gc
 import inspect
 import multiprocessing
 import re
@@ -104,20 +105,19 @@ def choose_start_method(platform: str, other_threads: int, openmp_loaded: bool) 
 
 def default_workers(cores: int, load: float) -> int:
     """Worker processes the machine can give: its free cores, ``cores - load`` (``load`` the
-    one-minute load average) rounded to the nearest whole core (a core counts as free when at
-    least half of it is idle), at most ``cores`` and at least 1.  On 2 cores: 2 workers up to
-    a load of 0.5, 1 above; on 8 cores at a load of 2.7: 5."""
+    one-minute load average) rounded to whole cores (a core is free when at least half idle),
+    at most ``cores``, at least 1.  2 cores: 2 workers up to a load of 0.5, 1 above."""
     import math
 
     free = float(cores) - max(0.0, float(load)) if math.isfinite(load) else 1.0
     return max(1, min(int(cores), math.floor(free + 0.5)))
 
 
-def _openmp_loaded() -> bool:
+def _openmp_loaded() -> bool:  # no /proc: assume the worst
     try:
         with open("/proc/self/maps") as maps:
             return any(_OPENMP.search(line.rstrip()) for line in maps)
-    except OSError:                  # no /proc: assume the worst
+    except OSError:
         return True
 
 
@@ -135,8 +135,7 @@ def _preloaded_modules() -> list[str]:
 
 def limit_blas_threads() -> None:
     """One BLAS/OpenMP thread for the rest of this process, whatever the environment says
-    (:func:`gfbopt.threads.pin_threads`): the workers of a pool would otherwise compete for
-    the same cores."""
+    (:func:`gfbopt.threads.pin_threads`): pool workers would otherwise compete for cores."""
     pin_threads(keep_user_choice=False)
 
 
@@ -186,9 +185,8 @@ class WorkerPool:
     ends, terminated at once on an exception or Ctrl-C.  ``workers <= 1`` runs everything
     in this process with one solver cache for the whole run (:attr:`cache`).
     ``started`` counts the worker processes started (restarts after a broken pool too);
-    ``method`` is the start method of the current (or last) executor.  ``start_method``
-    forces one of :data:`START_METHODS` (default: :func:`start_method` when the executor is
-    made).
+    ``method`` is the current (or last) executor's start method; ``start_method`` forces one
+    of :data:`START_METHODS` (default: :func:`start_method` when the executor is made).
     """
 
     def __init__(self, workers: int = 1, start_method: Optional[str] = None):
@@ -440,6 +438,25 @@ def stream_tasks(function: Callable, arguments: Sequence, *, workers: int = 1,
             yield from _stream_pool(function, arguments, pool, retries, tick)
 
 
+@contextlib.contextmanager
+def _forking(fork: bool):
+    """Around the submits that fork: the driver's objects frozen out of the collector
+    (:func:`gc.freeze`: a worker neither finalises the driver's garbage, a temporary folder
+    or a buffered file, nor copies the pages a collection touches); Python >= 3.12's warning
+    of a fork beside (fork-safe) native threads is not shown."""
+    if not fork:
+        yield
+        return
+    gc.freeze()
+    try:
+        with warnings.catch_warnings():
+            warnings.filterwarnings("ignore", r".*use of fork\(\) may lead to deadlocks",
+                                    DeprecationWarning)
+            yield
+    finally:
+        gc.unfreeze()
+
+
 def _stream_pool(function: Callable, arguments: list, pool: WorkerPool, retries: int,
                  tick: Optional[float]):
     todo = set(range(len(arguments)))
@@ -447,9 +464,7 @@ def _stream_pool(function: Callable, arguments: list, pool: WorkerPool, retries:
     while todo:
         try:
             executor = pool.executor(len(todo))
-            with warnings.catch_warnings():    # Python >= 3.12 warns of fork with any thread
-                warnings.filterwarnings("ignore", r".*use of fork\(\) may lead to deadlocks",
-                                        DeprecationWarning)
+            with _forking(pool.method == "fork"):     # a fork pool forks at the first submit
                 futures = {executor.submit(_call_task, function, arguments[k]): k
                            for k in sorted(todo)}
         except BrokenProcessPool:
