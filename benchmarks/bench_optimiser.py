@@ -21,7 +21,11 @@ Run: ``PYTHONPATH=. python benchmarks/bench_optimiser.py`` → results/benchmark
 with ``--ranking`` instead: six designs of the main job's space on 36x10, 72x20 and 144x36 and
 how the coarse grids rank them (:func:`grid_ranking`) → results/benchmarks/
 design_grid_ranking.json; with ``--main-job``: the README's main job at --workers 1 and 2, wall
-and CPU seconds (:func:`main_job`) → results/benchmarks/rotor_design_main_job.json.
+and CPU seconds (:func:`main_job`) → results/benchmarks/rotor_design_main_job.json; with
+``--stages [--old TREE] [--repeats N]``: the main job at --workers 1, CPU seconds of each stage
+and the after-search stages' share of the job's CPU (:func:`stage_shares`), this tree against
+an older checkout ``TREE`` (``git worktree add``) in interleaved pairs, with the tables' figures
+of both → results/benchmarks/rotor_design_stages.json.
 The machine's load average is recorded: the 2 cores are shared, so absolute times vary; the
 ratios are taken within the run.
 """
@@ -192,6 +196,98 @@ def main_job(workers=(1, 2)) -> dict:
     return out
 
 
+#: run in a child process with PYTHONPATH = the tree measured: the main job at --workers 1 in
+#: this process, the CPU seconds (time.process_time) of each stage's function, the figures
+#: of the robustness and default-grid tables, as JSON on the last line
+STAGE_CHILD = r"""
+import json, sys, time
+import pandas as pd
+import gfbopt.cli, gfbopt.design.robustness as rb, gfbopt.design.optimiser as opt
+import gfbopt.studies.rotor_report as rr
+cpu = {}
+def timed(module, name, key):
+    function = getattr(module, name)
+    def run(*a, **k):
+        c0 = time.process_time()
+        try:
+            return function(*a, **k)
+        finally:
+            cpu[key] = cpu.get(key, 0.0) + time.process_time() - c0
+    setattr(module, name, run)
+for module, name, key in ((opt, "optimise", "search"), (rb, "regrid", "default-grid check"),
+                          (rb, "robustness", "tolerances"),
+                          (rb, "whirl_at_top_speed", "whirl at top speed"),
+                          (rr, "_reproduce", "reproduction")):
+    timed(module, name, key)
+c0 = time.process_time()
+gfbopt.cli.main(["run", sys.argv[1], "--workers", "1", "--results", sys.argv[2]])
+total = time.process_time() - c0
+folder = sys.argv[2] + "/rotor_bearing_design/"
+tables = {n: pd.read_csv(folder + n + ".csv").select_dtypes("number").to_dict("list")
+          for n in ("robustness", "default_grid_check")}
+print(json.dumps({"cpu_s": cpu, "total_cpu_s": total, "tables": tables,
+                  "verdict": open(folder + "README.md").read().splitlines()[0]}))
+"""
+#: the stages after the search whose share of the job's CPU is the target
+AFTER_SEARCH = ("default-grid check", "tolerances", "whirl at top speed")
+
+
+def _stage_run(tree: Path) -> dict:
+    import subprocess
+
+    env = {**os.environ, "PYTHONPATH": str(tree), "GFBOPT_PROGRESS": "0",
+           "OMP_NUM_THREADS": "1", "OPENBLAS_NUM_THREADS": "1"}
+    load = os.getloadavg()
+    with tempfile.TemporaryDirectory() as tmp:
+        out = subprocess.run([sys.executable, "-c", STAGE_CHILD,
+                              str(ROOT / "problems" / "rotor_bearing_design.toml"), tmp],
+                             env=env, cwd=tree, capture_output=True, text=True, check=True)
+    row = json.loads(out.stdout.strip().splitlines()[-1])
+    after = sum(row["cpu_s"].get(k, 0.0) for k in AFTER_SEARCH)
+    row.update(after_search_cpu_s=after, after_search_share=after / row["total_cpu_s"],
+               load_before=load, load_after=os.getloadavg())
+    print(f"{tree}: {row['total_cpu_s']:.1f} s CPU, after the search {after:.1f} s "
+          f"({row['after_search_share']:.1%}), load {load[0]:.2f}", flush=True)
+    return row
+
+
+def _relative_changes(old: dict, new: dict) -> dict:
+    """Largest |new/old − 1| of each numeric column of each table."""
+    out = {}
+    for table, columns in old.items():
+        for name, values in columns.items():
+            a, b = np.array(values, float), np.array(new[table][name], float)
+            scale = np.where(a != 0, np.abs(a), 1.0)
+            out[f"{table}.{name}"] = float(np.nanmax(np.abs(b - a) / scale, initial=0.0))
+    return out
+
+
+def stage_shares(old_tree, repeats: int) -> dict:
+    """The main job's stage CPU in this tree (and ``old_tree``), interleaved A B A B: per
+    run, the CPU of each stage and the after-search share; their medians; the tables'
+    figures of the last runs and their largest relative change."""
+    import statistics
+
+    trees = {"new": ROOT} | ({"old": Path(old_tree)} if old_tree else {})
+    runs = {k: [] for k in trees}
+    for r in range(repeats):
+        for key in (list(trees) if r % 2 == 0 else list(trees)[::-1]):
+            runs[key].append(_stage_run(trees[key]))
+    out = {k: {"tree": str(t), "runs": runs[k],
+               "median_total_cpu_s": statistics.median(x["total_cpu_s"] for x in runs[k]),
+               "median_after_search_share": statistics.median(
+                   x["after_search_share"] for x in runs[k]),
+               "median_stage_cpu_s": {s: statistics.median(x["cpu_s"].get(s, 0.0)
+                                                         for x in runs[k])
+                                      for s in runs[k][0]["cpu_s"]}}
+           for k, t in trees.items()}
+    if old_tree:
+        out["largest_relative_change_of_the_tables"] = _relative_changes(
+            runs["old"][-1]["tables"], runs["new"][-1]["tables"])
+        out["verdicts_equal"] = runs["old"][-1]["verdict"] == runs["new"][-1]["verdict"]
+    return out
+
+
 def main() -> None:
     from gfbopt.parallel import limit_blas_threads
     from gfbopt.provenance import provenance
@@ -206,6 +302,20 @@ def main() -> None:
                "cpu_count": os.cpu_count(), "provenance": provenance()}
         path = ROOT / "results" / "benchmarks" / "rotor_design_main_job.json"
         path.write_text(json.dumps(out, indent=2, default=str))
+        return
+    if "--stages" in sys.argv:
+        arg = lambda name, default: (sys.argv[sys.argv.index(name) + 1]  # noqa: E731
+                                     if name in sys.argv else default)
+        load = os.getloadavg()
+        out = {"load_average_before": load,
+               **stage_shares(arg("--old", None), int(arg("--repeats", "2"))),
+               "after_search_stages": list(AFTER_SEARCH), "target_share": 0.25,
+               "load_average_after": os.getloadavg(), "cpu_count": os.cpu_count(),
+               "provenance": provenance()}
+        path = ROOT / "results" / "benchmarks" / "rotor_design_stages.json"
+        path.write_text(json.dumps(out, indent=2, default=str))
+        print(json.dumps({k: v for k, v in out.items() if k in (
+            "largest_relative_change_of_the_tables", "verdicts_equal")}, indent=2))
         return
     if "--ranking" in sys.argv:
         out = {"load_average_before": os.getloadavg(), **grid_ranking(),
