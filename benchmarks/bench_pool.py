@@ -143,7 +143,8 @@ def _busy_loops(count: int) -> list:
             for _ in range(count)]
 
 
-def _end_to_end(args, codes: dict) -> dict:
+def _end_to_end(args, codes: dict, save) -> dict:
+    """Both phases; ``save(phases)`` after every run (a long benchmark keeps what it has)."""
     phases = {}
     for phase, competitors in (("load_0", 0), ("load_2", args.competitors)):
         loops = _busy_loops(competitors)
@@ -158,6 +159,8 @@ def _end_to_end(args, codes: dict) -> dict:
                         row = _gfbopt_run(code, args.study, workers, args.run_args)
                         pair[workers] = row
                         runs.append({"code": label, "repeat": k, **row})
+                        save({**phases, phase: {"competing_busy_loops": competitors,
+                                                "runs": runs, "complete": False}})
                         print(f"{phase} {label} workers {workers}: wall {row['wall_s']:6.1f} s, "
                               f"cpu {row['cpu_s']:6.1f} s, peak {row['peak_rss_mib']:5.0f} MiB, "
                               f"exit {row['exit_status']}, load {row['load_before'][0]:.2f}",
@@ -231,19 +234,22 @@ def main() -> None:
         p for r in fixed if r["method"] == m for p in r["worker_pss_mib"] if p is not None)}
         for m in METHODS}
     codes = {"new": ROOT} if args.old is None else {"new": ROOT, "old": Path(args.old)}
-    e2e = None if args.skip_e2e else _end_to_end(args, codes)
     state = source_state()
-    report = machine_info(
-        benchmark="pool", commit=state["commit"], dirty=state["dirty"],
-        load_average_start=load_start, load_average_end=os.getloadavg(),
-        fixed_cost={"workers": args.workers, "driver_modules": DRIVER_MODULES,
-                    "worker_modules": WORKER_MODULES, "per_method": per_method,
-                    "target_cpu_per_worker_s": TARGET_S, "runs": fixed},
-        end_to_end=None if e2e is None else {"study": args.study, "run_args": args.run_args,
-                                             "workers": args.workers,
-                                             "codes": {k: str(v) for k, v in codes.items()},
-                                             **e2e})
-    write_report(report, args.out)
+
+    def save(e2e):
+        write_report(machine_info(
+            benchmark="pool", commit=state["commit"], dirty=state["dirty"],
+            load_average_start=load_start, load_average_end=os.getloadavg(),
+            fixed_cost={"workers": args.workers, "driver_modules": DRIVER_MODULES,
+                        "worker_modules": WORKER_MODULES, "per_method": per_method,
+                        "target_cpu_per_worker_s": TARGET_S, "runs": fixed},
+            end_to_end=None if e2e is None else {
+                "study": args.study, "run_args": args.run_args, "workers": args.workers,
+                "codes": {k: str(v) for k, v in codes.items()}, **e2e}), args.out)
+
+    save(None)
+    if not args.skip_e2e:
+        save(_end_to_end(args, codes, save))
 
 
 if __name__ == "__main__":
