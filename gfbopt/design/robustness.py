@@ -13,9 +13,9 @@ over the loss-factor band, and its answer on the default grid (grid honesty).
 Every evaluation here refines its first onset from a known one (:func:`near`): the design's
 stored onset (on the default grid, at the other end of the band) or its nominal's at that loss
 factor (the samples), by secant steps on the evaluation's own grid and loss factor
-(:func:`gfbopt.design.rotor_objectives.first_onset`, to 1e-6 on ln N, where the search's Brent
+(:func:`gfbopt.design.rotor_objectives.first_onset`, to 1e-5 on ln N, where the search's Brent
 refinement stops at 1e-3: the figures move by that refinement's error, ≤ 4e-4 on the blower):
-3–4 speeds instead of 11, the scan from the lowest speed when it does not converge.  The
+3 speeds instead of 11, the scan from the lowest speed when it does not converge.  The
 tolerance samples and the band's other end are evaluated for their onset only
 (``onset_only``: no film, no power).
 """

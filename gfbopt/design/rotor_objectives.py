@@ -348,7 +348,7 @@ def first_onset(line, settings: EvaluationSettings, near: Optional[float] = None
 
     ``near``: the first onset [rpm] of a nearby problem whose scan was stable below it (the
     same design on the search grid or at another loss factor, or a toleranced design's
-    nominal): the secant refinement starts there instead (:func:`_secant_near`, to 1e-6;
+    nominal): the secant refinement starts there instead (:func:`_secant_near`, to 1e-5;
     the scan from the lowest speed when it does not converge).  The assumption: μ_c
     changes less between the two problems than between neighbouring scan speeds (≥ 1.25²
     ≈ 1.56×), so the speeds below stay stable (on the blower grid and η change μ_c by
@@ -407,9 +407,9 @@ def _onset_row(line, settings: EvaluationSettings, root: float, unstable) -> dic
 
 
 #: the refinement from a nearby onset stops when the secant step from its latest speed (that
-#: speed's error, superlinear convergence) is at most this on ln N [-], the rotor's
-#: :data:`gfbopt.rotor.mode_search.SECANT_TOLERANCE`; it gives up after ``NEAR_STEPS`` steps
-NEAR_TOLERANCE, NEAR_STEPS = 1e-6, 8
+#: speed's error, superlinear convergence) is at most this on ln N [-], a hundredth of the
+#: search's :data:`ONSET_TOLERANCE`; it gives up after ``NEAR_STEPS`` steps
+NEAR_TOLERANCE, NEAR_STEPS = ONSET_TOLERANCE / 100, 8
 
 
 def _secant_near(line, speeds: list, near: float) -> Optional[float]:
