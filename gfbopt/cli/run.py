@@ -116,6 +116,16 @@ def _load(path: str, args):
                            directory=Path(path).parent, limits=limits(args))
 
 
+def _no_tqdm_monitor() -> None:
+    """No tqdm monitor thread in this process (it re-tunes a bar's update interval every 10 s):
+    the run's pool forks its workers only from a driver without other threads
+    (gfbopt.parallel.start_method), else it takes the costlier forkserver."""
+    if sys.stderr.isatty():
+        import tqdm
+
+        tqdm.tqdm.monitor_interval = 0
+
+
 class _Progress:
     """A fraction callback drawing one study's progress (gfbopt.progress); the bar starts
     with the first report, so a study refused before any work prints nothing."""
@@ -128,6 +138,7 @@ class _Progress:
         from ..progress import progress
 
         if self.bar is None:
+            _no_tqdm_monitor()
             self.bar = progress(total=100, desc=self.name, unit="%")
         step = int(round(100 * min(1.0, max(0.0, fraction)))) - self.bar.n
         if step > 0:

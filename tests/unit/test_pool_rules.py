@@ -33,3 +33,32 @@ def test_the_default_never_exceeds_the_cores_nor_the_free_cores_by_half_a_core()
     ("win32", 0, False, "spawn")])
 def test_workers_are_forked_only_where_it_is_safe(platform, threads, openmp, method):
     assert choose_start_method(platform, threads, openmp) == method
+
+
+def test_the_command_lines_progress_bar_leaves_the_driver_forkable(monkeypatch):
+    """On a terminal ``gfbopt run`` draws tqdm bars before its pool starts; tqdm's monitor
+    thread made the driver multi-threaded, so the pool fell back to the forkserver."""
+    import io
+    import sys
+    import threading
+
+    import tqdm
+
+    from gfbopt.cli.run import _Progress
+    from gfbopt.parallel import start_method
+
+    class Terminal(io.StringIO):
+        def isatty(self):
+            return True
+
+    monkeypatch.setattr(sys, "stderr", Terminal())
+    monkeypatch.delenv("GFBOPT_PROGRESS", raising=False)
+    monkeypatch.setattr(tqdm.tqdm, "monitor_interval", tqdm.tqdm.monitor_interval)
+    before = threading.active_count()
+    bar = _Progress("study")
+    bar(0.25)
+    try:
+        assert bar.bar is not None and "study" in sys.stderr.getvalue()
+        assert threading.active_count() == before == 1 and start_method() == "fork"
+    finally:
+        bar.close()
