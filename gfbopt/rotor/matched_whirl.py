@@ -270,7 +270,8 @@ def local_crossing(rotor: RotorCase, states: SpeedStates, near: ModeCrossing
     bearing's Z̄(iγ) comes from a Krylov space on one LU with its shift over the start
     (:class:`~gfbopt.linear.krylov.ShiftedImpedance` on ±:data:`LOCAL_WINDOW`, a new one
     when a step leaves half of it), converged to its tolerance (1e-11) at every γ used, and
-    dν/dγ from a central difference on it; the branch is the root nearest the previous step's.
+    dν/dγ from a central difference on it; the branch is the root whose shape is nearest the
+    previous step's (``near``'s at first).
     The search stops when the Newton step is at most :data:`WHIRL_TOLERANCE` (the scan's own
     tolerance on γ, by Brent's method), so the crossing is the scan's on the same branch to
     ~1e-10 in γ and μ_c, for one LU and a few block steps per bearing instead of a converged
@@ -278,7 +279,7 @@ def local_crossing(rotor: RotorCase, states: SpeedStates, near: ModeCrossing
     if not (near.inertia_scale > 0 and states.ok):
         return None
     low, high = states.states[0].whirl_range
-    gamma, ref = float(near.whirl_ratio), complex(1.0 / near.inertia_scale)
+    gamma, shape_ref = float(near.whirl_ratio), np.asarray(near.vector, dtype=complex)
     models, centre = None, math.nan
     for _ in range(LOCAL_STEPS):
         if not low <= gamma <= high:
@@ -294,7 +295,12 @@ def local_crossing(rotor: RotorCase, states: SpeedStates, near: ModeCrossing
         if not all(m.converge(points[1:2]).all() for m in models):   # ±1e-6 with it
             return None
         roots = [_local_roots(rotor, states, models, g) for g in points]
-        j = int(np.argmin(np.abs(roots[1][0] - ref)))
+        # the branch: the root whose shape q̂ is nearest the previous one's (|cos| of the
+        # angle between them), not the nearest ν: near γ = 1/2 two forward modes cross the
+        # axis with nearly equal μ_c, 1e-3 apart in γ
+        vectors = roots[1][1]
+        overlap = np.abs(shape_ref.conj() @ vectors) / np.linalg.norm(vectors, axis=0)
+        j = int(np.argmax(overlap))
         nu = roots[1][0][j]
         left, right = (r[0][np.argmin(np.abs(r[0] - nu))] for r in (roots[0], roots[2]))
         slope = (right - left) / (2 * SLOPE_STEP)
@@ -311,7 +317,7 @@ def local_crossing(rotor: RotorCase, states: SpeedStates, near: ModeCrossing
             sh = shape(q, positions, rotor.names)
             return ModeCrossing(1.0 / nu_star, float(gamma),
                                 float(gamma * states.omega / (2 * math.pi)), sh["label"], sh, q)
-        gamma, ref = gamma + step, nu
+        gamma, shape_ref = gamma + step, vectors[:, j]
     return None
 
 

@@ -20,7 +20,16 @@ nearest whirl ratio) inside the bracket:
   bracket, until the next step from the latest point would be at most
   :data:`SECANT_TOLERANCE` on ln N (the latest point, whose error that step estimates, is the
   onset; 2–3 speeds per mode); Brent's method as below if it has not converged in
-  :data:`SECANT_STEPS` steps;
+  :data:`SECANT_STEPS` steps.  Each secant speed computes that mode's crossing alone, by
+  Newton's method on the whirl ratio from the previous step's crossing
+  (:func:`~gfbopt.rotor.matched_whirl.local_crossing`: one LU and a few block steps per
+  bearing on a narrow window, instead of every crossing over the whole whirl range and the
+  probe), accepted when it keeps the mode's label and lies within ±0.05 of its whirl ratio
+  (else every crossing there, as the scan); it is the scan's crossing to ~1e-10, and the
+  onsets equal those of every crossing at every speed (``SpeedLine(local=False)``) to 1e-9
+  (a test; measured 1e-14).  The scan rows of those speeds list that mode only.  On a fine
+  grid guided by a coarse one, an equilibrium far from this grid's solved speeds starts from
+  the guide's (interpolated, :data:`GUIDE_START`);
 * ``method="scan"`` (the reference of gfbopt 0.2): Brent's method on (μ_c − 1)/(μ_c + 1) to a
   relative :data:`SPEED_TOLERANCE` (5–7 speeds per mode).
 

@@ -22,9 +22,10 @@ def rotor():
     return resolve_rotor(system, GRID, SolverCache(GRID))
 
 
-@pytest.mark.parametrize("speed, near_speed", [(12400.0, 12300.0), (12000.0, 12001.2)])
+@pytest.mark.parametrize("speed, near_speed", [(12400.0, 12000.0), (12400.0, 12300.0),
+                                              (12000.0, 12001.2)])
 def test_local_crossing_is_the_scans_crossing(rotor, speed, near_speed):
-    """From each mode's crossing 0.8 % (and 1e-4) away in speed (the refinement's steps),
+    """From each mode's crossing 3 %, 0.8 % and 1e-4 away in speed (the refinement's steps),
     Newton on the whirl ratio ends on the crossing the full scan (Brent to 1e-10 in γ) finds
     at this speed: μ_c and γ to 1e-9, the same shape class."""
     here = by_mode(crossings(rotor, support_states(rotor, speed)))
