@@ -64,13 +64,16 @@ class _Buffer:
             self.flush()
 
     def flush(self) -> None:
+        """Write the rows held, in parts of at most ``batch_rows`` (a Dask task may bring
+        thousands of rows at once)."""
         with self.lock:
-            if not self.rows:
-                return
-            self.store.append(self.rows)
-            self.outcome.rows += len(self.rows)
-            self.outcome.parts += 1
-            self.rows, self.oldest = [], None
+            while self.rows:
+                part = self.rows[:self.batch_rows]
+                self.store.append(part)
+                self.outcome.rows += len(part)
+                self.outcome.parts += 1
+                del self.rows[:len(part)]
+            self.oldest = None
 
     def due(self) -> bool:
         return self.oldest is not None and time.monotonic() - self.oldest >= self.flush_s

@@ -143,7 +143,7 @@ def _failed(task: dict, error: BaseException) -> list:
 
 
 def run_doe(function: Callable, plan: Union[SamplePlan, pd.DataFrame, list], store,
-            *, outputs, fixed: Optional[dict] = None, workers: int = 1,
+            *, outputs, fixed: Optional[dict] = None, workers: int = 1, client=None,
             resume: bool = True, chunk_size: int = 4, batch_rows: int = 256,
             flush_s: Optional[float] = None, version: Optional[str] = None,
             max_points: int = MAX_POINTS, progress: bool = True,
@@ -162,9 +162,12 @@ def run_doe(function: Callable, plan: Union[SamplePlan, pd.DataFrame, list], sto
         names (float64); inputs and outputs never share a column
     fixed : inputs held fixed, passed to every call and stored as columns
     workers : processes (1: this process; inside ``with WorkerPool(n)``: that pool)
+    client : a ``distributed.Client``: the chunks run on its Dask cluster instead, several
+        whole chunks a task, sized to 20 s of measured work (:mod:`gfbopt.cluster`)
     resume : keep the points already stored (default); False starts a new store, keeping
         the old one aside (``<store>.previous-N``)
-    chunk_size : points per task; batch_rows : most rows per part; flush_s : seconds after
+    chunk_size : points per chunk (a task of the process pool; on Dask a task carries
+        several whole chunks, the first ones one each); batch_rows : most rows per part; flush_s : seconds after
         which finished rows are written (default 10)
     version : a text standing for the function's version in the store's hash (default: its
         source code, so an edited function does not resume into old rows)
@@ -211,7 +214,7 @@ def run_doe(function: Callable, plan: Union[SamplePlan, pd.DataFrame, list], sto
     if set(inputs) & set(fixed):
         name = sorted(set(inputs) & set(fixed))[0]
         raise ParameterError(f"fixed.{name}", fixed[name], "is also sampled")
-    if workers > 1:
+    if workers > 1 or client is not None:
         try:
             pickle.dumps(function)
         except Exception:  # noqa: BLE001 - any reason it cannot travel
@@ -247,7 +250,8 @@ def run_doe(function: Callable, plan: Union[SamplePlan, pd.DataFrame, list], sto
         try:
             outcome = execute(evaluate_points, tasks, target,
                               conform=lambda r: {k: r[k] for k in schema if k in r},
-                              batch_rows=batch_rows, workers=workers, iterate=iter_points,
+                              batch_rows=batch_rows, workers=workers, client=client,
+                              iterate=iter_points,
                               failed_rows=_failed, progress=bar.update,
                               flush_s=FLUSH_S if flush_s is None else flush_s, status=notify)
         except Interrupted as exc:

@@ -10,9 +10,11 @@ is checked before any solve; the sample is reproducible from the file.
 Running it (``gfbopt run problems/NAME.toml [--workers N] [--scheduler ADDRESS] [--resume]``):
 
 * the points are ordered so that neighbours follow each other
-  (:func:`gfbopt.doe.points.neighbour_order`) and cut into chunks; a chunk is one task of
-  the executor — this process, a local pool of spawn processes, or a Dask cluster — and its
-  points warm-start each other in the worker, with the worker's cached solver;
+  (:func:`gfbopt.doe.points.neighbour_order`) and cut into chunks of ``chunk_size``
+  points; a chunk's points warm-start each other in the worker, with the worker's cached
+  solver, so the rows depend on ``chunk_size`` alone.  A chunk is one task of this process
+  or of the local pool; on a Dask cluster a task carries several whole chunks, one at
+  first and then as many as take 20 s of measured work (:func:`gfbopt.cluster.task_size`);
 * rows are appended to ``results/NAME/store/`` (:class:`gfbopt.doe.ResultStore`: Parquet
   parts written atomically, fixed schema) in batches as the chunks finish; a failed point
   is a row with its error;

@@ -72,3 +72,22 @@ def test_a_store_of_another_plan_is_refused_naming_what_changed(tmp_path):
 
 def abs_value(x):
     return {"y": abs(x)}
+
+
+def test_run_doe_on_a_dask_client_gives_the_pool_table(tmp_path):
+    """``run_doe(..., client=)`` runs the chunks on a Dask cluster (several chunks a task)
+    and returns the process pool's table; 0.2.0's run_doe had no Dask route."""
+    distributed = pytest.importorskip("distributed")
+    from gfbopt.doe import run_doe
+
+    plan = [{"x": float(x)} for x in range(-30, 30)]
+    pool = run_doe(abs_value, plan, tmp_path / "pool", outputs=["y"], workers=2,
+                   chunk_size=2, progress=False)
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=False,
+                                  dashboard_address=":0") as cluster, \
+            distributed.Client(cluster) as client:
+        dask = run_doe(abs_value, plan, tmp_path / "dask", outputs=["y"], client=client,
+                       chunk_size=2, progress=False)
+    columns = ["point", "x", "y", "success", "message"]
+    assert dask[columns].equals(pool[columns])
+    assert dask["y"].tolist() == [abs(p["x"]) for p in plan]

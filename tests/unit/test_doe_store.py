@@ -159,3 +159,22 @@ def test_infrastructure_failures_of_0_2_0_are_not_done(tmp_path):
                   {"point": 2, "success": False, "message": "FutureCancelledError: x"},
                   {"point": 3, "success": False, "message": "ParameterError: load < 0"}])
     assert store.done_points() == {0, 3}             # 3 failed in the analysis: a result
+
+
+def test_rows_arriving_together_are_written_in_parts_of_batch_rows(tmp_path):
+    """A Dask task brings thousands of rows at once: the buffer writes them in parts of at
+    most ``batch_rows`` (before: one part of all of them)."""
+    import pyarrow.parquet as pq
+
+    from gfbopt.doe.engine import Outcome, _Buffer
+
+    store = ResultStore.create(tmp_path / "s", study="x", study_hash="h1", schema=SCHEMA)
+    outcome = Outcome()
+    buffer = _Buffer(store, lambda r: r, batch_rows=3, flush_s=10.0, outcome=outcome)
+    buffer.add([{"point": k, "eccentricity": 0.1 * k, "success": True, "message": ""}
+                for k in range(10)])
+    buffer.flush()
+    assert (outcome.rows, outcome.parts) == (10, 4)
+    sizes = sorted(len(pq.read_table(p)) for p in store.parts())
+    assert sizes == [1, 3, 3, 3]
+    assert sorted(read_results(tmp_path / "s")["point"]) == list(range(10))
