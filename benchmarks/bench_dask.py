@@ -207,6 +207,11 @@ def main() -> None:
     from gfbopt.provenance import provenance
 
     info = provenance()                      # the code the runs use (before they start)
+    # the tree may be dirty with files this benchmark does not run: list the ones it runs
+    own = subprocess.run(["git", "status", "--porcelain", "--", "gfbopt/cluster.py",
+                          "gfbopt/doe", "gfbopt/parallel.py", "gfbopt/runtime.py",
+                          "benchmarks/bench_dask.py"], cwd=HERE.parent, capture_output=True,
+                         text=True).stdout.split("\n")
     configs = ["dask", "pool"] + (["dask-old"] if args.old else [])
     t0 = time.process_time()
     for _ in range(200):
@@ -248,6 +253,7 @@ def main() -> None:
     print(json.dumps(summary, indent=2))
     write_report({"machine": machine_info(load_start=load_start, load_end=os.getloadavg()),
                   "commit": info.get("source_commit"), "dirty": info.get("source_dirty"),
+                  "dirty_files_on_the_benchmarked_path": [line for line in own if line],
                   "summary": summary, "medians": medians,
                   "runs": [{k: v for k, v in r.items() if k != "store"} for r in runs]},
                  args.out)
