@@ -194,7 +194,7 @@ def main(argv=None) -> dict:
     parser.add_argument("--baseline", default=None, help="source tree of the old code")
     args = parser.parse_args(argv)
     system = load_rotor(ROOT / "problems" / "rotors" / "blower.toml")
-    load_before = os.getloadavg()
+    load_before, source = os.getloadavg(), _source()      # the code as it starts
     runs = []
     for g in args.grids.split(","):
         old = []
@@ -204,7 +204,7 @@ def main(argv=None) -> dict:
         if old:
             run["baseline"] = _compare(run, old)
         runs.append(run)
-    out = {"runs": runs, "source": _source(), "local_refinement": LOCAL,
+    out = {"runs": runs, "source": source, "local_refinement": LOCAL,
            "machine": machine_info(load_average_before=load_before,
                                    load_average_after=os.getloadavg())}
     for r in runs:

@@ -158,8 +158,7 @@ def _secant(line, label: str, a: float, b: float, p0: tuple, p1: tuple,
     ln N ∈ (a, b), g = ln μ_c > 0 at a and ≤ 0 at b: secant steps from the points p0, p1 =
     (ln N, g), bisection whenever a step would leave the bracket or a value is not finite
     (module docstring of :mod:`gfbopt.rotor.system`).  None when not converged.  Each step
-    follows the mode from the latest crossing (``near`` at first: :meth:`SpeedLine.follow`
-    computes that crossing alone)."""
+    follows the mode from the latest crossing (``near`` at first: :func:`_follow`)."""
     (x0, g0), (x1, g1) = p0, p1
     slope = math.nan
     for _ in range(SECANT_STEPS):
@@ -167,7 +166,7 @@ def _secant(line, label: str, a: float, b: float, p0: tuple, p1: tuple,
         x = x1 - g1 * (x1 - x0) / (g1 - g0) if finite else 0.5 * (a + b)
         if not a < x < b:
             x = 0.5 * (a + b)
-        c = line.follow(math.exp(x), label, whirl, near)
+        c = _follow(line, math.exp(x), label, whirl, near)
         gx = _log_scale(c)
         if c is not None:
             whirl, near = c.whirl_ratio, c
@@ -181,6 +180,13 @@ def _secant(line, label: str, a: float, b: float, p0: tuple, p1: tuple,
                 return math.exp(x), slope
         x0, g0, x1, g1 = x1, g1, x, gx
     return None, slope
+
+
+def _follow(line, speed: float, label: str, whirl: float, near):
+    """The mode's crossing at ``speed`` followed from ``near`` (:meth:`gfbopt.rotor.system.
+    SpeedLine.follow_from`), or by ``follow`` alone on a line without that search."""
+    local = getattr(line, "follow_from", None)
+    return local(speed, label, whirl, near) if local else line.follow(speed, label, whirl)
 
 
 def guided_onset(fine, coarse, speeds: list, label: str, tol: float) -> Optional[ModeOnset]:
@@ -215,7 +221,7 @@ def guided_onset(fine, coarse, speeds: list, label: str, tol: float) -> Optional
                               coarse_unstable[1])
         x0 = math.log(root) if root is not None else 0.5 * (a + b)
         near = coarse.follow(math.exp(x0), label, whirl) if root is not None else None
-        at = line.follow(math.exp(x0), label, whirl, near)
+        at = _follow(line, math.exp(x0), label, whirl, near)
         if not (math.isfinite(slope) and slope < 0):
             slope = NOMINAL_SLOPE
         g0 = _log_scale(at)

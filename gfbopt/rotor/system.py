@@ -172,23 +172,28 @@ class SpeedLine:
                                       if st.ok else None)
         return self._crossings[speed]
 
-    def follow(self, speed: float, label: str, whirl: float,
-               near: Optional[ModeCrossing] = None) -> Optional[ModeCrossing]:
-        """The crossing at ``speed`` that continues a mode: same label, nearest whirl ratio
-        (any label when none has it).  With ``near`` (the mode's crossing at a nearby speed
-        or on another grid) and ``local``, where every crossing at ``speed`` has not been
-        computed: the crossing of the branch through ``near`` alone when it has the label
-        and lies within :data:`~gfbopt.rotor.matched_whirl.LOCAL_WINDOW` of ``whirl``."""
+    def follow_from(self, speed: float, label: str, whirl: float,
+                    near: Optional[ModeCrossing]) -> Optional[ModeCrossing]:
+        """:meth:`follow` from ``near`` (the mode's crossing at a nearby speed or on another
+        grid): with ``local``, where every crossing at ``speed`` has not been computed, the
+        crossing of the branch through ``near`` alone when it has the label and lies within
+        :data:`~gfbopt.rotor.matched_whirl.LOCAL_WINDOW` of ``whirl``."""
         key = (speed, label)
-        if key in self._local and speed not in self._crossings:
-            return self._local[key]
-        if near is not None and self.local and speed not in self._crossings:
+        if (near is not None and self.local and speed not in self._crossings
+                and key not in self._local):
             st = self.states(speed)
             found = local_crossing(self.rotor, st, near) if st.ok else None
             if (found is not None and found.label == label
                     and abs(found.whirl_ratio - whirl) <= LOCAL_WINDOW):
                 self._local[key] = found
-                return found
+        return self.follow(speed, label, whirl)
+
+    def follow(self, speed: float, label: str, whirl: float) -> Optional[ModeCrossing]:
+        """The crossing at ``speed`` that continues a mode: same label, nearest whirl ratio
+        (any label when none has it); the local crossing of :meth:`follow_from` when that is
+        all that was computed there."""
+        if speed not in self._crossings and (speed, label) in self._local:
+            return self._local[(speed, label)]
         found = self.crossings(speed) or []
         same = [c for c in found if c.label == label] or found
         return min(same, key=lambda c: abs(c.whirl_ratio - whirl), default=None)
