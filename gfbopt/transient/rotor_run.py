@@ -12,7 +12,8 @@ one-bearing engine (:func:`.rkc.rkc_step`, :func:`.rk4.rk4_step`), with the same
 * rkc on a ramp (a run-up or coast-down, no step given) — the step follows the speed:
   Δτ(τ) = min(max_step rad of shaft rotation at the highest speed over the step, T_rotor/30,
   T_film/4), re-set with the stages every ``check_every`` steps from the largest ρ met so
-  far.  The accuracy rule is the constant-speed one, per rad of shaft rotation (the
+  far, T_rotor re-measured at the current state every ``10 check_every`` steps (it is the
+  rotor's own period that needs 30 steps, not the one at the start).  The accuracy rule is the constant-speed one, per rad of shaft rotation (the
   one-bearing accuracy study, :mod:`.rkc`), so at 5,000 rpm of a ramp to 60,000 rpm the step
   may be up to 12× the top speed's with ≈ √12× the stages, where T_rotor/30 does not bind
   (a heavy rotor: the study rotor's run-up to contact took 2.2× fewer evaluations).
@@ -48,6 +49,9 @@ from .rotor_system import RotorRightHandSide, RotorTransientModel, Runs, layout
 #: model — no asperities, no slip — says nothing closer than 2 % of the clearance)
 CONTACT_FILM = 0.02
 METHODS = ("rkc", "rk4")
+#: a ramp re-measures T_rotor every this many stage checks (8 evaluations each: ≈ 1 % of
+#: the run's at 72 × 20)
+PERIOD_CHECKS = 10
 
 
 @dataclass(frozen=True, eq=False)
@@ -216,7 +220,7 @@ def integrate_rotor(model: RotorTransientModel, batch: Runs, duration: float,
     follow = method == "rkc" and not fixed and bool(np.any(batch.ramp != 0.0))
     if follow:
         stages, rho_top = _check_stages(stages), rho
-        step_of = _speed_step(rhs, z, max_step)
+        step_of = _SpeedStep(rhs, z, max_step)
         dt = step_of(0.0, batch)
         dt, stages = _stages_at(dt, rho_top, stages, fixed_stages)
     else:
@@ -319,6 +323,8 @@ def integrate_rotor(model: RotorTransientModel, batch: Runs, duration: float,
                 rho = rhs.stiffness(z)
                 if follow:
                     rho_top = max(rho_top, rho)
+                    if step % (check_every * PERIOD_CHECKS) == 0:
+                        step_of.refresh(rhs, z)
                     dt, stages = _stages_at(step_of(tau, rhs.runs), rho_top, stages,
                                             fixed_stages)
                     if stages > MAX_STAGES:
@@ -360,30 +366,39 @@ def integrate_rotor(model: RotorTransientModel, batch: Runs, duration: float,
                "foil_travel": None if foil_travel is None else travel,
                "sample_every": sample_every, "check_every": check_every,
                "step_rule": ("follows the speed: Δτ = min(max_step/r(τ), T_rotor/30, "
-                             "T_film/4), samples interpolated (cubic Hermite) onto a uniform "
-                             "grid") if follow else "constant"}
+                             "T_film/4), T_rotor re-measured along the run, samples "
+                             "interpolated (cubic Hermite) onto a uniform grid")
+               if follow else "constant"}
     return RotorRun(model, batch, np.array(taus), q, hmin, run_min, run_min_tau, max_defl,
                     contact, contact_tau, contact_bearing, tuple(kinds), dt,
                     tuple(sorted(used)) if method == "rkc" else (), evaluations,
                     time.perf_counter() - t0, method, not failure, failure, options)
 
 
-def _speed_step(rhs: RotorRightHandSide, z: np.ndarray, max_step: float):
+class _SpeedStep:
     """Δτ(τ, runs) of a ramp: ``max_step`` rad of shaft rotation at the highest speed any
-    live run reaches over the step, at most T_rotor/30 (its fastest frequency at the start,
-    :func:`rotor_frequency`) and T_film/4 (module docstring)."""
-    films = min(film_time(b.tm) * rhs.model.reference_speed / b.model_speed
-                for b in rhs.model.bearings)
-    fastest = rotor_frequency(rhs, z)
-    cap = films / STEPS_PER_FILM_TIME
-    if fastest > 0:
-        cap = min(cap, 2 * math.pi / fastest / STEPS_PER_ROTOR_PERIOD)
+    live run reaches over the step, at most T_rotor/30 and T_film/4 (module docstring).
+    T_rotor follows the rotor (:meth:`refresh`, from :func:`rotor_frequency` at the current
+    state): the films soften from the stiff low-speed equilibrium within the first tenth of
+    a run-up, so the start's period would hold the cap ≈ 20 % shorter than the rotor needs
+    for the rest of the ramp (blower rotor on its preloaded bearings, 72 × 20)."""
 
-    def step_of(tau: float, batch: Runs) -> float:
+    def __init__(self, rhs: RotorRightHandSide, z: np.ndarray, max_step: float):
+        self.max_step = max_step
+        self.film_cap = min(film_time(b.tm) * rhs.model.reference_speed / b.model_speed
+                            for b in rhs.model.bearings) / STEPS_PER_FILM_TIME
+        self.refresh(rhs, z)
+
+    def refresh(self, rhs: RotorRightHandSide, z: np.ndarray) -> None:
+        """Re-measure the rotor's fastest frequency (8 right-hand-side evaluations)."""
+        fastest = rotor_frequency(rhs, z)
+        self.cap = self.film_cap if not fastest > 0 else min(
+            self.film_cap, 2 * math.pi / fastest / STEPS_PER_ROTOR_PERIOD)
+
+    def __call__(self, tau: float, batch: Runs) -> float:
         r = batch.speed_at(tau)
-        r_hi = np.maximum(r, batch.speed_at(tau + max_step / np.max(r)))
-        return min(max_step / float(np.max(r_hi)), cap)
-    return step_of
+        r_hi = np.maximum(r, batch.speed_at(tau + self.max_step / np.max(r)))
+        return min(self.max_step / float(np.max(r_hi)), self.cap)
 
 
 def _stages_at(dt: float, rho: float, stages, fixed_stages: bool) -> tuple:
