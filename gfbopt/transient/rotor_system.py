@@ -26,9 +26,11 @@ Bearings
 Each bearing k keeps the one-bearing transient model (:class:`.system.TransientModel`, its
 film Φ = P H and, with a loss factor, its Kelvin–Voigt foil state W; :mod:`.foil_state`), in
 its own load frame: X_k along the bearing's static load, at angle ψ_k from the global x in
-the direction of rotation, positions over its clearance c_k, forces over p_a R_k².  The
-engine calls that model's own functions (:func:`.system.pressure_and_film`,
-:func:`.system.flux_residual`, :func:`.system.film_force`, the foil state's ``rate``).
+the direction of rotation, positions over its clearance c_k, forces over p_a R_k².  Films
+of one grid, film and axial-mean (or rigid) law are evaluated together in one fused pass
+(:mod:`.rotor_films`, equal to the one-bearing functions to round-off); others call that
+model's own functions (:func:`.system.pressure_and_film`, :func:`.system.flux_residual`,
+:func:`.system.film_force`, the foil state's ``rate``).
 
 Time and speed
 --------------
