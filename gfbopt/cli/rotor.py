@@ -91,6 +91,7 @@ def _check(args) -> None:
 
 def run(args) -> int:
     from ..inputs import Grid
+    from ..inputs.rotor_limits import check_rotor_speeds
     from ..inputs.rotor_system import load_rotor
     from ..rotor.analyse import analyse_rotor, check_speed_span
 
@@ -100,6 +101,8 @@ def run(args) -> int:
     grid = Grid.parse(args.grid)
     system = load_rotor(args.rotor_file)
     check_speed_span(args.speed_range, system, name="--speed-range")
+    if args.speed_rpm is not None:
+        check_rotor_speeds(system, [*args.speed_range, args.speed_rpm], name="--speed-rpm")
     planes = rotor_time.imbalance_planes(args, system, args.speed_range[1])
     if planes is not None:
         system = replace(system, imbalance=planes)
@@ -174,7 +177,7 @@ def _report(out: dict) -> str:
     for name, conv in out["conventions"]["bearings"].items():
         lines.append(f"  bearing {name}: {conv['film_convention']}; {conv['foil']} foil, "
                      f"{conv['deflection_law']} law, loss factor {conv['loss_factor']:g}")
-    if math.isfinite(out["onset_speed_rpm"]):
+    if _finite(out["onset_speed_rpm"]):
         lines.append(f"  first to whirl: {out['first_mode']} from "
                      f"{out['onset_speed_rpm']:,.0f} rpm at {out['onset_whirl_frequency_hz']:.4g}"
                      " Hz")
@@ -208,7 +211,7 @@ def _report(out: dict) -> str:
         lines.append("    tracks: " + "; ".join(
             f"{t['mode']} {t['label']}" + (f" (damping through zero at "
                                            f"{t['track_zero_rpm']:,.0f} rpm)"
-                                           if math.isfinite(t["track_zero_rpm"]) else "")
+                                           if _finite(t["track_zero_rpm"]) else "")
             for t in out["campbell"]["tracks"]))
     for warning in out["warnings"]:
         lines.append(f"  warning: {warning}")
@@ -216,6 +219,11 @@ def _report(out: dict) -> str:
         if key in out:
             lines.append(f"  {key}: {', '.join(out[key])}")
     return "\n".join(lines)
+
+
+def _finite(value) -> bool:
+    """A number of the JSON output is there (null, NaN and inf are not)."""
+    return value is not None and math.isfinite(value)
 
 
 def _imbalance_lines(ir: dict) -> list:
@@ -227,11 +235,11 @@ def _imbalance_lines(ir: dict) -> list:
                 f"{p['peak_speed_rpm']:,.0f} rpm")
         if p["above_first_onset"]:
             text += " — where the rotor is unstable, not physical"
-            if math.isfinite(p["largest_below_onset_um"]):
+            if _finite(p["largest_below_onset_um"]):
                 text += (f"; largest below the onset {p['largest_below_onset_um']:.3g} µm at "
                          f"{p['largest_below_onset_rpm']:,.0f} rpm")
         lines.append(text)
-    if math.isfinite(ir["unstable_from_rpm"]):
+    if _finite(ir["unstable_from_rpm"]):
         lines.append(f"    above {ir['unstable_from_rpm']:,.0f} rpm the rotor is unstable: the "
                      "linear response there is not an orbit that would be observed (shaded in "
                      "the figure)")

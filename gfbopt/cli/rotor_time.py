@@ -27,6 +27,15 @@ from .common import number
 
 #: defaults of --kick [clearances per rad] and --window-revolutions [revolutions]
 KICK, WINDOW_REVOLUTIONS = 1e-3, 20.0
+#: a ramp spans at least this many shaft revolutions (--rate: faster is a step in speed, not
+#: a run-up); an --orbit at least one revolution (its whirl and 1× need a period)
+MIN_RUN_REVOLUTIONS = 2.0
+#: an explicit --window-revolutions: at least a revolution (a shorter spectrum cannot tell
+#: the 1× from a subsynchronous line) and at most this share of the run (a ramp keeps 10
+#: windows, an orbit 2: the share the default is cut to)
+WINDOW_SHARE = {"orbit": 0.5, "run-up": 0.1, "coast-down": 0.1}
+#: smallest --foil-travel-um [µm]: 10 nm, a hundredth of a foil's surface roughness
+MIN_FOIL_TRAVEL_UM = 0.01
 #: the transient's options, with what each sets: refused without --orbit/--run-up/
 #: --coast-down (:func:`check_unused`)
 TRANSIENT_ONLY = {
@@ -175,7 +184,11 @@ def _check(args):
             raise ParameterError("--revolutions", None, "is required with --orbit")
         if args.rate is not None:
             raise ParameterError("--rate", args.rate, "is used by --run-up/--coast-down only")
-        return orbit_profile(args.speed_rpm, args.revolutions, args.force)
+        if not args.revolutions >= 1.0:
+            raise ParameterError("--revolutions", args.revolutions, "must be >= 1 (an orbit of "
+                                 "at least one shaft revolution)")
+        return _check_numbers(args, orbit_profile(args.speed_rpm, args.revolutions,
+                                                  args.force))
     kind = "run-up" if args.run_up else "coast-down"
     start, end = args.run_up or args.coast_down
     if args.rate is None:
@@ -189,7 +202,43 @@ def _check(args):
     if args.speed_rpm is not None:
         raise ParameterError("--speed-rpm", args.speed_rpm, f"is used by --orbit only (the "
                              f"{kind} gives its speeds)")
-    return ramp_profile(start, end, args.rate, kind, args.force)
+    profile = ramp_profile(start, end, args.rate, kind, args.force)
+    if not profile.revolutions >= MIN_RUN_REVOLUTIONS:
+        raise ParameterError("--rate", args.rate, f"ramps {start:g} → {end:g} rpm in "
+                             f"{profile.revolutions:.3g} shaft revolutions, fewer than "
+                             f"{MIN_RUN_REVOLUTIONS:g} (a step in speed, not a {kind}): at most "
+                             f"{args.rate * profile.revolutions / MIN_RUN_REVOLUTIONS:.6g} "
+                             "rpm/s")
+    return _check_numbers(args, profile)
+
+
+def _check_numbers(args, profile):
+    """--time-step, --kick, --stages, --window-revolutions and --foil-travel-um within what
+    they can mean (the bounds of ``gfbopt transient``'s options; module constants)."""
+    from types import SimpleNamespace
+
+    from ..errors import ParameterError
+    from .transient import MAX_STAGES, check_run_length
+
+    check_run_length(SimpleNamespace(time_step=args.time_step, kick=args.kick))
+    stages = args.stages
+    if stages is not None and not (math.isfinite(stages) and float(stages).is_integer()
+                                   and 2 <= stages <= MAX_STAGES):
+        raise ParameterError("--stages", stages, f"must be an integer in [2, {MAX_STAGES}]")
+    window = args.window_revolutions
+    if window is not None:
+        most = WINDOW_SHARE[profile.kind] * profile.revolutions
+        if not 1.0 <= window <= most:
+            room = (f"must lie in [1, {most:.4g}]" if most >= 1.0 else
+                    "has no room here (leave the default)")
+            raise ParameterError("--window-revolutions", window, f"{room}: a window of at least "
+                                 f"one revolution and at most {WINDOW_SHARE[profile.kind]:g} of "
+                                 f"the {profile.kind}'s {profile.revolutions:.4g} revolutions")
+    travel = args.foil_travel_um
+    if travel is not None and not travel >= MIN_FOIL_TRAVEL_UM:
+        raise ParameterError("--foil-travel-um", travel, f"must be >= {MIN_FOIL_TRAVEL_UM:g} µm "
+                             "(a bump travel below a hundredth of a foil's roughness is none)")
+    return profile
 
 
 def imbalance_planes(args, system, top_rpm: float):
@@ -304,6 +353,15 @@ def _rpm(value) -> str:
     return "none in the record" if value is None or value != value else f"{value:,.0f} rpm"
 
 
+def _whirl(b: dict, whirl_words) -> str:
+    """An orbit's whirl in words; an unsettled one whose change over the last window was not
+    measured (null) says so instead of a number."""
+    if (b.get("limit_cycle_status") in (None, "none") or b.get("limit_cycle_settled")
+            or b.get("limit_cycle_change") is not None):
+        return whirl_words(b)
+    return whirl_words({**b, "limit_cycle_settled": True})[:-1] + ", not settled)"
+
+
 def _emit(out: dict, as_json: bool, result) -> None:
     import json
 
@@ -328,7 +386,7 @@ def _emit(out: dict, as_json: bool, result) -> None:
             text += (f"; 1× peak {b['peak_amplitude_um']:.3g} µm at "
                      f"{b['peak_speed_rpm']:,.0f} rpm")
         if "limit_cycle_status" in b:
-            text += "; " + whirl_words(b)
+            text += "; " + _whirl(b, whirl_words)
         lines.append(text)
     if p.kind != "orbit":
         lines.append(f"  subsynchronous line (≥ {out['subsync_threshold_um']:.3g} µm) appears "

@@ -424,7 +424,10 @@ FAST = ("rotor mass=huge", "rotor bearings[1].position=mm", "rotor transverse_in
         "rotor --imbalance-response ignores --revolutions", "capacity --min-film-um nan",
         "capacity film above the clearance", "design bore.width_deg = 200",
         "design bore.offset_deg = 1e300", "design on a rotor in millimetres",
-        "capacity --csv into a missing folder")
+        "capacity --csv into a missing folder", "rotor --speed-rpm tiny",
+        "rotor --stages fraction", "rotor --time-step huge", "rotor --kick huge",
+        "rotor --window-revolutions huge", "rotor --window-revolutions fraction",
+        "rotor --rate huge", "rotor --revolutions tiny", "rotor --foil-travel-um tiny")
 
 
 class _Timeout(BaseException):
