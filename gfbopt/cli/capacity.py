@@ -12,6 +12,7 @@ bore, pads and zones from its ``[bore]``, ``[[pads]]`` and ``[[zones]]`` tables.
 """
 from __future__ import annotations
 
+import math
 import sys
 
 from ..errors import ParameterError
@@ -112,6 +113,7 @@ def _report(out: dict) -> str:
         lines.append(f"  as built: bore {conv.get('bore')}, pads "
                      f"{conv.get('pads_leading_end_deg')}, zones {conv.get('zones')}")
     if out["success"]:
-        lines.append(f"  at the answer: h_min = {out['min_film_thickness_um']:.6g} µm "
+        answered = math.isfinite(out.get("load_capacity_newton", out.get("lift_off_speed_rpm")))
+        lines.append(f"  {'at the answer' if answered else 'at the load ceiling'}: h_min = {out['min_film_thickness_um']:.6g} µm "
                      f"({len(out['curve'])} equilibria solved, {out['wall_time_s']:.2f} s)")
     return "\n".join(lines)

@@ -32,6 +32,7 @@ from ..inputs.bearing import BearingGeometry
 from ..inputs.checks import check_positive
 from ..inputs.grid import DEFAULT_GRID, Grid
 from ..inputs.options import ModelOptions, merge_options
+from ..inputs.rotor_limits import MAX_SPECIFIC_LOAD_RATIO, MIN_BEARING_NUMBER
 from ..physics.torque import drag_torque_and_power
 from ..static import SolverCache, StaticSolution, solve_static
 
@@ -43,6 +44,9 @@ SPEED_STEP = 1.25
 FILM_TOLERANCE = 1e-7
 #: lightest load of the capacity continuation, as W/(p_a L D) [-]
 FIRST_LOAD = 0.01
+#: smallest minimum-film limit [µm]: a film of 10 nm is thinner than any real surface's
+#: roughness (a polished journal's is about 0.1 µm), so a smaller limit is no limit
+MIN_FILM_LIMIT_UM = 0.01
 
 
 @dataclass(frozen=True)
@@ -159,11 +163,11 @@ class _Curve:
 
 
 def _march(line: _Curve, start: float, factor: float, end: float) -> tuple:
-    """Step x by ``factor`` from ``start`` (h ≥ 0 there) towards ``end`` until h < 0; then
-    refine the crossing.  Returns (root or None, the last x with h ≥ 0)."""
+    """Step x by ``factor`` from ``start`` (h ≥ 0 there) towards ``end`` (never past it)
+    until h < 0; then refine the crossing.  Returns (root or None, the last x with h ≥ 0)."""
     good = start
     while (good < end) if factor > 1 else (good > end):
-        trial = good * factor
+        trial = min(good * factor, end) if factor > 1 else max(good * factor, end)
         if line.h(trial) < 0:
             return line.refine(good, trial), good
         good = trial
@@ -176,6 +180,9 @@ def _resolve(bearing, options, min_film_um, grid):
     if not isinstance(grid, Grid):
         raise ParameterError("grid", grid, "must be a Grid")
     limit = check_positive("min_film_um", min_film_um)
+    if limit < MIN_FILM_LIMIT_UM:
+        raise ParameterError("min_film_um", limit, f"must be >= {MIN_FILM_LIMIT_UM:g} µm: a "
+                             "thinner film is below any real surface's roughness")
     clearance_um = bearing.radial_clearance * 1e6
     if limit >= clearance_um:
         raise ParameterError("min_film_um", limit, f"must be below the radial clearance "
@@ -183,6 +190,23 @@ def _resolve(bearing, options, min_film_um, grid):
     resolved = merge_options(options or ModelOptions(), ModelOptions())
     bearing.model(1000.0, **resolved.model_kwargs())       # validates the combination
     return limit, resolved
+
+
+def _check_speed(bearing, name: str, speed_rpm: float) -> float:
+    """``speed_rpm`` > 0 with a bearing number Λ at least the model's floor
+    :data:`~gfbopt.inputs.rotor_limits.MIN_BEARING_NUMBER`."""
+    speed = check_positive(name, speed_rpm)
+    number = bearing.bearing_number(speed)
+    if not number >= MIN_BEARING_NUMBER:
+        raise ParameterError(name, speed_rpm, f"gives a bearing number Λ = {number:.3g}, "
+                             f"below {MIN_BEARING_NUMBER:g}: no film carries a load there (at "
+                             f"least {_slowest_speed(bearing):.3g} rpm)")
+    return speed
+
+
+def _slowest_speed(bearing) -> float:
+    """The speed [rpm] of the bearing number floor (Λ is proportional to the speed)."""
+    return MIN_BEARING_NUMBER / bearing.bearing_number(1.0)
 
 
 def _conventions(resolved, bearing, grid) -> dict:
@@ -199,8 +223,8 @@ def load_capacity(bearing: BearingGeometry, speed_rpm: float, min_film_um: float
     The answer's h_min equals the limit to :data:`FILM_TOLERANCE` (relative).
     """
     t0 = time.perf_counter()
-    speed = check_positive("speed_rpm", speed_rpm)
     limit, resolved = _resolve(bearing, options, min_film_um, grid)
+    speed = _check_speed(bearing, "speed_rpm", speed_rpm)
     line = _Curve(bearing, resolved, grid, cache, limit, speed=speed)
     area = bearing.ambient_pressure * bearing.length * 2 * bearing.radius
     load = FIRST_LOAD * area
@@ -211,11 +235,20 @@ def load_capacity(bearing: BearingGeometry, speed_rpm: float, min_film_um: float
                            curve=line.rows, success=False, wall_time_s=time.perf_counter() - t0,
                            message=f"h_min < {limit:.4g} µm already at {load:.3g} N "
                            f"({speed:.6g} rpm): no load capacity above it", **common)
-    root, good = _march(line, load, LOAD_STEP, load * LOAD_STEP ** 40)
+    ceiling = (MAX_SPECIFIC_LOAD_RATIO * bearing.ambient_pressure * bearing.length * 2
+               * bearing.radius)                 # as BearingGeometry.nondimensional_load
+    root, good = _march(line, load, LOAD_STEP, min(load * LOAD_STEP ** 40, ceiling))
     if root is not None:
         return CurveResult("capacity", root, load_newton=root,
                            min_film_thickness_um=line.final(root), curve=line.rows,
                            wall_time_s=time.perf_counter() - t0, **common)
+    if good >= ceiling:
+        return CurveResult("capacity", math.nan, load_newton=good,
+                           min_film_thickness_um=line.final(good), curve=line.rows,
+                           wall_time_s=time.perf_counter() - t0,
+                           message=f"capacity above the load ceiling of {ceiling:.4g} N "
+                           f"({MAX_SPECIFIC_LOAD_RATIO:g} p_a L D): h_min stays above "
+                           f"{limit:.4g} µm up to it at {speed:.6g} rpm", **common)
     return CurveResult("capacity", math.nan, load_newton=good, min_film_thickness_um=math.nan,
                        curve=line.rows, success=False, wall_time_s=time.perf_counter() - t0,
                        message=f"h_min stays above {limit:.4g} µm up to {good:.4g} N", **common)
@@ -233,8 +266,9 @@ def lift_off_speed(bearing: BearingGeometry, load_newton: float, min_film_um: fl
     """
     t0 = time.perf_counter()
     load = check_positive("load_newton", load_newton)
-    top = check_positive("max_speed_rpm", max_speed_rpm)
     limit, resolved = _resolve(bearing, options, min_film_um, grid)
+    bearing.nondimensional_load(load)            # the load's own range, before any solve
+    top = _check_speed(bearing, "max_speed_rpm", max_speed_rpm)
     line = _Curve(bearing, resolved, grid, cache, limit, load=load)
     common = dict(load_newton=load, min_film_limit_um=limit,
                   conventions=_conventions(resolved, bearing, grid))
@@ -243,7 +277,7 @@ def lift_off_speed(bearing: BearingGeometry, load_newton: float, min_film_um: fl
                            curve=line.rows, success=False, wall_time_s=time.perf_counter() - t0,
                            message=f"no lift-off below {top:.6g} rpm (h_min < {limit:.4g} µm "
                            f"under {load:.5g} N)", **common)
-    root, good = _march(line, top, 1.0 / SPEED_STEP, top / 1000)
+    root, good = _march(line, top, 1.0 / SPEED_STEP, max(top / 1000, _slowest_speed(bearing)))
     if root is not None:
         return CurveResult("lift_off", root, speed_rpm=root,
                            min_film_thickness_um=line.final(root), curve=line.rows,
