@@ -18,6 +18,7 @@ import scipy.sparse as sp
 
 from .. import discretisation as disc
 from ..errors import ParameterError
+from ..inputs.bore import check_grid_resolves
 from ..inputs.grid import DEFAULT_GRID, Grid
 from ..inputs.model import FILM_MODELS, BearingModel
 from ..physics.foil_laws import FOIL_LAWS, static_structure
@@ -250,8 +251,11 @@ def solver_key(model: BearingModel, grid: Grid) -> tuple:
     Λ, S, C, L/D, the seam angle, the eccentricity or load, the compression-only and Gümbel
     switches, the bore profile (preload) and the foundation zones are parameters of a build,
     so they are not part of the key; several pads change which rows are unknown, so they are.
+    A grid too coarse for the bearing as built is refused here
+    (:func:`gfbopt.inputs.bore.check_grid_resolves`), for every build and every cached one.
     """
     ab = model.as_built
+    check_grid_resolves(ab, grid.n_theta)        # lobes, shims or pads finer than the grid
     fixed = () if ab is None else ab.fixed_rows(model.seam_angle_rad or 0.0, grid.n_theta)
     return (grid, model.film, static_structure(model), fixed)
 
