@@ -139,10 +139,10 @@ def _top_speed(args) -> None:
 
         if rotor_time.requested(args):
             return
-        from ..inputs.rotor_limits import check_rotor_speeds
         from ..inputs.rotor_system import load_rotor
+        from ..rotor.analyse import check_speed_span
 
-        check_rotor_speeds(load_rotor(args.rotor_file), span)
+        check_speed_span(span, load_rotor(args.rotor_file), "--speed-range")
     elif args.command == "stability" and getattr(args, "bearing", None):
         from ..inputs import load_bearing
 

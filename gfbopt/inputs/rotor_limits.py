@@ -58,6 +58,14 @@ MAX_SURFACE_SPEED = 1000.0
 #: smallest bearing number Λ of a speed: the film force grows as Λ from zero, and a
 #: millionth of its order-one value carries no rotor (1e-300 rpm is no speed)
 MIN_BEARING_NUMBER = 1e-6
+#: largest specific load W/(p_a L D) of a bearing per unit bearing number Λ at the lowest
+#: speed.  At small Λ the film force grows as Λ (the incompressible limit); the short-bearing
+#: theory of a rigid film with L = D carries W/(p_a L D) = (Λ/3) ε √(π²(1-ε²)+16ε²)/(4(1-ε²)²),
+#: = 10 Λ only at ε ≈ 0.9: a film of a tenth of the clearance, ≈ 2 µm, under the statics'
+#: 5 µm plausibility film (gfbopt.rotor.analysis.MIN_FILM_UM).  Below that speed the rotor is
+#: not airborne: the foil deflects by clearances and the static solve creeps (the blower at
+#: 0.01–10 rpm scanned for minutes); the blower's floor is 82 rpm (bearing A, 20.4 N).
+MAX_LOAD_PER_BEARING_NUMBER = 10.0
 
 
 def check_rotor_limits(system, where: str = "") -> None:
@@ -158,12 +166,22 @@ def check_rotor_speeds(system, speeds, name: str = "--speed-range") -> tuple:
 
     values = tuple(check_positive(name, v) for v in speeds)
     top = max(values)
-    for support in system.bearings:
+    for support, share in zip(system.bearings, system.static_shares()):
         slowest = support.geometry.bearing_number(min(values))
         if not slowest >= MIN_BEARING_NUMBER:
             raise ParameterError(name, list(speeds), f"{min(values):.6g} rpm gives bearing "
                                  f"{support.name} a bearing number Λ = {slowest:.3g}, below "
                                  f"{MIN_BEARING_NUMBER:g}: no film carries the rotor there")
+        g = support.geometry
+        specific = math.hypot(*share) / (g.ambient_pressure * g.length * 2.0 * g.radius)
+        if not specific <= MAX_LOAD_PER_BEARING_NUMBER * slowest:
+            lowest = min(values) * specific / (MAX_LOAD_PER_BEARING_NUMBER * slowest)
+            raise ParameterError(name, list(speeds), f"{min(values):.6g} rpm gives bearing "
+                                 f"{support.name} Λ = {slowest:.3g} under a specific load "
+                                 f"W/(p_a L D) = {specific:.3g}, above "
+                                 f"{MAX_LOAD_PER_BEARING_NUMBER:g} Λ: the film there is thinner "
+                                 f"than a real surface (the rotor is not airborne); at least "
+                                 f"{lowest:.4g} rpm")
         surface = top * math.pi / 30.0 * support.geometry.radius
         if not surface <= MAX_SURFACE_SPEED:
             fastest = MAX_SURFACE_SPEED / support.geometry.radius * 30.0 / math.pi

@@ -261,7 +261,8 @@ def _flag_cases():
     speed = ("--speed-range", "8000", "12000")
     orbit = ("--orbit", "--speed-rpm", "10000", "--revolutions", "1")
     for low, high in (("1e-300", "1e300"), ("0", "1000"), ("-1", "1000"), ("30000", "5000"),
-                      ("nan", "1000"), ("5000", "5000"), ("1", "1e12"), ("abc", "1")):
+                      ("nan", "1000"), ("5000", "5000"), ("1", "1e12"), ("abc", "1"),
+                      ("0.01", "10")):
         _add(f"rotor --speed-range {low} {high}", REFUSE, ROTOR_FILE,
              (*base, "--speed-range", low, high))
     flags = {
@@ -427,7 +428,8 @@ FAST = ("rotor mass=huge", "rotor bearings[1].position=mm", "rotor transverse_in
         "capacity --csv into a missing folder", "rotor --speed-rpm tiny",
         "rotor --stages fraction", "rotor --time-step huge", "rotor --kick huge",
         "rotor --window-revolutions huge", "rotor --window-revolutions fraction",
-        "rotor --rate huge", "rotor --revolutions tiny", "rotor --foil-travel-um tiny")
+        "rotor --rate huge", "rotor --revolutions tiny", "rotor --foil-travel-um tiny",
+        "rotor --speed-range 0.01 10")
 
 
 class _Timeout(BaseException):
