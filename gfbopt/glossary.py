@@ -52,6 +52,9 @@ GLOSSARY: dict[str, tuple[str, str]] = {
     # ---------------------------------------------------------------- static outputs
     "attitude_angle_deg": ("deg", "attitude angle φ: from the load line to the line of "
                            "centres, in the direction of rotation"),
+    "film_force": ("-", "magnitude of the film force on the journal |F|/(p_a R²)"),
+    "film_force_angle_deg": ("deg", "direction of the film force from the load line, in the "
+                             "direction of rotation, in [0, 360) (180: opposing the load)"),
     "min_film": ("-", "minimum film thickness H_min = h_min / c"),
     "min_film_thickness_um": ("µm", "minimum film thickness h_min"),
     "min_film_angle_from_seam_deg": ("deg", "angle of the minimum film from the welded end of "
@@ -75,8 +78,7 @@ GLOSSARY: dict[str, tuple[str, str]] = {
     "n_theta": ("-", "grid intervals round the bearing"),
     "n_z": ("-", "grid intervals along the bearing"),
     "grid_spacing": ("-", "1 / n_theta"),
-    "observed_order_load": ("-", "observed order of convergence of the load (three finest "
-                            "grids)"),
+    "observed_order_load": ("-", "observed order of convergence of the load (three finest grids)"),
     "observed_order_attitude": ("-", "observed order of convergence of the attitude angle"),
     "load_extrapolated": ("-", "Richardson-extrapolated load W̄ (formal order 2)"),
     "attitude_angle_deg_extrapolated": ("deg", "Richardson-extrapolated attitude angle"),
@@ -142,8 +144,7 @@ _PATTERNS: tuple = (
     (r"k([xy])([xy])", "-", "stiffness K̄_{0}{1} = K c / (p_a R²) (load frame)"),
     (r"c([xy])([xy])", "-", "damping C̄_{0}{1} = C c ω / (p_a R²) (load frame)"),
     (r"z([xy])([xy])_(re|im)", "-", "impedance Z_{0}{1} ({2} part), gfbopt"),
-    (r"z([xy])([xy])_ausman_(re|im)", "-", "impedance Z_{0}{1} ({2} part), Ausman's closed "
-     "form"),
+    (r"z([xy])([xy])_ausman_(re|im)", "-", "impedance Z_{0}{1} ({2} part), Ausman's closed form"),
     (r"load_error_grid_(\d+x\d+)", "-", "relative load error of grid {0} against the "
      "extrapolated value"),
 )
@@ -218,8 +219,7 @@ for _name, _entry in {
     "evaluations": ("-", "linear-threshold computations of the onset search"),
     "output": ("text", "the study output whose sensitivity is given"),
     "input": ("text", "the sampled input"),
-    "S1": ("-", "first-order Sobol index (share of the output variance due to this input "
-           "alone)"),
+    "S1": ("-", "first-order Sobol index (share of the output variance due to this input alone)"),
     "S1_conf": ("-", "95 % bootstrap half-width of S1"),
     "ST": ("-", "total Sobol index (share of the variance involving this input)"),
     "ST_conf": ("-", "95 % bootstrap half-width of ST"),

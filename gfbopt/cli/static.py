@@ -1,6 +1,7 @@
 """``gfbopt static``: one static equilibrium (non-dimensional, or SI from a bearing file)."""
 from __future__ import annotations
 
+import math
 import sys
 
 from ..errors import ParameterError
@@ -54,11 +55,20 @@ def _report(out: dict) -> str:
              f"  Λ = {out['bearing_number']:.4g}, S = {out['compliance']:.4g}, "
              f"L/D = {out['length_ratio']:.4g}, C = {out['top_foil_coefficient']:.4g}",
              f"  eccentricity ε          {out['eccentricity']:.5f}",
-             f"  load W/(p_a R²)         {out['load']:.5f}",
-             f"  attitude angle          {out['attitude_angle_deg']:.3f} deg",
-             f"  minimum film h/c        {out['min_film']:.5f} at "
-             f"{out['min_film_angle_deg']:.1f} deg from the load line",
-             f"  drag torque / Petroff's {out['torque_ratio']:.5f}"]
+             f"  load W/(p_a R²)         {out['load']:.5f}"]
+    if out["eccentricity"] == 0.0:
+        # concentric: the load carried is the film force's magnitude; say its direction
+        angle = out["film_force_angle_deg"]
+        lines += [f"  film force direction    {angle:.1f} deg from the load line, in the "
+                  "direction of rotation (concentric journal: the load is |F|)"
+                  if angle is not None and math.isfinite(angle) else
+                  "  film force direction    none (no film force on the concentric journal)",
+                  "  attitude angle          none (concentric journal: no line of centres)"]
+    else:
+        lines.append(f"  attitude angle          {out['attitude_angle_deg']:.3f} deg")
+    lines += [f"  minimum film h/c        {out['min_film']:.5f} at "
+              f"{out['min_film_angle_deg']:.1f} deg from the load line",
+              f"  drag torque / Petroff's {out['torque_ratio']:.5f}"]
     if out.get("bore") is not None or out.get("pads_leading_end_deg") or out.get("zones_deg"):
         lines.append(f"  as built: bore {out.get('bore')}"
                      + (f", {out['bore_count']} × preload {out['bore_preload_ratio']:.4g} c"
