@@ -100,7 +100,10 @@ def load_bearing(path: str | Path) -> BearingGeometry:
     build = build_from_tables(data, where=name)                # [bore], [[pads]], [[zones]]
     bearing = bearing_from_dict(tables["bearing"], where=f"{name}: bearing", options=options)
     if build is not None:
-        bearing = dataclasses.replace(bearing, build=build)
+        try:                          # the bore, pads and zones checked against the bearing
+            bearing = dataclasses.replace(bearing, build=build)
+        except ParameterError as exc:
+            raise ParameterError(f"{name}: {exc.name}", exc.value, exc.rule) from None
     try:                              # the combination, on a model of this bearing
         from .options import resolve_model_options
 

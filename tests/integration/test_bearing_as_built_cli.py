@@ -101,14 +101,25 @@ def test_bad_as_built_input_is_refused_before_solving(tmp_path, extra, name, wor
     assert name in str(err.value) and words in str(err.value), str(err.value)
 
 
-def test_bad_as_built_input_is_one_line_exit_2(tmp_path):
-    """From the command line: one line, exit 2, no traceback."""
-    out = gfbopt("static", "--bearing", _file(tmp_path, SHIMS.replace("5e-6", "20e-6")),
+@pytest.mark.parametrize("extra, name, words", [
+    (SHIMS.replace("5e-6", "20e-6"), "bore.preload_depth", "20 µm >= clearance"),
+    ("[bore]\nkind = 'shims'\ncount = 3\npreload_ratio = 0.2\nwidth_deg = -10.0\n",
+     "bore.width_deg", "negative"),
+    ("[[pads]]\nleading_end_deg = 180.0\narc_deg = 200.0\n[[pads]]\nleading_end_deg = 300.0\n"
+     "arc_deg = 100.0\n", "pads", "overlapping pads"),
+    ("[[pads]]\nleading_end_deg = 180.0\narc_deg = -5.0\n", "pads[0].arc_deg", "negative"),
+    ("[[zones]]\nstart_deg = 0.0\nend_deg = 170.0\n[[zones]]\nstart_deg = 180.0\n"
+     "end_deg = 360.0\n", "zones", "cover the bore"),
+    ("[[zones]]\nstart_deg = 90.0\nend_deg = 10.0\n", "zones[0].end_deg", "negative")])
+def test_bad_as_built_input_is_one_line_exit_2(tmp_path, extra, name, words):
+    """From the command line: one line, exit 2, no traceback; [bore], [[pads]] and [[zones]]
+    errors alike name the file, then the key."""
+    out = gfbopt("static", "--bearing", _file(tmp_path, extra),
                  "--speed-rpm", "30000", "--load-newton", "20", "--grid", "36x10")
     assert out.returncode == 2, out.stderr
     line = out.stderr.strip()
     assert "\n" not in line and "Traceback" not in line
-    assert line.startswith("gfbopt: error: bore.preload_depth") and "20 µm >= clearance" in line
+    assert line.startswith(f"gfbopt: error: bearing.toml: {name} = ") and words in line, line
 
 
 def test_capacity_curve_monotone_and_on_the_limit():
