@@ -187,6 +187,31 @@ def plausibility_warnings(line: SpeedLine) -> tuple:
     return tuple(out)
 
 
+def clearance_warnings(system: RotorSystem, response: Optional[ImbalanceResponse]) -> tuple:
+    """A warning for each bearing whose linear imbalance response, at a speed below the first
+    onset (where it is a real orbit), is larger than the bearing's radial clearance: the
+    journal would cross the clearance, so the linear model does not hold there (the largest
+    such amplitude and its speed)."""
+    if response is None or not len(response.table):
+        return ()
+    table = response.table
+    onset = response.unstable_from_rpm
+    if math.isfinite(onset):
+        table = table[table["speed_rpm"] < onset]
+    out = []
+    for support in system.bearings:
+        clearance_um = support.geometry.radial_clearance * 1e6
+        rows = table[(table["station"] == support.name) & (table["amplitude_um"] > clearance_um)]
+        if not len(rows):
+            continue
+        worst = rows.loc[rows["amplitude_um"].idxmax()]
+        out.append(f"the linear imbalance response reaches {worst['amplitude_um']:.4g} µm at "
+                   f"bearing {support.name} at {worst['speed_rpm']:,.0f} rpm, above the radial "
+                   f"clearance of {clearance_um:.4g} µm: the linear model does not hold there; "
+                   "run the rotor transient (--run-up)")
+    return tuple(out)
+
+
 def modes_at_speed(line: SpeedLine, speed_rpm: float) -> dict:
     """Each bearing's equilibrium and the rotor's modes (full system) at one speed, each with
     its shape class there (``shape_label``: one speed's eigenvector, not a mode's name), and
@@ -240,4 +265,5 @@ def analyse_rotor(system: RotorSystem, speed_range, *, speed_rpm: Optional[float
                              show_progress, unstable_from_rpm=unstable_from(onsets, low))
           if imbalance else None)
     hm = half_mass_onsets(line, (low, high)) if half_mass else None
-    return RotorAnalysis(onsets, at, cd, ir, hm, plausibility_warnings(line))
+    return RotorAnalysis(onsets, at, cd, ir, hm,
+                         plausibility_warnings(line) + clearance_warnings(system, ir))
