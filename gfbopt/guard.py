@@ -29,9 +29,15 @@ from .inputs.grid import (BASE_MEMORY_BYTES, DEFAULT_MAX_MEMORY_GB, MEMORY_PER_N
 #: default largest estimated computing time of one command or study [min]; ``--max-minutes``
 #: (``max_minutes=`` in Python) raises it
 DEFAULT_MAX_MINUTES = 60.0
-#: time of one speed of an onset scan, Campbell diagram or imbalance response, per bearing
-#: and grid node [s] (measured 1.6e-4 s: blower rotor, 5,000–60,000 rpm, 12 speeds, 36x10)
-SPEED_SECONDS_PER_NODE = 2e-4
+#: time of one speed of an onset scan, Campbell diagram or imbalance response, per bearing:
+#: a part independent of the grid [s] and a part per grid node [s].  Measured on the blower
+#: rotor (8,000–12,000 rpm, Campbell diagrams of 3 and 13 speeds, the difference over 10):
+#: 1.45 s per speed at 12x4 (a coarse grid's statics and tracking take longer, not shorter),
+#: 0.18 s at 24x8, 0.37 s at 36x10 (4.5e-4 s per node and bearing); onset scans 1.6e-4 s per
+#: node and bearing at 36x10.  The node part was 2e-4 s alone, which let 100,000 Campbell
+#: speeds at 12x4 through as 43 min (they take about 40 h).
+SPEED_SECONDS_PER_BEARING = 0.75
+SPEED_SECONDS_PER_NODE = 5e-4
 #: time of one transient time step per bearing and grid node [s] (measured 4.5e-6 s: blower
 #: rotor orbit, 40 revolutions at 13,000 rpm, rkc, Δτ = 0.1, 36x10)
 STEP_SECONDS_PER_NODE = 5e-6
@@ -132,7 +138,7 @@ def solves(option: str, value, count: float, grid: Grid, what: str = "static sol
 def speeds(option: str, value, count: float, grid: Grid, bearings: int = 1,
            what: str = "speeds") -> Work:
     """``count`` speeds of a scan, Campbell diagram or response, ``bearings`` at each."""
-    per = SPEED_SECONDS_PER_NODE * nodes(grid) * bearings
+    per = (SPEED_SECONDS_PER_BEARING + SPEED_SECONDS_PER_NODE * nodes(grid)) * bearings
     return Work(option, value, seconds=count * per,
                 how=f"{count:,.6g} {what} × {bearings} bearing(s) at {grid} "
                 f"({per:.2g} s each)")

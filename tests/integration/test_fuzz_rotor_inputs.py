@@ -5,7 +5,9 @@ tables, ``gfbopt rotor`` and ``gfbopt capacity`` flags, rotor design study files
 paths that cannot be written.
 
 Each input ends in an answer (exit 0 or 1) or one ``gfbopt: error:`` line with exit 2 —
-never a traceback, an abort by a signal, or a run past :data:`LIMIT_S` that nobody asked for;
+never a traceback, an abort by a signal, or a run past :data:`LIMIT_S` that nobody asked for
+(every run is given ``--max-minutes`` of :data:`LIMIT_S`: a run the memory and time guard lets
+through under it must end within it, so a run past it is the guard's error);
 an input marked ``REFUSE`` (impossible, or an option that would be ignored) must be refused
 (exit 2) — an answer from it is a failure.  The CLI runs in this process (as
 ``tests/cli_inprocess.py`` does) under an alarm; the inputs that could exhaust memory run as
@@ -32,6 +34,8 @@ RUSCITTO = ROOT / "problems" / "bearings" / "ruscitto.toml"
 DESIGN = ROOT / "problems" / "rotor_bearing_design.toml"
 #: longest run of an input that does not ask for a long computation [s]
 LIMIT_S = 120
+#: a run past LIMIT_S: the guard estimated it within --max-minutes LIMIT_S/60 and let it run
+PAST = f"ran past {LIMIT_S} s: the guard let it through under --max-minutes {LIMIT_S / 60:g}"
 GRID = ("--grid", "12x4")
 REFUSE, ANY = "refuse", "any"
 
@@ -452,6 +456,8 @@ def _run(tmp_path: Path, label: str):
     if "bearing.toml" not in files:
         (tmp_path / "bearing.toml").write_text(RUSCITTO.read_text())
     argv = [a.replace("{dir}", str(tmp_path)) for a in args]
+    if "--max-minutes" not in argv:             # the guard's time limit is the harness's
+        argv += ["--max-minutes", f"{LIMIT_S / 60:g}"]
     if in_child:
         env = {**os.environ, "OMP_NUM_THREADS": "1"}
         try:
@@ -459,7 +465,7 @@ def _run(tmp_path: Path, label: str):
                                  text=True, timeout=LIMIT_S, cwd=tmp_path, env=env,
                                  preexec_fn=_limit_memory)
         except subprocess.TimeoutExpired:
-            return None, "", f"ran past {LIMIT_S} s"
+            return None, "", PAST
         if out.returncode < 0:
             return out.returncode, out.stderr, f"aborted by signal {-out.returncode}"
         return out.returncode, out.stderr, None
@@ -468,7 +474,7 @@ def _run(tmp_path: Path, label: str):
     try:
         out = run_cli(*argv, cwd=tmp_path)
     except _Timeout:
-        return None, "", f"ran past {LIMIT_S} s"
+        return None, "", PAST
     except Exception as exc:                          # noqa: BLE001 - the point of it
         return None, "", f"traceback {type(exc).__name__}: {str(exc)[:300]}"
     finally:

@@ -57,6 +57,12 @@ def _refused(r, option: str, value: str, raises: str) -> str:
       "--grid", "2000x2000"], "grid", "'2000x2000'", "--max-memory-gb"),
     (["rotor", BLOWER, "--speed-range", "5000", "60000", "--campbell", "--campbell-speeds",
       "100000"], "--campbell-speeds", "100000", "--max-minutes"),
+    # a speed costs a part independent of the grid: 100,000 at 12x4 are not 43 min
+    (["rotor", BLOWER, "--speed-range", "8000", "12000", "--grid", "12x4", "--campbell",
+      "--campbell-speeds", "100000"], "--campbell-speeds", "100000", "--max-minutes"),
+    (["rotor", BLOWER, "--speed-range", "8000", "12000", "--grid", "12x4", "--campbell",
+      "--campbell-speeds", "100", "--max-minutes", "2"], "--campbell-speeds", "100",
+     "--max-minutes"),
     (["rotor", BLOWER, "--orbit", "--speed-rpm", "13000", "--revolutions", "40",
       "--time-step", "1e-12"], "--time-step", "1e-12", "--max-minutes"),
     (["rotor", BLOWER, "--run-up", "5000", "60000", "--rate", "1e-3", "--force"], "--run-up",
@@ -155,8 +161,10 @@ def test_the_readme_commands_pass_the_guard_at_their_defaults(tmp_path, monkeypa
 
 
 @pytest.mark.parametrize("low, high, rule", [
-    ("1e-300", "1e300", "no film carries the rotor there"),
-    ("1", "1e12", "m/s"),
+    ("1e-300", "1e300", "exceeds 1000: one analysis spans at most"),
+    ("1e-300", "1e-298", "no film carries the rotor there"),
+    ("1e6", "1e8", "m/s"),
+    ("1", "100", "the rotor is not airborne"),
 ])
 def test_a_speed_range_no_model_can_run_is_refused_as_such(no_handler, low, high, rule):
     """A range outside the rotor's physical limits is refused by the rotor's speed rule
