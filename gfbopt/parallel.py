@@ -27,10 +27,10 @@ breaks the pool: the tasks that had not finished are run again on a fresh pool, 
 :class:`InfrastructureFailure` (never as a failed point of the analysis).
 
 **How workers start** (:func:`start_method`, the pool's fixed cost).  A spawned worker starts a
-new interpreter and imports what its tasks need: about 2.3 s CPU per worker for the
-bearing-pair design (``gfbopt.design.optimiser`` and the studies behind it), so on a busy
-machine ``--workers 2`` cost more CPU than it saved.  On Linux the pool now **forks** the
-driver, which has imported everything already (a few ms per worker,
+new interpreter and imports what its tasks need: 2.5 s CPU per worker for the bearing-pair
+design (``gfbopt.design.optimiser`` and the studies behind it), so on a busy machine
+``--workers 2`` cost more CPU than it saved.  On Linux the pool now **forks** the driver,
+which has imported nearly all of it (0.14 s CPU per worker; the preloaded forkserver 1.4 s:
 benchmarks/bench_pool.py), *when forking is safe*: no other Python thread runs in the
 driver (a lock another thread holds would stay locked in the child) and no OpenMP runtime is
 loaded (libgomp's thread pool does not survive a fork).  The native threads gfbopt's
