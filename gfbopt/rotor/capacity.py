@@ -77,6 +77,8 @@ class CurveResult:
     @property
     def answer(self) -> str:
         """The answer in one line."""
+        if self.message and math.isfinite(self.value):   # an answer the limit did not set
+            return self.message
         if self.kind == "capacity":
             if not math.isfinite(self.value):
                 return self.message
@@ -162,6 +164,16 @@ class _Curve:
         return math.nan if sol is None else sol.min_film * self.bearing.radial_clearance * 1e6
 
 
+def _not_at_limit(film: float, limit: float, what: str) -> str:
+    """"" when the answer's h_min is the limit (to 1e-6 relative); else the answer in words:
+    the equilibrium was lost (the solve fails) before h_min reached the limit, so the answer
+    is where the film stops carrying the load, with the film it has there."""
+    if math.isfinite(film) and abs(film / limit - 1.0) <= 1e-6:
+        return ""
+    return (f"{what}, where the equilibrium is lost before h_min reaches {limit:.4g} µm "
+            f"(h_min = {film:.4g} µm there)")
+
+
 def _march(line: _Curve, start: float, factor: float, end: float) -> tuple:
     """Step x by ``factor`` from ``start`` (h ≥ 0 there) towards ``end`` (never past it)
     until h < 0; then refine the crossing.  Returns (root or None, the last x with h ≥ 0)."""
@@ -239,9 +251,11 @@ def load_capacity(bearing: BearingGeometry, speed_rpm: float, min_film_um: float
                * bearing.radius)                 # as BearingGeometry.nondimensional_load
     root, good = _march(line, load, LOAD_STEP, min(load * LOAD_STEP ** 40, ceiling))
     if root is not None:
-        return CurveResult("capacity", root, load_newton=root,
-                           min_film_thickness_um=line.final(root), curve=line.rows,
-                           wall_time_s=time.perf_counter() - t0, **common)
+        film = line.final(root)
+        return CurveResult("capacity", root, load_newton=root, min_film_thickness_um=film,
+                           curve=line.rows, wall_time_s=time.perf_counter() - t0,
+                           message=_not_at_limit(film, limit, f"the film cannot carry more than "
+                                                 f"{root:.5g} N at {speed:.6g} rpm"), **common)
     if good >= ceiling:
         return CurveResult("capacity", math.nan, load_newton=good,
                            min_film_thickness_um=line.final(good), curve=line.rows,
@@ -279,9 +293,11 @@ def lift_off_speed(bearing: BearingGeometry, load_newton: float, min_film_um: fl
                            f"under {load:.5g} N)", **common)
     root, good = _march(line, top, 1.0 / SPEED_STEP, max(top / 1000, _slowest_speed(bearing)))
     if root is not None:
-        return CurveResult("lift_off", root, speed_rpm=root,
-                           min_film_thickness_um=line.final(root), curve=line.rows,
-                           wall_time_s=time.perf_counter() - t0, **common)
+        film = line.final(root)
+        return CurveResult("lift_off", root, speed_rpm=root, min_film_thickness_um=film,
+                           curve=line.rows, wall_time_s=time.perf_counter() - t0,
+                           message=_not_at_limit(film, limit, f"the film first carries "
+                                                 f"{load:.5g} N at {root:.6g} rpm"), **common)
     return CurveResult("lift_off", math.nan, speed_rpm=good, min_film_thickness_um=math.nan,
                        curve=line.rows, success=False, wall_time_s=time.perf_counter() - t0,
                        message=f"h_min stays above {limit:.4g} µm down to {good:.4g} rpm",

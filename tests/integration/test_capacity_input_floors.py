@@ -66,3 +66,23 @@ def test_capacity_above_the_load_ceiling_is_an_answer():
     loads = [r["load_newton"] for r in data["curve"]]
     assert max(loads) == pytest.approx(ceiling, rel=1e-12)
     assert data["min_film_thickness_um"] > 0.01
+
+
+def test_a_capacity_the_film_limit_did_not_set_says_so():
+    """When the equilibrium is lost (the solve fails) before h_min reaches the limit, the
+    answer is the largest load the film carries and says so, with the film it has there —
+    never 'h_min = limit' beside a thicker film (before: "load capacity 634.73 N (h_min =
+    0.01 µm)" with 0.0222 µm at the answer).  An answer the limit sets keeps its words."""
+    from gfbopt.inputs import Grid, load_bearing
+    from gfbopt.rotor.capacity import load_capacity
+
+    bearing = load_bearing(str(Path(__file__).resolve().parents[2] / "problems" / "bearings"
+                               / "ruscitto.toml"))
+    lost = load_capacity(bearing, 30000.0, 0.01, grid=Grid(24, 8))
+    assert lost.min_film_thickness_um > 1.5 * 0.01
+    assert "equilibrium is lost before h_min reaches 0.01 µm" in lost.answer
+    assert f"h_min = {lost.min_film_thickness_um:.4g} µm there" in lost.answer
+    assert lost.to_dict()["load_capacity_newton"] == lost.value > 0
+    held = load_capacity(bearing, 30000.0, 5.0, grid=Grid(24, 8))
+    assert held.min_film_thickness_um == pytest.approx(5.0, rel=1e-6)
+    assert held.message == "" and "(h_min = 5 µm)" in held.answer
