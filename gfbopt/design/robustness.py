@@ -190,10 +190,14 @@ def whirl_at_top_speed(system, design: dict, settings, revolutions: float,
            "message": d.get("message", ""), "contact": bool(d.get("contact")),
            "contact_bearing": d.get("contact_bearing"),
            "contact_time_s": d.get("contact_time_s", math.nan), "bearings": []}
+    def number(value) -> float:                  # null in the orbit's JSON: not measured
+        return math.nan if value is None else float(value)
+
     for b in d["bearings"]:
         out["bearings"].append({
-            "bearing": b["bearing"], "min_film_um": b.get("min_film_um", math.nan),
-            "limit_cycle_um": b.get("limit_cycle_amplitude_um", math.nan),
-            "settled": bool(b.get("limit_cycle_settled", False)),
-            "whirl_frequency_hz": b.get("limit_cycle_frequency_hz", math.nan)})
+            "bearing": b["bearing"], "min_film_um": number(b.get("min_film_um")),
+            "status": b.get("limit_cycle_status") or "none",
+            "limit_cycle_um": number(b.get("limit_cycle_amplitude_um")),
+            "settled": bool(b.get("limit_cycle_settled")),
+            "whirl_frequency_hz": number(b.get("limit_cycle_frequency_hz"))})
     return out

@@ -101,13 +101,19 @@ def whirl_text(whirl, top: float) -> str:
     if not whirl["success"]:
         return (f"the orbit at {top:,.0f} rpm on the {whirl['grid']} grid failed "
                 f"({whirl['message']}): no limit cycle to report")
-    cycles = " and ".join(f"{b['limit_cycle_um']:.2f} µm at bearing {b['bearing']}"
-                          for b in whirl["bearings"])
     film = min(b["min_film_um"] for b in whirl["bearings"])
-    state = "settled" if all(b["settled"] for b in whirl["bearings"]) else "not yet settled"
+    run = f"{whirl['revolutions']:g} revolutions on the {whirl['grid']} grid"
+    whirling = [b for b in whirl["bearings"] if b.get("status", "none") != "none"]
+    if not whirling:
+        return (f"at {top:,.0f} rpm no subsynchronous whirl (minimum film {film:.2f} µm; "
+                f"{run})")
+    cycles = " and ".join(f"{b['limit_cycle_um']:.2f} µm at bearing {b['bearing']}"
+                          for b in whirling)
+    quiet = [b["bearing"] for b in whirl["bearings"] if b not in whirling]
+    cycles += "".join(f", none at bearing {q}" for q in quiet)
+    state = "settled" if all(b["settled"] for b in whirling) else "not yet settled"
     return (f"at {top:,.0f} rpm the whirl limit cycle is {cycles} with minimum film "
-            f"{film:.2f} µm ({whirl['revolutions']:g} revolutions on the {whirl['grid']} "
-            f"grid, {state})")
+            f"{film:.2f} µm ({run}, {state})")
 
 
 def _reproduce(plan, chosen: dict) -> float:
