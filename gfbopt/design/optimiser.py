@@ -149,8 +149,9 @@ def _task(argument: dict) -> dict:
 
 def executor(workers: int = 1, client=None) -> Callable:
     """The ``run_tasks`` of :func:`optimise`: this process (``workers <= 1``), a pool of
-    ``workers`` spawn processes (the run's :class:`gfbopt.parallel.WorkerPool` when one is
-    open) or a Dask cluster (``client``), through :func:`gfbopt.parallel.stream_tasks`."""
+    ``workers`` worker processes (forked where safe, :func:`gfbopt.parallel.start_method`;
+    the run's :class:`gfbopt.parallel.WorkerPool` when one is open) or a Dask cluster
+    (``client``), through :func:`gfbopt.parallel.stream_tasks`."""
     from functools import partial
 
     from ..parallel import stream_tasks
