@@ -165,6 +165,9 @@ def run_up(case: str, rate: float) -> dict:
             "subsync_appearance_rpm": d["subsync_appearance_rpm"],
             "min_film_um": [b.get("min_film_um") for b in d["bearings"]],
             "peak_sync_amplitude_um": [b.get("peak_sync_amplitude_um") for b in d["bearings"]],
+            # the ramp's peak 1x response since the result's sync_amplitude_um (major semi-axis)
+            "peak_amplitude_um": [b.get("peak_amplitude_um") for b in d["bearings"]],
+            "peak_speed_rpm": [b.get("peak_speed_rpm") for b in d["bearings"]],
             "samples_kept": int(r.tau.size),
             "record_bytes": int(r.q.nbytes + r.min_film.nbytes + r.tau.nbytes)}
 
@@ -239,7 +242,8 @@ def run_up_before(before: Path, case: str, rate: float) -> dict:
 
 
 ANSWERS = ("contact", "contact_speed_rpm", "subsync_appearance_rpm", "min_film_um",
-           "peak_sync_amplitude_um", "revolutions_integrated")
+           "peak_sync_amplitude_um", "peak_amplitude_um", "peak_speed_rpm",
+           "revolutions_integrated")
 
 
 def change(old: dict, new: dict) -> dict:
