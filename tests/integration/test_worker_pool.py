@@ -20,7 +20,29 @@ def report(eccentricity, cache):
             "cvxpy": "cvxpy" in sys.modules, "matplotlib": "matplotlib" in sys.modules}
 
 
+def _fresh(body: str, *args: str) -> None:
+    """Run ``body(*args)`` of this module in a fresh interpreter: the pool's start method and
+    the workers' imports depend on the driver process (another thread, such as pytest-xdist's
+    I/O thread, makes fork unsafe; modules the driver imported are inherited), so what is
+    tested here is the driver a user's ``gfbopt run`` is.  A failed assertion fails the test
+    with the child's traceback."""
+    import subprocess
+    from pathlib import Path
+
+    here = Path(__file__).resolve().parent
+    env = {**os.environ, "PYTHONPATH": os.pathsep.join(
+        [str(here), str(here.parents[1]), os.environ.get("PYTHONPATH", "")])}
+    code = f"import test_worker_pool as t; t.{body}(*{list(args)!r})"
+    out = subprocess.run([sys.executable, "-c", code], cwd=here, env=env,
+                         capture_output=True, text=True, timeout=600)
+    assert out.returncode == 0, out.stderr[-3000:]
+
+
 def test_batches_of_a_run_share_one_pool_and_its_solvers():
+    _fresh("batches_share_one_pool")
+
+
+def batches_share_one_pool():
     with WorkerPool(2) as pool:
         first = run_points(report, [{"eccentricity": e} for e in (0.1, 0.2, 0.3, 0.4)],
                            workers=2)
@@ -65,6 +87,10 @@ def fresh_worker(eccentricity, cache):
 def test_forked_workers_start_clean_and_give_the_serial_rows():
     """The driver has built a solver and holds the run's pool and signal state when it forks:
     the workers must not use any of it (a copied CasADi solver, the driver's cache)."""
+    _fresh("forked_workers_start_clean")
+
+
+def forked_workers_start_clean():
     from gfbopt.parallel import interrupt_on_signals
 
     points = [{"eccentricity": e} for e in (0.2, 0.3, 0.4, 0.5)]
@@ -115,6 +141,13 @@ def kill_once(value, marker, always=False):
 
 
 def test_a_killed_fork_worker_is_retried_and_one_that_always_dies_is_reported(tmp_path):
+    _fresh("killed_fork_worker", str(tmp_path))
+
+
+def killed_fork_worker(folder):
+    from pathlib import Path
+
+    tmp_path = Path(folder)
     points = [{"value": v, "marker": str(tmp_path / "once")} for v in range(6)]
     methods = []
     with WorkerPool(2) as pool:
