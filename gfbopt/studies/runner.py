@@ -85,8 +85,8 @@ def study_from_dict(data: dict, *, name: Optional[str] = None, file: str = "<dic
     spec = validate(data, file)
     name = spec["name"] if spec["name"] is not None else (name or Path(file).stem)
     check_name(name, f"{file}: name")
+    check_file_names(spec, directory, file)      # what no run can mean, then the estimate
     check(study_work(spec, file), limits)
-    check_file_names(spec, directory, file)
     spec = {**spec, "name": name}
     study = Study(file=file, name=name, kind=spec["kind"], spec=spec,
                   directory=Path(directory))

@@ -163,15 +163,25 @@ NAMES_FILES = ("rotor_run_up",)
 
 
 def check_file_names(spec: dict, directory, where: str) -> None:
-    """Refuse, before planning, a bearing name that cannot be part of the file names the
-    study writes after it (:func:`gfbopt.guard.check_file_name_part`)."""
-    if spec.get("kind") not in NAMES_FILES:
+    """Refuse, before the estimate and the plan, what no run of a rotor study can mean: a
+    speed range no bearing of the rotor can run at (the rotor's speed rule,
+    :func:`gfbopt.inputs.rotor_limits.check_rotor_speeds`: refused as such, not as too much
+    work), and a bearing name that cannot be part of the file names the study writes after
+    it (:func:`gfbopt.guard.check_file_name_part`)."""
+    if spec.get("kind") not in ROTOR_KINDS or not isinstance(spec.get("rotor"), str):
         return
     from pathlib import Path
 
+    from ..inputs.rotor_limits import check_rotor_speeds
     from ..inputs.rotor_system import load_rotor
 
-    for bearing in load_rotor(Path(directory) / spec["rotor"]).bearings:
+    system = load_rotor(Path(directory) / spec["rotor"])
+    span = spec.get("speed_range_rpm")
+    if isinstance(span, (list, tuple)) and len(span) == 2:
+        check_rotor_speeds(system, span, f"{where}: speed_range_rpm")
+    if spec.get("kind") not in NAMES_FILES:
+        return
+    for bearing in system.bearings:
         guard.check_file_name_part(bearing.name, f"{where}: rotor {spec['rotor']}: bearing "
                                    "name", "the study writes components_NAME.csv and "
                                    "waterfall_NAME.png")

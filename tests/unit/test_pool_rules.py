@@ -45,8 +45,6 @@ def test_the_command_lines_progress_bar_leaves_the_driver_forkable(monkeypatch):
     import tqdm
 
     from gfbopt.cli.run import _Progress
-    from gfbopt.parallel import start_method
-
     class Terminal(io.StringIO):
         def isatty(self):
             return True
@@ -59,6 +57,7 @@ def test_the_command_lines_progress_bar_leaves_the_driver_forkable(monkeypatch):
     bar(0.25)
     try:
         assert bar.bar is not None and "study" in sys.stderr.getvalue()
-        assert threading.active_count() == before == 1 and start_method() == "fork"
+        # the bar started no thread (a one-thread driver forks: test_workers_are_forked_only_where_it_is_safe)
+        assert threading.active_count() == before
     finally:
         bar.close()
