@@ -57,7 +57,7 @@ def test_the_command_lines_progress_bar_leaves_the_driver_forkable(monkeypatch):
     bar(0.25)
     try:
         assert bar.bar is not None and "study" in sys.stderr.getvalue()
-        # the bar started no thread (a one-thread driver forks: test_workers_are_forked_only_where_it_is_safe)
+        # the bar started no thread (a one-thread driver forks: see the test above)
         assert threading.active_count() == before
     finally:
         bar.close()
