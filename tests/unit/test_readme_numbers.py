@@ -221,7 +221,27 @@ def _limit_cycle(bearing: str, column: str) -> float:
                                               "speed_over_linear_onset", first))
 
 
+def _dask(dotted: str, fmt: str, scale: float = 1.0) -> Quoted:
+    """A figure of the Dask benchmark (results/benchmarks/dask.json)."""
+    path = f"{BENCH}/dask.json"
+    return Quoted(path, lambda: scale * key(path, dotted), fmt)
+
+
+def _dask_ratio(over: str) -> Quoted:
+    path = f"{BENCH}/dask.json"
+    return Quoted(path, lambda: key(path, "summary.dask_points_per_s")
+                  / key(path, f"summary.{over}_points_per_s"), "{:.2f}")
+
+
 QUOTED: dict[str, Quoted] = {
+    # the Dask route at 10^5 points (docs/doe.md)
+    "dask_point_cpu_ms": _dask("summary.analysis_cpu_s_per_point", "{:.2f}", 1e3),
+    "dask_old_tasks": _dask("medians.dask-old.dask_tasks", "{:,.0f}"),
+    "dask_old_driver_share": _dask("summary.old_dask_driver_cpu_share", "{:.1f}", 100.0),
+    "dask_tasks": _dask("medians.dask.dask_tasks", "{:,.0f}"),
+    "dask_driver_share": _dask("summary.dask_driver_cpu_share", "{:.1f}", 100.0),
+    "dask_over_old": _dask_ratio("old_dask"),
+    "dask_over_pool": _dask_ratio("pool"),
     # the main job: inputs restated from its problem file, then its answer
     "design_top_speed_rpm": Quoted(DESIGN_TOML, lambda: key(DESIGN_TOML, "speed_range_rpm.1")),
     "design_lowest_speed_rpm": Quoted(DESIGN_TOML, lambda: key(DESIGN_TOML, "speed_range_rpm.0")),
