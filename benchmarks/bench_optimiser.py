@@ -42,6 +42,7 @@ import numpy as np
 
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
+sys.path.insert(0, str(ROOT / "benchmarks"))
 
 from gfbopt.design import surrogates  # noqa: E402
 from gfbopt.design.optimiser import optimise, store_schema  # noqa: E402
@@ -273,7 +274,9 @@ def stage_shares(old_tree, repeats: int) -> dict:
     for r in range(repeats):
         for key in (list(trees) if r % 2 == 0 else list(trees)[::-1]):
             runs[key].append(_stage_run(trees[key]))
-    out = {k: {"tree": str(t), "runs": runs[k],
+    from machine import tree_label
+
+    out = {k: {"tree": tree_label(t), "runs": runs[k],
                "median_total_cpu_s": statistics.median(x["total_cpu_s"] for x in runs[k]),
                "median_after_search_share": statistics.median(
                    x["after_search_share"] for x in runs[k]),

@@ -213,7 +213,7 @@ def main() -> None:
         return
     sys.path.insert(0, str(ROOT / "benchmarks"))
     sys.path.insert(0, str(ROOT))
-    from machine import machine_info, write_report
+    from machine import machine_info, tree_label, write_report
 
     from gfbopt.provenance import source_state
 
@@ -245,7 +245,7 @@ def main() -> None:
                         "target_cpu_per_worker_s": TARGET_S, "runs": fixed},
             end_to_end=None if e2e is None else {
                 "study": args.study, "run_args": args.run_args, "workers": args.workers,
-                "codes": {k: str(v) for k, v in codes.items()}, **e2e}), args.out)
+                "codes": {k: tree_label(v) for k, v in codes.items()}, **e2e}), args.out)
 
     save(None)
     if not args.skip_e2e:

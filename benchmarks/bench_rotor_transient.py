@@ -64,7 +64,7 @@ import time  # noqa: E402
 from pathlib import Path  # noqa: E402
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))  # noqa: E402
-from machine import machine_info, write_report  # noqa: E402
+from machine import machine_info, tree_label, write_report  # noqa: E402
 from gfbopt.inputs import Grid  # noqa: E402
 from gfbopt.inputs.bore_si import BearingBuild, BoreSpec  # noqa: E402
 from gfbopt.inputs.rotor_system import SideLoad  # noqa: E402
@@ -221,8 +221,11 @@ def rhs_evaluation(before: Path, repeats: int) -> dict:
             rows[label].append(json.loads(done.stdout.strip().splitlines()[-1]))
     out = {"grid": str(GRID), "speed_rpm": 30_000.0, "runs": 1, "repeats": repeats,
            "evaluations_per_batch": 1000, "batches": 5, "target_ratio": 2.0,
-           "before_source": source(before), "before_path": rows["before"][0]["gfbopt_path"],
-           "after_path": rows["after"][0]["gfbopt_path"]}
+           "before_source": source(before), "before_tree": tree_label(before),
+           "after_tree": tree_label(ROOT)}
+    for label, tree in (("before", before), ("after", ROOT)):   # each child ran its own tree
+        assert all(Path(r["gfbopt_path"]).resolve().is_relative_to(Path(tree).resolve())
+                   for r in rows[label]), (label, tree)
     for case in RHS_CASES:
         old = [r[case] for r in rows["before"]]
         new = [r[case] for r in rows["after"]]

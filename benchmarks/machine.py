@@ -41,3 +41,17 @@ def write_report(out: dict, path) -> Path:
     path.write_text(json.dumps(out, indent=2, default=float))
     print(f"\nwrote {path}")
     return path
+
+
+def tree_label(root) -> str:
+    """A code tree as a reader can find it again: its commit (and "+ changes" when its tracked
+    files differ from it), never a folder of this machine."""
+    import subprocess
+
+    def git(*args):
+        return subprocess.run(["git", *args], cwd=str(root), capture_output=True,
+                              text=True).stdout.strip()
+    commit = git("rev-parse", "--short=12", "HEAD") or "unknown commit"
+    dirty = bool(git("status", "--porcelain", "--untracked-files=no"))
+    return f"gfbopt at {commit}" + (" + uncommitted changes" if dirty else "")
+

@@ -443,8 +443,8 @@ def _secant_near(line, speeds: list, near: float) -> Optional[float]:
             if not slope < 0.0:
                 return None
             x, gx = x + step, g_new
-    except LookupError:
-        pass
+    except LookupError:                 # a bearing over capacity or a mode without crossing
+        return None
     return None
 
 
