@@ -164,7 +164,7 @@ NOT_USED = {"speed_range": "--speed-range", "campbell": "--campbell",
             "imbalance_response": "--imbalance-response", "half_mass": "--half-mass"}
 
 
-def _check(args):
+def check_profile(args):
     """The speed profile from the options (ParameterError before anything is solved)."""
     from ..errors import ParameterError
     from ..transient.rotor_analysis import orbit_profile, ramp_profile
@@ -280,7 +280,7 @@ def handle(args) -> int:
     from ..progress import progress
     from ..transient.rotor_analysis import progress_units, run_profile
 
-    profile = _check(args)
+    profile = check_profile(args)
     method = args.method or "rkc"
     if args.stages is not None and method != "rkc":
         raise ParameterError("--stages", args.stages, "applies to --method rkc only")

@@ -99,7 +99,7 @@ def _rotor(args, grid: Grid) -> list:
 
     b = ROTOR_BEARINGS
     if rotor_time.requested(args):
-        profile = rotor_time._check(args)       # its own rules first (direction, --force)
+        profile = rotor_time.check_profile(args)       # its own rules first (direction, --force)
         step = getattr(args, "time_step", None)
         if step is not None and not guard.positive(step):
             return []
