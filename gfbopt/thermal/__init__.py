@@ -1,0 +1,19 @@
+"""The clearance at speed: centrifugal and thermal growth of the journal and the sleeve, the
+gas viscosity against temperature (Sutherland), a lumped thermal network of each bearing and
+the fixed point that ties them to the film's drag power (issue 28).
+
+- :mod:`.growth`: Lamé plane-stress discs and rings, thermal growth Δr = α r ΔT;
+- :mod:`.viscosity`: Sutherland's law;
+- :mod:`.network`: the lumped thermal network (film, journal, foil, sleeve nodes);
+- :mod:`.running`: the fixed point per speed and the running clearance;
+- :mod:`.bearing`: the one-bearing analyses at the running condition.
+"""
+from __future__ import annotations
+
+from .growth import (centrifugal_growth, hollow_disc_growth_closed_form,
+                     solid_disc_growth_closed_form, thermal_growth, thin_ring_growth)
+from .viscosity import sutherland_viscosity
+
+__all__ = ["centrifugal_growth", "hollow_disc_growth_closed_form",
+           "solid_disc_growth_closed_form", "sutherland_viscosity", "thermal_growth",
+           "thin_ring_growth"]
