@@ -1,0 +1,136 @@
+"""A bump that stiffens as it flattens: the hardening foundation law, with a hard limit.
+
+Law (chosen here; a phenomenological form, stated so that it can be checked):
+
+    k(δ) = k0 / (1 − δ/δ_lim)^n        for 0 ≤ δ < δ_lim (compression),  k0 for δ < 0,
+
+per unit area [N/m³]; δ the bump's compression [m] (the foil deflection away from the journal),
+k0 = 1/α the small-deflection (Heshmat) stiffness, δ_lim ≤ h_b the deflection at which the
+bump is flat (the bump height h_b is the hard limit: the stiffness is unbounded there), and the
+exponent n > 0 how early the stiffening sets in.  The reaction (pressure over ambient that the
+bump carries) is the integral of k:
+
+    Δp(δ) = k0 δ_lim/(n − 1) [(1 − δ/δ_lim)^(1−n) − 1]     (n ≠ 1)
+    Δp(δ) = −k0 δ_lim ln(1 − δ/δ_lim)                      (n = 1)
+
+and its inverse is closed too (so a foil law can keep its explicit W(q)):
+
+    δ(Δp) = δ_lim [1 − (1 + (n − 1) Δp/(k0 δ_lim))^(−1/(n−1))]      (n ≠ 1)
+    δ(Δp) = δ_lim [1 − exp(−Δp/(k0 δ_lim))]                          (n = 1)
+
+Both reduce to δ = Δp/k0 as δ_lim → ∞, and δ < δ_lim for every finite load when n ≥ 1 (for
+0 < n < 1 the bump flattens at the finite load k0 δ_lim/(1 − n), beyond which the law refuses).
+In tension (δ < 0, a bump pulled off its seat) the law stays linear: the force and its slope are
+continuous at δ = 0.  Non-dimensional form (W = δ/c, q = Δp/p_a, S = p_a/(c k0), W_lim = δ_lim/c):
+replace k0 δ_lim by W_lim/S and Δp/k0 by S q.
+
+Why: the bump foil's measured load–deflection curves stiffen as the bumps are compressed
+(geometric nonlinearity and contact with the top foil), e.g. J. S. Larsen, A. C. Varela,
+I. F. Santos, "Numerical and experimental investigation of bump foil mechanical behaviour",
+Tribol. Int. 74 (2014) 46–56; T. H. Kim, L. San Andrés, "Heavily loaded gas foil bearings: a
+model anchored to test data", ASME J. Eng. Gas Turbines Power 130 (2008) 012504, whose
+structure stiffens with the deflection.  The form k0/(1 − δ/δ_lim)^n is a choice made here
+(not fitted to those data): the simplest law with a rising stiffness and a hard limit at the
+bump height and closed forms both ways.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..errors import ParameterError
+from ..inputs.checks import check_positive
+
+__all__ = ["HardeningLaw", "check_hardening_limit", "describe", "hardened_deflection", "hardened_reaction", "hardened_stiffness"]
+
+
+@dataclass(frozen=True)
+class HardeningLaw:
+    """k(δ) = k0/(1 − δ/δ_lim)^n (module docstring).
+
+    stiffness k0 [N/m³] (> 0); limit δ_lim [m] (> 0, ≤ the bump height, checked by the
+    input that knows it); exponent n [-] (> 0).
+    """
+
+    stiffness: float
+    limit: float
+    exponent: float
+
+    def __post_init__(self):
+        for key in ("stiffness", "limit", "exponent"):
+            object.__setattr__(self, key, check_positive(key, getattr(self, key)))
+
+    def tangent(self, deflection):
+        """k(δ) [N/m³] (arrays); ParameterError at or beyond the limit."""
+        return hardened_stiffness(deflection, self.stiffness, self.limit, self.exponent)
+
+    def reaction(self, deflection):
+        """Δp(δ) = ∫₀^δ k [Pa] (arrays)."""
+        return hardened_reaction(deflection, self.stiffness, self.limit, self.exponent)
+
+    def deflection(self, reaction):
+        """δ(Δp), the inverse of :meth:`reaction` [m] (arrays)."""
+        return hardened_deflection(reaction, self.stiffness, self.limit, self.exponent)
+
+
+def _below_limit(d, limit):
+    if np.any(d >= limit):
+        raise ParameterError("deflection", float(np.max(d)), f"must be < the hardening limit "
+                             f"{limit:g} (the bump is flat there: the hard limit)")
+
+
+def hardened_stiffness(deflection, stiffness, limit, exponent):
+    """k(δ) = k0/(1 − δ/δ_lim)^n for δ ≥ 0, k0 for δ < 0 (per unit area, or non-dim)."""
+    d = np.asarray(deflection, dtype=float)
+    _below_limit(d, limit)
+    return stiffness / (1.0 - np.maximum(d, 0.0) / limit) ** exponent
+
+
+def hardened_reaction(deflection, stiffness, limit, exponent):
+    """Δp(δ) in closed form (module docstring); linear k0 δ for δ < 0."""
+    d = np.asarray(deflection, dtype=float)
+    _below_limit(d, limit)
+    u = 1.0 - np.maximum(d, 0.0) / limit
+    n = float(exponent)
+    if n == 1.0:
+        hard = -stiffness * limit * np.log(u)
+    else:
+        hard = stiffness * limit / (n - 1.0) * (u ** (1.0 - n) - 1.0)
+    return np.where(d >= 0.0, hard, stiffness * d)
+
+
+def hardened_deflection(reaction, stiffness, limit, exponent):
+    """δ(Δp), the closed-form inverse of :func:`hardened_reaction`; Δp/k0 for Δp < 0."""
+    p = np.asarray(reaction, dtype=float)
+    n = float(exponent)
+    pp = np.maximum(p, 0.0)
+    scale = stiffness * limit
+    if n == 1.0:
+        hard = limit * (1.0 - np.exp(-pp / scale))
+    else:
+        base = 1.0 + (n - 1.0) * pp / scale
+        if np.any(base <= 0.0):           # 0 < n < 1: flat at the load k0 δ_lim/(1 − n)
+            raise ParameterError("reaction", float(np.max(p)), "flattens the bump: the "
+                                 f"hardening law with n = {n:g} < 1 reaches its limit at "
+                                 f"{scale / (1.0 - n):g}")
+        hard = limit * (1.0 - base ** (-1.0 / (n - 1.0)))
+    return np.where(p >= 0.0, hard, p / stiffness)
+
+
+def check_hardening_limit(limit: float, bump_height: float, where: str = "hardening_limit"):
+    """δ_lim checked against the bump height h_b [m]: 0 < δ_lim ≤ h_b (the hard limit)."""
+    lim = check_positive(where, limit)
+    h = check_positive("bump_height", bump_height)
+    if lim > h * (1.0 + 1e-12):
+        raise ParameterError(where, limit, f"must be <= the bump height {h:g} m (a bump "
+                             "cannot deflect further than it is high: the height is the hard "
+                             "limit)")
+    return lim
+
+
+def describe(law: HardeningLaw) -> str:
+    """One line naming the law and its parameters (SI)."""
+    return (f"hardening bump k = k0/(1 − δ/δ_lim)^n, k0 = {law.stiffness:.4g} N/m³, "
+            f"δ_lim = {law.limit * 1e6:.4g} µm, n = {law.exponent:.4g}")
+
