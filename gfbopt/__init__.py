@@ -12,12 +12,37 @@ solver calls and given back after each (:mod:`gfbopt.threads`); the command line
 workers pin them for the whole process; nothing is set at import.
 """
 from .errors import ConvergenceError, GfboptError, ParameterError
-from .inputs import DEFAULT_GRID, BearingGeometry, BearingModel, Grid, load_bearing
+from .inputs import (DEFAULT_GRID, BearingGeometry, BearingModel, Grid, OperatingPoint, Rotor,
+                     load_bearing)
+from .inputs.grid import as_grid
 from .static import SolverCache, StaticSolution, StaticSolver, solve_static, solver_for
 from .version import __version__
 
+#: names loaded from :mod:`gfbopt.api` on first use (it imports the rotor, transient, study
+#: and DOE layers; ``import gfbopt`` stays as cheap as the static solver's imports)
+_LAZY = ("analyse_rotor", "coefficient_table", "lift_off_speed", "load_capacity", "load_rotor",
+         "load_study", "onset_speed", "rotor_orbit", "rotor_ramp", "run_doe", "run_study",
+         "stability")
+
+
+def __getattr__(name: str):
+    """``gfbopt.load_rotor`` and the other entry points of :mod:`gfbopt.api`, imported on
+    first use (PEP 562)."""
+    if name in _LAZY:
+        from . import api
+        value = getattr(api, name)
+        globals()[name] = value
+        return value
+    raise AttributeError(f"module 'gfbopt' has no attribute {name!r}")
+
+
+def __dir__():
+    return sorted(set(globals()) | set(_LAZY))
+
+
 __all__ = [
     "BearingGeometry", "BearingModel", "ConvergenceError", "DEFAULT_GRID", "GfboptError",
-    "Grid", "ParameterError", "SolverCache", "StaticSolution", "StaticSolver", "load_bearing",
-    "solve_static", "solver_for", "__version__",
+    "Grid", "OperatingPoint", "ParameterError", "Rotor", "SolverCache", "StaticSolution",
+    "StaticSolver", "as_grid", "load_bearing", "solve_static", "solver_for", "__version__",
+    *_LAZY,
 ]

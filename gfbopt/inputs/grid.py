@@ -1,9 +1,15 @@
 """The finite-difference grid and the default resolution."""
 from __future__ import annotations
 
+import re
 from dataclasses import dataclass
 
 from ..errors import ParameterError
+
+#: the written form of a grid, as on the command line: 'NTHETAxNZ' ('72x20', ASCII digits)
+_GRID_TEXT = re.compile(r"\s*(\d+)\s*[xX]\s*(\d+)\s*", re.ASCII)
+#: the rule a malformed grid string breaks: one message for the command line and the API
+GRID_TEXT_RULE = "must be written NTHETAxNZ, e.g. 72x20"
 
 
 @dataclass(frozen=True)
@@ -33,14 +39,29 @@ class Grid:
 
     @classmethod
     def parse(cls, text: str) -> "Grid":
-        """Grid from 'NTHETAxNZ', e.g. '72x20'."""
-        parts = str(text).lower().split("x")
-        if len(parts) != 2 or not all(p.strip().isdigit() for p in parts):
-            raise ParameterError("grid", text, "must be written NTHETAxNZ, e.g. 72x20")
-        return cls(int(parts[0]), int(parts[1]))
+        """Grid from 'NTHETAxNZ', e.g. '72x20' (the ``--grid`` form of the command line).
+
+        Anything else is the one-line ParameterError of ``--grid``:
+        ``grid = '72x': must be written NTHETAxNZ, e.g. 72x20``."""
+        match = _GRID_TEXT.fullmatch(text) if isinstance(text, str) else None
+        if match is None:
+            raise ParameterError("grid", text, GRID_TEXT_RULE)
+        return cls(int(match.group(1)), int(match.group(2)))
 
     def __str__(self) -> str:
         return f"{self.n_theta}x{self.n_z}"
+
+
+def as_grid(value) -> "Grid":
+    """``value`` as a :class:`Grid`: a Grid as it is, a string 'NTHETAxNZ' ('72x20') parsed
+    as the command line's ``--grid``, with the same one-line ParameterError when malformed;
+    anything else is refused naming both forms."""
+    if isinstance(value, Grid):
+        return value
+    if isinstance(value, str):
+        return Grid.parse(value)
+    raise ParameterError("grid", value,
+                         "must be a gfbopt Grid or a string written NTHETAxNZ, e.g. 72x20")
 
 
 #: Default grid: its load error is <= 0.5 % of the grid-converged value over the validation
