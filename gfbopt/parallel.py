@@ -55,7 +55,6 @@ from __future__ import annotations
 
 import contextlib
 import contextvars
-import gc
 import inspect
 import multiprocessing
 import re
@@ -63,12 +62,11 @@ import signal
 import sys
 import threading
 import time
-import warnings
 from collections.abc import Callable, Sequence
-from concurrent.futures import FIRST_COMPLETED, CancelledError, ProcessPoolExecutor, wait
-from concurrent.futures.process import BrokenProcessPool
+from concurrent.futures import ProcessPoolExecutor
 from typing import Optional
 
+from .pool_stream import stream_pool
 from .runtime import (  # noqa: F401 - re-exported: the executors' failures and signals
     InfrastructureError,
     InfrastructureFailure,
@@ -435,66 +433,4 @@ def stream_tasks(function: Callable, arguments: Sequence, *, workers: int = 1,
             yield k, _call_task(function, argument)
     else:
         with _pool_for(workers, len(arguments)) as pool:
-            yield from _stream_pool(function, arguments, pool, retries, tick)
-
-
-@contextlib.contextmanager
-def _forking(fork: bool):
-    """Around the submits that fork: the driver's objects frozen out of the collector
-    (:func:`gc.freeze`: a worker neither finalises the driver's garbage, a temporary folder
-    or a buffered file, nor copies the pages a collection touches); Python >= 3.12's warning
-    of a fork beside (fork-safe) native threads is not shown."""
-    if not fork:
-        yield
-        return
-    gc.freeze()
-    try:
-        with warnings.catch_warnings():
-            warnings.filterwarnings("ignore", r".*use of fork\(\) may lead to deadlocks",
-                                    DeprecationWarning)
-            yield
-    finally:
-        gc.unfreeze()
-
-
-def _stream_pool(function: Callable, arguments: list, pool: WorkerPool, retries: int,
-                 tick: Optional[float]):
-    todo = set(range(len(arguments)))
-    attempts = [0] * len(arguments)
-    while todo:
-        try:
-            executor = pool.executor(len(todo))
-            with _forking(pool.method == "fork"):     # a fork pool forks at the first submit
-                futures = {executor.submit(_call_task, function, arguments[k]): k
-                           for k in sorted(todo)}
-        except BrokenProcessPool:
-            futures = {}
-        broken = not futures
-        pending = set(futures)
-        try:
-            while pending:
-                done, pending = wait(pending, timeout=tick, return_when=FIRST_COMPLETED)
-                if not done:
-                    yield None, None
-                    continue
-                for future in done:
-                    k = futures[future]
-                    try:
-                        result = future.result()
-                    except (BrokenProcessPool, CancelledError):
-                        broken = True
-                        continue
-                    todo.discard(k)
-                    yield k, result
-        except BaseException:             # Ctrl-C, error, or the consumer closed us
-            pool.terminate()
-            raise
-        if broken and todo:
-            pool.restart()
-            for k in sorted(todo):
-                attempts[k] += 1
-                if attempts[k] > retries:
-                    todo.discard(k)
-                    yield k, InfrastructureFailure(
-                        f"the worker process died on {attempts[k]} pools in a row (killed "
-                        "or out of memory); not a result of these points")
+            yield from stream_pool(function, arguments, pool, retries, tick)
