@@ -1,0 +1,429 @@
+"""The running condition of one bearing at a speed: temperatures, growths, viscosity and
+clearance solved together to a fixed point with the film's drag power.
+
+Unknowns at a speed ω: the network's temperatures (:mod:`.network`), the running clearance
+
+    c = c₀ − u_c(ω) − α_j R (T_j − T_ref) + α_s (R + c₀)(T_s − T_ref)
+
+(c₀ the cold clearance stated at T_ref, u_c the journal's centrifugal growth
+(:mod:`.growth`), the journal growing into the film and the sleeve's bore away from it) and the
+film viscosity μ(T_f) (Sutherland, :mod:`.viscosity`).  The drag power of the film at (c, μ)
+comes from a static solve; between solves it is predicted by Petroff's scaling
+
+    P(c, μ) = τ · 2π μ ω² R³ L / c
+
+with the torque ratio τ = T/T_Petroff of the last solve (exact for any τ that does not change;
+τ varies slowly with Λ and ε), and the side-leakage flow ṁ_l = q̄ p_a² c³/(12 μ R_g T_f) with
+the last solve's non-dimensional outflow q̄.  With τ and the conductances frozen, the heat
+balance is one equation in P,
+
+    F(P) = P − τ 2π μ(T_f(P)) ω² R³ L / c(P) = 0,
+
+the temperatures being linear in P; its lowest root is found by sampling and Brent's method.
+Each static solve updates τ (and q̄); the point has converged when the film temperature moves
+by less than ``tolerance_k`` between two solves.  No root below the closing of the clearance
+(c falling to :data:`MIN_RUNNING_CLEARANCE`), even with τ taken where F comes closest to 0,
+is thermal runaway — reported in the result, never raised.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field, replace
+from typing import Callable, Optional
+
+import numpy as np
+from scipy.optimize import brentq, minimize_scalar
+
+from ..errors import ParameterError
+from .growth import centrifugal_growth, thermal_growth
+from .network import (Conductances, JournalMaterial, NetworkState, ThermalNetwork,
+                      solve_network)
+from .viscosity import sutherland_viscosity
+
+#: smallest running clearance analysed [m]: the bearing file's floor of the clearance (below
+#: 1 µm the gas film is no longer a continuum); a clearance that falls to it has closed
+MIN_RUNNING_CLEARANCE = 1e-6
+#: the three models every output names
+ISOTHERMAL, CENTRIFUGAL, HEAT_BALANCE = ("isothermal, cold clearance", "centrifugal growth",
+                                         "heat balance + growth")
+#: samples of F(P) when looking for its lowest root
+N_SAMPLES = 256
+KELVIN = 273.15
+
+
+@dataclass(frozen=True)
+class RunningSpec:
+    """One bearing's inputs to the clearance at speed (SI): the bearing's radius R, length L,
+    cold clearance c₀ [m], viscosity μ_ref [Pa s] (at the network's viscosity temperature),
+    ambient pressure p_a [Pa], and the ``[journal]`` and ``[thermal]`` tables (None: not
+    stated)."""
+
+    radius: float
+    length: float
+    cold_clearance: float
+    viscosity: float
+    ambient_pressure: float
+    journal: Optional[JournalMaterial] = None
+    thermal: Optional[ThermalNetwork] = None
+
+    def __post_init__(self) -> None:
+        if self.journal is not None:
+            self.journal.check(self.radius)
+        if self.thermal is not None:
+            if self.journal is None:
+                raise ParameterError("thermal", "[thermal]", "needs a [journal] table (the "
+                                     "journal's thermal growth needs its material)")
+            if self.journal.expansion_coefficient is None:
+                raise ParameterError("journal.expansion_coefficient", None, "is required "
+                                     "with a [thermal] table (the journal's thermal growth "
+                                     "α r ΔT needs it)")
+            self.thermal.check()
+            self.thermal.conductances(self.radius, self.length, self.cold_clearance,
+                                      1.0).check_connected()
+
+    @property
+    def model_name(self) -> str:
+        """Which model is used: isothermal, centrifugal growth, or heat balance + growth."""
+        if self.thermal is not None:
+            return HEAT_BALANCE
+        return CENTRIFUGAL if self.journal is not None else ISOTHERMAL
+
+    @property
+    def ambient_k(self) -> float:
+        return self.thermal.ambient_temperature if self.thermal is not None else math.nan
+
+    def centrifugal(self, omega: float) -> float:
+        """The journal's centrifugal growth u_c [m] at ω [rad/s] (0 without [journal])."""
+        j = self.journal
+        if j is None or omega == 0.0:
+            return 0.0
+        return centrifugal_growth(omega, self.radius, j.inner_radius, j.density,
+                                  j.youngs_modulus, j.poisson_ratio)
+
+    def thermal_growths(self, journal_k: float, sleeve_k: float) -> tuple[float, float]:
+        """(journal growth, sleeve bore growth) [m] at those temperatures [K]."""
+        t = self.thermal
+        if t is None:
+            return 0.0, 0.0
+        return (thermal_growth(self.journal.expansion_coefficient, self.radius,
+                               journal_k - t.reference_k),
+                thermal_growth(t.sleeve_expansion_coefficient,
+                               self.radius + self.cold_clearance, sleeve_k - t.reference_k))
+
+    def viscosity_at(self, film_k: float) -> float:
+        """μ(T_f) [Pa s]: Sutherland through the stated viscosity (constant without
+        [thermal])."""
+        t = self.thermal
+        if t is None:
+            return self.viscosity
+        return float(sutherland_viscosity(film_k, self.viscosity, t.viscosity_k,
+                                          t.sutherland_constant))
+
+    def petroff_power(self, omega: float, viscosity: float, clearance: float) -> float:
+        """2π μ ω² R³ L / c [W]: Petroff's power of the concentric journal."""
+        return 2.0 * math.pi * viscosity * omega**2 * self.radius**3 * self.length / clearance
+
+
+@dataclass(frozen=True)
+class DragSample:
+    """What one static solve at a running state tells the fixed point: the drag power [W],
+    the torque ratio τ [-] and the non-dimensional side outflow q̄ [-] at clearance c [m],
+    viscosity μ [Pa s] and film temperature T_f [K]; ``solution`` the solve's own answer."""
+
+    power_w: float
+    torque_ratio: float
+    outflow: float
+    clearance: float
+    viscosity: float
+    film_k: float
+    solution: object = field(default=None, repr=False, compare=False)
+
+    def leakage_flow(self, spec: RunningSpec) -> float:
+        """Side-leakage mass flow ṁ_l = q̄ p_a² c³/(12 μ R_g T_f) [kg/s]."""
+        if self.outflow == 0.0 or spec.thermal is None:
+            return 0.0
+        return (self.outflow * spec.ambient_pressure**2 * self.clearance**3
+                / (12.0 * self.viscosity * spec.thermal.gas_constant * self.film_k))
+
+
+#: a static solve: (speed [rpm], clearance [m], viscosity [Pa s], film temperature [K]) →
+#: DragSample, or None when the film has no equilibrium there
+DragFunction = Callable[[float, float, float, float], Optional[DragSample]]
+
+
+@dataclass(frozen=True)
+class RunningPoint:
+    """The running condition at one speed (SI; temperatures in K inside, °C in
+    :meth:`to_dict`).  ``status``: "running" (converged), "runaway" (no fixed point, or the
+    clearance closes with the heat balance) or "closure" (the journal reaches the foil from
+    its centrifugal growth alone)."""
+
+    speed_rpm: float
+    model: str
+    status: str
+    message: str
+    cold_clearance: float
+    running_clearance: float
+    centrifugal_growth: float
+    journal_thermal_growth: float = 0.0
+    sleeve_thermal_growth: float = 0.0
+    viscosity: float = math.nan
+    network: Optional[NetworkState] = None
+    side_leakage_flow: float = 0.0
+    static_solves: int = 0
+    sample: Optional[DragSample] = field(default=None, repr=False, compare=False)
+
+    @property
+    def converged(self) -> bool:
+        return self.status == "running"
+
+    @property
+    def thermal_growth(self) -> float:
+        """Net thermal closing of the clearance [m]: journal growth − sleeve bore growth."""
+        return self.journal_thermal_growth - self.sleeve_thermal_growth
+
+    def to_dict(self) -> dict:
+        """The columns every output reports (gfbopt/terms/thermal.py)."""
+        n = self.network
+
+        def c(kelvin):
+            return kelvin - KELVIN if n is not None else math.nan
+
+        return {
+            "thermal_model": self.model, "thermal_status": self.status,
+            "thermal_message": self.message,
+            "cold_clearance_um": self.cold_clearance * 1e6,
+            "running_clearance_um": self.running_clearance * 1e6,
+            "centrifugal_growth_um": self.centrifugal_growth * 1e6,
+            "thermal_growth_um": self.thermal_growth * 1e6,
+            "journal_thermal_growth_um": self.journal_thermal_growth * 1e6,
+            "sleeve_thermal_growth_um": self.sleeve_thermal_growth * 1e6,
+            "viscosity_pa_s": self.viscosity,
+            "film_temperature_c": c(n.film_k) if n else math.nan,
+            "journal_temperature_c": c(n.journal_k) if n else math.nan,
+            "foil_temperature_c": c(n.foil_k) if n else math.nan,
+            "sleeve_temperature_c": c(n.sleeve_k) if n else math.nan,
+            "cooling_outlet_temperature_c": c(n.cooling_outlet_k) if n else math.nan,
+            "heat_generated_w": n.power_w if n else math.nan,
+            "heat_to_shaft_w": n.to_shaft_w if n else math.nan,
+            "heat_to_housing_w": n.to_housing_w if n else math.nan,
+            "heat_to_cooling_w": n.to_cooling_w if n else math.nan,
+            "heat_to_side_leakage_w": n.to_side_leakage_w if n else math.nan,
+            "side_leakage_kg_s": self.side_leakage_flow if n else math.nan,
+            "thermal_static_solves": self.static_solves}
+
+
+def _rpm_to_omega(speed_rpm: float) -> float:
+    if not speed_rpm >= 0 or not math.isfinite(speed_rpm):
+        raise ParameterError("speed_rpm", speed_rpm, "must be a finite speed >= 0 [rpm]")
+    return speed_rpm * 2.0 * math.pi / 60.0
+
+
+def without_heat(spec: RunningSpec, speed_rpm: float) -> RunningPoint:
+    """The running point of a bearing without [thermal]: the cold clearance less the
+    centrifugal growth (none without [journal]); no static solve."""
+    uc = spec.centrifugal(_rpm_to_omega(speed_rpm))
+    c = spec.cold_clearance - uc
+    status, message = "running", ""
+    if c <= MIN_RUNNING_CLEARANCE:
+        status = "closure"
+        message = (f"the journal reaches the foil at {speed_rpm:.6g} rpm (centrifugal growth "
+                   f"{uc * 1e6:.3g} µm of a {spec.cold_clearance * 1e6:.3g} µm clearance)")
+    return RunningPoint(speed_rpm, spec.model_name, status, message, spec.cold_clearance, c,
+                        uc, viscosity=spec.viscosity)
+
+
+class _Balance:
+    """The heat balance with τ, q̄ and the conductances frozen: temperatures linear in P."""
+
+    def __init__(self, spec: RunningSpec, omega: float,
+                 torque_ratio: Callable[[float], float], g: Conductances):
+        t = spec.thermal
+        self.spec, self.omega, self.tau, self.g = spec, omega, torque_ratio, g
+        capacity = t.cooling_mass_flow * t.gas_specific_heat
+        self.capacity = capacity
+        self.base = solve_network(0.0, g, t.ambient_temperature, t.inlet_k, capacity)
+        unit = solve_network(1.0, g, t.ambient_temperature, t.inlet_k, capacity)
+        self.rate = {k: getattr(unit, k) - getattr(self.base, k)
+                     for k in ("film_k", "journal_k", "sleeve_k")}
+        self.uc = spec.centrifugal(omega)
+
+    def temperatures(self, power):
+        return {k: getattr(self.base, k) + power * r for k, r in self.rate.items()}
+
+    def clearance(self, power) -> tuple[float, float, float]:
+        t = self.temperatures(power)
+        gj, gs = self.spec.thermal_growths(t["journal_k"], t["sleeve_k"])
+        return self.spec.cold_clearance - self.uc - gj + gs, gj, gs
+
+    def residual(self, power) -> float:
+        c = self.clearance(power)[0]
+        film = self.temperatures(power)["film_k"]
+        mu = self.spec.viscosity_at(film)
+        return power - self.tau(film) * self.spec.petroff_power(self.omega, mu, c)
+
+    def ceiling(self) -> Optional[float]:
+        """The power at which the clearance falls to the floor (None: it never does)."""
+        c0 = self.clearance(0.0)[0]
+        slope = self.clearance(1.0)[0] - c0
+        if slope >= 0:
+            return None
+        return max((c0 - MIN_RUNNING_CLEARANCE) / -slope, 0.0)
+
+    def lowest_root(self) -> tuple[Optional[float], float]:
+        """(the lowest P > 0 with F(P) = 0, or None; the P where F comes closest to 0)."""
+        if self.clearance(0.0)[0] <= MIN_RUNNING_CLEARANCE:
+            return None, 0.0
+        top = self.ceiling()
+        if top is None:                      # the clearance never closes: F → +∞
+            top = max(self.tau(self.base.film_k) * self.spec.petroff_power(
+                self.omega, self.spec.viscosity, self.spec.cold_clearance), 1e-12)
+            for _ in range(200):
+                if self.residual(top) > 0:
+                    break
+                top *= 2.0
+        if self.residual(0.0) >= 0:          # no drag at all (zero speed)
+            return 0.0, 0.0
+        grid = top * np.linspace(0.0, 1.0, N_SAMPLES + 1)[:-1]
+        grid = np.append(grid, top * (1.0 - 1e-12))
+        values = np.array([self.residual(p) for p in grid])
+        crossing = np.nonzero(values > 0)[0]
+        if crossing.size:
+            k = crossing[0]
+            return brentq(self.residual, grid[k - 1], grid[k], xtol=1e-300, rtol=1e-15,
+                          maxiter=200), grid[k]
+        k = int(np.argmax(values))
+        lo, hi = grid[max(k - 1, 0)], grid[min(k + 1, grid.size - 1)]
+        best = minimize_scalar(lambda p: -self.residual(p), bounds=(lo, hi),
+                               method="bounded", options={"xatol": 1e-12 * top})
+        if self.residual(best.x) > 0:        # a narrow crossing between samples
+            return brentq(self.residual, lo, best.x, xtol=1e-300, rtol=1e-15,
+                          maxiter=200), best.x
+        return None, float(best.x)
+
+
+def running_point(spec: RunningSpec, speed_rpm: float, drag: DragFunction, *,
+                  prior: Optional[DragSample] = None, tolerance_k: float = 1e-3,
+                  max_solves: int = 8) -> RunningPoint:
+    """The fixed point at ``speed_rpm`` [rpm] (module docstring).  ``drag`` solves the film
+    at a running state; ``prior`` (e.g. the previous speed's last sample) seeds τ and q̄, so
+    that the first solve is already near the answer.  Without [thermal]:
+    :func:`without_heat`.  Counts the static solves in ``static_solves``."""
+    cold = without_heat(spec, speed_rpm)
+    if spec.thermal is None or not cold.converged:
+        return cold                     # no heat balance, or closed by the speed alone
+    omega = _rpm_to_omega(speed_rpm)
+    t = spec.thermal
+    sample = prior if prior is not None else DragSample(
+        1.0, 1.0, 0.0, spec.cold_clearance, spec.viscosity, t.ambient_temperature)
+    sampled_k: Optional[float] = None              # film temperature of our last solve
+    solves, rootless, samples = 0, 0, []
+    while True:
+        g = t.conductances(spec.radius, spec.length, spec.cold_clearance,
+                           sample.leakage_flow(spec))
+        balance = _Balance(spec, omega, _torque_model(samples, sample.torque_ratio), g)
+        power, closest = balance.lowest_root()
+        if power is None:               # solve where F comes closest to 0, then decide
+            rootless += 1
+            if rootless >= 2 and len(samples) >= 2:
+                return _runaway(cold, balance, closest, solves, sample)
+            power = closest
+        else:
+            rootless = 0
+        state = _state(spec, speed_rpm, balance, power, g, sample)
+        if omega == 0.0:                # no drag at rest: the network at P = 0
+            return state
+        if not rootless and sampled_k is not None and \
+                abs(state.network.film_k - sampled_k) <= tolerance_k:
+            return replace(state, static_solves=solves)
+        if solves >= max_solves:
+            return _runaway(cold, balance, power, solves, sample,
+                            why=f"the heat balance did not converge in {max_solves} static "
+                            "solves")
+        new = drag(speed_rpm, state.running_clearance, state.viscosity,
+                   state.network.film_k)
+        solves += 1
+        if new is None:
+            return _runaway(cold, balance, power, solves, sample,
+                            why="the film has no equilibrium at the heated clearance")
+        samples.append(new)
+        sample, sampled_k = new, state.network.film_k
+
+
+def _torque_model(samples: list, seed: float) -> Callable[[float], float]:
+    """τ(T_f): the seed before any solve, the last solve's τ after one, and after two the
+    line through the last two solves' (T_f, τ) — the local deviation of the drag from
+    Petroff's μ/c scaling, which makes the iteration a secant method in the film
+    temperature (clipped to τ > 0)."""
+    if not samples:
+        return lambda film_k: seed
+    b = samples[-1]
+    if len(samples) < 2 or samples[-2].film_k == b.film_k:
+        return lambda film_k: b.torque_ratio
+    a = samples[-2]
+    slope = (b.torque_ratio - a.torque_ratio) / (b.film_k - a.film_k)
+    floor = 1e-3 * min(a.torque_ratio, b.torque_ratio)
+    return lambda film_k: max(b.torque_ratio + slope * (film_k - b.film_k), floor)
+
+
+def _state(spec: RunningSpec, speed_rpm: float, balance: _Balance, power: float,
+           g: Conductances, sample: DragSample) -> RunningPoint:
+    t = spec.thermal
+    network = solve_network(power, g, t.ambient_temperature, t.inlet_k, balance.capacity)
+    c, gj, gs = balance.clearance(power)
+    return RunningPoint(speed_rpm, spec.model_name, "running", "", spec.cold_clearance, c,
+                        balance.uc, gj, gs, spec.viscosity_at(network.film_k), network,
+                        sample.leakage_flow(spec), 0, sample)
+
+
+def _runaway(base: RunningPoint, balance: _Balance, closest: float, solves: int,
+             sample: DragSample, why: str = "") -> RunningPoint:
+    c = balance.clearance(closest)[0]
+    reason = why or ("the clearance closes" if c <= MIN_RUNNING_CLEARANCE * (1 + 1e-6)
+                     else "no fixed point: the drag power grows faster with temperature "
+                     "than the network carries it away")
+    return replace(base, status="runaway", running_clearance=max(c, 0.0),
+                   message=f"thermal runaway at {base.speed_rpm:.6g} rpm ({reason})",
+                   static_solves=solves, sample=sample)
+
+
+@dataclass(frozen=True)
+class SpeedLine:
+    """Running points over a speed range, and the first speed where there is none."""
+
+    points: tuple
+    limit_rpm: float = math.nan           # first failing speed (NaN: none in the range)
+    limit_low_rpm: float = math.nan       # the last good speed below it
+    limit_kind: str = ""                  # "runaway" or "closure"
+
+    @property
+    def message(self) -> str:
+        if not math.isfinite(self.limit_rpm):
+            return ""
+        if self.limit_kind == "closure":
+            return f"the journal reaches the foil at {self.limit_rpm:.6g} rpm"
+        return f"thermal runaway from {self.limit_rpm:.6g} rpm"
+
+
+def speed_line(spec: RunningSpec, speeds_rpm, drag: DragFunction, *,
+               bracket: float = 0.005, **kwargs) -> SpeedLine:
+    """Running points at increasing ``speeds_rpm``, each seeded by the one below; at the
+    first failure, the limit speed is bracketed by bisection to ``bracket`` (relative)."""
+    points, prior = [], None
+    speeds = sorted(float(s) for s in speeds_rpm)
+    for k, speed in enumerate(speeds):
+        point = running_point(spec, speed, drag, prior=prior, **kwargs)
+        points.append(point)
+        if not point.converged:
+            low = speeds[k - 1] if k else 0.0
+            high = speed
+            while high - low > bracket * high:
+                mid = 0.5 * (low + high)
+                trial = running_point(spec, mid, drag, prior=prior, **kwargs)
+                if trial.converged:
+                    low, prior = mid, trial.sample or prior
+                else:
+                    high = mid
+            return SpeedLine(tuple(points), high, low, point.status)
+        prior = point.sample or prior
+    return SpeedLine(tuple(points))
