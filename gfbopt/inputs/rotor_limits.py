@@ -7,6 +7,8 @@ catch units given by mistake (positions in millimetres, inertias in kg mm²) and
 cannot be a machine (1e308 kg, 1e200 m).  With D the larger journal diameter, L a bearing's
 length, p_a its ambient pressure, c the smaller radial clearance:
 
+* **a flexible shaft** (``system.shaft``): every position on the shaft instead of the reach,
+  span and inertia limits below (:func:`_check_shaft`); the others apply.
 * **reach**: every axial position (bearings, side loads, imbalance planes, stations) within
   :data:`MAX_REACH_DIAMETERS` D of the centre of gravity, and the span between the bearings
   at most that too.  A rigid-rotor model needs a shaft far stiffer than its bearings: a solid
@@ -73,6 +75,9 @@ def check_rotor_limits(system, where: str = "") -> None:
     docstring); ``where`` prefixes the key (the file)."""
     a, b = system.bearings
     diameter = 2.0 * max(a.geometry.radius, b.geometry.radius)
+    if getattr(system, "shaft", None) is not None:
+        _check_shaft(system, where)
+        return
     reach = MAX_REACH_DIAMETERS * diameter
     unit_hint = "; positions are metres from the centre of gravity"
     places = [(f"bearings[{k}].position", s.position) for k, s in enumerate((a, b), 1)]
@@ -96,6 +101,27 @@ def check_rotor_limits(system, where: str = "") -> None:
                              f"{span:.4g} m, below (L_A + L_B)/2 = {overlap:.4g} m: the two "
                              f"bearings overlap{unit_hint}")
     _check_inertia(system.body, diameter, where)
+    _check_loads(system, where)
+    _check_imbalance(system, where)
+
+
+def _check_shaft(system, where: str) -> None:
+    """A rotor with a flexible shaft: every position on the shaft (from its first end), the
+    bearings apart by at least (L_A + L_B)/2, the loads and the imbalance as for a rigid
+    rotor.  The reach, span and inertia limits of a rigid rotor do not apply: the shaft
+    bends, and its inertia is computed from its elements and disks."""
+    from .shaft_file import check_positions_on_shaft
+
+    check_positions_on_shaft(system.shaft, [(t, getattr(system, t)) for t in
+                                            ("bearings", "side_loads", "imbalance",
+                                             "stations")], where)
+    a, b = system.bearings
+    overlap = 0.5 * (a.geometry.length + b.geometry.length)
+    if system.span < overlap:
+        raise ParameterError(f"{where}bearings[2].position", b.position, f"gives a span of "
+                             f"{system.span:.4g} m, below (L_A + L_B)/2 = {overlap:.4g} m: the "
+                             "two bearings overlap (positions are metres from the shaft's "
+                             "first end)")
     _check_loads(system, where)
     _check_imbalance(system, where)
 

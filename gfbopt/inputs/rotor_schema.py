@@ -7,7 +7,10 @@ from dataclasses import dataclass
 
 from .conversions import STANDARD_GRAVITY
 
-TABLES = ("rotor", "bearings", "side_loads", "imbalance", "stations")
+TABLES = ("rotor", "bearings", "side_loads", "imbalance", "stations", "shaft", "disks")
+#: the [rotor] keys of a rigid rotor only (a rotor with a [[shaft]] takes its mass and
+#: inertia from its elements and disks)
+RIGID_ONLY = ("mass", "transverse_inertia", "polar_inertia")
 
 
 @dataclass(frozen=True)
@@ -31,13 +34,13 @@ class Key:
 SCHEMA: tuple[Key, ...] = (
     Key("rotor", "name", "string", "text", False, "rotor", "any text", "label in reports"),
     Key("rotor", "mass", "number", "kg", True, None,
-        "finite, > 0; each bearing's static share between 1e-4 p_a R² and 100 p_a L D, and "
+        "rigid rotor only (refused with a [[shaft]]); finite, > 0; each bearing's static share between 1e-4 p_a R² and 100 p_a L D, and "
         "m × 9.80665 m/s² at most both bearings' 100 p_a L D", "mass of the whole rotor"),
     Key("rotor", "transverse_inertia", "number", "kg m²", True, None,
-        "finite, > 0, <= m ((50 D)² + (10 D)²/2) (D: the larger journal diameter)",
+        "rigid rotor only; finite, > 0, <= m ((50 D)² + (10 D)²/2) (D: the larger journal diameter)",
         "transverse (diametral) moment of inertia about the centre of gravity"),
     Key("rotor", "polar_inertia", "number", "kg m²", True, None,
-        "finite, > 0, <= 2 × transverse_inertia (a rigid body's principal moments), "
+        "rigid rotor only; finite, > 0, <= 2 × transverse_inertia (a rigid body's principal moments), "
         "<= m (10 D)²",
         "polar moment of inertia about the rotor axis (gyroscopic coupling I_p ω)"),
     Key("rotor", "gravity_direction_deg", "number", "deg", False, 0.0, "finite, in [-360, 360]",
@@ -51,7 +54,8 @@ SCHEMA: tuple[Key, ...] = (
     Key("bearings", "position", "number", "m", True, None,
         "finite, within 50 D of the centre of gravity; span between the bearings in "
         "[(L_A + L_B)/2, 50 D]",
-        "axial position from the centre of gravity (signed)"),
+        "axial position from the centre of gravity (signed); with a [[shaft]], from the "
+        "shaft's first end, on the shaft"),
     Key("bearings", "name", "string", "text", False, "A, B", "unique",
         "label of the bearing in reports"),
     Key("bearings", "model", "table", "-", False, None,
@@ -64,7 +68,8 @@ SCHEMA: tuple[Key, ...] = (
     Key("side_loads", "direction_deg", "number", "deg", True, None, "finite, in [-360, 360]",
         "direction of the force in the x–y plane, from +x in the direction of rotation"),
     Key("side_loads", "position", "number", "m", False, 0.0, "finite, within 50 D of the CG",
-        "axial position where it acts, from the centre of gravity"),
+        "axial position where it acts, from the centre of gravity (with a [[shaft]]: "
+        "from the shaft's first end, required)"),
     Key("imbalance", "amount_kg_m", "number", "kg m", False, None,
         "finite, > 0; exactly one of amount_kg_m and amount_g_mm; all planes together "
         "<= m c (c: the smaller radial clearance)", "imbalance m e of the plane"),
@@ -75,13 +80,38 @@ SCHEMA: tuple[Key, ...] = (
         "angular position of the heavy spot on the rotor, from the rotor's reference mark "
         "(along +x at t = 0) in the direction of rotation"),
     Key("imbalance", "position", "number", "m", True, None, "finite, within 50 D of the CG",
-        "axial position of the imbalance plane, from the centre of gravity"),
+        "axial position of the imbalance plane, from the centre of gravity (with a "
+        "[[shaft]]: from the shaft's first end)"),
     Key("imbalance", "name", "string", "text", False, "plane 1, 2, …", "any text",
         "label of the plane"),
     Key("stations", "name", "string", "text", True, None, "unique, not a bearing's name",
         "label of an axial station where the imbalance response is reported"),
     Key("stations", "position", "number", "m", True, None, "finite, within 50 D of the CG",
-        "axial position of the station, from the centre of gravity"),
+        "axial position of the station, from the centre of gravity (with a [[shaft]]: "
+        "from the shaft's first end)"),
+    Key("shaft", "length", "number", "m", True, None, "finite, > 0",
+        "length of the element; the elements are given in order from the shaft's first end "
+        "and each starts where the previous one ends"),
+    Key("shaft", "outer_diameter", "number", "m", True, None, "finite, > 0",
+        "outer diameter of the element's hollow circular section"),
+    Key("shaft", "inner_diameter", "number", "m", False, 0.0, "finite, >= 0, < outer_diameter",
+        "bore of the element (0: solid)"),
+    Key("shaft", "density", "number", "kg/m³", True, None, "finite, > 0",
+        "density of the element's material"),
+    Key("shaft", "youngs_modulus", "number", "Pa", True, None, "finite, > 0",
+        "Young's modulus E of the element's material"),
+    Key("shaft", "poisson_ratio", "number", "-", False, 0.3, "finite, in (-1, 0.5)",
+        "Poisson's ratio ν of the material (shear modulus E/(2(1 + ν)), Cowper's shear "
+        "coefficient)"),
+    Key("disks", "position", "number", "m", True, None, "finite, on the shaft (0 <= z <= L)",
+        "axial position of the disk's centre, from the shaft's first end"),
+    Key("disks", "mass", "number", "kg", True, None, "finite, > 0", "mass of the disk"),
+    Key("disks", "transverse_inertia", "number", "kg m²", False, 0.0, "finite, >= 0",
+        "transverse (diametral) moment of inertia about the disk's centre"),
+    Key("disks", "polar_inertia", "number", "kg m²", False, 0.0,
+        "finite, >= 0, <= 2 × transverse_inertia", "polar moment of inertia about the axis"),
+    Key("disks", "name", "string", "text", False, "disk 1, 2, …", "any text",
+        "label of the disk"),
 )
 def schema_markdown() -> str:
     """The rotor-file reference page (docs/formats/rotor_file.md), generated from
@@ -89,7 +119,9 @@ def schema_markdown() -> str:
     lines = ["# Rotor file (`gfbopt rotor ROTOR.toml`)", "",
              "<!-- generated by gfbopt.inputs.rotor_schema.schema_markdown(); do not edit: "
              "run `python -m gfbopt.inputs.rotor_schema > docs/formats/rotor_file.md` -->", "",
-             "A rigid rotor on two gas foil bearings, in SI units. Every key is checked "
+             "A rotor on two gas foil bearings, in SI units: a rigid body (`[rotor]`), or a "
+             "flexible shaft of Timoshenko beam elements with disks (`[[shaft]]`, "
+             "`[[disks]]`). Every key is checked "
              "before anything is solved; a mistake prints one line naming the file, the key, "
              "the value and the rule, and `gfbopt rotor` exits with status 2.", "",
              "```toml", *_EXAMPLE.strip().splitlines(), "```", ""]
@@ -151,6 +183,33 @@ _NOTES = """
   rotor is unloaded) and 100 p_a L D, and the imbalance displaces the mass centre by at most
   the clearance. They catch positions in millimetres and inertias in kg cm²; a refusal names
   the key, the value and the limit.
+* **Flexible shaft.** A rotor file with `[[shaft]]` elements describes a flexible shaft
+  (Timoshenko beam elements, gfbopt.rotor.shaft) instead of a rigid body: its mass and
+  inertia come from the elements and the `[[disks]]`, so its `[rotor]` table is optional and
+  holds only `name`, `gravity` and `gravity_direction_deg` (`mass`, `transverse_inertia`,
+  `polar_inertia` are refused there). The elements are given in order from the shaft's first
+  end, each starting where the previous one ends. **Every position** (bearings, disks,
+  imbalance planes, stations, side loads) is then measured along the axis from the shaft's
+  first end and must lie on the shaft (0 <= z <= L); a side load's position is required. A
+  node of the finite-element model is placed at every element end and at every such
+  position (an element is split where one falls inside it). The statics take the weight at
+  the shaft's centre of gravity (elements and disks); `[[disks]]` without `[[shaft]]` are
+  refused. The rigid-rotor reach and span limits below do not apply to a shaft (it bends).
+  For example:
+
+      [[shaft]]                 # one [[shaft]] table per element, from the first end
+      length = 0.02             # m
+      outer_diameter = 0.038    # m
+      inner_diameter = 0.0      # m (optional)
+      density = 7810.0          # kg/m³
+      youngs_modulus = 211e9    # Pa
+      poisson_ratio = 0.3       # - (optional)
+
+      [[disks]]
+      position = 0.35           # m from the shaft's first end
+      mass = 1.2                # kg
+      transverse_inertia = 8e-4 # kg m², about the disk's centre
+      polar_inertia = 1.5e-3    # kg m²
 * **Model options** not stated in `[bearings.model]` come from the bearing file's
   `[model]` table, then gfbopt's defaults (a seam 180° from the load, simple foil, axial-mean
   law, no structural damping).

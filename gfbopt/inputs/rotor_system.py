@@ -1,4 +1,12 @@
-"""A rigid rotor on two foil bearings, described in SI units: the rotor file and its dataclasses.
+"""A rotor on two foil bearings, described in SI units: the rotor file and its dataclasses.
+
+The rotor is a rigid body (the ``[rotor]`` table below) or a flexible shaft of beam elements
+with disks (``[[shaft]]`` and ``[[disks]]``, :mod:`gfbopt.inputs.shaft_file`; the
+finite-element model is :mod:`gfbopt.rotor.shaft`).  With a shaft every position is measured
+from the shaft's first end, the ``[rotor]`` table is optional and gives only ``name``,
+``gravity`` and ``gravity_direction_deg``, and :attr:`RotorSystem.body` is the rigid body of
+the same mass and inertia (about the centre of gravity, :attr:`RotorSystem.
+centre_of_gravity` from the first end).
 
 A rotor file is a TOML file (keys below are a contract; :data:`SCHEMA` lists them all and
 ``docs/formats/rotor_file.md`` is generated from it)::
@@ -61,7 +69,8 @@ from .checks import check_angle_deg, check_finite, check_nonnegative, check_posi
 from .conversions import STANDARD_GRAVITY
 from .options import ModelOptions
 from .rotor_limits import check_rotor_limits
-from .rotor_schema import SCHEMA, TABLES as _TABLES, Key, schema_markdown  # noqa: F401
+from .shaft_file import ShaftModel, shaft_from_file
+from .rotor_schema import RIGID_ONLY, SCHEMA, TABLES as _TABLES, Key, schema_markdown  # noqa: F401
 
 #: the number of bearings a rotor file must give (the rigid-rotor model has two supports)
 BEARING_COUNT = 2
@@ -176,14 +185,18 @@ class Station:
 
 @dataclass(frozen=True)
 class RotorSystem:
-    """A rigid rotor on two bearings, with its static loads and imbalance (SI).
+    """A rotor on two bearings, with its static loads and imbalance (SI).
 
     body : inertia; bearings : exactly two :class:`BearingSupport` at different positions;
     side_loads, imbalance, stations : tuples (may be empty); gravity [m/s²] ≥ 0 and
-    gravity_direction_deg [deg]; source : the rotor file (None when built in Python).
+    gravity_direction_deg [deg]; source : the rotor file (None when built in Python);
+    shaft : None (a rigid rotor, positions from its centre of gravity) or a
+    :class:`~gfbopt.inputs.shaft_file.ShaftModel` (a flexible shaft: positions from its first
+    end, each on the shaft; ``body`` may be None and is then the shaft's rigid-body
+    equivalent, :meth:`ShaftModel.equivalent_body`; a body given must be that one).
     """
 
-    body: RotorBody
+    body: Optional[RotorBody]
     bearings: tuple
     side_loads: tuple = ()
     imbalance: tuple = ()
@@ -191,9 +204,12 @@ class RotorSystem:
     gravity: float = STANDARD_GRAVITY
     gravity_direction_deg: float = 0.0
     source: Optional[str] = None
+    shaft: Optional[ShaftModel] = None
 
     def __post_init__(self) -> None:
         where = f"{self.source}: " if self.source else ""
+        if self.shaft is not None:
+            object.__setattr__(self, "body", _shaft_body(self.shaft, self.body, where))
         if not isinstance(self.body, RotorBody):
             raise ParameterError(f"{where}rotor", self.body, "must be a RotorBody")
         bearings = tuple(self.bearings)
@@ -224,10 +240,10 @@ class RotorSystem:
 
     def static_shares(self) -> tuple:
         """Each bearing's static load vector (W_x, W_y) [N] from force and moment balance of
-        the weight and the side loads about the bearings (:func:`gfbopt.rotor.rigid.
-        bearing_loads` adds directions and frames)."""
+        the weight (at the centre of gravity) and the side loads about the bearings
+        (:func:`gfbopt.rotor.rigid.bearing_loads` adds directions and frames)."""
         fx, fy = self.weight_vector
-        mx = my = 0.0
+        mx, my = self.centre_of_gravity * fx, self.centre_of_gravity * fy
         for load in self.side_loads:
             vx, vy = load.vector
             fx, fy, mx, my = fx + vx, fy + vy, mx + load.position * vx, my + load.position * vy
@@ -241,6 +257,18 @@ class RotorSystem:
         a = math.radians(self.gravity_direction_deg)
         w = self.body.mass * self.gravity
         return w * math.cos(a), w * math.sin(a)
+
+    @property
+    def centre_of_gravity(self) -> float:
+        """Axial position of the centre of gravity [m] in the frame of the positions: 0 for a
+        rigid rotor (positions from the CG), the shaft's (elements and disks) from its first
+        end with a shaft."""
+        return 0.0 if self.shaft is None else self.shaft.centre_of_gravity
+
+    @property
+    def total_mass(self) -> float:
+        """[kg] (the body's; with a shaft, elements and disks)."""
+        return self.body.mass
 
     @property
     def span(self) -> float:
@@ -273,22 +301,34 @@ def rotor_from_dict(data: dict, directory: Union[str, Path] = ".",
     if unknown:
         raise ParameterError(f"{where}: {unknown[0]}", data[unknown[0]],
                              _unknown_rule(unknown[0], _TABLES + _TOP_LEVEL_OTHER))
-    if "rotor" not in data:
+    shaft = shaft_from_file(data, _rows(data, "shaft", where), _rows(data, "disks", where),
+                            _table, _build, where)
+    if shaft is None and "rotor" not in data:
         raise ParameterError(f"{where}: [rotor]", None, "table is required but missing")
-    rotor = _table(data["rotor"], "rotor", f"{where}: rotor")
-    body = _build(RotorBody, f"{where}: rotor", mass=rotor["mass"],
-                  transverse_inertia=rotor["transverse_inertia"],
-                  polar_inertia=_positive_polar(rotor["polar_inertia"], where),
-                  name=rotor["name"])
+    if shaft is None:
+        rotor = _table(data["rotor"], "rotor", f"{where}: rotor")
+        body = _build(RotorBody, f"{where}: rotor", mass=rotor["mass"],
+                      transverse_inertia=rotor["transverse_inertia"],
+                      polar_inertia=_positive_polar(rotor["polar_inertia"], where),
+                      name=rotor["name"])
+    else:
+        rotor = _table(data.get("rotor", {}), "rotor", f"{where}: rotor", skip=RIGID_ONLY)
+        body = shaft.equivalent_body(rotor["name"])
     bearing_rows = _rows(data, "bearings", where)
     if len(bearing_rows) != BEARING_COUNT:
         raise ParameterError(f"{where}: bearings", f"{len(bearing_rows)} [[bearings]] table(s)",
                              "exactly two bearings are supported (a rigid rotor on two "
                              "supports)")
     bearings = [_bearing(row, k, directory, where) for k, row in enumerate(bearing_rows, 1)]
+    load_rows = _rows(data, "side_loads", where)
+    if shaft is not None:
+        for k, row in enumerate(load_rows, 1):
+            if isinstance(row, dict) and "position" not in row:
+                raise ParameterError(f"{where}: side_loads[{k}].position", None, "is required "
+                                     "with a [[shaft]] (m from the shaft's first end)")
     loads = [_build(SideLoad, f"{where}: side_loads[{k}]", **_table(row, "side_loads",
                                                                     f"{where}: side_loads[{k}]"))
-             for k, row in enumerate(_rows(data, "side_loads", where), 1)]
+             for k, row in enumerate(load_rows, 1)]
     planes = [_plane(row, k, where) for k, row in enumerate(_rows(data, "imbalance", where), 1)]
     stations = [_build(Station, f"{where}: stations[{k}]",
                        **_table(row, "stations", f"{where}: stations[{k}]"))
@@ -297,7 +337,25 @@ def rotor_from_dict(data: dict, directory: Union[str, Path] = ".",
     direction = check_angle_deg(f"{where}: rotor.gravity_direction_deg",
                                 rotor["gravity_direction_deg"])
     return RotorSystem(body, tuple(bearings), tuple(loads), tuple(planes), tuple(stations),
-                       gravity=gravity, gravity_direction_deg=direction, source=where)
+                       gravity=gravity, gravity_direction_deg=direction, source=where,
+                       shaft=shaft)
+
+
+def _shaft_body(shaft, body, where: str) -> RotorBody:
+    """The shaft's rigid-body equivalent; a body given must be it (to 1e-9)."""
+    if not isinstance(shaft, ShaftModel):
+        raise ParameterError(f"{where}shaft", shaft, "must be a ShaftModel or None")
+    own = shaft.equivalent_body(body.name if isinstance(body, RotorBody) else "rotor")
+    if body is None:
+        return own
+    if not isinstance(body, RotorBody) or not all(
+            math.isclose(getattr(body, k), getattr(own, k), rel_tol=1e-9)
+            for k in ("mass", "transverse_inertia", "polar_inertia")):
+        raise ParameterError(f"{where}rotor", body, "must be None or the shaft's own rigid "
+                             f"body (mass {own.mass:.6g} kg, I_t {own.transverse_inertia:.6g}, "
+                             f"I_p {own.polar_inertia:.6g} kg m²): a shaft's inertia comes "
+                             "from its elements and disks")
+    return body
 
 
 def _unknown_rule(key: str, known) -> str:
@@ -308,9 +366,10 @@ def _unknown_rule(key: str, known) -> str:
     return f"is not a key here{hint}; known: {', '.join(known)}"
 
 
-def _table(table, name: str, where: str) -> dict:
-    """Check one table against :data:`SCHEMA` (unknown, missing, kind); defaults filled."""
-    keys = {k.name: k for k in SCHEMA if k.table == name}
+def _table(table, name: str, where: str, skip: tuple = ()) -> dict:
+    """Check one table against :data:`SCHEMA` (unknown, missing, kind); defaults filled;
+    ``skip``: keys not allowed here (a shaft's [rotor] table)."""
+    keys = {k.name: k for k in SCHEMA if k.table == name and k.name not in skip}
     if not isinstance(table, dict):
         raise ParameterError(where, table, "must be a table")
     unknown = sorted(set(table) - set(keys))

@@ -23,6 +23,7 @@ from dataclasses import dataclass
 
 from ..errors import ParameterError
 from .checks import check_finite, check_nonnegative, check_positive
+from .rotor_schema import RIGID_ONLY
 
 #: default Poisson ratio of a shaft element (steel) [-]
 DEFAULT_POISSON = 0.3
@@ -204,3 +205,30 @@ def shaft_from_rows(shaft_rows: list, disk_rows: list, table, build, where: str)
         check_on_shaft(bare, f"{here}.position", disk.position)
         disks.append(disk)
     return ShaftModel(tuple(elements), tuple(disks))
+
+
+def shaft_from_file(data: dict, shaft_rows: list, disk_rows: list, table, build,
+                    where: str):
+    """The rotor file's :class:`ShaftModel` (None without ``[[shaft]]``; ``[[disks]]`` need
+    one, and a shaft's ``[rotor]`` table gives no mass or inertia)."""
+    if not shaft_rows:
+        if disk_rows:
+            raise ParameterError(f"{where}: disks", f"{len(disk_rows)} [[disks]] table(s)",
+                                 "need a [[shaft]] to sit on (a rigid rotor's inertia is its "
+                                 "[rotor] table)")
+        return None
+    if isinstance(data.get("rotor"), dict):
+        for key in RIGID_ONLY:
+            if key in data["rotor"]:
+                raise ParameterError(f"{where}: rotor.{key}", data["rotor"][key],
+                                     "is refused with a [[shaft]]: the rotor's mass and "
+                                     "inertia come from its [[shaft]] elements and [[disks]]")
+    return shaft_from_rows(shaft_rows, disk_rows, table, build, where)
+
+
+def check_positions_on_shaft(model: ShaftModel, groups, prefix: str = "") -> None:
+    """Every position of ``groups`` ((table, items), …) on the shaft (:func:`check_on_shaft`,
+    the key named ``prefix + table[k].position``)."""
+    for name, items in groups:
+        for k, item in enumerate(items, 1):
+            check_on_shaft(model, f"{prefix}{name}[{k}].position", item.position)
