@@ -26,9 +26,10 @@ gains τ_f ξ' (= τ_f C̃ ũ).  The local law's compliance also enters the sque
 would make the system quadratic in s: refused with that reason.
 
 Eigenvalues: shift-invert Arnoldi (scipy ARPACK) on the sparse pencil, one LU of J − σE per
-shift.  The shifts come from the rotor's own estimate: the 4-DOF quadratic eigenproblem with
+shift.  The shifts come from the rotor's own estimate: the n-DOF quadratic eigenproblem with
 each bearing's K and C frozen at the whirl ratio of the estimate (two fixed-point passes from
-γ = 1/2), so that every rigid-body root is found whatever its ratio to the shaft speed.
+γ = 1/2), so that every rigid-body root is found whatever its ratio to the shaft speed (a
+shaft's: its four lowest and every other whirling below :data:`MAX_WHIRL` times the speed).
 Around each shift the eigenvalue whose eigenvector carries the most rotor motion is the
 rotor's mode; modes are labelled (:mod:`.modes`) and tracked over speed by continuity
 (:mod:`.tracking`).
@@ -49,13 +50,17 @@ from ..linear.model import impedance
 from ..sparse_lu import Factoriser, factor
 from ..threads import single_threaded
 from .modes import shape
-from .rigid import gyroscopic_matrix, mass_matrix
+from .structure import dof_scales, is_rigid
 from .supports import RotorCase, SpeedStates
 
 #: eigenvalues computed around each shift
 NEAR = 6
 #: fixed-point passes of the 4-DOF estimate (coefficients at the estimate's own whirl)
 PASSES = 2
+#: a shaft's modes are followed when among its LOWEST lowest or whirling below MAX_WHIRL
+#: times the shaft speed (the rigid body's four are always all followed) [-]
+LOWEST = 4
+MAX_WHIRL = 3.0
 
 
 @dataclass(frozen=True)
@@ -90,16 +95,26 @@ class FullSystem:
         if not states.ok:
             raise ParameterError("speed_rpm", states.speed_rpm, "a bearing's load exceeds its "
                                  "capacity here: " + states.failure["message"])
-        body = rotor.system.body
+        structure = rotor.structure
         omega = states.omega
         g0 = rotor.cases[0].bearing
         self.c_ref = g0.radial_clearance
         self.p_ref = g0.ambient_pressure * g0.radius**2
         half_span = 0.5 * rotor.system.span
-        lam = np.diag([1.0, 1.0, 1.0 / half_span, 1.0 / half_span])
+        nq = structure.size
+        lam = (np.diag([1.0, 1.0, 1.0 / half_span, 1.0 / half_span]) if is_rigid(structure)
+               else np.diag(dof_scales(structure, half_span)))
         scale = omega**2 * self.c_ref / self.p_ref
-        self.m = inertia_scale * scale * lam @ mass_matrix(body) @ lam
-        self.g = inertia_scale * scale * lam @ gyroscopic_matrix(body) @ lam
+        self.m = inertia_scale * scale * lam @ structure.mass() @ lam
+        self.g = inertia_scale * scale * lam @ structure.gyroscopic() @ lam
+        # the shaft's own K̃ = c Λ K Λ/P_ref and C̃ = ω c Λ C Λ/P_ref (per radian; not scaled
+        # by μ); none for the rigid body
+        rigid = is_rigid(structure)
+        self.k = (np.zeros((nq, nq)) if rigid
+                  else self.c_ref / self.p_ref * lam @ structure.stiffness() @ lam)
+        self.c = (np.zeros((nq, nq)) if rigid
+                  else omega * self.c_ref / self.p_ref * lam @ structure.damping() @ lam)
+        self.nq = nq
         self.lam, self.omega, self.inertia_scale = lam, omega, inertia_scale
         self.reference_whirl = reference_whirl
         blocks_j, blocks_e, inputs, outputs, rate_inputs = [], [], [], [], []
@@ -108,7 +123,7 @@ class FullSystem:
             g = st.case.bearing
             c_in = lin.c_xi @ (t @ lam) * (self.c_ref / g.radial_clearance)      # n × 4
             f_out = lam @ t.T @ lin.force * (g.ambient_pressure * g.radius**2 / self.p_ref)
-            a, b, rate = _kelvin_voigt(lin, c_in, reference_whirl)
+            a, b, rate = _kelvin_voigt(lin, c_in, reference_whirl, nq)
             blocks_j.append(-a)
             blocks_e.append(b)
             inputs.append(-c_in)
@@ -121,11 +136,12 @@ class FullSystem:
         cin = sp.csc_matrix(np.vstack(inputs))
         crate = sp.csc_matrix(np.vstack(rate_inputs))
         fout = sp.csc_matrix(np.hstack(outputs))
-        z4 = sp.csc_matrix((4, 4))
+        zq = sp.csc_matrix((nq, nq))
         self.j = sp.bmat([[film_j, cin, crate],
-                          [sp.csc_matrix((4, n)), z4, sp.identity(4)],
-                          [fout, z4, sp.csc_matrix(-self.g)]], format="csc")
-        self.e = sp.block_diag([film_e, sp.identity(4), sp.csc_matrix(self.m)], format="csc")
+                          [sp.csc_matrix((nq, n)), zq, sp.identity(nq)],
+                          [fout, sp.csc_matrix(-self.k), sp.csc_matrix(-(self.g + self.c))]],
+                         format="csc")
+        self.e = sp.block_diag([film_e, sp.identity(nq), sp.csc_matrix(self.m)], format="csc")
         self.n_film = n
         self._factorise = Factoriser()     # one pattern, a new shift at every call
 
@@ -143,12 +159,12 @@ class FullSystem:
 
     def rotor_amplitude(self, vector: np.ndarray) -> np.ndarray:
         """q̂ [m, rad] of an eigenvector (the rotor's block, unscaled)."""
-        qt = vector[self.n_film:self.n_film + 4]
+        qt = vector[self.n_film:self.n_film + self.nq]
         return self.c_ref * (self.lam @ qt)
 
     def rotor_share(self, vector: np.ndarray) -> float:
         """|q̃| / (|q̃| + max_k rms(y_k)) of an eigenvector (scaled units) [-]."""
-        qt = np.linalg.norm(vector[self.n_film:self.n_film + 4])
+        qt = np.linalg.norm(vector[self.n_film:self.n_film + self.nq])
         rms, start = 0.0, 0
         for n in self.sizes:
             rms = max(rms, float(np.linalg.norm(vector[start:start + n]) / math.sqrt(n)))
@@ -156,11 +172,11 @@ class FullSystem:
         return float(qt / (qt + rms)) if qt + rms > 0 else 0.0
 
 
-def _kelvin_voigt(lin, c_in: np.ndarray, reference_whirl: Optional[float]):
+def _kelvin_voigt(lin, c_in: np.ndarray, reference_whirl: Optional[float], nq: int = 4):
     """(A, B, rate input) of one bearing, with Kelvin–Voigt foil states when η > 0 (module
-    docstring); the rate input multiplies ũ (n × 4 dense, zero without damping)."""
+    docstring); the rate input multiplies ũ (n × nq dense, zero without damping)."""
     n = lin.size
-    rate = np.zeros((n, 4))
+    rate = np.zeros((n, nq))
     eta, terms = lin.loss_factor, lin.compliance
     if eta == 0.0 or terms is None:
         return lin.a, lin.b, rate
@@ -192,6 +208,8 @@ def rotor_estimates(rotor: RotorCase, states: SpeedStates, inertia_scale: float 
     eigenproblem with the bearings' K, C frozen at γ = 1/2, then each root refined by
     ``passes`` fixed-point steps with K, C frozen at its own whirl ratio (nearest root)."""
     first = _frozen_roots(rotor, states, 0.5, inertia_scale)
+    if not is_rigid(rotor.structure):
+        first = _lower(first)
     out = []
     for s in first:
         for _ in range(passes):
@@ -207,24 +225,38 @@ def _frozen_roots(rotor: RotorCase, states: SpeedStates, gamma: float,
                   inertia_scale: float) -> np.ndarray:
     """Upper-half-plane roots of det(s² μM ω² + s ω² μG + K + s C ω) = 0 (per radian) with
     the bearings' K and C frozen at whirl ratio γ."""
-    body = rotor.system.body
+    structure = rotor.structure
     omega = states.omega
-    m = inertia_scale * omega**2 * mass_matrix(body)
-    g = inertia_scale * omega**2 * gyroscopic_matrix(body)
+    m = inertia_scale * omega**2 * structure.mass()
+    g = inertia_scale * omega**2 * structure.gyroscopic()
     k, c = _frozen(rotor, states, gamma)
-    a = np.block([[np.zeros((4, 4)), np.eye(4)], [-k, -(g + c)]])
-    bmat = np.block([[np.eye(4), np.zeros((4, 4))], [np.zeros((4, 4)), m]])
+    if not is_rigid(structure):           # the shaft's own K and C ω (per radian)
+        k, c = k + structure.stiffness(), c + omega * structure.damping()
+    n = structure.size
+    a = np.block([[np.zeros((n, n)), np.eye(n)], [-k, -(g + c)]])
+    bmat = np.block([[np.eye(n), np.zeros((n, n))], [np.zeros((n, n)), m]])
     ev = sla.eig(a, bmat, right=False)
     return ev[(ev.imag > 1e-6) & np.isfinite(ev)]
 
 
 def _frozen(rotor: RotorCase, states: SpeedStates, gamma: float) -> tuple:
     """(K, C·ω) of the bearings at whirl ratio γ in rotor coordinates, per radian: K_b(iγω)
-    = K + iγ Cω, both real 4 × 4."""
-    kb = np.zeros((4, 4), dtype=complex)
+    = K + iγ Cω, both real n × n."""
+    n = rotor.structure.size
+    kb = np.zeros((n, n), dtype=complex)
     for t, st in zip(rotor.transforms, states.states):
         kb += t.T @ st.impedance(gamma) @ t
     return kb.real, kb.imag / gamma
+
+
+def _lower(roots: np.ndarray) -> np.ndarray:
+    """A shaft's roots worth following: its :data:`LOWEST` lowest whirl ratios (its
+    rigid-body modes on the bearings) and every other below :data:`MAX_WHIRL`."""
+    order = roots[np.argsort(roots.imag)]
+    if not order.size:
+        return order
+    limit = max(MAX_WHIRL, float(order[min(LOWEST, order.size) - 1].imag))
+    return order[order.imag <= limit]
 
 
 def _unique(values: np.ndarray, tol: float = 1e-6) -> np.ndarray:
@@ -240,13 +272,17 @@ def characteristic(rotor: RotorCase, states: SpeedStates, full: "FullSystem"):
     Z̄_k(s) at complex s: from its Krylov space where that has converged at s, else a direct
     LU (:meth:`~gfbopt.rotor.supports.BearingState.at`); with the Kelvin–Voigt foundation
     1 + τ_f s when η > 0, by a direct LU)."""
-    body = rotor.system.body
+    structure = rotor.structure
     omega = states.omega
     lam = full.lam
+    m, g = structure.mass(), structure.gyroscopic()
+    rigid = is_rigid(structure)
+    k, c = structure.stiffness(), omega * structure.damping()
 
     def d(s: complex) -> complex:
-        mat = full.inertia_scale * omega**2 * (s * s * mass_matrix(body)
-                                               + s * gyroscopic_matrix(body))
+        mat = full.inertia_scale * omega**2 * (s * s * m + s * g)
+        if not rigid:
+            mat = mat + k + s * c
         for st, t in zip(states.states, rotor.transforms):
             lin = st.linearisation
             if lin.loss_factor > 0 and lin.compliance is not None:
@@ -287,7 +323,7 @@ def system_modes(rotor: RotorCase, states: SpeedStates, inertia_scale: float = 1
     full = FullSystem(rotor, states, inertia_scale, reference_whirl)
     d = characteristic(rotor, states, full)
     names = rotor.names
-    positions = [b.position for b in rotor.system.bearings]
+    positions = list(rotor.positions)
     roots: list = []
     starts = [complex(g) for g in guesses] + sorted(
         rotor_estimates(rotor, states, inertia_scale), key=lambda z: z.imag)
@@ -309,7 +345,7 @@ def system_modes(rotor: RotorCase, states: SpeedStates, inertia_scale: float = 1
         j = int(np.argmin(np.abs(ev - root)))
         s = complex(ev[j])
         q = full.rotor_amplitude(vec[:, j])
-        sh = shape(q, positions, names)
+        sh = shape(q, positions, names, rotor.structure)
         modes.append(SystemMode(
             s, s.imag * states.omega / (2 * math.pi), s.real * states.omega,
             -2 * math.pi * s.real / s.imag, -s.real / abs(s), sh["label"], sh,

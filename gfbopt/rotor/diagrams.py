@@ -14,7 +14,8 @@ answer.
   mode.  With a loss factor the foil's Kelvin–Voigt states use at each
   speed the reference whirl ratio of the least-stable matched-whirl crossing there (stated in
   the column ``reference_whirl_ratio``; 1/2 when no mode crosses).
-* :func:`imbalance_response` — the synchronous response q̂ = D(iω)⁻¹ Q̂ (Ω = ω, γ = 1: the
+* :func:`imbalance_response` — the synchronous response q̂ = D(iω)⁻¹ Q̂ on the rotor's
+  structure (:mod:`.structure`: Q̂ = Σ S(z)ᵀ(1, −i) U ω² e^{iφ}, station motion S(z) q̂; Ω = ω, γ = 1: the
   bearings' impedance at the running speed, which is right for a synchronous forcing) at each
   bearing and named station: major semi-axis of the orbit [µm] (``amplitude_um``, the
   forward plus the backward radius: :func:`gfbopt.transient.spectra.ellipse_radii`, the
@@ -42,6 +43,7 @@ from .campbell import system_modes
 from .tracking import assign, guesses, name_tracks
 from .onset import onset_speed
 from .rigid import dynamic_stiffness, imbalance_forces, station_matrix
+from .structure import is_rigid
 from .system import SpeedLine
 
 #: ν_ref of the Kelvin–Voigt foil states when no mode crosses at a speed [-]
@@ -85,7 +87,7 @@ def campbell_diagram(line: SpeedLine, speeds, show_progress: bool = True,
     matched-whirl onsets (:class:`~gfbopt.rotor.mode_search.ModeOnset`) that name the tracks
     crossing zero damping next to them (:func:`~gfbopt.rotor.tracking.name_tracks`)."""
     damped = any(c.options.loss_factor for c in line.rotor.cases)
-    positions = [b.position for b in line.rotor.system.bearings]
+    positions = list(line.rotor.positions)
     tracks: list = []
     active: list = []
     refs, skipped = {}, []
@@ -101,7 +103,8 @@ def campbell_diagram(line: SpeedLine, speeds, show_progress: bool = True,
             start = guesses(tracks, active, speed, states.omega)
             modes = system_modes(line.rotor, states, reference_whirl=ref if damped else None,
                                  guesses=start)
-            active = assign(tracks, active, speed, states.omega, modes, positions, start)
+            active = assign(tracks, active, speed, states.omega, modes, positions, start,
+                            line.rotor.structure)
             refs[speed] = ref
     rows = []
     names = name_tracks([[(s, m) for s, m, _ in tr] for tr in tracks], onsets or ())
@@ -159,9 +162,14 @@ def synchronous_response(line: SpeedLine, speed: float) -> dict:
         return None
     omega = rpm_to_rad_per_s(speed)
     z = [st.impedance(1.0) for st in states.states]
-    d = dynamic_stiffness(system.body, omega, 1j * omega, line.rotor.transforms, z)
-    q = np.linalg.solve(d, imbalance_forces(system, omega))
-    return {name: station_matrix(pos) @ q for name, pos in system.station_positions().items()}
+    structure = line.rotor.structure
+    d = dynamic_stiffness(structure, omega, 1j * omega, line.rotor.transforms, z)
+    q = np.linalg.solve(d, imbalance_forces(system, omega, structure))
+    if is_rigid(structure):
+        return {name: station_matrix(pos) @ q
+                for name, pos in system.station_positions().items()}
+    return {name: structure.station(pos) @ q
+            for name, pos in system.station_positions().items()}
 
 
 def _row(speed, name, pos, xy) -> dict:

@@ -1,13 +1,17 @@
-"""The exact linear threshold of the rigid rotor on two bearings at one speed, with matched
-whirl: the whirl frequencies Ω and inertia scales μ at which the dynamic stiffness
+"""The exact linear threshold of a rotor on two bearings at one speed, with matched whirl, on
+the structure contract of any size (:mod:`gfbopt.rotor.structure`: the rigid body's four
+degrees of freedom, or a shaft condensed on its bearings, :mod:`gfbopt.rotor.condensed`): the
+whirl frequencies Ω and inertia scales μ at which the dynamic stiffness
 
-    D(Ω; μ) = −Ω² μ M + iΩ ω μ G + Σ_k T_kᵀ Z_k(iΩ) T_k              (gfbopt.rotor.rigid (1))
+    D(Ω; μ) = −Ω² μ M + iΩ (C + ω μ G) + K + Σ_k T_kᵀ Z_k(iΩ) T_k,   T_k = R(α_k)ᵀ S(z_k),
 
-is singular, Z_k each bearing's frequency-dependent impedance at its own equilibrium.  The
-rotor's inertias (M and G together) scaled by μ: at each whirl ratio γ = Ω/ω this is the
-4 × 4 generalised eigenproblem
+is singular, Z_k each bearing's frequency-dependent impedance at its own equilibrium.  **μ
+scales the rotor's inertias only — its mass matrix M and its gyroscopic matrix G together;
+the shaft's own stiffness K and damping C (zero for the rigid body) are not scaled, nor are
+the bearings; μ = 1 is the rotor itself.**  At each whirl ratio γ = Ω/ω this is the n × n
+generalised eigenproblem
 
-    A(Ω) v = ν K_b(Ω) v,     A = Ω² M − iΩ ω G,   K_b = Σ T_kᵀ Z_k T_k,   ν = 1/μ,
+    A(Ω) v = ν K_b(Ω) v,    A = Ω² M − iΩ ω G,   K_b = K + iΩ C + Σ T_kᵀ Z_k T_k,   ν = 1/μ,
 
 and a real ν > 0 is a threshold: the rotor with inertias μ = 1/ν has a mode on the imaginary
 axis at s = iΩ, with shape v (docs/PHYSICS.md).  μ generalises the one-bearing
@@ -16,19 +20,23 @@ the rotor's shape (mass, inertias and the gyroscopic term alike), so the rotor i
 (μ = 1) is below the threshold of a mode — that mode is stable — when the mode's critical
 μ_c > 1 (the rotor would need μ_c times its inertia to whirl; cf. M̄ < M̄c).
 
-Search (as :mod:`gfbopt.linear.crossings` does for one bearing, with four roots instead of
+Search (as :mod:`gfbopt.linear.crossings` does for one bearing, with n roots instead of
 two): ν(γ) on the scan (24 whirl ratios on (0.02, 1.2) by default, the one-bearing scan,
 with midpoints added wherever a root moves by more than 0.3 of its distance to the next root
-between two points — near γ = 1/2 two forward modes can cross the axis 2e-4 apart in γ), the
-four branches followed by continuity (optimal assignment of the nearest roots), every
-sign change of Im ν refined by Brent's method to 1e-10 in γ, kept when the root is real there
+between two points, or its continuation is unsure (MAC below :data:`SURE_MAC`) — near
+γ = 1/2 two forward modes can cross the axis 2e-4 apart in γ), the n branches followed by
+continuity of their shapes: the eigenvectors of neighbouring whirl ratios are matched by the
+optimal assignment (:func:`scipy.optimize.linear_sum_assignment`) on 1 − MAC, MAC =
+|aᴴ M b|²/((aᴴ M a)(bᴴ M b)) the modal assurance criterion weighted by the mass matrix (one
+consistent unit for translations and tilts, and for any n); every sign change of Im ν
+refined by Brent's method to 1e-10 in γ, kept when the root is real there
 (|Im ν| ≤ 1e-8 |ν|: a jump between branches is not a crossing) and ν > 0.  Every impedance
 comes from the bearings' :class:`~gfbopt.rotor.supports.BearingState` at this speed (one
-LU and one Krylov space per bearing for all modes and frequencies).
+LU and one Krylov space per bearing for all modes and frequencies).  Each crossing's label
+is :func:`gfbopt.rotor.modes.shape`'s (bending modes named as such).
 """
 from __future__ import annotations
 
-import itertools
 import math
 from dataclasses import dataclass, field
 from typing import Optional
@@ -38,7 +46,7 @@ from scipy.optimize import brentq, linear_sum_assignment
 
 from .modes import shape
 from .probe import probe, probe_scale
-from .rigid import gyroscopic_matrix, mass_matrix
+from .structure import is_rigid
 from ..linear.krylov import ShiftedImpedance
 from .supports import WHIRL_RANGE, RotorCase, SpeedStates
 
@@ -54,6 +62,9 @@ FOLLOW_FRACTION = 0.3
 #: at most this many scan points in all, and no interval narrower than MIN_SPACING [-]
 MAX_SAMPLES = 240
 MIN_SPACING = 1e-5
+#: a branch's continuation between two scan points is sure when the MAC of its shapes is at
+#: least this; else the interval is halved [-]
+SURE_MAC = 0.5
 
 
 @dataclass(frozen=True)
@@ -76,21 +87,41 @@ class ModeCrossing:
 
 
 def bearing_stiffness(rotor: RotorCase, states: SpeedStates, whirl_ratio: float) -> np.ndarray:
-    """K_b(iΩ) = Σ T_kᵀ Z_k(iΩ) T_k [N/m, N, N m] (4 × 4) at Ω = γ ω."""
-    kb = np.zeros((4, 4), dtype=complex)
+    """K_b(iΩ) = K + iΩ C + Σ T_kᵀ Z_k(iΩ) T_k [N/m, N, N m] (n × n) at Ω = γ ω."""
+    n = rotor.structure.size
+    kb = np.zeros((n, n), dtype=complex)
     for t, st in zip(rotor.transforms, states.states):
         kb += t.T @ st.impedance(whirl_ratio) @ t
-    return kb
+    return _with_shaft(rotor, kb, whirl_ratio * states.omega)
+
+
+def _with_shaft(rotor: RotorCase, kb: np.ndarray, big) -> np.ndarray:
+    """K_b plus the shaft's own K + iΩ C (``big``: Ω [rad/s], a scalar or one per matrix of a
+    batch); the rigid body has none (K_b unchanged)."""
+    structure = rotor.structure
+    if is_rigid(structure):
+        return kb
+    big, c = np.asarray(big, dtype=float), structure.damping()
+    rate = 1j * big[:, None, None] * c[None] if big.ndim else 1j * float(big) * c
+    return kb + structure.stiffness() + rate
+
+
+def _inertia(rotor: RotorCase, big, omega: float) -> np.ndarray:
+    """A = Ω² M − iΩ ω G (``big``: Ω [rad/s], scalar or array: a batch)."""
+    m, g = rotor.structure.mass(), rotor.structure.gyroscopic()
+    big = np.asarray(big, dtype=float)
+    if big.ndim == 0:
+        return float(big)**2 * m - 1j * float(big) * omega * g
+    return big[:, None, None] ** 2 * m[None] - 1j * (big * omega)[:, None, None] * g[None]
 
 
 def inertia_roots(rotor: RotorCase, states: SpeedStates, whirl_ratio: float,
                   stiffness: Optional[np.ndarray] = None) -> tuple[np.ndarray, np.ndarray]:
-    """(ν (4,), eigenvectors (4, 4) as columns) of A v = ν K_b v at whirl ratio γ
+    """(ν (n,), eigenvectors (n, n) as columns) of A v = ν K_b v at whirl ratio γ
     (``stiffness``: K_b when given, else :func:`bearing_stiffness`)."""
     omega = states.omega
     big = whirl_ratio * omega
-    body = rotor.system.body
-    a = big**2 * mass_matrix(body) - 1j * big * omega * gyroscopic_matrix(body)
+    a = _inertia(rotor, big, omega)
     kb = bearing_stiffness(rotor, states, whirl_ratio) if stiffness is None else stiffness
     # K_b is the bearings' dynamic stiffness, regular wherever Z_k is: the standard problem
     # K_b⁻¹A v = ν v has the pencil's eigenpairs (numpy's driver costs a third of scipy's)
@@ -98,45 +129,59 @@ def inertia_roots(rotor: RotorCase, states: SpeedStates, whirl_ratio: float,
     return nu, vec
 
 
-def inertia_roots_many(rotor: RotorCase, states: SpeedStates, whirl_ratios) -> np.ndarray:
-    """ν (n, 4) of :func:`inertia_roots` at every whirl ratio of an array, in one batch."""
+def inertia_roots_many(rotor: RotorCase, states: SpeedStates, whirl_ratios,
+                       vectors: bool = False):
+    """ν (m, n) of :func:`inertia_roots` at every whirl ratio of an array, in one batch
+    (``vectors``: (ν, eigenvectors (m, n, n)))."""
     gammas = np.asarray(whirl_ratios, dtype=float)
     omega = states.omega
-    body = rotor.system.body
     big = gammas * omega
-    a = (big[:, None, None] ** 2 * mass_matrix(body)[None]
-         - 1j * (big * omega)[:, None, None] * gyroscopic_matrix(body)[None])
-    kb = np.zeros((gammas.size, 4, 4), dtype=complex)
+    a = _inertia(rotor, big, omega)
+    n = rotor.structure.size
+    kb = np.zeros((gammas.size, n, n), dtype=complex)
     for t, st in zip(rotor.transforms, states.states):
         kb += t.T[None] @ (st.scale * st.nondimensional_many(gammas)) @ t[None]
-    return np.linalg.eigvals(np.linalg.solve(kb, a))
+    kb = _with_shaft(rotor, kb, big)
+    pencil = np.linalg.solve(kb, a)
+    return np.linalg.eig(pencil) if vectors else np.linalg.eigvals(pencil)
 
 
-#: every ordering of four roots (rows), for the optimal assignment of :func:`_assignments`
-_ORDERINGS = np.array(list(itertools.permutations(range(4))))
+def mass_mac(mass: np.ndarray, a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """MAC_ij = |a_iᴴ M b_j|²/((a_iᴴ M a_i)(b_jᴴ M b_j)) ∈ [0, 1] of the columns of a, b
+    (n × r each; ``mass``: M, symmetric positive definite)."""
+    ma, mb = mass @ a, mass @ b
+    cross = np.abs(a.conj().T @ mb) ** 2
+    na = np.einsum("ij,ij->j", a.conj(), ma).real
+    nb = np.einsum("ij,ij->j", b.conj(), mb).real
+    return cross / np.maximum(np.outer(na, nb), 1e-300)
 
 
-def _assignments(values: np.ndarray) -> np.ndarray:
-    """For each interval of the scan ``values`` (samples, 4; roots in any order): perm (n − 1,
-    4) such that root perm[k, i] of point k + 1 continues root i of point k — the assignment
-    with the least total move (optimal, by enumeration; the continuation of a root does not
-    depend on how the roots of point k are ordered)."""
-    a, b = values[:-1], values[1:]
-    if values.shape[1] != 4:
-        return np.array([linear_sum_assignment(np.abs(x[:, None] - y[None, :]))[1]
-                         for x, y in zip(a, b)], dtype=int).reshape(len(a), values.shape[1])
-    cost = np.abs(b[:, _ORDERINGS] - a[:, None, :]).sum(axis=2)        # (n − 1, 24)
-    return _ORDERINGS[np.argmin(cost, axis=1)]
+def _assignments(mass: np.ndarray, vectors: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """For each interval of the scan (``vectors``: (samples, n, n), the eigenvectors as
+    columns, roots in any order): (perm (samples − 1, n), its MAC (samples − 1, n)) such that
+    root perm[k, i] of point k + 1 continues root i of point k — the optimal assignment on
+    1 − MAC (module docstring; the continuation of a root does not depend on how the roots of
+    point k are ordered)."""
+    perms, macs = [], []
+    for x, y in zip(vectors[:-1], vectors[1:]):
+        mac = mass_mac(mass, x, y)
+        rows, cols = linear_sum_assignment(1.0 - mac)
+        perms.append(cols)
+        macs.append(mac[rows, cols])
+    n = vectors.shape[1]
+    return (np.array(perms, dtype=int).reshape(-1, n), np.array(macs).reshape(-1, n))
 
 
-def _ambiguous(values: np.ndarray, perm: np.ndarray) -> np.ndarray:
+def _ambiguous(values: np.ndarray, perm: np.ndarray, macs: np.ndarray) -> np.ndarray:
     """For each interval: True when continuing its roots is unsafe — some root moves by more
-    than :data:`FOLLOW_FRACTION` of its distance to the nearest other root."""
+    than :data:`FOLLOW_FRACTION` of its distance to the nearest other root, or its shape's
+    match is below :data:`SURE_MAC`."""
     a = values[:-1]
     b = np.take_along_axis(values[1:], perm, axis=1)
     sep = np.abs(a[:, :, None] - a[:, None, :])
     sep[:, np.arange(a.shape[1]), np.arange(a.shape[1])] = np.inf
-    return np.any(np.abs(b - a) > FOLLOW_FRACTION * sep.min(axis=2), axis=1)
+    return (np.any(np.abs(b - a) > FOLLOW_FRACTION * sep.min(axis=2), axis=1)
+            | np.any(macs < SURE_MAC, axis=1))
 
 
 def _branches(values: np.ndarray, perm: np.ndarray) -> np.ndarray:
@@ -148,23 +193,26 @@ def _branches(values: np.ndarray, perm: np.ndarray) -> np.ndarray:
     return np.take_along_axis(values, order, axis=1)
 
 
-def _adaptive_scan(roots, gammas: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+def _adaptive_scan(roots, mass: np.ndarray, gammas: np.ndarray
+                   ) -> tuple[np.ndarray, np.ndarray]:
     """The scan with midpoints inserted wherever following the branches is ambiguous
     (:func:`_ambiguous`), until it is not or :data:`MAX_SAMPLES` points are reached; the
     roots of each point ordered by branch.  ``roots`` maps an array of whirl ratios to their
-    roots (n, 4)."""
-    pts = dict(zip((float(g) for g in gammas), roots(np.asarray(gammas, dtype=float))))
+    (roots (m, n), eigenvectors (m, n, n)); ``mass``: M of the MAC."""
+    nu, vec = roots(np.asarray(gammas, dtype=float))
+    pts = {float(g): (x, v) for g, x, v in zip(gammas, nu, vec)}
     while True:
         g = np.array(sorted(pts))
-        vals = np.array([pts[x] for x in g])
-        perm = _assignments(vals)
+        vals = np.array([pts[x][0] for x in g])
+        perm, macs = _assignments(mass, np.array([pts[x][1] for x in g]))
         if len(pts) >= MAX_SAMPLES:
             break
-        wide = (np.diff(g) > MIN_SPACING) & _ambiguous(vals, perm)
+        wide = (np.diff(g) > MIN_SPACING) & _ambiguous(vals, perm, macs)
         split = [float(x) for x in 0.5 * (g[:-1] + g[1:])[wide]][:MAX_SAMPLES - len(pts)]
         if not split:
             break
-        pts.update(zip(split, roots(np.array(split))))
+        nu, vec = roots(np.array(split))
+        pts.update((x, (r, v)) for x, r, v in zip(split, nu, vec))
     return g, _branches(vals, perm)
 
 
@@ -177,10 +225,12 @@ def crossings(rotor: RotorCase, states: SpeedStates, whirl_range=WHIRL_RANGE,
     gammas = np.linspace(whirl_range[0], whirl_range[1], samples)
     for st in states.states:
         st.prepare(gammas)
-    gammas, values = _adaptive_scan(lambda g: inertia_roots_many(rotor, states, g), gammas)
+    gammas, values = _adaptive_scan(
+        lambda g: inertia_roots_many(rotor, states, g, vectors=True),
+        rotor.structure.mass(), gammas)
     samples = len(gammas)
     names = rotor.names
-    positions = [b.position for b in rotor.system.bearings]
+    positions = list(rotor.positions)
     found = []
     for branch in range(values.shape[1]):
         im = values[:, branch].imag
@@ -203,7 +253,7 @@ def _probed(rotor, states, found, whirl_range, positions, names):
     p = probe(rotor, states, mu, whirl_range)
     if not p.unstable:
         return None
-    sh = shape(p.vector, positions, names)
+    sh = shape(p.vector, positions, names, rotor.structure)
     after = (f"; a crossing at μ_c = {found[0].inertia_scale:.4g} ({found[0].label}) may "
              "bound a stable range above it" if found else "")
     note = (f"unstable for every inertia scale: already at μ = {mu:.3g} a {sh['label']} "
@@ -230,7 +280,7 @@ def _refine(rotor, states, low, high, nu_low, nu_high, positions, names):
     root, q = nearest(g)
     if not (abs(root.imag) <= REAL_ROOT * abs(root) and root.real > 0):
         return None
-    sh = shape(q, positions, names)
+    sh = shape(q, positions, names, rotor.structure)
     return ModeCrossing(1.0 / root.real, float(g), float(g * states.omega / (2 * math.pi)),
                         sh["label"], sh, q)
 
@@ -280,6 +330,7 @@ def local_crossing(rotor: RotorCase, states: SpeedStates, near: ModeCrossing
         return None
     low, high = states.states[0].whirl_range
     gamma, shape_ref = float(near.whirl_ratio), np.asarray(near.vector, dtype=complex)
+    mass = rotor.structure.mass()
     models, centre = None, math.nan
     for _ in range(LOCAL_STEPS):
         if not low <= gamma <= high:
@@ -295,12 +346,11 @@ def local_crossing(rotor: RotorCase, states: SpeedStates, near: ModeCrossing
         if not all(m.converge(points[1:2]).all() for m in models):   # ±1e-6 with it
             return None
         roots = [_local_roots(rotor, states, models, g) for g in points]
-        # the branch: the root whose shape q̂ is nearest the previous one's (|cos| of the
-        # angle between them), not the nearest ν: near γ = 1/2 two forward modes cross the
+        # the branch: the root whose shape q̂ is nearest the previous one's (the largest
+        # mass-weighted MAC), not the nearest ν: near γ = 1/2 two forward modes cross the
         # axis with nearly equal μ_c, 1e-3 apart in γ
         vectors = roots[1][1]
-        overlap = np.abs(shape_ref.conj() @ vectors) / np.linalg.norm(vectors, axis=0)
-        j = int(np.argmax(overlap))
+        j = int(np.argmax(mass_mac(mass, shape_ref[:, None], vectors)[0]))
         nu = roots[1][0][j]
         left, right = (r[0][np.argmin(np.abs(r[0] - nu))] for r in (roots[0], roots[2]))
         slope = (right - left) / (2 * SLOPE_STEP)
@@ -313,8 +363,7 @@ def local_crossing(rotor: RotorCase, states: SpeedStates, near: ModeCrossing
             if not (nu_star > 0 and low <= gamma <= high):
                 return None
             q = roots[1][1][:, j]
-            positions = [b.position for b in rotor.system.bearings]
-            sh = shape(q, positions, rotor.names)
+            sh = shape(q, rotor.positions, rotor.names, rotor.structure)
             return ModeCrossing(1.0 / nu_star, float(gamma),
                                 float(gamma * states.omega / (2 * math.pi)), sh["label"], sh, q)
         gamma, shape_ref = gamma + step, vectors[:, j]
@@ -323,7 +372,8 @@ def local_crossing(rotor: RotorCase, states: SpeedStates, near: ModeCrossing
 
 def _local_roots(rotor, states, models, gamma: float) -> tuple[np.ndarray, np.ndarray]:
     """(ν, eigenvectors) of :func:`inertia_roots` with each bearing's Z̄ from ``models``."""
-    kb = np.zeros((4, 4), dtype=complex)
+    n = rotor.structure.size
+    kb = np.zeros((n, n), dtype=complex)
     for t, st, m in zip(rotor.transforms, states.states, models):
         kb += t.T @ (st.scale * m.evaluate(gamma)[0]) @ t
-    return inertia_roots(rotor, states, gamma, kb)
+    return inertia_roots(rotor, states, gamma, _with_shaft(rotor, kb, gamma * states.omega))

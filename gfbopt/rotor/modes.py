@@ -1,4 +1,5 @@
-"""Mode shapes of the rigid rotor and their labels: forward/backward, cylindrical/conical/mixed.
+"""Mode shapes of the rotor and their labels: forward/backward, cylindrical/conical/mixed for
+the rigid-body modes, bending 1, 2, … for the modes whose shaft bends.
 
 A mode's shape is its complex amplitude q̂ = (x, y, ψx, ψy) in real coordinates, the motion
 being Re(q̂ e^{iΩt}) with Ω > 0.  At an axial station z the axis moves by (X, Y) = (x + zψx,
@@ -12,7 +13,18 @@ Labels (:func:`label`):
   (p = X ± iY), by the phase between the two bearings, ρ = p(z_B)/p(z_A): in phase
   (|arg ρ| ≤ 60°, the axis translates, its node outside the span) is cylindrical, in
   antiphase (|arg ρ| ≥ 120°, the axis rocks about a node between the bearings) is conical,
-  anything between is mixed.  A symmetric rotor's modes are pure (arg ρ = 0 or 180°).
+  anything between is mixed.  A symmetric rotor's modes are pure (arg ρ = 0 or 180°);
+* **bending n** (a structure with a flexible shaft, :mod:`gfbopt.rotor.structure`): the
+  dominant component p(z_j) read at stations z_j along the shaft (the structure's
+  ``shape_positions`` when it states them, else :data:`SHAPE_STATIONS` evenly between the
+  bearings, bearings included) is fitted by the best straight line a + b z (least squares,
+  the rigid motion); when the share of Σ|p|² that the line leaves unexplained exceeds
+  :data:`BENDING_SHARE`, the shaft's deflection is not a straight line and the mode is
+  "forward bending n" / "backward bending n", n the number of nodes of that deflection from
+  the line (sign changes along the shaft, of its real part in the phase of its largest
+  value) less one — a beam's n-th bending mode, n = 1, 2, … in order of frequency (a
+  half-sine has two nodes from its best line, a free–free first mode two).  A rigid
+  body never bends (two stations lie on a line).  :func:`mode_label` makes every label.
 
 The shape reported is the amplitude and phase at each bearing (forward/backward radii
 normalised so that the largest radius is 1, phase of the dominant component relative to
@@ -24,22 +36,69 @@ import math
 
 import numpy as np
 
+from .structure import is_rigid
+
 #: |arg ρ| up to this is cylindrical, from 180° minus this is conical [deg]
 PHASE_LIMIT_DEG = 60.0
+#: a mode bends when more than this share of Σ|p(z_j)|² is off the best straight line [-]
+BENDING_SHARE = 0.25
+#: stations between the bearings where a shape is read when the structure states none
+SHAPE_STATIONS = 21
+#: deflection values below this fraction of the largest are not counted as a sign [-]
+NODE_FLOOR = 1e-3
 
 
-def whirl_components(q: np.ndarray, position: float) -> tuple[complex, complex]:
+def mode_label(direction: str, kind: str, order: int = 0) -> str:
+    """The one label of a mode: "forward conical", "backward bending 2", … (``order``: the
+    bending mode's number, module docstring)."""
+    return f"{direction} {kind} {order}" if kind == "bending" else f"{direction} {kind}"
+
+
+def shape_stations(structure, positions) -> np.ndarray:
+    """Where a flexible structure's shape is read (module docstring) [m]."""
+    stated = tuple(getattr(structure, "shape_positions", ()) or ())
+    if stated:
+        return np.array(sorted(set(float(z) for z in stated) | set(positions)))
+    low, high = min(positions), max(positions)
+    return np.linspace(low, high, SHAPE_STATIONS)
+
+
+def bending(structure, q: np.ndarray, positions, k: int) -> tuple[float, int]:
+    """(share of Σ|p|² off the best line, bending number) of component k (0: forward X + iY,
+    1: backward X − iY) along the shaft (module docstring)."""
+    z = shape_stations(structure, positions)
+    xy = np.array([structure.station(zj) @ q for zj in z])            # (m, 2)
+    p = xy[:, 0] + (1j if k == 0 else -1j) * xy[:, 1]
+    basis = np.column_stack([np.ones_like(z), z - z.mean()])
+    coef = np.linalg.lstsq(basis, p, rcond=None)[0]
+    resid = p - basis @ coef
+    total = float(np.vdot(p, p).real)
+    share = float(np.vdot(resid, resid).real) / total if total > 0 else 0.0
+    ref = resid[int(np.argmax(np.abs(resid)))]
+    real = (resid * np.conj(ref)).real / max(abs(ref), 1e-300)
+    signs = np.sign(real[np.abs(real) > NODE_FLOOR * np.abs(real).max()]) if total else []
+    changes = int(np.count_nonzero(np.diff(signs))) if len(signs) else 0
+    return share, max(1, changes - 1)
+
+
+def whirl_components(q: np.ndarray, position: float, structure=None
+                     ) -> tuple[complex, complex]:
     """(X + iY, X − iY) at axial position z [m] of the amplitude q̂ (twice the forward and
-    backward circles' complex radii)."""
-    x = q[0] + position * q[2]
-    y = q[1] + position * q[3]
+    backward circles' complex radii); ``structure``: the rotor's (None: the rigid body)."""
+    if structure is None or is_rigid(structure):
+        x = q[0] + position * q[2]
+        y = q[1] + position * q[3]
+    else:
+        x, y = structure.station(position) @ q
     return x + 1j * y, x - 1j * y
 
 
-def shape(q: np.ndarray, positions, names) -> dict:
-    """Label and shape of the rotor amplitude ``q`` (module docstring)."""
+def shape(q: np.ndarray, positions, names, structure=None) -> dict:
+    """Label and shape of the rotor amplitude ``q`` (module docstring); ``structure``: the
+    rotor's :class:`~gfbopt.rotor.structure.Structure` (None: the rigid body's q)."""
     q = np.asarray(q, dtype=complex)
-    comps = [whirl_components(q, z) for z in positions]
+    rigid = structure is None or is_rigid(structure)
+    comps = [whirl_components(q, z, structure) for z in positions]
     forward = sum(abs(c[0]) ** 2 for c in comps)
     backward = sum(abs(c[1]) ** 2 for c in comps)
     direction = "forward" if forward >= backward else "backward"
@@ -51,9 +110,20 @@ def shape(q: np.ndarray, positions, names) -> dict:
         phase = math.degrees(np.angle(pb / pa))
     kind = ("cylindrical" if abs(phase) <= PHASE_LIMIT_DEG else
             "conical" if abs(phase) >= 180.0 - PHASE_LIMIT_DEG else "mixed")
-    # p(z) = p_c + z p_ψ (dominant component): least |p| at z = −Re(p_c p̄_ψ)/|p_ψ|²
-    pc = q[0] + (1j if k == 0 else -1j) * q[1]
-    pp = q[2] + (1j if k == 0 else -1j) * q[3]
+    share, order = (0.0, 0) if rigid else bending(structure, q, positions, k)
+    if share > BENDING_SHARE:
+        kind = "bending"
+    else:
+        order = 0
+    # p(z) = p_c + z p_ψ (dominant component; for a shaft the line through the bearings):
+    # least |p| at z = −Re(p_c p̄_ψ)/|p_ψ|²
+    if rigid:
+        pc = q[0] + (1j if k == 0 else -1j) * q[1]
+        pp = q[2] + (1j if k == 0 else -1j) * q[3]
+    else:
+        (za, zb) = positions[0], positions[1]
+        pp = (pb - pa) / (zb - za)
+        pc = pa - za * pp
     node = (-float(np.real(pc * np.conj(pp))) / abs(pp) ** 2 if abs(pp) > 0 else math.inf)
     scale = max(max(abs(c[0]), abs(c[1])) for c in comps) / 2 or 1.0
     ref = np.angle(pa) if abs(pa) > 0 else 0.0
@@ -62,13 +132,17 @@ def shape(q: np.ndarray, positions, names) -> dict:
         dominant = f if k == 0 else b
         at[name] = {"forward_radius": abs(f) / 2 / scale, "backward_radius": abs(b) / 2 / scale,
                     "phase_deg": _wrap(math.degrees(np.angle(dominant) - ref))}
-    return {"label": f"{direction} {kind}", "direction": direction, "kind": kind,
-            "phase_b_from_a_deg": phase, "node_position_m": node, "at_bearings": at}
+    out = {"label": mode_label(direction, kind, order), "direction": direction, "kind": kind,
+           "phase_b_from_a_deg": phase, "node_position_m": node, "at_bearings": at}
+    if not rigid:
+        out["bending_share"] = share
+    return out
 
 
-def label(q: np.ndarray, positions) -> str:
-    """'forward cylindrical', 'backward conical', … of the amplitude ``q``."""
-    return shape(q, positions, ("A", "B"))["label"]
+def label(q: np.ndarray, positions, structure=None) -> str:
+    """'forward cylindrical', 'backward conical', 'forward bending 1', … of the amplitude
+    ``q``."""
+    return shape(q, positions, ("A", "B"), structure)["label"]
 
 
 def _wrap(deg: float) -> float:

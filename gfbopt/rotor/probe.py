@@ -17,9 +17,9 @@ its impedance, Z̄_k(s) = f_k (I + (s − s0_k) T_k)⁻¹ c_k.  With its states 
 −(I − s0_k T_k) u_k + c_k ξ_k, ξ_k = P_k q the journal motion, P_k the 2 × 4 transformation)
 and the rotor's q, v = s q (per radian of shaft rotation),
 
-    s q = v,     s μω² M v = −μω² G v − Σ_k P_kᵀ (p_a R_k²/c_k) f_k u_k,
+    s q = v,     s μω² M v = −(μω² G + ω C) v − K q − Σ_k P_kᵀ (p_a R_k²/c_k) f_k u_k,
 
-is one small dense pencil (8 + Σ m_k states): all its eigenvalues at once.  An eigenvalue is
+(K, C the shaft's, zero for the rigid body) is one small dense pencil (2n + Σ m_k states): all its eigenvalues at once.  An eigenvalue is
 kept when each bearing's space has converged at it (:meth:`ReducedImpedance.evaluate`: the
 model is then the exact impedance there to 1e-11; otherwise the space is extended and the
 pencil rebuilt), and when it whirls in the scanned range (whirl ratio inside it, as the
@@ -35,7 +35,7 @@ from typing import Optional
 import numpy as np
 
 from ..linear.threshold import STABILITY_TOLERANCE
-from .rigid import gyroscopic_matrix, mass_matrix
+from .structure import is_rigid
 
 #: the inertia scale probed when no mode crosses: the rotor itself [-]
 PROBE_SCALE = 1.0
@@ -67,22 +67,28 @@ class Probe:
 
 def _pencil(rotor, states, inertia_scale: float) -> tuple[np.ndarray, np.ndarray]:
     """(A, E) of the reduced pencil s E x = A x (module docstring)."""
-    body = rotor.system.body
-    w2 = inertia_scale * states.omega**2
+    structure = rotor.structure
+    nq = structure.size
+    omega = states.omega
+    w2 = inertia_scale * omega**2
     blocks = [st.schur_model() for st in states.states]
     sizes = [b.t.shape[0] for b in blocks]
-    n = 8 + sum(sizes)
+    n = 2 * nq + sum(sizes)
     a = np.zeros((n, n), dtype=complex)
     e = np.zeros((n, n), dtype=complex)
-    e[:4, :4] = np.eye(4)
-    a[:4, 4:8] = np.eye(4)
-    e[4:8, 4:8] = w2 * mass_matrix(body)
-    a[4:8, 4:8] = -w2 * gyroscopic_matrix(body)
-    start = 8
+    q, v = slice(0, nq), slice(nq, 2 * nq)
+    e[q, q] = np.eye(nq)
+    a[q, v] = np.eye(nq)
+    e[v, v] = w2 * structure.mass()
+    a[v, v] = -w2 * structure.gyroscopic()
+    if not is_rigid(structure):          # the shaft's own K and C ω (per radian, not scaled)
+        a[v, q] = -structure.stiffness()
+        a[v, v] -= omega * structure.damping()
+    start = 2 * nq
     for st, p, blk, m in zip(states.states, rotor.transforms, blocks, sizes):
         rows = slice(start, start + m)
-        a[4:8, rows] = -st.scale * p.T @ blk.f
-        a[rows, :4] = blk.c @ p
+        a[v, rows] = -st.scale * p.T @ blk.f
+        a[rows, q] = blk.c @ p
         e[rows, rows] = blk.t
         a[rows, rows] = -(np.eye(m) - blk.shift * blk.t)
         start += m
@@ -100,10 +106,10 @@ def reduced_eigen(rotor, states, inertia_scale: float) -> np.ndarray:
 
 
 def reduced_vector(rotor, states, inertia_scale: float, s: complex) -> np.ndarray:
-    """The rotor amplitude q̂ (4,) of the reduced pencil's eigenvector at eigenvalue s (the
+    """The rotor amplitude q̂ (n,) of the reduced pencil's eigenvector at eigenvalue s (the
     right singular vector of A − sE with the least singular value)."""
     a, e = _pencil(rotor, states, inertia_scale)
-    return np.linalg.svd(a - s * e)[2][-1].conj()[:4]
+    return np.linalg.svd(a - s * e)[2][-1].conj()[:rotor.structure.size]
 
 
 def probe(rotor, states, inertia_scale: float, whirl_range) -> Probe:

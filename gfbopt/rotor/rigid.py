@@ -53,6 +53,7 @@ import numpy as np
 from ..errors import ParameterError
 from ..inputs.options import MAX_FILM, ModelOptions
 from ..inputs.rotor_system import BearingSupport, RotorBody, RotorSystem
+from .structure import RigidStructure, imbalance_vector, is_rigid, structure_of
 
 #: names of the rotor's degrees of freedom, in the order of q
 DOF_NAMES = ("x", "y", "psi_x", "psi_y")
@@ -117,11 +118,16 @@ class BearingLoad:
                 "force_x_newton": self.force_x, "force_y_newton": self.force_y}
 
 
-def applied_loads(system: RotorSystem) -> tuple[np.ndarray, np.ndarray]:
+def applied_loads(system: RotorSystem, centre_of_gravity: float = 0.0
+                  ) -> tuple[np.ndarray, np.ndarray]:
     """(F, M_z): the sum of the applied static forces (weight and side loads) [N] and of their
-    moments z F about the CG [N m], each an x–y vector."""
+    moments z F about the origin of the axial positions [N m] (the CG of a rigid rotor, where
+    the weight has no moment; a shaft's first end, the weight acting at
+    ``centre_of_gravity`` [m] from it), each an x–y vector."""
     force = np.array(system.weight_vector, dtype=float)
     moment = np.zeros(2)
+    if centre_of_gravity != 0.0:
+        moment += centre_of_gravity * force
     for load in system.side_loads:
         f = np.array(load.vector)
         force += f
@@ -170,33 +176,53 @@ def seam_from_load(options: ModelOptions, away_from_gravity_deg: float) -> Model
                         deflection_law=options.deflection_law, loss_factor=options.loss_factor)
 
 
-def transformations(system: RotorSystem, loads: Sequence[BearingLoad]) -> tuple:
-    """(T_A, T_B): each bearing's 2 × 4 transformation in its own load frame."""
-    return tuple(transformation(s.position, l.direction_rad)
+def transformations(system: RotorSystem, loads: Sequence[BearingLoad], structure=None
+                    ) -> tuple:
+    """(T_A, T_B): each bearing's transformation T_k = R(α_k)ᵀ S(z_k) in its own load frame
+    (2 × n; the rigid body's 2 × 4 when ``structure`` is None or rigid)."""
+    if structure is None or is_rigid(structure):
+        return tuple(transformation(s.position, l.direction_rad)
+                     for s, l in zip(system.bearings, loads))
+    return tuple(rotation(l.direction_rad).T @ structure.station(s.position)
                  for s, l in zip(system.bearings, loads))
 
 
-def dynamic_stiffness(body: RotorBody, omega: float, whirl: complex, transforms: Sequence,
+def dynamic_stiffness(structure, omega: float, whirl: complex, transforms: Sequence,
                       impedances: Sequence, inertia_scale: float = 1.0) -> np.ndarray:
-    """D = s² μM + s ω μG + Σ T_kᵀ Z_k T_k at s = ``whirl`` [1/s] (s = iΩ on the axis: (1)).
+    """D = μ(s² M + s ω G) + s C + K + Σ T_kᵀ Z_k T_k at s = ``whirl`` [1/s] (s = iΩ on the
+    axis: (1)), on any :class:`~gfbopt.rotor.structure.Structure` (a :class:`RotorBody` is
+    the rigid body's).
 
     omega : shaft speed [rad/s]; impedances : Z_k(s) [N/m] (2 × 2, bearing frames);
-    inertia_scale μ multiplies M and G (μ = 1: the rotor itself)."""
-    d = inertia_scale * (whirl**2 * mass_matrix(body) + whirl * omega * gyroscopic_matrix(body))
+    inertia_scale μ multiplies M and G only (μ = 1: the rotor itself; the shaft's own K and C
+    are not scaled)."""
+    st = RigidStructure(structure) if isinstance(structure, RotorBody) else structure
+    d = inertia_scale * (whirl**2 * st.mass() + whirl * omega * st.gyroscopic())
+    if not is_rigid(st):
+        d = d + whirl * st.damping() + st.stiffness()
     for t, z in zip(transforms, impedances):
         d = d + t.T @ z @ t
     return d.astype(complex)
 
 
-def imbalance_forces(system: RotorSystem, omega: float) -> np.ndarray:
+def imbalance_forces(system: RotorSystem, omega: float, structure=None) -> np.ndarray:
     """Complex amplitude Q̂ of the generalised imbalance force, Q(t) = Re(Q̂ e^{iωt}) [N, N m].
 
     A plane of amount U at phase φ and position z pulls with U ω² (cos(ωt + φ), sin(ωt + φ)):
-    Q̂ = U ω² e^{iφ} (1, −i, z, −i z)."""
-    q = np.zeros(4, dtype=complex)
+    Q̂ = S(z)ᵀ (1, −i) U ω² e^{iφ} (:func:`~gfbopt.rotor.structure.imbalance_vector`; the
+    rigid body's (1, −i, z, −i z) U ω² e^{iφ}).  ``structure``: the rotor's (default: the
+    system's, :func:`~gfbopt.rotor.structure.structure_of`)."""
+    st = structure if structure is not None else structure_of(system)
+    if is_rigid(st):
+        q = np.zeros(4, dtype=complex)
+        for plane in system.imbalance:
+            u = plane.amount_kg_m * omega**2 * np.exp(1j * math.radians(plane.phase_deg))
+            q += u * np.array([1.0, -1j, plane.position, -1j * plane.position])
+        return q
+    q = np.zeros(st.size, dtype=complex)
     for plane in system.imbalance:
         u = plane.amount_kg_m * omega**2 * np.exp(1j * math.radians(plane.phase_deg))
-        q += u * np.array([1.0, -1j, plane.position, -1j * plane.position])
+        q += imbalance_vector(st, plane.position, u)
     return q
 
 

@@ -14,7 +14,8 @@ imbalance response, transients, design) see only this contract:
   generalised force of a force (F_x, F_y) at z is S(z)ᵀ (F_x, F_y);
 - ``total_mass`` [kg] and ``centre_of_gravity`` [m]: what the statics of two supports needs
   (two bearings carry the weight by force and moment balance, whatever the shaft's stiffness);
-- ``dof_names``: one name per degree of freedom; ``kind``: "rigid" or "shaft".
+- ``dof_names``: one name per degree of freedom (a tilt's name starts with "psi", a
+  translation's does not: the full system's scaling reads it); ``kind``: "rigid" or "shaft".
 
 Axial positions are in the rotor's own coordinate: from the centre of gravity for a rigid
 body (today's rotor file), from the shaft's first end for a shaft of beam elements.
@@ -108,6 +109,29 @@ class RigidStructure:
     def station(self, position: float) -> np.ndarray:
         z = float(position)
         return np.array([[1.0, 0.0, z, 0.0], [0.0, 1.0, 0.0, z]])
+
+
+def structure_of(system) -> Structure:
+    """The structure of a :class:`~gfbopt.inputs.rotor_system.RotorSystem`: the rigid body
+    (:class:`RigidStructure`) when it has no shaft (``system.shaft`` is None or absent),
+    else its shaft of beam elements (:func:`gfbopt.rotor.shaft.shaft_structure`)."""
+    if getattr(system, "shaft", None) is None:
+        return RigidStructure(system.body)
+    from .shaft import shaft_structure
+    return shaft_structure(system)
+
+
+def is_rigid(structure: Structure) -> bool:
+    """True for the four degrees of freedom of the rigid body (every analysis keeps its
+    original arithmetic there, bit for bit)."""
+    return isinstance(structure, RigidStructure)
+
+
+def dof_scales(structure: Structure, length: float) -> np.ndarray:
+    """Λ's diagonal: 1 for a translation, 1/``length`` [1/m] for a tilt (a name starting
+    with "psi"): q = c Λ q̃ puts every degree of freedom in units of a clearance."""
+    return np.array([1.0 / length if str(n).startswith("psi") else 1.0
+                     for n in structure.dof_names])
 
 
 def imbalance_vector(structure: Structure, position: float, amount: complex) -> np.ndarray:

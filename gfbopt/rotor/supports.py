@@ -43,7 +43,9 @@ from ..static import SolverCache, StaticSolution, solve_static
 from ..threads import single_threaded
 from .analysis import Case, LoadCapacityError, equilibrium, resolve_case
 from .reduced import ReducedImpedance
+from .condensed import condensed
 from .rigid import BearingLoad, bearing_loads, seam_from_load, transformations
+from .structure import is_rigid, structure_of
 from .speed_line import transferred_start
 
 #: the grid of a fine grid's first (cold) equilibrium, interpolated as its start, and the
@@ -58,8 +60,11 @@ WHIRL_RANGE = (0.02, 1.2)
 class RotorCase:
     """A resolved rotor: the system, each bearing's static load and one-bearing
     :class:`~gfbopt.rotor.analysis.Case` (options filled, seam from its own load), the
-    transformations T_k, the grid and the shared solver cache.
+    transformations T_k = R(α_k)ᵀ S(z_k) (2 × n), the grid and the shared solver cache.
 
+    structure : what every analysis works on (:class:`~gfbopt.rotor.structure.Structure`):
+    the rigid body, or a shaft condensed onto its bearings and a few modes
+    (:func:`~gfbopt.rotor.condensed.condensed`); default: :func:`analysis_structure`.
     mass_share_kg : each bearing's share of the rotor mass in the per-bearing (half-mass)
     approximation, m |W_k|/(|W_A| + |W_B|) [kg]."""
 
@@ -69,19 +74,30 @@ class RotorCase:
     transforms: tuple
     grid: Grid
     cache: SolverCache = field(repr=False, compare=False)
+    structure: object = field(default=None, repr=False, compare=False)
+
+    def __post_init__(self) -> None:
+        if self.structure is None:
+            object.__setattr__(self, "structure", analysis_structure(self.system))
 
     @property
     def mass_share_kg(self) -> tuple:
         total = sum(l.magnitude for l in self.loads)
-        return tuple(self.system.body.mass * l.magnitude / total for l in self.loads)
+        return tuple(self.structure.total_mass * l.magnitude / total for l in self.loads)
 
     @property
     def names(self) -> tuple:
         return tuple(b.name for b in self.system.bearings)
 
+    @property
+    def positions(self) -> tuple:
+        """The bearings' axial positions [m]."""
+        return tuple(b.position for b in self.system.bearings)
+
     def conventions(self) -> dict:
         """The options each bearing is analysed with, its load and frame, as outputs state."""
-        return {"frame": FRAME, "grid": str(self.grid),
+        frame = FRAME if is_rigid(self.structure) else SHAFT_FRAME
+        return {"frame": frame, "grid": str(self.grid),
                 "bearings": {n: {
                     **c.conventions(), "load_newton": l.magnitude,
                     "load_direction_deg": l.direction_deg,
@@ -93,10 +109,24 @@ class RotorCase:
                 "gravity_direction_deg": self.system.gravity_direction_deg}
 
 
+def analysis_structure(system: RotorSystem):
+    """The structure the analyses work on: the rigid body itself, or the system's shaft
+    condensed on its two bearing stations (:mod:`.condensed`)."""
+    full = structure_of(system)
+    if is_rigid(full):
+        return full
+    return condensed(full, [b.position for b in system.bearings])
+
+
 FRAME = ("z along the rotor axis from the centre of gravity; x, y in the bearing plane, the "
          "shaft spinning from x to y; angles from +x in the direction of rotation [deg]; "
          "q = (x, y, ψx = dx/dz, ψy = dy/dz); each bearing's impedance in its own load frame "
          "(X along its static load, Y ahead of it)")
+SHAFT_FRAME = ("z along the rotor axis from the shaft's first end; x, y in the bearing plane, "
+               "the shaft spinning from x to y; angles from +x in the direction of rotation "
+               "[deg]; the shaft of beam elements condensed on its two bearing stations and "
+               "its lowest modes with them held (gfbopt.rotor.condensed); each bearing's "
+               "impedance in its own load frame (X along its static load, Y ahead of it)")
 
 
 @single_threaded
@@ -112,19 +142,21 @@ def resolve_rotor(system: RotorSystem, grid: Grid = DEFAULT_GRID,
         raise ParameterError("grid", grid, "must be a Grid")
     cache = cache if cache is not None else SolverCache(grid)
     loads = bearing_loads(system)
+    structure = analysis_structure(system)
     total = sum(l.magnitude for l in loads)
     cases = []
     for support, load in zip(system.bearings, loads):
         resolved = merge_options(options or ModelOptions(), support.options)
         resolved = seam_from_load(resolved, load.away_from_gravity_deg)
-        share = system.body.mass * load.magnitude / total
+        share = structure.total_mass * load.magnitude / total
         try:
             cases.append(resolve_case(support.geometry, Rotor(share), load.magnitude,
                                       options=resolved, grid=grid, cache=cache))
         except ParameterError as exc:
             raise ParameterError(f"bearing {support.name}: {exc.name}", exc.value,
                                  exc.rule) from None
-    return RotorCase(system, loads, tuple(cases), transformations(system, loads), grid, cache)
+    return RotorCase(system, loads, tuple(cases), transformations(system, loads, structure),
+                     grid, cache, structure)
 
 
 class BearingState:

@@ -13,7 +13,8 @@ forward modes near 12,000 rpm) their shapes exchange within one speed step, so t
 decide there but the continuation can. The other modes at a speed are matched to the remaining
 tracks' last modes by the optimal assignment on the cost (1 − MAC) + 4 |s − s_pred|/|s_pred|,
 MAC = |d_aᴴ d_b|²/(|d_a|² |d_b|²) the modal assurance criterion of the orbits at the two
-bearings d = (X_A, Y_A, X_B, Y_B) [m] (one unit for all four, unlike q = (x, y, ψx, ψy)),
+bearings d = (X_A, Y_A, X_B, Y_B) [m] (one unit for all four, unlike q = (x, y, ψx, ψy);
+read through the structure's stations, S(z_k) q, for any structure),
 s_pred the track's prediction (per second). A match costing more than :data:`MAX_COST` starts a
 new track instead.
 
@@ -67,9 +68,12 @@ SAME_FREQUENCY = 0.05
 _UNSTABLE = (ONSET, UNSTABLE_LOW)
 
 
-def orbit_vector(mode, positions) -> np.ndarray:
-    """d = (X_A, Y_A, X_B, Y_B) [m] of a mode's rotor amplitude at the bearings."""
-    return np.concatenate([station_matrix(z) @ mode.vector for z in positions])
+def orbit_vector(mode, positions, structure=None) -> np.ndarray:
+    """d = (X_A, Y_A, X_B, Y_B) [m] of a mode's rotor amplitude at the bearings (through the
+    structure's stations, :mod:`gfbopt.rotor.structure`; None: the rigid body)."""
+    if structure is None:
+        return np.concatenate([station_matrix(z) @ mode.vector for z in positions])
+    return np.concatenate([structure.station(z) @ mode.vector for z in positions])
 
 
 def mac(a: np.ndarray, b: np.ndarray) -> float:
@@ -91,13 +95,13 @@ def predicted(track: list, speed: float, omega: float) -> list:
         (speed - s1) / (s1 - s0))]
 
 
-def cost(track: list, mode, speed: float, omega: float, positions) -> float:
+def cost(track: list, mode, speed: float, omega: float, positions, structure=None) -> float:
     """(1 − MAC with the track's last mode) + :data:`FREQUENCY_WEIGHT` × the distance of the
     mode's eigenvalue from the track's (nearest) prediction, relative (module docstring)."""
     jump = min(abs(mode.eigenvalue * omega - g) / abs(g)
                for g in predicted(track, speed, omega))
-    shape_change = 1.0 - mac(orbit_vector(track[-1][1], positions),
-                             orbit_vector(mode, positions))
+    shape_change = 1.0 - mac(orbit_vector(track[-1][1], positions, structure),
+                             orbit_vector(mode, positions, structure))
     return shape_change + FREQUENCY_WEIGHT * jump
 
 
@@ -111,7 +115,7 @@ def guesses(tracks: list, active: list, speed: float, omega: float) -> list:
 
 
 def assign(tracks: list, active: list, speed: float, omega: float, modes: list,
-           positions, starts=()) -> list:
+           positions, starts=(), structure=None) -> list:
     """Append each of ``modes`` to its track (or a new one); the new list of active tracks.
     ``tracks``: lists of (speed, mode, omega); ``starts``: the active tracks' guesses
     (:func:`guesses`).  A track of two points or more whose guess has a root nearest it
@@ -133,7 +137,7 @@ def assign(tracks: list, active: list, speed: float, omega: float, modes: list,
         used.add(c)
     rest = [r for r in range(len(active)) if r not in linked]
     free = [c for c in range(len(modes)) if c not in used]
-    matrix = np.array([[cost(tracks[active[r]], modes[c], speed, omega, positions)
+    matrix = np.array([[cost(tracks[active[r]], modes[c], speed, omega, positions, structure)
                         for c in free] for r in rest])
     rows, cols = linear_sum_assignment(matrix) if matrix.size else ((), ())
     for i, j in zip(rows, cols):

@@ -16,6 +16,7 @@ from gfbopt.rotor import Rotor, onset_speed
 from gfbopt.rotor.campbell import FullSystem, rotor_estimates
 from gfbopt.rotor.matched_whirl import crossings
 from gfbopt.rotor.rigid import transformation
+from gfbopt.rotor.structure import RigidStructure
 from gfbopt.rotor.supports import resolve_rotor, support_states
 from gfbopt.rotor.system import rotor_onsets, without_gyroscopics
 
@@ -62,7 +63,7 @@ def _constant_bearings(k: float, c: float, omega: float, positions):
     impedance at whirl ratio γ is k + iγω c (no frequency dependence)."""
     body = SimpleNamespace(mass=3.2, transverse_inertia=0.012, polar_inertia=0.002)
     state = SimpleNamespace(impedance=lambda g: (k + 1j * g * omega * c) * np.eye(2))
-    rotor = SimpleNamespace(system=SimpleNamespace(body=body),
+    rotor = SimpleNamespace(system=SimpleNamespace(body=body), structure=RigidStructure(body),
                             transforms=tuple(transformation(z, 0.0) for z in positions))
     return rotor, SimpleNamespace(omega=omega, states=(state, state)), body
 
