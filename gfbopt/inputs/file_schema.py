@@ -274,6 +274,26 @@ BEARING = Table("bearing", "the bearing's dimensions and materials, SI units", r
     "non-dimensional model's bounds)",
 ))
 
+#: the bumps' Coulomb friction (:mod:`gfbopt.physics.friction`) and hardening
+#: (:mod:`gfbopt.physics.hardening`) in ``[model]``
+BUMP_FIELDS = (
+    Field("friction_coefficient", "number", "-", "Coulomb friction coefficient μ_f of the "
+          "slider beside each bump (spring–slider element; slip force per unit area μ_f "
+          "times the local gauge pressure); default 0: no friction", default=None, low=0.0,
+          high=2.0, why="dry metal contacts lie near 0.1–1"),
+    Field("friction_stiffness_ratio", "number", "-", "stiffness of the friction element's "
+          "spring over the bump's, κ = k_f/k_b (the stuck foundation is k_b (1 + κ)); "
+          "default 1", default=None, positive=True, high=1e3, why="k_f/k_b"),
+    Field("bump_height", "number", "m", "bump height h_b, the hard limit of the hardening "
+          "bump", default=None, positive=True, high=1e-2, why="a bump foil: below 1 cm"),
+    Field("hardening_limit", "number", "m", "deflection δ_lim at which the hardening bump "
+          "k0/(1 − δ/δ_lim)^n is flat; <= bump_height; default bump_height", default=None,
+          positive=True),
+    Field("hardening_exponent", "number", "-", "exponent n of the hardening bump "
+          "k0/(1 − δ/δ_lim)^n; default 0: off (the linear bump)", default=None, low=0.0,
+          high=10.0, why="n = 1–3 covers a gentle to an abrupt stiffening"),
+)
+
 #: the optional ``[model]`` table: the formulation the bearing is analysed with
 #: (:class:`~gfbopt.inputs.options.ModelOptions`); what it does not state takes the defaults
 #: of :func:`~gfbopt.inputs.options.resolve_model_options`
@@ -293,6 +313,14 @@ MODEL = Table("model", "the formulation the bearing is analysed with by every ro
           choices=DEFLECTION_LAWS),
     Field("loss_factor", "number", "-", "structural loss factor η of the bumps; default 0",
           default=None, low=0.0, high=1.0, why="a fraction: 0.2 means 20 %"),
+    *BUMP_FIELDS,
+), rules=(
+    "friction_coefficient > 0 needs a bump foundation of foil 'simple' (refused with foil "
+    "'rigid' or S = 0: no bumps to rub; and with foil 'beam': its foundation has no "
+    "per-unit friction element yet)",
+    "hardening_limit <= bump_height (the bump height is the hard limit); hardening_exponent "
+    "> 0 needs bump_height, and is refused until the static engine carries the hardening "
+    "bump",
 ))
 
 #: the bearing as built (helper "bore", :mod:`gfbopt.inputs.bore_si`, which builds them and

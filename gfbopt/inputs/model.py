@@ -21,6 +21,13 @@ MAX_TOP_FOIL_COEFFICIENT = 1e4
 MAX_BEARING_NUMBER = 1e4
 #: largest compliance S [-] accepted: a foundation 1000 times softer than the thesis's S = 1
 MAX_COMPLIANCE = 1e3
+#: largest friction coefficient μ_f [-] accepted: dry metal contacts lie near 0.1–1
+MAX_FRICTION_COEFFICIENT = 2.0
+#: largest stuck friction-element stiffness over the bump's, k_f/k_b [-] accepted
+MAX_FRICTION_STIFFNESS_RATIO = 1e3
+#: foil models whose bump foundation carries the friction element (the rigid surface has no
+#: bumps; the beam's foundation has no per-unit factor yet, see physics/friction.py)
+FRICTION_FOILS = ("simple",)
 
 
 #: the unit-less radian names of gfbopt <= 0.2 and what replaced them (degrees at the edge)
@@ -107,6 +114,19 @@ class BearingModel:
         depend on it) and needs a foundation: η > 0 is refused with foil='rigid' or S = 0.
         The linear analysis supports it (:mod:`gfbopt.linear`); an engine that does not is
         refused a damped model by :func:`gfbopt.physics.foil_laws.foil_law`.
+    friction_coefficient : μ_f [-], 0 ≤ μ_f ≤ 2, of the Coulomb slider beside each bump
+        (default 0: no friction, today's elastic foundation exactly).  Each foil unit (θ row,
+        or node for the local law) has a spring–slider (Jenkins) element in parallel with its
+        bump (:mod:`gfbopt.physics.friction`): spring k_f = κ k_b, slip force per unit area
+        μ_f (p − p_a)⁺ from the local gauge pressure, slip displacement x_s/c = μ_f q⁺ S/κ.
+        Statics: friction does not hold a static deflection (the slider is relaxed at the
+        equilibrium), so the equilibrium does not depend on it.  Linear analysis: stuck for
+        small orbits (foundation stiffness k_b (1 + κ) where q > 0), the describing function
+        at a stated orbit amplitude (:mod:`gfbopt.linear.friction_onset`).  Needs a bump
+        foundation of foil 'simple' (refused with 'rigid', S = 0 and 'beam').
+    friction_stiffness_ratio : κ = k_f/k_b [-], 0 < κ ≤ 1000 (default 1): the friction
+        element's spring over the bump's stiffness (its stuck stiffness); used only when
+        μ_f > 0.
     as_built : the bearing as built (:class:`gfbopt.inputs.bore.AsBuilt`: bore profile,
         pads, bump zones), or None for a round bore, one top foil and a uniform foundation.
     """
@@ -123,6 +143,8 @@ class BearingModel:
     subambient: str = "full"
     loss_factor: float = 0.0
     as_built: Optional[AsBuilt] = None
+    friction_coefficient: float = 0.0
+    friction_stiffness_ratio: float = 1.0
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "bearing_number",
@@ -168,8 +190,37 @@ class BearingModel:
                 if self.foil == "rigid" else
                 "must be 0 when the compliance S = 0 (the foundation does not deflect, so "
                 "there is nothing for its structural damping to act on)"))
+        self._check_friction()
         if self.as_built is not None:
             check_as_built(self)
+
+    def _check_friction(self) -> None:
+        mu = check_nonnegative("friction_coefficient", self.friction_coefficient)
+        if mu > MAX_FRICTION_COEFFICIENT:
+            raise ParameterError("friction_coefficient", self.friction_coefficient,
+                                 f"must be <= {MAX_FRICTION_COEFFICIENT:g} (dry metal contacts "
+                                 "lie near 0.1–1)")
+        kappa = check_positive("friction_stiffness_ratio", self.friction_stiffness_ratio)
+        if kappa > MAX_FRICTION_STIFFNESS_RATIO:
+            raise ParameterError("friction_stiffness_ratio", self.friction_stiffness_ratio,
+                                 f"must be <= {MAX_FRICTION_STIFFNESS_RATIO:g} (k_f/k_b)")
+        object.__setattr__(self, "friction_coefficient", mu)
+        object.__setattr__(self, "friction_stiffness_ratio", kappa)
+        if mu > 0.0 and self.is_rigid:
+            raise ParameterError("friction_coefficient", self.friction_coefficient, (
+                "must be 0 with foil='rigid' (a rigid bearing has no bumps to rub)"
+                if self.foil == "rigid" else "must be 0 when the compliance S = 0 (the bumps "
+                "do not move, so nothing slides)"))
+        if mu > 0.0 and self.foil not in FRICTION_FOILS:
+            raise ParameterError("friction_coefficient", self.friction_coefficient,
+                                 f"is not carried by the {self.foil} foil model (its "
+                                 "foundation has no per-unit friction element yet); use "
+                                 f"foil {', '.join(repr(f) for f in FRICTION_FOILS)}")
+
+    @property
+    def has_friction(self) -> bool:
+        """True when the bumps carry Coulomb friction (μ_f > 0)."""
+        return self.friction_coefficient > 0.0
 
     @property
     def seam_angle_rad(self) -> Optional[float]:
@@ -205,6 +256,9 @@ class BearingModel:
                 "compression_only": self.compression_only, "subambient": self.subambient,
                 "loss_factor": self.loss_factor,
                 "film_convention": film_convention(self.film, self.seam_angle_deg, self.foil),
+                **({} if not self.has_friction else {
+                    "friction_coefficient": self.friction_coefficient,
+                    "friction_stiffness_ratio": self.friction_stiffness_ratio}),
                 **({} if self.as_built is None else self.as_built.describe())}
 
     def groups(self) -> dict:

@@ -28,9 +28,10 @@ from dataclasses import dataclass
 from typing import Optional, Union
 
 from ..errors import ParameterError
-from .checks import (check_choice, check_loss_factor, check_seam_angle_deg,
-                     refuse_radian_seam_angle)
+from .checks import (check_choice, check_loss_factor, check_nonnegative, check_positive,
+                     check_seam_angle_deg, refuse_radian_seam_angle)
 from .model import DEFLECTION_LAWS, FILM_MODELS, FOIL_MODELS, film_convention
+from ..physics.hardening import check_hardening_limit
 
 #: ``seam_angle_deg`` value of the thesis's convention: the seam on the maximum-film line
 MAX_FILM = "max_film"
@@ -38,7 +39,11 @@ MAX_FILM = "max_film"
 DEFAULT_SEAM_ANGLE_DEG = 180.0
 
 #: the options of a ``[model]`` table, in the order outputs state them
-OPTION_NAMES = ("film", "seam_angle_deg", "foil", "deflection_law", "loss_factor")
+OPTION_NAMES = ("film", "seam_angle_deg", "foil", "deflection_law", "loss_factor",
+                "friction_coefficient", "friction_stiffness_ratio", "bump_height",
+                "hardening_limit", "hardening_exponent")
+#: the bump options (friction and hardening): stated in outputs only when stated
+BUMP_OPTION_NAMES = OPTION_NAMES[5:]
 
 
 @refuse_radian_seam_angle
@@ -57,6 +62,13 @@ class ModelOptions:
     foil : 'rigid', 'simple' or 'beam'
     deflection_law : 'mean' (W = S(P̄ − 1)) or 'local' (W = S(P − 1))
     loss_factor : structural loss factor η of the bump foundation [-], 0 ≤ η ≤ 1
+    friction_coefficient : μ_f [-] of the Coulomb slider beside each bump (0: none), and
+    friction_stiffness_ratio : κ = k_f/k_b [-] of its spring
+        (:class:`~gfbopt.inputs.model.BearingModel`, :mod:`gfbopt.physics.friction`)
+    bump_height : h_b [m]; hardening_limit : δ_lim [m] (≤ h_b; default h_b);
+    hardening_exponent : n [-] (0: off) of the hardening bump k0/(1 − δ/δ_lim)^n
+        (:mod:`gfbopt.physics.hardening`).  Checked here; not yet carried by the static
+        engine, so a model with n > 0 is refused by :meth:`model_kwargs` (one line).
     """
 
     film: Optional[str] = None
@@ -64,6 +76,11 @@ class ModelOptions:
     foil: Optional[str] = None
     deflection_law: Optional[str] = None
     loss_factor: Optional[float] = None
+    friction_coefficient: Optional[float] = None
+    friction_stiffness_ratio: Optional[float] = None
+    bump_height: Optional[float] = None
+    hardening_limit: Optional[float] = None
+    hardening_exponent: Optional[float] = None
 
     def __post_init__(self) -> None:
         if self.film is not None:
@@ -77,6 +94,24 @@ class ModelOptions:
                                check_seam_angle_deg("seam_angle_deg", self.seam_angle_deg))
         if self.loss_factor is not None:
             object.__setattr__(self, "loss_factor", check_loss_factor(self.loss_factor))
+        self._check_bump_options()
+
+    def _check_bump_options(self) -> None:
+        """Friction and hardening: finite, in range, δ_lim ≤ h_b (one line each)."""
+        for key, check in (("friction_coefficient", check_nonnegative),
+                           ("friction_stiffness_ratio", check_positive),
+                           ("bump_height", check_positive), ("hardening_limit", check_positive),
+                           ("hardening_exponent", check_nonnegative)):
+            if getattr(self, key) is not None:
+                object.__setattr__(self, key, check(key, getattr(self, key)))
+        if self.hardening_limit is not None:
+            if self.bump_height is None:
+                raise ParameterError("hardening_limit", self.hardening_limit, "needs "
+                                     "bump_height (the limit may not exceed the bump height)")
+            check_hardening_limit(self.hardening_limit, self.bump_height)
+        if (self.hardening_exponent or 0.0) > 0.0 and self.bump_height is None:
+            raise ParameterError("hardening_exponent", self.hardening_exponent, "needs "
+                                 "bump_height [m] (the hard limit of the hardening bump)")
 
     @classmethod
     def from_table(cls, table: dict, where: str = "model") -> "ModelOptions":
@@ -105,8 +140,17 @@ class ModelOptions:
             raise ParameterError("options", self, "are not complete: apply "
                                  "resolve_model_options first")
         seam = None if self.seam_angle_deg in (None, MAX_FILM) else self.seam_angle_deg
+        if (self.hardening_exponent or 0.0) > 0.0:
+            raise ParameterError("hardening_exponent", self.hardening_exponent,
+                                 "the hardening bump (gfbopt.physics.hardening) is checked but "
+                                 "not yet carried by the static engine, whose equilibrium "
+                                 "would ignore it; use 0 (off)")
+        friction = {key: getattr(self, key) for key in ("friction_coefficient",
+                                                        "friction_stiffness_ratio")
+                    if getattr(self, key) is not None}
         return dict(foil=self.foil, film=self.film, seam_angle_deg=seam,
-                    deflection_law=self.deflection_law, loss_factor=self.loss_factor)
+                    deflection_law=self.deflection_law, loss_factor=self.loss_factor,
+                    **friction)
 
     def convention(self) -> str:
         """One line naming the film convention, for every output."""
@@ -117,9 +161,11 @@ class ModelOptions:
 
     def to_dict(self) -> dict:
         """The options as outputs state them (angles in degrees)."""
+        bump = {key: getattr(self, key) for key in BUMP_OPTION_NAMES
+                if getattr(self, key) is not None}
         return {"film": self.film, "seam_angle_deg": self.seam_angle_deg,
                 "foil": self.foil, "deflection_law": self.deflection_law,
-                "loss_factor": self.loss_factor, "film_convention": self.convention()}
+                "loss_factor": self.loss_factor, **bump, "film_convention": self.convention()}
 
 
 def merge_options(stated: ModelOptions, base: ModelOptions) -> ModelOptions:
@@ -135,7 +181,8 @@ def merge_options(stated: ModelOptions, base: ModelOptions) -> ModelOptions:
         return resolve_model_options(stated)
     if stated.film is not None and stated.film != base.film:
         base = ModelOptions(foil=base.foil, deflection_law=base.deflection_law,
-                            loss_factor=base.loss_factor)
+                            loss_factor=base.loss_factor,
+                            **{key: getattr(base, key) for key in BUMP_OPTION_NAMES})
     return resolve_model_options(stated.over(base))
 
 
@@ -191,4 +238,5 @@ def resolve_model_options(stated: Optional[ModelOptions] = None) -> ModelOptions
         seam = DEFAULT_SEAM_ANGLE_DEG
     return ModelOptions(film=film, seam_angle_deg=seam, foil=foil,
                         deflection_law=s.deflection_law or "mean",
-                        loss_factor=0.0 if s.loss_factor is None else s.loss_factor)
+                        loss_factor=0.0 if s.loss_factor is None else s.loss_factor,
+                        **{key: getattr(s, key) for key in BUMP_OPTION_NAMES})

@@ -72,10 +72,10 @@ def whirling_modes(lin: Linearisation, mass: float, count: int = 8,
     """The eigenvalues s of the rotor–bearing system at mass M̄ [-] with whirl ratio |Im s|
     in :data:`MODE_BAND`: shift-invert eigenvalues of the semi-discrete system nearest
     i·γ for every γ of ``shifts`` (``count`` each; and −i·γ with structural damping, whose
-    foundation depends on the whirl direction), duplicates removed.  Re s is the growth rate per radian of shaft
-    rotation, Im s the whirl ratio.  Checked against a dense eigenvalue computation of the
+    foundation depends on the whirl direction), duplicates removed.  Re s is the growth rate
+    per radian of shaft rotation, Im s the whirl ratio.  Checked against a dense eigenvalue computation of the
     whole semi-discrete system in tests/verification/test_least_stable_mode.py."""
-    signs = (1, -1) if lin.loss_factor > 0 and lin.compliance is not None else (1,)
+    signs = (1, -1) if lin.hysteretic else (1,)
     found: list = []
     for sign in signs:
         for gamma in shifts:

@@ -22,6 +22,7 @@ from ..inputs.model import renamed_radian_attribute
 from ..inputs.conversions import rpm_to_rad_per_s, stiffness_scale, whirl_frequency_hz
 from ..physics.compliance import ComplianceTerms, PerturbationContext
 from ..physics.foil_laws import foil_law
+from .friction_units import FrictionUnits
 from ..static import StaticSolution, StaticSolver, solver_for
 from ..static.build import row_values
 from ..sparse_lu import Factoriser, factor
@@ -36,6 +37,9 @@ class Linearisation:
     c_xi : ∂E/∂(X, Y) (n × 2);  force : ∂(F_X, F_Y)/∂y (2 × n);  load : W̄0 [-];
     static : the equilibrium;  compliance : the entries of (a, b) the bump foundation carries
     (None for a rigid bearing);  loss_factor : the foundation's structural loss factor η [-];
+    friction : the bumps' spring–slider elements (:class:`~.friction_units.FrictionUnits`,
+    None without friction);  deflection_amplitude : |δW| per foil unit at which their
+    describing function is taken (None: small orbits, stuck where loaded);
     factoriser : the build's sparse LUs, each pattern's order kept (:mod:`gfbopt.sparse_lu`;
     None: a fresh order for every LU).
     """
@@ -49,20 +53,48 @@ class Linearisation:
     compliance: Optional[ComplianceTerms] = None
     loss_factor: float = 0.0
     factoriser: Optional[Factoriser] = None
+    friction: Optional[FrictionUnits] = None
+    deflection_amplitude: Optional[np.ndarray] = None
 
     @property
     def size(self) -> int:
         return self.a.shape[0]
 
-    def stiffness_factor(self, s: complex) -> complex:
-        """k = 1 + iη sign(Im s): the foundation stiffness over its static value at s [-]."""
-        return 1.0 + 1j * self.loss_factor * float(np.sign(complex(s).imag))
+    @property
+    def hysteretic(self) -> bool:
+        """True when the foundation's damping is rate independent (η > 0, or friction
+        slipping at the stated amplitude): it then depends on sign(Im s)."""
+        if self.compliance is None:
+            return False
+        return self.loss_factor > 0 or (self.friction is not None
+                                        and self.deflection_amplitude is not None)
+
+    def stiffness_factor(self, s: complex):
+        """k = 1 + iη sign(Im s): the foundation stiffness over its static value at s [-].
+
+        With Coulomb friction (``friction``) one factor per foil unit, the bump's plus the
+        friction element's describing function at the unit's deflection amplitude
+        (``deflection_amplitude``; None: small orbits, every loaded unit stuck)."""
+        sign = float(np.sign(complex(s).imag))
+        bump = 1.0 + 1j * self.loss_factor * sign
+        if self.friction is None:
+            return bump
+        return bump + self.friction.factor(self.deflection_amplitude, sign)
+
+    def at_amplitude(self, deflection_amplitude: Optional[np.ndarray]) -> "Linearisation":
+        """The same linearisation with the friction elements' describing function evaluated
+        at these deflection amplitudes |δW| per foil unit [-] (None: small orbits)."""
+        if self.friction is None:
+            raise ParameterError("friction_coefficient", 0.0, "must be > 0 for an "
+                                 "amplitude-dependent foundation (the bumps have no friction)")
+        amp = None if deflection_amplitude is None else np.asarray(deflection_amplitude, float)
+        return replace(self, deflection_amplitude=amp)
 
     def system(self, s: complex, stiffness_factor: Optional[complex] = None) -> tuple:
         """(A, B) at complex frequency s: the foundation stiffness is multiplied by
         ``stiffness_factor`` (default :meth:`stiffness_factor` of s; 1 gives (a, b) itself)."""
         k = self.stiffness_factor(s) if stiffness_factor is None else stiffness_factor
-        if k == 1.0 or self.compliance is None:
+        if self.compliance is None or (np.ndim(k) == 0 and k == 1.0):
             return self.a, self.b
         return self.compliance.apply(self.a, self.b, k)
 
@@ -108,8 +140,12 @@ def linearise(solution: StaticSolution, solver: Optional[StaticSolver] = None) -
                         np.concatenate([np.arange(n_u), blocks.film_of_pressure]))),
                       shape=(n, n))
     terms = law.compliance_terms(_perturbation_context(solution, solver, n))
+    friction = None
+    if getattr(model, "friction_coefficient", 0.0) > 0 and terms is not None:
+        friction = FrictionUnits.of(terms, model.friction_coefficient,
+                                    model.friction_stiffness_ratio)
     return Linearisation(solution, blocks.a, b, blocks.c_xi, blocks.force, solution.load,
-                         terms, model.loss_factor, solver.factoriser)
+                         terms, model.loss_factor, solver.factoriser, friction)
 
 
 def _perturbation_context(solution: StaticSolution, solver: StaticSolver,
@@ -254,15 +290,26 @@ def coefficients(lin: Linearisation, whirl_ratios: Sequence[float]) -> Coefficie
     c = np.empty((g.size, 2, 2))
     for n, gamma in enumerate(g):
         if gamma == 0.0:
-            lu = spla.splu(lin.a.tocsc())
+            # the zero-frequency foundation: the bump's, plus the friction elements' in-phase
+            # stiffness (real at sign 0) when the bumps rub
+            a0, b0 = ((lin.a, lin.b) if lin.friction is None else
+                      (_real_part(m) for m in lin.system(0.0)))
+            lu = spla.splu(a0.tocsc())
             y0 = lu.solve(lin.c_xi)
             k[n] = lin.force @ y0
-            damped = lin.loss_factor > 0 and lin.compliance is not None
-            c[n] = math.nan if damped else -(lin.force @ lu.solve(lin.b @ y0))
+            c[n] = math.nan if lin.hysteretic else -(lin.force @ lu.solve(b0 @ y0))
         else:
             z = impedance(lin, 1j * gamma)
             k[n], c[n] = z.real, z.imag / gamma
     return Coefficients(g, k, c, lin.static.attitude_angle_rad)
+
+
+def _real_part(m: sp.spmatrix) -> sp.csc_matrix:
+    """The real part of a sparse matrix as its own contiguous csc matrix (SuperLU refuses the
+    strided view that ``m.real`` holds)."""
+    m = sp.csc_matrix(m)
+    return sp.csc_matrix((np.ascontiguousarray(m.data.real), m.indices.copy(), m.indptr.copy()),
+                         shape=m.shape)
 
 
 # ------------------------------------------------------------- dimensional output

@@ -267,7 +267,7 @@ def semi_discrete_eigenvalues(lin: Linearisation, mass: float, shift: complex,
     others belong to the wrong foundation); a shift on the real axis is then refused.
     """
     m = _check_positive_mass(mass) * lin.load
-    damped = lin.loss_factor > 0 and lin.compliance is not None
+    damped = lin.hysteretic
     if damped and complex(shift).imag == 0:
         raise ParameterError("shift", shift, "must have Im ≠ 0 with structural damping "
                              "(η > 0): the hysteretic foundation depends on the whirl "

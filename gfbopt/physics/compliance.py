@@ -79,22 +79,51 @@ class ComplianceTerms:
     ('stiffness': the beam's foundation term).  k = 1 gives (A, B) exactly.
 
     a : n × n sparse; b : n × n sparse, or None when the squeeze term carries no compliance.
+
+    Foil units (for a foundation stiffness that differs from unit to unit, e.g. the friction
+    element's describing function, :mod:`gfbopt.physics.friction`): each unit is one θ row
+    (axial-mean law) or one unknown pressure node (local law) with its own bump.  The entries
+    of unit u sit in column ``unit_columns[u]`` of a and b only, so a factor k_u per unit
+    scales those columns (:meth:`apply` with an array); its deflection perturbation is
+    δW_u = ``unit_gain[u]`` ŷ[unit_columns[u]] / k_u, under the gauge pressure
+    ``unit_gauge[u]`` (P̄ − 1 or P − 1) on a bump of compliance ``unit_compliance[u]`` [-].
+    None for a law without units (the beam).
     """
 
     a: sp.csc_matrix
     b: Optional[sp.csc_matrix]
     scales_with: str
+    unit_columns: Optional[np.ndarray] = None
+    unit_gain: Optional[np.ndarray] = None
+    unit_gauge: Optional[np.ndarray] = None
+    unit_compliance: Optional[np.ndarray] = None
 
-    def multiplier(self, stiffness_factor: complex) -> complex:
-        """m: the factor on these entries for a foundation stiffness k·K_f [-]."""
-        return 1.0 / stiffness_factor if self.scales_with == "compliance" else stiffness_factor
+    def multiplier(self, stiffness_factor):
+        """m: the factor on these entries for a foundation stiffness k·K_f [-] (k a number,
+        or an array over the units)."""
+        if self.scales_with == "compliance":
+            return 1.0 / np.asarray(stiffness_factor) if np.ndim(stiffness_factor) else \
+                1.0 / stiffness_factor
+        return stiffness_factor
 
-    def apply(self, a: sp.spmatrix, b: sp.spmatrix, stiffness_factor: complex) -> tuple:
-        """(A, B) with the foundation stiffness multiplied by ``stiffness_factor`` k [-]."""
+    def apply(self, a: sp.spmatrix, b: sp.spmatrix, stiffness_factor) -> tuple:
+        """(A, B) with the foundation stiffness multiplied by ``stiffness_factor`` k [-]: one
+        number for every unit, or an array with one factor per foil unit."""
+        if np.ndim(stiffness_factor):
+            if self.unit_columns is None:
+                raise ValueError("this foil law has no foil units: one stiffness factor only")
+            scale = np.zeros(a.shape[1], dtype=complex)
+            scale[self.unit_columns] = self.multiplier(stiffness_factor) - 1.0
+            d = sp.diags(scale)
+            return (a + self.a @ d, b if self.b is None else b + self.b @ d)
         m = self.multiplier(stiffness_factor) - 1.0
         if m == 0:
             return a, b
         return a + m * self.a, (b if self.b is None else b + m * self.b)
+
+    def deflection(self, y: np.ndarray, stiffness_factor=1.0) -> np.ndarray:
+        """δW per foil unit from a perturbation ŷ (complex) and the units' factors k_u."""
+        return self.unit_gain * y[self.unit_columns] / stiffness_factor
 
 
 def embed(block: sp.spmatrix, rows: np.ndarray, cols: np.ndarray, n: int) -> sp.csc_matrix:

@@ -102,6 +102,12 @@ class FoilLaw(abc.ABC):
     damped_state: Optional[str] = None
     #: why the transient engines do not model η for this law, if they do not
     damped_transient_refusal: str = ""
+    #: engines that model the bumps' Coulomb friction (``BearingModel.friction_coefficient``,
+    #: a spring–slider element beside each bump, :mod:`gfbopt.physics.friction`): the static
+    #: equilibrium (friction holds no static deflection, so it is today's) and the linear
+    #: analysis (stuck stiffness for small orbits; the describing function at a stated
+    #: amplitude).  Others are refused a model with friction by :func:`foil_law`.
+    friction_engines: tuple = ()
 
     # ------------------------------------------------------------------ static model
     def extra_unknowns(self, grid) -> int:
@@ -191,6 +197,7 @@ class SimpleLaw(FoilLaw):
     engines = ("static", "linear", "rk4", "rkc", "bdf")
     loss_factor_engines = ("linear", "rk4", "rkc", "bdf")
     damped_state = "rows"
+    friction_engines = ("static", "linear")
 
     def static_film(self, h_rigid, lifted, mean_gauge, p_full, u, foil, st, data):
         w_rows = simple_deflection(mean_gauge, foil.compliance, foil.compression_only)
@@ -211,7 +218,11 @@ class SimpleLaw(FoilLaw):
         values = (-ctx.rows() / (2.0 * ctx.length_ratio)
                   * active(ctx.mean_gauge, ctx.compression_only))
         a = sp.csc_matrix((values, (ctx.film_rows, ctx.axial_cols)), shape=(ctx.size, ctx.size))
-        return ComplianceTerms(a, None, "compliance")
+        # foil units: one per θ row, δW_i = S c_i δQ_i/(2 L/D) (column Q_i)
+        rows_s = np.broadcast_to(np.asarray(ctx.rows(), dtype=float), ctx.mean_gauge.shape)
+        return ComplianceTerms(a, None, "compliance", unit_columns=np.asarray(ctx.axial_cols),
+                               unit_gain=-values, unit_gauge=np.asarray(ctx.mean_gauge),
+                               unit_compliance=np.array(rows_s))
 
     def recover(self, phi, hr, tm, guess=None, cache=None):
         # On each row H = a with a = H_r + S (P̄ − 1) and P = Φ/a, P̄ = Φ̃/a + c, so
@@ -243,6 +254,7 @@ class RigidLaw(SimpleLaw):
     static_structure = "simple"
     loss_factor_engines = ()
     damped_state = None
+    friction_engines = ()
 
     def compliance_terms(self, ctx):
         return None
@@ -261,6 +273,7 @@ class LocalLaw(FoilLaw):
     engines = ("static", "linear", "rk4", "rkc")
     loss_factor_engines = ("linear", "rk4", "rkc")
     damped_state = "nodes"
+    friction_engines = ("static", "linear")
     lifted_film_is_total = False
 
     def static_film(self, h_rigid, lifted, mean_gauge, p_full, u, foil, st, data):
@@ -289,7 +302,10 @@ class LocalLaw(FoilLaw):
         a = embed(ctx.film_sensitivity() @ sp.diags(slope), rows, rows, ctx.size)
         b = embed(sp.diags(-2.0 * ctx.bearing_number * ctx.pressure * slope), rows, rows,
                    ctx.size)
-        return ComplianceTerms(a, b, "compliance")
+        # foil units: one per unknown node, δW_k = S c_k δP_k (column P_k)
+        nodes_s = np.broadcast_to(np.asarray(ctx.nodes(), dtype=float), ctx.pressure.shape)
+        return ComplianceTerms(a, b, "compliance", unit_columns=rows, unit_gain=slope,
+                               unit_gauge=ctx.pressure - 1.0, unit_compliance=np.array(nodes_s))
 
     def recover(self, phi, hr, tm, guess=None, cache=None):
         # S P² + (H_r − S) P − Φ = 0 per node: closed form.
@@ -396,12 +412,24 @@ FOIL_LAWS: dict[str, FoilLaw] = {law.name: law for law in (RigidLaw(), SimpleLaw
 def foil_law(model, engine: Optional[str] = None) -> FoilLaw:
     """The foil law of a :class:`~gfbopt.inputs.model.BearingModel` (``model.foil_law``).
 
-    A model with structural damping (η > 0) is handed only to an engine that names itself
-    and models η (:attr:`FoilLaw.loss_factor_engines`): no engine ignores it silently.
+    A model with Coulomb friction (μ_f > 0) is handed only to an engine in
+    :attr:`FoilLaw.friction_engines`.  A model with structural damping (η > 0) is handed only
+    to an engine that names itself and models η (:attr:`FoilLaw.loss_factor_engines`): no
+    engine ignores it silently.
     ``engine='transient'``: the model all integrators share (each checks its own name again,
     :meth:`FoilLaw.check_engine`), handed on when one of them models η for the law.
     """
     law = FOIL_LAWS[model.foil_law]
+    mu = getattr(model, "friction_coefficient", 0.0)
+    if mu > 0.0 and engine not in law.friction_engines:
+        who = ("the transient engines" if engine == "transient" else
+               f"the {engine} engine" if engine else "an unnamed engine")
+        raise ParameterError("friction_coefficient", mu, "Coulomb friction of the bumps is "
+                             f"modelled for the {law.name} foil law by "
+                             f"{', '.join(law.friction_engines) or 'no engine'} only, not by "
+                             f"{who} (the slider's state law for transients is "
+                             "gfbopt.physics.friction_state, not yet in the integrated "
+                             "state); use friction_coefficient = 0")
     eta = getattr(model, "loss_factor", 0.0)
     if eta <= 0.0:
         return law

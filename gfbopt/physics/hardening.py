@@ -42,7 +42,8 @@ import numpy as np
 from ..errors import ParameterError
 from ..inputs.checks import check_positive
 
-__all__ = ["HardeningLaw", "check_hardening_limit", "describe", "hardened_deflection", "hardened_reaction", "hardened_stiffness"]
+__all__ = ["HardeningLaw", "check_hardening_limit", "describe", "hardened_deflection",
+           "hardened_reaction", "hardened_stiffness"]
 
 
 @dataclass(frozen=True)
