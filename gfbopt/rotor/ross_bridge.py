@@ -14,12 +14,26 @@ N s/m] in the rotor's x–y frame (x along gravity by default; ROSS's x and y ar
 plane), from Z_k(iΩ) rotated out of the bearing's load frame: K = Re(R Z Rᵀ), C = Im(R Z Rᵀ)/Ω.
 :func:`bearing_element` builds the ROSS element (ROSS imported only there).  The same signs as
 ROSS: the bearing force on the shaft is −K u − C u̇.
+
+:func:`write_ross_table` writes one bearing's tables in ROSS 3.x's own file format, the file
+``BearingElement.save_coefficient_table`` writes and ``BearingElement.load`` reads (ROSS 3.1,
+``ross/bearing_seal_element.py``; ``ross.utils.load_data``: TOML through the ``toml``
+package, or JSON by the ``.json`` suffix): one table ``[BearingElement_<tag>]`` — ROSS's load
+takes the file's first table — holding ``n`` (the node), ``tag``, ``speed`` and
+``frequency`` (the axes, rad/s, strictly increasing), every coefficient of the element's
+signature as an n_speed × n_frequency nested list (kxx … cyy from :func:`bearing_tables`;
+kzz, czz and the added masses mxx … mzz zero) and ``radial_clearance`` [m].  Written with
+the standard library only (ROSS need not be installed).
 """
 from __future__ import annotations
 
+import json
+import math
 import os
+import re
 import sys
 import warnings
+from pathlib import Path
 from typing import Sequence
 
 import numpy as np
@@ -154,3 +168,72 @@ def ross_available() -> tuple[bool, str]:
         return False, (f"ROSS {version} is installed; the speed x frequency bearing tables "
                        "and matched whirl need ross-rotordynamics >= 3.0 (Python >= 3.12)")
     return True, ""
+
+
+#: the coefficients of ROSS's BearingElement that gfbopt's tables leave at zero (axial, and
+#: the added masses)
+ZERO_COEFFICIENTS = ("kzz", "czz", "mxx", "myy", "mxy", "myx", "mzz")
+#: ROSS's least recommended number of points per table axis (MIN_RECOMMENDED_AXIS_POINTS)
+ROSS_MIN_AXIS_POINTS = 5
+
+
+def ross_table_data(tables: dict, node: int, tag: str,
+                    radial_clearance: float | None = None) -> dict:
+    """{f"BearingElement_{tag}": {...}}: the content of a ROSS coefficient-table file
+    (module docstring) from :func:`bearing_tables`; ParameterError on a non-finite value or
+    an axis that does not increase."""
+    speed, freq = (np.asarray(tables[k], dtype=float) for k in ("speed", "frequency"))
+    for key, axis in (("speed", speed), ("frequency", freq)):
+        if axis.ndim != 1 or axis.size == 0 or not np.all(np.isfinite(axis)) or (
+                axis.size > 1 and not np.all(np.diff(axis) > 0)):
+            raise ParameterError(key, list(np.ravel(axis)), "must be finite and strictly "
+                                 "increasing [rad/s] (ROSS's table axes)")
+    shape = (speed.size, freq.size)
+    body = {"n": int(node), "tag": str(tag), "speed": speed.tolist(),
+            "frequency": freq.tolist()}
+    for name in NAMES:
+        values = np.asarray(tables[name], dtype=float)
+        if values.shape != shape or not np.all(np.isfinite(values)):
+            raise ParameterError(name, values.shape, f"must be a finite {shape[0]} × "
+                                 f"{shape[1]} table (speed × frequency)")
+        body[name] = values.tolist()
+    for name in ZERO_COEFFICIENTS:
+        body[name] = np.zeros(shape).tolist()
+    if radial_clearance is not None:
+        body["radial_clearance"] = float(radial_clearance)
+    return {f"BearingElement_{tag}": dict(sorted(body.items()))}
+
+
+def write_ross_table(path, tables: dict, node: int, tag: str,
+                     radial_clearance: float | None = None, header: Sequence[str] = ()) -> Path:
+    """Write :func:`ross_table_data` to ``path``: JSON for a ``.json`` suffix (as ROSS
+    decides), TOML otherwise, with ``header`` lines as TOML comments (ignored by readers)."""
+    path = Path(path)
+    data = ross_table_data(tables, node, tag, radial_clearance)
+    if path.suffix.lower() == ".json":
+        path.write_text(json.dumps(data, indent=2) + "\n")
+        return path
+    lines = [f"# {h}" for h in header]
+    for section, body in data.items():
+        lines.append(f"[{_toml_key(section)}]")
+        lines += [f"{_toml_key(k)} = {_toml_value(v)}" for k, v in body.items()]
+    path.write_text("\n".join(lines) + "\n")
+    return path
+
+
+def _toml_key(key: str) -> str:
+    return key if re.fullmatch(r"[A-Za-z0-9_-]+", key) else json.dumps(key)
+
+
+def _toml_value(value) -> str:
+    if isinstance(value, str):
+        return json.dumps(value)          # a JSON string is a TOML basic string
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, int):
+        return str(value)
+    if isinstance(value, float):
+        if not math.isfinite(value):
+            raise ParameterError("value", value, "must be finite")
+        return repr(value)                # shortest round-trip form, valid TOML
+    return "[" + ", ".join(_toml_value(v) for v in value) + "]"
