@@ -45,7 +45,7 @@ from ..design.rotor_objectives import design_outputs
 from ..design.rotor_spec import BORE_KINDS, GOALS, plan_rotor_design
 from ..design.search import METHODS
 from .base import Kind, LoadedStudy, RunContext, Study, StudyResult
-from .spec import GRID, opt, req
+from .spec import GRID, UNSET, opt, req
 
 VARIABLE = {
     "name": req("string", "design variable (gfbopt.design.rotor_objectives.DESIGN_VARIABLES; "
@@ -84,6 +84,14 @@ BORE = {
     "offset_deg": opt("number", 0.0, "centre of the first shim or lobe from the load [deg]"),
 }
 BORE_DEFAULT = {"kind": "shims", "count": 3, "width_deg": 60.0, "offset_deg": 0.0}
+LEVER = {
+    "low": opt("number", UNSET, "lowest value the lever can physically take (its unit)"),
+    "high": opt("number", UNSET, "highest value the lever can physically take"),
+    "direction_deg": opt("number", UNSET, "side_load_n: direction from +x in the direction "
+                         "of rotation [deg] (default: the gravity's)"),
+    "position": opt("number", UNSET, "side_load_n: axial position from the centre of "
+                    "gravity [m] (default 0)"),
+}
 
 SCHEMAS = {"rotor_bearing_design": {
     **GRID,
@@ -140,12 +148,19 @@ SCHEMAS = {"rotor_bearing_design": {
     "variables": req("tables", "design variables and their ranges", keys=VARIABLE),
     "search": opt("table", SEARCH_DEFAULT, "the optimiser", keys=SEARCH),
     "robustness": opt("table", ROBUSTNESS_DEFAULT, "the tolerance check", keys=ROBUSTNESS),
+    "what_it_would_take": opt("mapping", {}, "levers outside the design space and their "
+                              "physical bounds, e.g. loss_factor = {low = 0, high = 0.5}: "
+                              "when no design is stable to the top speed, the smallest "
+                              "change of each that makes the chosen one stable "
+                              "(gfbopt.design.what_it_takes)",
+                              values=req("table", "the lever's bounds in its unit",
+                                         keys=LEVER)),
 }}
 
 
 #: keys that do not change a stored evaluation (words, and what happens after the search)
 AFTER_SEARCH = ("title", "source", "notes", "name", "robustness", "grid", "regrid_designs",
-                "limit_cycle_revolutions", "limit_cycle_grid")
+                "limit_cycle_revolutions", "limit_cycle_grid", "what_it_would_take")
 
 
 def _digest(path: Path) -> str:
@@ -178,8 +193,14 @@ def design_hash(study: Study) -> str:
 
 
 def plan(study: Study):
-    """Validate the study before any solve (:func:`gfbopt.design.rotor_spec.plan_rotor_design`)."""
-    return plan_rotor_design(study, design_hash(study))
+    """Validate the study before any solve (:func:`gfbopt.design.rotor_spec.plan_rotor_design`,
+    and the levers of ``[what_it_would_take]``, :func:`gfbopt.design.what_it_takes.parse_levers`)."""
+    from ..design.what_it_takes import parse_levers
+
+    p = plan_rotor_design(study, design_hash(study))
+    parse_levers(study.spec.get("what_it_would_take") or None, study.file,
+                 tuple(b.name for b in p.system.bearings), tuple(p.problem.names))
+    return p
 
 
 #: cost of an evaluation against one on a grid with ``cells`` times the nodes: measured on
@@ -193,16 +214,21 @@ GRID_COST_EXPONENT = 0.6
 ORBIT_COST_PER_100_REVOLUTIONS = 10.0
 
 
+#: evaluations of one lever's search, about: the scan each way and the Illinois steps
+#: (about 8 on the smooth onset) and the full evaluation at the answer
+LEVER_EVALUATIONS = 2 * 4 + 8 + 1
+
+
 def grid_cost(grid, reference) -> float:
     """Cost of one design evaluation on ``grid`` over one on ``reference``."""
     return ((grid.n_theta * grid.n_z) / (reference.n_theta * reference.n_z)) \
         ** GRID_COST_EXPONENT
 
 
-def run_stages(p, workers: int) -> list:
+def run_stages(p, workers: int, levers: int = 0) -> list:
     """The stages of a design run weighed by the evaluations each will do (at most: fewer
     designs may need checking), the cost of one on its grid and the workers running them
-    at once (:class:`gfbopt.progress.Stage`)."""
+    at once (:class:`gfbopt.progress.Stage`); ``levers``: those of ``[what_it_would_take]``."""
     from ..progress import Stage
 
     s, r = p.settings, p.robustness
@@ -217,6 +243,7 @@ def run_stages(p, workers: int) -> list:
             Stage("default-grid check", p.regrid_designs,
                   grid_cost(p.default_settings.grid, s.grid), workers),
             Stage("tolerances", tolerances, 1.0, workers),
+            Stage("what it would take", levers * LEVER_EVALUATIONS, 1.0),
             Stage("reproduction", 1, 1.0)]
 
 
@@ -247,7 +274,8 @@ def run_design(loaded: LoadedStudy, results_root="results", *, workers: int = 1,
     out = Path(results_root) / study.name
     t0 = time.perf_counter()
     run_tasks = executor(workers, client)
-    stages = Stages(progress, run_stages(p, workers))
+    stages = Stages(progress, run_stages(p, workers,
+                                         len(study.spec.get("what_it_would_take") or {})))
     with lock_store(out / "store"):                 # the whole run: search, report, files
         store = ResultStore.create(out / "store", study=study.name, study_hash=p.study_hash,
                                    schema=store_schema(p.problem, design_outputs(p.settings)),
@@ -259,7 +287,7 @@ def run_design(loaded: LoadedStudy, results_root="results", *, workers: int = 1,
                               fixed={"system": p.system, "settings": p.settings},
                               store=store, run_tasks=run_tasks,
                               progress=stages.stage("search"))
-            result = report(study, p, search, run_tasks, stages, t0, store)
+            result = report(study, p, search, run_tasks, stages, t0, store, resume)
         except InfrastructureError as exc:
             kept = len(store.read())
             raise InfrastructureError(

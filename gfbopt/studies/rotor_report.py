@@ -10,9 +10,12 @@ import time
 import numpy as np
 import pandas as pd
 
+from ..design.decision import binding_limits, failed_count, limits_frame, limits_text
 from ..design.pareto import feasible_rows
+from ..design.what_it_takes import answers_text
 from ..plotting.design_front import variable_label
 from .base import StudyResult
+from .rotor_decision import answer, answers_frame, margin_of, margin_text, run_levers
 
 #: largest relative difference between a design's stored objectives and the same design
 #: evaluated again from scratch (a fresh solver cache): the evaluation is deterministic, so
@@ -130,14 +133,17 @@ def _reproduce(plan, chosen: dict) -> float:
     return worst if row.get("success") else math.inf
 
 
-def report(study, plan, search, run_tasks, stages, started: float, store) -> StudyResult:
+def report(study, plan, search, run_tasks, stages, started: float, store,
+           resume: bool = False) -> StudyResult:
     """The StudyResult of a finished search (module docstring); ``stages``: the run's
     :class:`gfbopt.progress.Stages` (``"whirl at top speed"``, ``"default-grid check"``,
     ``"tolerances"``, ``"reproduction"``); ``started``: the run's time.perf_counter() at its
     start (the wall time stated covers the whole study: search, default-grid check,
     robustness, the orbit at the top speed and the reproduction); ``store``: the search's
     :class:`gfbopt.doe.ResultStore` (the table of every evaluation has its columns, and the
-    stored-once check counts the rows it holds)."""
+    stored-once check counts the rows it holds); ``resume``: the what-it-would-take
+    evaluations of an earlier run of the same study are answered from their store
+    (:func:`gfbopt.studies.rotor_decision.lever_store`)."""
     from ..design.robustness import regrid, robustness
     from ..plotting.design_front import plot_design_front, plot_onset_against_variables
 
@@ -169,8 +175,23 @@ def report(study, plan, search, run_tasks, stages, started: float, store) -> Stu
         robust = robustness(plan.system, s, checked[:r.designs], r.tolerances,
                             plan.loss_factor_band, r.samples, r.seed, problem, run_tasks, step)
     check = default.iloc[0].to_dict() if len(default) else None
-    text = verdict(chosen, why, plan, check, whirl)
+    limits = binding_limits(table, problem, chosen)
+    step = stages.stage("what it would take")
+    levers, lever_runs, margin = None, None, None
+    if chosen is not None and chosen["first_onset_speed_rpm"] < s.top_speed_rpm:
+        levers, lever_runs = run_levers(study, plan, chosen, store, run_tasks, resume, step)
+        levers = levers if lever_runs is not None else None
+    elif chosen is not None:
+        margin = margin_of(chosen, robust, s.top_speed_rpm)
+    found = answer(chosen, why, table, plan, check, whirl, limits, levers, margin)
+    text = found["verdict"]
     notes = [text, f"Why this design: {why}."]
+    notes += limits_text(limits, len(table), failed_count(table))
+    if levers:
+        notes.append(answers_text(levers, s.top_speed_rpm, chosen["first_onset_speed_rpm"],
+                                  lever_runs.evaluated, lever_runs.reused))
+    if margin is not None:
+        notes.append(margin_text(margin, s.search_high_rpm))
     mean = search.evaluation_time_s / search.evaluated if search.evaluated else math.nan
     method = ("pymoo NSGA-II" if plan.search.method == "nsga2" else
               "GP Bayesian optimisation, bayesian-optimization")
@@ -191,6 +212,12 @@ def report(study, plan, search, run_tasks, stages, started: float, store) -> Stu
     if len(robust):
         notes.append(robustness_text(robust.iloc[0], r, plan.loss_factor_band))
     tables = {"evaluations.csv": table, "pareto_front.csv": front}
+    if limits:
+        tables["binding_limits.csv"] = limits_frame(limits)
+    if levers:
+        tables["what_it_would_take.csv"] = answers_frame(levers)
+        tables["what_it_would_take_evaluations.csv"] = pd.DataFrame(
+            lever_runs.rows).drop_duplicates("point")
     if whirl is not None:
         tables["whirl_at_top_speed.csv"] = pd.DataFrame(
             [{**b, "speed_rpm": s.top_speed_rpm, "revolutions": whirl["revolutions"],
@@ -232,26 +259,7 @@ def report(study, plan, search, run_tasks, stages, started: float, store) -> Stu
                "seed": plan.search.seed, "top_speed_rpm": s.top_speed_rpm}
     return StudyResult(study, tables=tables, figures=figures, checks=checks, options=options,
                        notes=notes, wall_time_s=time.perf_counter() - started,
-                       verdict=text, answer=answer(text, chosen, table, plan))
-
-
-def answer(text: str, chosen, table: pd.DataFrame, plan) -> dict:
-    """The design's answer as summary.json keys: the verdict, whether the chosen design is
-    stable to the top speed, the best first onset of a feasible design [rpm] (None: none
-    feasible) and the chosen design (its variables and main outputs; None: none)."""
-    ok = feasible_rows(table, plan.problem)
-    top = plan.settings.top_speed_rpm
-    design = None
-    if chosen is not None:
-        keep = [*plan.problem.names, "first_onset_speed_rpm", "first_mode",
-                "total_power_loss_w", "min_film_lowest_speed_um", "point"]
-        design = {k: chosen[k] for k in keep if k in chosen}
-    return {"verdict": text,
-            "stable_to_top_speed": bool(chosen is not None
-                                        and chosen["first_onset_speed_rpm"] >= top),
-            "best_first_onset_rpm": float(ok["first_onset_speed_rpm"].max()) if len(ok)
-            else None,
-            "answer_grid": str(plan.settings.grid), "chosen_design": design}
+                       verdict=text, answer=found)
 
 
 def robustness_text(c, r, band) -> str:

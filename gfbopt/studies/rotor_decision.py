@@ -1,0 +1,143 @@
+"""The decision of a bearing-pair design study (:mod:`.rotor_design`): one function,
+:func:`answer`, makes the verdict and every ``summary.json`` key of the answer, so the
+console's last line, the README's first line and ``summary.json`` say the same thing; and
+the parts of the answer beyond the verdict — which limit binds (:mod:`gfbopt.design.decision`),
+what it would take (:mod:`gfbopt.design.what_it_takes`) or, for a design stable to the top
+speed, its margin.
+"""
+from __future__ import annotations
+
+import hashlib
+import json
+import math
+
+import pandas as pd
+
+from ..design.pareto import feasible_rows
+
+#: the what-it-would-take evaluations' store, beside the search's in the result folder
+LEVER_STORE = "what_it_takes_store"
+
+#: LeverAnswer fields → columns of what_it_would_take.csv
+ANSWER_COLUMNS = {"lever": "lever", "unit": "lever_unit", "words": "lever_words",
+                  "start": "lever_start", "low": "lever_low", "high": "lever_high",
+                  "found": "threshold_found", "value": "threshold_value",
+                  "change": "threshold_change", "onset_rpm": "threshold_onset_speed_rpm",
+                  "meets_limits": "threshold_meets_limits",
+                  "min_film_lowest_speed_um": "min_film_lowest_speed_um",
+                  "limit_value": "at_bound_value",
+                  "limit_onset_rpm": "at_bound_onset_speed_rpm",
+                  "evaluations": "lever_evaluations", "message": "message"}
+
+
+def answer(chosen, why: str, table: pd.DataFrame, plan, check=None, whirl=None,
+           limits=None, levers=None, margin=None) -> dict:
+    """The study's answer as ``summary.json`` keys, the verdict among them — the one place
+    they are made (:func:`gfbopt.studies.rotor_report.verdict` words it): ``verdict``;
+    ``stable_to_top_speed`` (the chosen design's first onset ≥ the top speed);
+    ``best_first_onset_rpm`` (the best feasible first onset, None: none feasible);
+    ``answer_grid``; ``chosen_design`` (its variables and main outputs, None: none);
+    ``limits`` (one :class:`gfbopt.design.decision.LimitReport` per limit) and
+    ``active_limits`` (the names of the chosen design's active limits); ``what_it_would_take``
+    (one :class:`gfbopt.design.what_it_takes.LeverAnswer` per lever; None when not searched)
+    and ``margin`` (:func:`margin_of`; None unless the chosen design is stable)."""
+    from .rotor_report import verdict
+
+    ok = feasible_rows(table, plan.problem)
+    top = plan.settings.top_speed_rpm
+    design = None
+    if chosen is not None:
+        keep = [*plan.problem.names, "first_onset_speed_rpm", "first_mode",
+                "total_power_loss_w", "min_film_lowest_speed_um", "point"]
+        design = {k: chosen[k] for k in keep if k in chosen}
+    return {"verdict": verdict(chosen, why, plan, check, whirl),
+            "stable_to_top_speed": bool(chosen is not None
+                                        and chosen["first_onset_speed_rpm"] >= top),
+            "best_first_onset_rpm": float(ok["first_onset_speed_rpm"].max()) if len(ok)
+            else None,
+            "answer_grid": str(plan.settings.grid), "chosen_design": design,
+            "limits": [r.to_dict() for r in limits or []],
+            "active_limits": [r.name for r in limits or [] if r.active],
+            "what_it_would_take": None if levers is None else [a.to_dict() for a in levers],
+            "margin": margin}
+
+
+def margin_of(chosen: dict, robust: pd.DataFrame, top: float) -> dict:
+    """The margin of a design stable to the top speed: its first onset [rpm], the margin
+    over the top speed [rpm] and relative, and the worst case under the tolerances at the
+    loss-factor band's worst end (:func:`gfbopt.design.robustness.robustness`; NaN when not
+    checked) with its relative margin."""
+    onset = float(chosen["first_onset_speed_rpm"])
+    worst = math.nan
+    if len(robust):
+        first = robust[robust["point"] == chosen["point"]]
+        if len(first):
+            worst = float(first.iloc[0]["worst_onset_speed_rpm"])
+    return {"first_onset_rpm": onset, "top_speed_rpm": top, "margin_rpm": onset - top,
+            "relative_margin": onset / top - 1.0, "worst_onset_under_tolerances_rpm": worst,
+            "worst_relative_margin": worst / top - 1.0 if math.isfinite(worst) else math.nan,
+            "onset_status": chosen.get("onset_status", "")}
+
+
+def margin_text(m: dict, search_high: float) -> str:
+    """The margin in one sentence."""
+    capped = m["onset_status"] == "stable over the range"
+    onset = (f"above {search_high:,.0f} rpm (the end of the onset search)" if capped
+             else f"{m['first_onset_rpm']:,.0f} rpm")
+    text = (f"Margin: the chosen design's first onset is {onset}, "
+            f"{'at least ' if capped else ''}{m['relative_margin']:+.1%} over the top speed "
+            f"{m['top_speed_rpm']:,.0f} rpm")
+    if math.isfinite(m["worst_onset_under_tolerances_rpm"]):
+        text += (f"; under the tolerances at the loss-factor band's worst end the worst case "
+                 f"is {m['worst_onset_under_tolerances_rpm']:,.0f} rpm "
+                 f"({m['worst_relative_margin']:+.1%})")
+    else:
+        text += "; the tolerances were not checked"
+    return text + "."
+
+
+def lever_store(out, plan, chosen: dict, levers: tuple, resume: bool):
+    """The what-it-would-take store in ``out``/:data:`LEVER_STORE`: resumed when it holds
+    the same search (study hash), design and levers, else started afresh (an older store is
+    kept aside, :class:`gfbopt.doe.ResultStore`)."""
+    from ..design.what_it_takes import STORE_SCHEMA
+    from ..doe.store import ResultStore
+    from ..errors import ParameterError
+
+    text = json.dumps({"study": plan.study_hash, "design": chosen["point"],
+                       "levers": [repr(v) for v in levers],
+                       "top": plan.settings.top_speed_rpm}, sort_keys=True)
+    digest = hashlib.sha256(text.encode()).hexdigest()
+    where = out / LEVER_STORE
+    try:
+        return ResultStore.create(where, study=f"{out.name} what it would take",
+                                  study_hash=digest, schema=STORE_SCHEMA, resume=resume)
+    except ParameterError:
+        if not resume:
+            raise
+        return ResultStore.create(where, study=f"{out.name} what it would take",
+                                  study_hash=digest, schema=STORE_SCHEMA, resume=False)
+
+
+def run_levers(study, plan, chosen: dict, store, run_tasks, resume: bool, step):
+    """(answers, evaluations) of the study's levers on the chosen design (empty, None
+    when the study names none)."""
+    from ..design import rotor_objectives
+    from ..design.what_it_takes import LeverEvaluations, parse_levers, what_it_would_take
+
+    levers = parse_levers(study.spec.get("what_it_would_take") or None, study.file,
+                          tuple(b.name for b in plan.system.bearings), tuple(plan.problem.names))
+    if not levers:
+        return [], None
+    lstore = lever_store(store.directory.parent, plan, chosen, levers, resume)
+    design = {n: float(chosen[n]) for n in plan.problem.names}
+    ev = LeverEvaluations(rotor_objectives.evaluate_rotor_design, plan.system, design,
+                          plan.settings, plan.problem, lstore, run_tasks)
+    answers = what_it_would_take(levers, ev, float(chosen["first_onset_speed_rpm"]), step)
+    return answers, ev
+
+
+def answers_frame(answers: list) -> pd.DataFrame:
+    """``what_it_would_take.csv``: one row per lever."""
+    return pd.DataFrame([{ANSWER_COLUMNS[k]: v for k, v in a.to_dict().items()}
+                         for a in answers], columns=list(ANSWER_COLUMNS.values()))
