@@ -193,7 +193,7 @@ class RotorSystem:
     shaft : None (a rigid rotor, positions from its centre of gravity) or a
     :class:`~gfbopt.inputs.shaft_file.ShaftModel` (a flexible shaft: positions from its first
     end, each on the shaft; ``body`` may be None and is then the shaft's rigid-body
-    equivalent, :meth:`ShaftModel.equivalent_body`; a body given must be that one).
+    equivalent, :func:`shaft_body`; a body given must be that one).
     """
 
     body: Optional[RotorBody]
@@ -313,7 +313,7 @@ def rotor_from_dict(data: dict, directory: Union[str, Path] = ".",
                       name=rotor["name"])
     else:
         rotor = _table(data.get("rotor", {}), "rotor", f"{where}: rotor", skip=RIGID_ONLY)
-        body = shaft.equivalent_body(rotor["name"])
+        body = shaft_body(shaft, rotor["name"])
     bearing_rows = _rows(data, "bearings", where)
     if len(bearing_rows) != BEARING_COUNT:
         raise ParameterError(f"{where}: bearings", f"{len(bearing_rows)} [[bearings]] table(s)",
@@ -341,11 +341,16 @@ def rotor_from_dict(data: dict, directory: Union[str, Path] = ".",
                        shaft=shaft)
 
 
+def shaft_body(shaft: ShaftModel, name: str = "rotor") -> RotorBody:
+    """The rigid body of a shaft's mass and inertia (about its centre of gravity)."""
+    return RotorBody(shaft.total_mass, shaft.transverse_inertia, shaft.polar_inertia, name)
+
+
 def _shaft_body(shaft, body, where: str) -> RotorBody:
     """The shaft's rigid-body equivalent; a body given must be it (to 1e-9)."""
     if not isinstance(shaft, ShaftModel):
         raise ParameterError(f"{where}shaft", shaft, "must be a ShaftModel or None")
-    own = shaft.equivalent_body(body.name if isinstance(body, RotorBody) else "rotor")
+    own = shaft_body(shaft, body.name if isinstance(body, RotorBody) else "rotor")
     if body is None:
         return own
     if not isinstance(body, RotorBody) or not all(

@@ -12,7 +12,8 @@ is added to the shaft's (give the shaft under the disk as shaft elements or not 
 :class:`ShaftModel` also gives the rigid-body properties of the whole (exact for the
 elements, uniform tubes): total mass, centre of gravity (from the first end), transverse
 inertia about the centre of gravity and polar inertia — the statics of two bearings needs
-the first two; :meth:`ShaftModel.equivalent_body` is the rigid rotor of the same inertia.
+the first two; :func:`gfbopt.inputs.rotor_system.shaft_body` is the rigid rotor of the same
+inertia.
 The finite-element model (:mod:`gfbopt.rotor.shaft`) reproduces them exactly in its
 rigid-body motions.
 """
@@ -164,13 +165,6 @@ class ShaftModel:
         """[kg m²]."""
         return sum(e.polar_inertia for e in self.elements) + sum(d.polar_inertia
                                                                  for d in self.disks)
-
-    def equivalent_body(self, name: str = "rotor"):
-        """The rigid rotor of the same mass and inertia (a :class:`~gfbopt.inputs.
-        rotor_system.RotorBody`, about the centre of gravity)."""
-        from .rotor_system import RotorBody
-
-        return RotorBody(self.total_mass, self.transverse_inertia, self.polar_inertia, name)
 
 
 def check_on_shaft(model: ShaftModel, key: str, position: float) -> float:

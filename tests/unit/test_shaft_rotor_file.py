@@ -9,7 +9,7 @@ import pytest
 
 from gfbopt.errors import ParameterError
 from gfbopt.inputs.bearing_file import read_toml
-from gfbopt.inputs.rotor_system import RotorSystem, load_rotor, rotor_from_dict
+from gfbopt.inputs.rotor_system import RotorSystem, load_rotor, rotor_from_dict, shaft_body
 from gfbopt.inputs.shaft_file import Disk, ShaftElement, ShaftModel
 from gfbopt.rotor.shaft import shaft_structure
 
@@ -78,7 +78,7 @@ def test_equivalent_body_of_a_uniform_shaft_is_the_tube_and_disk():
     zg = (m_tube * 0.25 + 2.0 * 0.5) / (m_tube + 2.0)
     it = (m_tube * ((0.04**2 + 0.01**2) / 16 + 0.5**2 / 12) + m_tube * (0.25 - zg) ** 2
           + 0.01 + 2.0 * (0.5 - zg) ** 2)
-    body = model.equivalent_body()
+    body = shaft_body(model)
     assert body.mass == pytest.approx(m_tube + 2.0, rel=1e-14)
     assert body.transverse_inertia == pytest.approx(it, rel=1e-14)
     assert body.polar_inertia == pytest.approx(m_tube * (0.04**2 + 0.01**2) / 8 + 0.015,
