@@ -87,7 +87,8 @@ class CondensedStructure:
     #: where the shape of a mode is read (the parent's, when it states them)
     @property
     def shape_positions(self) -> tuple:
-        return tuple(getattr(self.parent, "shape_positions", ()) or ())
+        return (tuple(getattr(self.parent, "shape_positions", ()) or ())
+                or tuple(getattr(self.parent, "nodes", ()) or ()))
 
 
 def condensed(structure, positions, modes: int = MODES) -> CondensedStructure:

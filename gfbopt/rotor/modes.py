@@ -16,7 +16,7 @@ Labels (:func:`label`):
   anything between is mixed.  A symmetric rotor's modes are pure (arg ρ = 0 or 180°);
 * **bending n** (a structure with a flexible shaft, :mod:`gfbopt.rotor.structure`): the
   dominant component p(z_j) read at stations z_j along the shaft (the structure's
-  ``shape_positions`` when it states them, else :data:`SHAPE_STATIONS` evenly between the
+  ``shape_positions`` or its ``nodes`` when it states them, else :data:`SHAPE_STATIONS` evenly between the
   bearings, bearings included) is fitted by the best straight line a + b z (least squares,
   the rigid motion); when the share of Σ|p|² that the line leaves unexplained exceeds
   :data:`BENDING_SHARE`, the shaft's deflection is not a straight line and the mode is
@@ -54,9 +54,16 @@ def mode_label(direction: str, kind: str, order: int = 0) -> str:
     return f"{direction} {kind} {order}" if kind == "bending" else f"{direction} {kind}"
 
 
+def family(label: str) -> str:
+    """"bending" for a bending mode's label, else "rigid body" (cylindrical, conical,
+    mixed)."""
+    return "bending" if " bending" in label else "rigid body"
+
+
 def shape_stations(structure, positions) -> np.ndarray:
     """Where a flexible structure's shape is read (module docstring) [m]."""
-    stated = tuple(getattr(structure, "shape_positions", ()) or ())
+    stated = tuple(getattr(structure, "shape_positions", ()) or ()) or tuple(
+        getattr(structure, "nodes", ()) or ())
     if stated:
         return np.array(sorted(set(float(z) for z in stated) | set(positions)))
     low, high = min(positions), max(positions)

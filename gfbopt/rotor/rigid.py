@@ -140,8 +140,9 @@ def bearing_loads(system: RotorSystem) -> tuple[BearingLoad, BearingLoad]:
 
     A bearing whose load vanishes (e.g. the CG exactly over the other bearing with no side
     load) is refused with ParameterError: the linear film model needs a loaded journal
-    (ε > 0)."""
-    force, moment = applied_loads(system)
+    (ε > 0).  The weight acts at the system's centre of gravity (0 for the rigid body, whose
+    positions are measured from it; a shaft's from its first end)."""
+    force, moment = applied_loads(system, float(getattr(system, "centre_of_gravity", 0.0)))
     (a, b) = system.bearings
     za, zb = a.position, b.position
     wa = (zb * force - moment) / (zb - za)

@@ -54,6 +54,7 @@ from ..progress import progress
 from ..static import SolverCache
 from ..threads import single_threaded
 from .matched_whirl import LOCAL_WINDOW, ModeCrossing, crossings, local_crossing
+from .modes import family
 from .mode_search import (ONSET, SECANT_TOLERANCE, STABLE, UNSTABLE_LOW,  # noqa: F401
                           ModeOnset, guided_onset, mode_onset)
 from .onset import SCAN_RATIO, check_coarse_grid, check_speed_range
@@ -190,12 +191,15 @@ class SpeedLine:
 
     def follow(self, speed: float, label: str, whirl: float) -> Optional[ModeCrossing]:
         """The crossing at ``speed`` that continues a mode: same label, nearest whirl ratio
-        (any label when none has it); the local crossing of :meth:`follow_from` when that is
-        all that was computed there."""
+        (any label of the same family when none has it — rigid-body or bending,
+        :func:`~gfbopt.rotor.modes.family`: a rigid-body mode whose shape changed class is
+        not continued by a shaft's bending mode; any label when the family has none); the
+        local crossing of :meth:`follow_from` when that is all that was computed there."""
         if speed not in self._crossings and (speed, label) in self._local:
             return self._local[(speed, label)]
         found = self.crossings(speed) or []
-        same = [c for c in found if c.label == label] or found
+        same = ([c for c in found if c.label == label]
+                or [c for c in found if family(c.label) == family(label)] or found)
         return min(same, key=lambda c: abs(c.whirl_ratio - whirl), default=None)
 
     def margin(self, speed: float, label: str, whirl: float) -> float:
