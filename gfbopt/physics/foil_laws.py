@@ -427,8 +427,8 @@ def foil_law(model, engine: Optional[str] = None) -> FoilLaw:
         raise ParameterError("friction_coefficient", mu, "Coulomb friction of the bumps is "
                              f"modelled for the {law.name} foil law by "
                              f"{', '.join(law.friction_engines) or 'no engine'} only, not by "
-                             f"{who} (the slider's state law for transients is "
-                             "gfbopt.physics.friction_state, not yet in the integrated "
+                             f"{who} (the slider's state law for transients, "
+                             "gfbopt.physics.friction_state, is not yet in their integrated "
                              "state); use friction_coefficient = 0")
     eta = getattr(model, "loss_factor", 0.0)
     if eta <= 0.0:
