@@ -97,6 +97,11 @@ class OptimisationResult:
     evaluation_time_s : sum of the wall times of the evaluations of this run
     driver_time_s : time in the method's ask/tell, decoding and the store writes
     wall_time_s : the whole run
+    convergence : why the search stopped — ``"converged: ..."`` (nsga2_refine's rule,
+        :mod:`.refine`), ``"not converged: budget N reached"``, or for a fixed-budget
+        method ``"fixed budget N (no convergence test)"``
+    stages : designs asked per stage (``search``, ``refinement``), in the order of asking
+    stage_time_s : sum of the evaluation wall times per stage (this run's evaluations)
     """
 
     problem: DesignProblem
@@ -110,6 +115,19 @@ class OptimisationResult:
     evaluation_time_s: float
     driver_time_s: float
     wall_time_s: float
+    convergence: str = ""
+    stages: tuple = ()
+    stage_time_s: tuple = ()
+
+    @property
+    def converged(self) -> bool:
+        """True when the search stopped on its convergence rule."""
+        return self.convergence.startswith("converged")
+
+    @property
+    def stage_counts(self) -> dict:
+        """Designs asked per stage."""
+        return dict(self.stages)
 
     @property
     def asked(self) -> int:
@@ -288,6 +306,8 @@ def optimise(problem: DesignProblem, evaluate: Callable, settings: SearchSetting
     seen: set = set()
     evaluated = reused = repeated = batch = 0
     evaluation_time = 0.0
+    stage_of: dict = {}         # stage -> designs asked; stage -> evaluation seconds
+    stage_time: dict = {}
     driver = time.perf_counter() - t_start
     try:
         while True:
@@ -298,6 +318,9 @@ def optimise(problem: DesignProblem, evaluate: Callable, settings: SearchSetting
                 break
             designs = [problem.decode(x) for x in X]
             keys = [problem.key(d) for d in designs]
+            stage = getattr(method, "stage", "search")
+            stage_of[stage] = stage_of.get(stage, 0) + len(keys)
+            stage_time.setdefault(stage, 0.0)
             todo = []
             for key, design in zip(keys, designs):
                 if key in seen:
@@ -330,6 +353,7 @@ def optimise(problem: DesignProblem, evaluate: Callable, settings: SearchSetting
                     row["feasible"] = problem.feasible(row)
                     spent = _number(row.get("wall_time_s"))
                     evaluation_time += spent if math.isfinite(spent) else 0.0
+                    stage_time[stage] += spent if math.isfinite(spent) else 0.0
                     known[key] = row
                     writer.add(row)
                     evaluated += 1
@@ -362,5 +386,8 @@ def optimise(problem: DesignProblem, evaluate: Callable, settings: SearchSetting
     table["feasible"] = [problem.feasible(r) for r in table.to_dict(orient="records")]
     front = pareto_front(table, problem)
     best = front.iloc[0].to_dict() if len(problem.objectives) == 1 and len(front) else None
+    status = getattr(method, "status", None) or (
+        f"fixed budget {settings.budget} (no convergence test)")
     return OptimisationResult(problem, settings, table, front, best, evaluated, reused,
-                              repeated, evaluation_time, driver, time.perf_counter() - t_start)
+                              repeated, evaluation_time, driver, time.perf_counter() - t_start,
+                              status, tuple(stage_of.items()), tuple(stage_time.items()))

@@ -19,7 +19,11 @@ constraint and the failure flag modelled by its own GP.  Start: a seeded Latin h
 executors' workers are kept busy.  Why this library and these settings:
 ``benchmarks/bench_bayesian_choice.py`` (``results/benchmarks/bayesian_choice.json``).
 
-Both are deterministic for a seed: the proposals depend only on the seed and on the values
+``nsga2_refine`` — NSGA-II for a few generations, then a constrained pattern search of the
+first objective from the best design, stopped on convergence with ``budget`` as the hard
+maximum (:mod:`.refine`, which states the convergence rule).
+
+All are deterministic for a seed: the proposals depend only on the seed and on the values
 told, so a resumed run, answered from the store, asks the same designs again.
 """
 from __future__ import annotations
@@ -33,7 +37,7 @@ import numpy as np
 from ..errors import ParameterError
 from .problem import FAILED_VIOLATION, DesignProblem
 
-METHODS = ("nsga2", "bayes")
+METHODS = ("nsga2", "bayes", "nsga2_refine")
 
 
 @dataclass(frozen=True)
@@ -53,6 +57,13 @@ class SearchSettings:
         98.3-99.8 % of the optimum at 0.23 s a design against 1,000/2's 96.1-99.4 % at
         0.82 s (2 cores, load ~14): the default here (benchmarks/bench_optimiser.py)
     gp_restarts : restarts of the GP's hyper-parameter fit (bayes)
+    generations : NSGA-II generations before the local refinement (nsga2_refine; ``budget``
+        is then the hard maximum over both stages, :mod:`.refine`)
+    first_step, step_tolerance : the refinement's first and last poll step, in unit-cube
+        coordinates (fractions of each variable's range); converged when the step falls
+        below ``step_tolerance``
+    improvement : least relative improvement of the refined objective that moves the
+        refinement (default 1e-3, the first onset's own resolution)
     """
 
     method: str = "nsga2"
@@ -64,6 +75,10 @@ class SearchSettings:
     acquisition_samples: int = 5000
     acquisition_starts: int = 0
     gp_restarts: int = 5
+    generations: int = 3
+    first_step: float = 0.125
+    step_tolerance: float = 1.0 / 128.0
+    improvement: float = 1e-3
 
     def __post_init__(self) -> None:
         if self.method not in METHODS:
@@ -76,6 +91,14 @@ class SearchSettings:
                 raise ParameterError(key, value, f"must be an integer >= {low}")
         if not isinstance(self.seed, int) or isinstance(self.seed, bool) or self.seed < 0:
             raise ParameterError("seed", self.seed, "must be an integer >= 0")
+        if not isinstance(self.generations, int) or self.generations < 1:
+            raise ParameterError("generations", self.generations, "must be an integer >= 1")
+        if not 0.0 < self.step_tolerance <= self.first_step <= 0.5:
+            raise ParameterError("step_tolerance", (self.step_tolerance, self.first_step),
+                                 "must be 0 < step_tolerance <= first_step <= 0.5 (unit-cube "
+                                 "steps)")
+        if not 0.0 <= self.improvement < 0.1:
+            raise ParameterError("improvement", self.improvement, "must be in [0, 0.1)")
 
 
 class NSGA2Proposer:
@@ -235,6 +258,10 @@ class BayesProposer:
 def proposer(problem: DesignProblem, settings: SearchSettings,
              initial: Optional[np.ndarray] = None):
     """The ask/tell object of ``settings.method``."""
+    if settings.method == "nsga2_refine":
+        from .refine import RefineProposer
+
+        return RefineProposer(problem, settings, initial)
     kind = NSGA2Proposer if settings.method == "nsga2" else BayesProposer
     return kind(problem, settings, initial)
 

@@ -14,6 +14,10 @@ function               known answer
 :func:`hartmann3`      Hartmann-3 (Dixon & Szegö 1978), maximised: 3.86278 at
                        (0.114614, 0.555649, 0.852547), three other local maxima
 :func:`pinched_bowl`   min (x − 0.8)² + (y − 0.8)² subject to x + y ≤ 1: 0.18 at (0.5, 0.5)
+:func:`tilted_valley`  min of a valley 10× narrower across than along, tilted 45° to the
+                       axes: 1 at (0.3, 0.6), inside the unit square (no constraint active)
+:func:`leaning_wall`   max x + 2y + z/2 subject to x² + 2y² ≤ 0.5 and z ≤ 0.7 in [0, 1]³:
+                       on both limits, at x = y = 1/√6, z = 0.7
 =====================  =================================================================
 """
 from __future__ import annotations
@@ -90,3 +94,27 @@ def failing_half(x: float, y: float) -> dict:
     if x > 0.7:
         raise RuntimeError("no convergence (planted failure)")
     return {"f": (x - 0.3) ** 2 + (y - 0.6) ** 2}
+
+
+def tilted_valley(x: float, y: float, delay_s: float = 0.0,
+                  log_path: Optional[str] = None) -> dict:
+    """``f`` = 1 + (u + v)² + 10 (u − v)² with u = x − 0.3, v = y − 0.6 (minimised): 1 at
+    (0.3, 0.6); the valley runs at 45° to both axes, so a search along the axes alone
+    creeps down it."""
+    _side(delay_s, log_path, x=x, y=y)
+    u, v = x - 0.3, y - 0.6
+    return {"f": 1.0 + (u + v) ** 2 + 10.0 * (u - v) ** 2}
+
+
+#: the optimum of :func:`leaning_wall`: on x² + 2y² = 1/2 the Lagrange condition
+#: (1, 2) = λ (2x, 4y) gives y = x, 3x² = 1/2; z at its bound 0.7
+LEANING_WALL_ARGMAX = (math.sqrt(1.0 / 6.0), math.sqrt(1.0 / 6.0), 0.7)
+
+
+def leaning_wall(x: float, y: float, z: float, delay_s: float = 0.0,
+                 log_path: Optional[str] = None) -> dict:
+    """``merit`` = x + 2y + z/2 (maximised) with ``ellipse`` = x² + 2y² ≤ 0.5 and ``z``
+    ≤ 0.7 (a second, axis-parallel limit): both limits active at the optimum
+    :data:`LEANING_WALL_ARGMAX`, the first curved and oblique to the axes."""
+    _side(delay_s, log_path, x=x, y=y, z=z)
+    return {"merit": x + 2.0 * y + 0.5 * z, "ellipse": x * x + 2.0 * y * y, "zc": z}
