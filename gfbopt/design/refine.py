@@ -38,7 +38,6 @@ asks the same designs and evaluates only those it does not hold — in either st
 """
 from __future__ import annotations
 
-import dataclasses
 import math
 from typing import Optional
 
@@ -55,18 +54,15 @@ def _merit(f: float, g: np.ndarray) -> tuple:
 
 
 class RefineProposer:
-    """NSGA-II for ``generations`` × ``population`` designs, then the pattern search of the
-    module docstring; ask/tell on the unit cube.  ``stage`` names the stage of the batch
+    """``first_stage`` (the ask/tell of NSGA-II for ``generations`` × ``population``
+    designs, :func:`gfbopt.design.search.proposer`), then the pattern search of the module
+    docstring; ask/tell on the unit cube.  ``stage`` names the stage of the batch
     last asked; ``status`` the convergence status (None while running)."""
 
-    def __init__(self, problem: DesignProblem, settings, initial: Optional[np.ndarray] = None):
-        from .search import NSGA2Proposer
-
+    def __init__(self, problem: DesignProblem, settings, first_stage):
         self._settings = settings
         self._d = problem.dimension
-        self._global_n = min(settings.budget, settings.population * settings.generations)
-        self._global = NSGA2Proposer(problem, dataclasses.replace(
-            settings, budget=self._global_n), initial)
+        self._global = first_stage      # ask/tell of stage 1 (its own budget)
         self._left = settings.budget
         self._history: dict = {}            # tuple(x) -> (f, g)
         self._asked: Optional[np.ndarray] = None

@@ -259,9 +259,13 @@ def proposer(problem: DesignProblem, settings: SearchSettings,
              initial: Optional[np.ndarray] = None):
     """The ask/tell object of ``settings.method``."""
     if settings.method == "nsga2_refine":
+        import dataclasses
+
         from .refine import RefineProposer
 
-        return RefineProposer(problem, settings, initial)
+        first = dataclasses.replace(settings, method="nsga2", budget=min(
+            settings.budget, settings.population * settings.generations))
+        return RefineProposer(problem, settings, NSGA2Proposer(problem, first, initial))
     kind = NSGA2Proposer if settings.method == "nsga2" else BayesProposer
     return kind(problem, settings, initial)
 
