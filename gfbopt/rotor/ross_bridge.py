@@ -137,6 +137,33 @@ def ross_rotor(line: SpeedLine, speeds_rpm: Sequence[float], frequencies_hz: Seq
     return ross.Rotor(shaft, [disk], bearings)
 
 
+def ross_shaft_rotor(structure, bearing_elements=()):
+    """The ROSS rotor of a gfbopt :class:`~gfbopt.rotor.shaft.ShaftStructure`: one ROSS
+    ``ShaftElement`` per gfbopt element on the same nodes (Timoshenko: shear, rotary inertia,
+    gyroscopic; Cowper's κ, ROSS's default), one ``DiskElement`` per disk, and the given
+    ROSS bearing elements (e.g. :func:`bearing_element` at the bearings' nodes).  ROSS's
+    node k is gfbopt's node k; its degrees of freedom per node are (x, y, z, α, β, θ)."""
+    ross = import_ross()
+    materials = {}
+    elements = []
+    for k, el in enumerate(structure.elements):
+        key = (el.density, el.youngs_modulus, el.poisson_ratio)
+        if key not in materials:
+            materials[key] = ross.Material(name=f"gfbopt_{len(materials)}", rho=el.density,
+                                           E=el.youngs_modulus, Poisson=el.poisson_ratio)
+        elements.append(ross.ShaftElement(L=el.length, idl=el.inner_diameter,
+                                          odl=el.outer_diameter, material=materials[key], n=k,
+                                          shear_effects=structure.shear, rotary_inertia=True,
+                                          gyroscopic=True))
+    disks = [ross.DiskElement(n=node, m=d.mass, Id=d.transverse_inertia, Ip=d.polar_inertia)
+             for node, d in structure.disks]
+    return ross.Rotor(elements, disks, list(bearing_elements))
+
+
+#: ROSS's lateral degrees of freedom among the six of a node (x, y, α, β of x, y, z, α, β, θ)
+ROSS_LATERAL = (0, 1, 3, 4)
+
+
 def ross_modes(rotor, speed_rpm: float, num_modes: int = 8) -> list:
     """ROSS's matched-whirl modes at ``speed_rpm`` (``run_modal(speed, matched_whirl=True)``;
     its warnings, e.g. a whirl frequency that did not converge, are kept): dicts of
