@@ -26,7 +26,10 @@ import gfbopt
 from gfbopt.analyses import bearing_model, static_point
 from gfbopt.plotting.bearing import plot_bore_profile, plot_capacity_curve
 
-ROOT = Path(__file__).resolve().parents[1]
+try:
+    ROOT = Path(__file__).resolve().parents[1]      # python examples/THIS.py
+except NameError:                                   # sphinx-gallery: run from examples/
+    ROOT = Path.cwd().parent
 OUT = Path(os.environ.get("GFBOPT_EXAMPLES_OUTPUT", ROOT / "runs" / "examples")) / "as_built"
 OUT.mkdir(parents=True, exist_ok=True)
 GRID = "36x10"

@@ -23,7 +23,10 @@ import matplotlib.pyplot as plt
 import gfbopt
 from gfbopt.plotting.waterfall import plot_components, plot_waterfall
 
-ROOT = Path(__file__).resolve().parents[1]
+try:
+    ROOT = Path(__file__).resolve().parents[1]      # python examples/THIS.py
+except NameError:                                   # sphinx-gallery: run from examples/
+    ROOT = Path.cwd().parent
 OUT = Path(os.environ.get("GFBOPT_EXAMPLES_OUTPUT", ROOT / "runs" / "examples")) / "run_up"
 OUT.mkdir(parents=True, exist_ok=True)
 GRID = "36x10"

@@ -26,7 +26,10 @@ from gfbopt.doe import SamplePlan, Variable
 from gfbopt.doe.sensitivity import sobol_indices
 from gfbopt.plotting.doe import plot_sobol_indices
 
-ROOT = Path(__file__).resolve().parents[1]
+try:
+    ROOT = Path(__file__).resolve().parents[1]      # python examples/THIS.py
+except NameError:                                   # sphinx-gallery: run from examples/
+    ROOT = Path.cwd().parent
 OUT = Path(os.environ.get("GFBOPT_EXAMPLES_OUTPUT", ROOT / "runs" / "examples")) / "doe"
 OUT.mkdir(parents=True, exist_ok=True)
 BEARING = gfbopt.load_bearing(ROOT / "problems" / "bearings" / "ruscitto.toml")

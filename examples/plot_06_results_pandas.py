@@ -19,7 +19,10 @@ import pandas as pd
 from gfbopt.doe import read_results
 from gfbopt.glossary import describe
 
-ROOT = Path(__file__).resolve().parents[1]
+try:
+    ROOT = Path(__file__).resolve().parents[1]      # python examples/THIS.py
+except NameError:                                   # sphinx-gallery: run from examples/
+    ROOT = Path.cwd().parent
 OUT = Path(os.environ.get("GFBOPT_EXAMPLES_OUTPUT", ROOT / "runs" / "examples")) / "results"
 OUT.mkdir(parents=True, exist_ok=True)
 DESIGN = ROOT / "results" / "rotor_bearing_design"

@@ -1,6 +1,11 @@
-"""A ROSS shaft-and-disk rotor on two gfbopt foil bearings, and its onset of whirl with matched
+"""
+Does ROSS agree? The blower rotor's onset in ROSS on gfbopt's bearing tables
+=============================================================================
+
+A ROSS shaft-and-disk rotor on two gfbopt foil bearings, and its onset of whirl with matched
 whirl — the study rotor (problems/rotors/blower.toml), compared with gfbopt's own
-two-bearing rigid-rotor onset.
+two-bearing rigid-rotor onset.  Not executed in the gallery: it needs ROSS (Python ≥ 3.12);
+its shipped answer is ``results/rotor_ross_comparison.md``.
 
 Needs the optional extra (ROSS >= 3.0, Python >= 3.12)::
 
