@@ -124,3 +124,23 @@ def test_engines_that_do_not_carry_friction_refuse_it():
     with pytest.raises(ParameterError, match="friction_coefficient = 0.2: .*not by the "
                                              "transient engines"):
         foil_law(model, "transient")
+
+
+def test_settled_orbit_where_friction_restores_the_threshold():
+    # a softer foundation (S = 3, 15,000 rpm, μ_f = 0.5, κ = 2): slipping raises M̄c above the
+    # stuck value (4.1429 -> 4.1488 at A = 0.109 c), so a rotor just above the stuck onset
+    # settles on a bounded orbit where M̄c(A) = M̄ (found by bisection on log A)
+    bearing, model = _model(compliance=3.0, friction_coefficient=0.5,
+                            friction_stiffness_ratio=2.0)
+    model = model.replace(bearing_number=model.bearing_number / 2.0)        # 15,000 rpm
+    sol = solve_static(model, load=bearing.nondimensional_load(20.0), grid=GRID)
+    lin = linearise(sol)
+    stuck = linear_threshold(lin).critical_mass
+    assert stuck == pytest.approx(4.1429, rel=1e-4)
+    mass = 4.145
+    orbit = settled_amplitude(lin, mass, samples=10, smallest=1e-2, xtol=1e-4)
+    assert orbit.bounded and orbit.small_motion_mass == pytest.approx(stuck, rel=1e-12)
+    assert 0.065 < orbit.amplitude < 0.11 < orbit.film_limit
+    assert onset_at_amplitude(lin, orbit.amplitude).critical_mass >= mass
+    assert onset_at_amplitude(lin, orbit.amplitude * (1 - 2e-4)).critical_mass < mass
+    assert orbit.verdict.startswith("bounded whirl of A = ")
