@@ -230,33 +230,19 @@ def _stored(store) -> dict:
     return {str(r["point"]): r for r in frame.to_dict(orient="records")}
 
 
-class _Writer:
-    """Rows to the store in parts of ``flush_rows`` (or every ``flush_seconds``)."""
+def _columns(schema: dict, row: dict) -> dict:
+    """The row's columns of the store's schema (the row buffer's ``conform``)."""
+    return {k: row[k] for k in schema if k in row}
 
-    def __init__(self, store, schema: dict, flush_rows: int, flush_seconds: float):
-        self.store, self.schema = store, schema
-        self.flush_rows, self.flush_seconds = flush_rows, flush_seconds
-        self.buffer: list = []
-        self.last = time.monotonic()
 
-    def add(self, row: dict) -> None:
-        if self.store is None:
-            return
-        self.buffer.append({k: row[k] for k in self.schema if k in row})
-        if len(self.buffer) >= self.flush_rows:
-            self.flush()
-        else:
-            self.tick()
+def _writer(store, schema: dict, flush_rows: int, flush_seconds: float):
+    """The row buffer of the run (:class:`gfbopt.doe.engine.RowBuffer`, the sampled
+    studies' too): parts of ``flush_rows`` rows, none older than ``flush_seconds``."""
+    from functools import partial
 
-    def tick(self) -> None:
-        """Write the waiting rows if the last write is ``flush_seconds`` old."""
-        if self.buffer and time.monotonic() - self.last > self.flush_seconds:
-            self.flush()
+    from ..doe.engine import RowBuffer
 
-    def flush(self) -> None:
-        if self.store is not None and self.buffer:
-            self.store.append(self.buffer)
-        self.buffer, self.last = [], time.monotonic()
+    return RowBuffer(store, partial(_columns, schema), flush_rows, flush_seconds)
 
 
 def optimise(problem: DesignProblem, evaluate: Callable, settings: SearchSettings, *,
@@ -299,7 +285,7 @@ def optimise(problem: DesignProblem, evaluate: Callable, settings: SearchSetting
             raise ParameterError("store", missing[0], "is not a column of the store's schema "
                                  "(make it with store_schema)")
     known = _stored(store)
-    writer = _Writer(store, schema or {}, flush_rows, flush_seconds)
+    writer = _writer(store, schema or {}, flush_rows, flush_seconds)
     init = (np.array([problem.encode(d) for d in initial]) if initial else None)
     method = proposer(problem, settings, init)
     order: list = []            # keys in the order of first asking
@@ -355,7 +341,7 @@ def optimise(problem: DesignProblem, evaluate: Callable, settings: SearchSetting
                     evaluation_time += spent if math.isfinite(spent) else 0.0
                     stage_time[stage] += spent if math.isfinite(spent) else 0.0
                     known[key] = row
-                    writer.add(row)
+                    writer.add([row])
                     evaluated += 1
                     if progress is not None:
                         progress(min(1.0, (len(order) - waiting) / settings.budget))

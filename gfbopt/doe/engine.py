@@ -38,22 +38,33 @@ class Outcome:
     lost: list = field(default_factory=list)
 
 
-class _Buffer:
-    """Rows held by the driver, written by the main thread or the timer thread."""
+class RowBuffer:
+    """Rows held by a driver until written to a results store — the one row buffer of the
+    sampled studies (:func:`execute`, with a timer thread) and of the design optimiser
+    (:func:`gfbopt.design.optimiser.optimise`, which calls :meth:`tick` as rows arrive and
+    on the executor's ticks).
+
+    Rows are written in parts of at most ``batch_rows``: when that many are held, on
+    :meth:`flush`, and once the oldest row held is ``flush_s`` old (:meth:`tick` or the
+    :meth:`timer` thread).  ``conform(row)`` makes a row the store's (e.g. its columns
+    only); ``outcome`` counts the rows and parts written; ``store`` None: nothing is kept.
+    """
 
     def __init__(self, store, conform: Callable[[dict], dict], batch_rows: int,
-                 flush_s: float, outcome: Outcome):
+                 flush_s: float, outcome: Optional[Outcome] = None):
         self.store = store
         self.conform = conform
         self.batch_rows = batch_rows
         self.flush_s = flush_s
-        self.outcome = outcome
+        self.outcome = outcome if outcome is not None else Outcome()
         self.rows: list = []
         self.oldest = None
         self.lock = threading.Lock()
         self.error: Optional[BaseException] = None
 
     def add(self, rows: Iterable[dict]) -> None:
+        if self.store is None:
+            return
         with self.lock:
             for row in rows:
                 self.rows.append(self.conform(row))
@@ -62,6 +73,8 @@ class _Buffer:
             due = len(self.rows) >= self.batch_rows
         if due:
             self.flush()
+        else:
+            self.tick()
 
     def flush(self) -> None:
         """Write the rows held, in parts of at most ``batch_rows`` (a Dask task may bring
@@ -78,6 +91,11 @@ class _Buffer:
     def due(self) -> bool:
         return self.oldest is not None and time.monotonic() - self.oldest >= self.flush_s
 
+    def tick(self) -> None:
+        """Write the rows held if the oldest is ``flush_s`` old."""
+        if self.due():
+            self.flush()
+
     def timer(self, stop: threading.Event) -> None:
         """Thread body: write the rows once they are ``flush_s`` old."""
         period = max(0.05, min(1.0, self.flush_s / 4))
@@ -88,6 +106,10 @@ class _Buffer:
                 except BaseException as exc:  # noqa: BLE001 - reported by the main thread
                     self.error = exc
                     return
+
+
+#: the earlier private name (tests and callers of before)
+_Buffer = RowBuffer
 
 
 def execute(function: Callable, tasks: list, store, *, conform: Callable[[dict], dict],
@@ -112,7 +134,7 @@ def execute(function: Callable, tasks: list, store, *, conform: Callable[[dict],
     )
 
     outcome = Outcome()
-    buffer = _Buffer(store, conform, batch_rows, flush_s, outcome)
+    buffer = RowBuffer(store, conform, batch_rows, flush_s, outcome)
     stop = threading.Event()
     timer = threading.Thread(target=buffer.timer, args=(stop,), name="gfbopt-flush",
                              daemon=True)
