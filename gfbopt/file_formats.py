@@ -4,8 +4,9 @@ use (``docs/formats/*.md``), so that the two cannot drift.
 =========================  ============================================================
 page                       schema
 =========================  ============================================================
-``bearing_file.md``        :data:`gfbopt.inputs.file_schema.BEARING_FILE` (read by
-                           :func:`gfbopt.inputs.load_bearing`)
+``bearing_file.md``        :data:`gfbopt.inputs.bearing_file.BEARING_FILE_RUNNING`
+                           (file_schema's BEARING_FILE with the ``[journal]`` and
+                           ``[thermal]`` tables; read by :func:`gfbopt.inputs.load_bearing`)
 ``study_file.md``          :data:`gfbopt.studies.spec.COMMON` and the schema of every study
                            kind (:data:`gfbopt.studies.spec.SCHEMAS`, with the families
                            :mod:`gfbopt.studies.runner` registers)
@@ -25,7 +26,7 @@ import sys
 from pathlib import Path
 from typing import Callable
 
-from .inputs.file_schema import BEARING_FILE, REQUIRED, Field, FileFormat, Table
+from .inputs.file_schema import REQUIRED, Field, FileFormat, Table
 
 #: where the pages are written, relative to the repository root
 DOCS = Path(__file__).resolve().parents[1] / "docs" / "formats"
@@ -181,9 +182,17 @@ def render_rotor_file() -> str:
     return schema_markdown()
 
 
+def _bearing_file() -> FileFormat:
+    """The bearing file with its ``[journal]`` and ``[thermal]`` tables (the format
+    :func:`gfbopt.inputs.load_bearing` checks)."""
+    from .inputs.bearing_file import BEARING_FILE_RUNNING
+
+    return BEARING_FILE_RUNNING
+
+
 #: page file name → its renderer (module docstring: one entry per file format)
 PAGES: dict[str, Callable[[], str]] = {
-    "bearing_file.md": lambda: render_format(BEARING_FILE),
+    "bearing_file.md": lambda: render_format(_bearing_file()),
     "study_file.md": render_study_file,
     "rotor_file.md": render_rotor_file,
 }

@@ -8,7 +8,11 @@ A thin layer over :func:`gfbopt.rotor.capacity.load_capacity` and
 :func:`~gfbopt.rotor.capacity.lift_off_speed`.  ``--figure FILE`` draws the curve
 (h_min against load or speed, the limit and the answer); ``--csv FILE`` writes it.  The
 formulation comes from the bearing file's ``[model]`` table and the options given here; the
-bore, pads and zones from its ``[bore]``, ``[[pads]]`` and ``[[zones]]`` tables.
+bore, pads and zones from its ``[bore]``, ``[[pads]]`` and ``[[zones]]`` tables.  With
+``[journal]``/``[thermal]`` the search runs at the running condition of its answer
+(:mod:`gfbopt.thermal.capacity`) and the output names the clearance model and reports
+running_clearance_um, centrifugal_growth_um, thermal_growth_um, film_temperature_c and
+viscosity_pa_s.
 """
 from __future__ import annotations
 
@@ -73,22 +77,23 @@ def _check(args) -> None:
 
 def run(args) -> int:
     from ..inputs import Grid
-    from ..inputs.bearing_file import load_bearing_file
     from ..inputs.options import merge_options
-    from ..rotor.capacity import lift_off_speed, load_capacity
+    from ..thermal.files import load_running_bearing
+    from .running import running_lift_off, running_load_capacity
 
     _check(args)
     grid = Grid.parse(args.grid)
-    bearing, file_options = load_bearing_file(args.bearing)
-    options = merge_options(stated_options(args), file_options)
+    bearing, spec = load_running_bearing(args.bearing)   # [journal], [thermal] checked
+    options = merge_options(stated_options(args), bearing.options)
     if args.lift_off:
         extra = {} if args.max_speed_rpm is None else {"max_speed_rpm": args.max_speed_rpm}
-        result = lift_off_speed(bearing, args.load_newton, args.min_film_um, options=options,
-                                grid=grid, **extra)
+        found = running_lift_off(bearing, spec, args.load_newton, args.min_film_um,
+                                 options=options, grid=grid, **extra)
     else:
-        result = load_capacity(bearing, args.speed_rpm, args.min_film_um, options=options,
-                               grid=grid)
-    out = {"bearing": bearing.name, **result.to_dict()}
+        found = running_load_capacity(bearing, spec, args.speed_rpm, args.min_film_um,
+                                      options=options, grid=grid)
+    result = _Found(found)
+    out = {"bearing": bearing.name, **found}
     if args.csv:
         import pandas as pd
 
@@ -104,11 +109,22 @@ def run(args) -> int:
     return 0 if result.success or "no lift-off" in result.message else 1
 
 
+class _Found:
+    """success and message of the answer's dict."""
+
+    def __init__(self, found: dict):
+        self.success, self.message = bool(found["success"]), found.get("message") or ""
+        self.curve = found["curve"]
+
+
 def _report(out: dict) -> str:
+    from .stability import running_lines
+
     conv = out["conventions"]
     lines = [f"gfbopt capacity — {out['bearing']}: {out['answer']}",
              f"  film: {conv['film_convention']}; foil {conv['foil']}, "
              f"{conv['deflection_law']} law; grid {conv['grid']}"]
+    lines += running_lines(out["running"])
     if conv.get("bore") or conv.get("pads_leading_end_deg") or conv.get("zones"):
         lines.append(f"  as built: bore {conv.get('bore')}, pads "
                      f"{conv.get('pads_leading_end_deg')}, zones {conv.get('zones')}")

@@ -13,6 +13,15 @@ horizontal rigid rotor).  ``--onset`` searches (N/4, 2N); ``--speed-range`` sets
 one row per frequency, including the threshold whirl frequency ("matched whirl").
 Formulation options not given come from the bearing file's ``[model]`` table, else the
 defaults (:mod:`gfbopt.cli.si`); every output states the conventions used.
+
+A bearing file with ``[journal]`` and/or ``[thermal]`` is analysed at the running condition
+(:mod:`gfbopt.thermal`: centrifugal and thermal growth, Sutherland's viscosity, the lumped
+heat balance solved to a fixed point): the operating point at the running clearance of its
+speed, the onset by :func:`gfbopt.thermal.bearing.running_onset`.  Every output names the
+model (``thermal_model``: "isothermal, cold clearance", "centrifugal growth" or "heat
+balance + growth") and reports running_clearance_um, centrifugal_growth_um,
+thermal_growth_um, film_temperature_c and viscosity_pa_s (gfbopt/terms/thermal.py); a
+thermal runaway or a closed clearance is the answer, not an error.
 """
 from __future__ import annotations
 
@@ -111,9 +120,13 @@ POINT_FIELDS = (
 #: one JSON schema for ``gfbopt stability --json``, whatever the flags: every field present,
 #: null when not computed (the operating point without --speed-rpm, the onset without
 #: --onset/--speed-range, the CSV path without --csv)
+#: the clearance at speed's fields (gfbopt.thermal.running.RunningPoint.to_dict), present
+#: whatever the model: the running point of the operating point (null without --speed-rpm)
+RUNNING_FIELDS = ("thermal_model", "running_clearance_um", "centrifugal_growth_um",
+                  "thermal_growth_um", "film_temperature_c", "viscosity_pa_s", "running")
 SCHEMA = ("bearing", "rotor_mass_kg", "grid", "conventions", *POINT_FIELDS, "coefficients",
-          "csv", "onset", "onset_speed_rpm", "onset_whirl_frequency_hz", "success", "message",
-          "warnings")
+          "csv", "onset", "onset_speed_rpm", "onset_whirl_frequency_hz", *RUNNING_FIELDS,
+          "success", "message", "warnings")
 
 
 def _span(args) -> tuple:
@@ -123,21 +136,23 @@ def _span(args) -> tuple:
 
 
 def run(args) -> int:
-    from ..inputs import OperatingPoint, Rotor
-    from ..inputs.bearing_file import load_bearing_file
+    from ..inputs import Rotor
     from ..inputs.conversions import mass_from_parameter, rpm_to_rad_per_s
     from ..inputs.options import merge_options
     from ..progress import progress
-    from ..rotor import coefficient_table, onset_speed, stability
+    from ..rotor import coefficient_table, onset_speed
     from ..rotor.analysis import resolve_case
     from ..rotor.onset import check_speed_range
     from ..static import SolverCache
+    from ..thermal.files import load_running_bearing
+    from .running import running_onset
+    from ..thermal.running import ISOTHERMAL
     from .common import grid_of
 
     _check(args)
     grid = grid_of(args)
-    bearing, file_options = load_bearing_file(args.bearing)
-    options = merge_options(stated_options(args), file_options)
+    bearing, spec = load_running_bearing(args.bearing)      # [journal], [thermal] checked
+    options = merge_options(stated_options(args), bearing.options)
     if args.mass is not None:      # M = M̄ W0/(c ω²): the same rotor, in kg
         mass = mass_from_parameter(args.mass, bearing.radial_clearance,
                                    rpm_to_rad_per_s(args.speed_rpm), args.load_newton)
@@ -148,7 +163,7 @@ def run(args) -> int:
     common = dict(options=options, grid=grid, cache=cache)
     out = dict.fromkeys(SCHEMA)
     out.update(bearing=bearing.name, rotor_mass_kg=mass, grid=str(grid),
-               conventions=options.to_dict(), warnings=[])
+               conventions=options.to_dict(), warnings=[], thermal_model=spec.model_name)
     result = table = onset = None
     wants_onset = args.onset or args.speed_range is not None
     resolve_case(bearing, rotor, args.load_newton, **common)    # bad input: before any solve
@@ -160,29 +175,41 @@ def run(args) -> int:
     if args.speed_rpm is not None:
         bar = progress(total=2, desc="stability", unit="step")
         bar.set_postfix_str(f"operating point {args.speed_rpm:.6g} rpm")
-        result = stability(bearing, rotor, OperatingPoint(args.speed_rpm,
-                                                          args.load_newton), **common)
-        answer = result.to_dict()
-        out.update({k: answer[k] for k in POINT_FIELDS}, conventions=result.conventions,
-                   warnings=list(result.warnings))
-        bar.update(1)
-        bar.set_postfix_str("K and C against frequency")
-        table = coefficient_table(result.linearisation, bearing, args.speed_rpm,
-                                  args.frequency_hz, result.threshold_whirl_ratio)
-        out["coefficients"] = table.to_dict()
-        if args.csv:
-            table.write_csv(args.csv)
-            out["csv"] = str(args.csv)
-        bar.update(1)
-        bar.close()
+        result, point, warm = _operating_point(bearing, spec, rotor, args, common)
+        out.update(_running_fields(point))
+        if result is None:                         # thermal runaway or a closed clearance
+            out.update(verdict=point.status, speed_rpm=args.speed_rpm)
+            out["warnings"].append(point.message)
+            bar.close()
+        else:
+            answer = result.to_dict()
+            out.update({k: answer[k] for k in POINT_FIELDS}, conventions=result.conventions,
+                       warnings=list(result.warnings))
+            bar.update(1)
+            bar.set_postfix_str("K and C against frequency")
+            table = coefficient_table(result.linearisation, warm, args.speed_rpm,
+                                      args.frequency_hz, result.threshold_whirl_ratio)
+            out["coefficients"] = table.to_dict()
+            if args.csv:
+                table.write_csv(args.csv)
+                out["csv"] = str(args.csv)
+            bar.update(1)
+            bar.close()
     if wants_onset:
         span = _span(args)
-        onset = onset_speed(bearing, rotor, args.load_newton, span, **common, progress=True)
-        out["onset"] = {k: v for k, v in onset.to_dict().items() if k != "conventions"}
-        out["onset_speed_rpm"] = onset.onset_speed_rpm
-        out["onset_whirl_frequency_hz"] = onset.whirl_frequency_hz
-        if result is None:
-            out["conventions"] = onset.conventions
+        if spec.model_name == ISOTHERMAL:
+            onset = onset_speed(bearing, rotor, args.load_newton, span, **common,
+                                progress=True)
+            found = onset.to_dict()
+        else:
+            found = running_onset(bearing, spec, rotor, args.load_newton, span,
+                                  guess_rpm=args.speed_rpm, progress=True, **common)
+            onset = _Answered(found)
+        out["onset"] = {k: v for k, v in found.items() if k != "conventions"}
+        out["onset_speed_rpm"] = found["onset_speed_rpm"]
+        out["onset_whirl_frequency_hz"] = found.get("whirl_frequency_hz")
+        if result is None and "conventions" in found:
+            out["conventions"] = found["conventions"]
     done = [r for r in (result, onset) if r is not None]
     success = all(r.success for r in done)
     out["success"] = success
@@ -196,12 +223,61 @@ def run(args) -> int:
     return 0
 
 
+class _Answered:
+    """The running onset's dict seen as a result (success, message, answer)."""
+
+    def __init__(self, found: dict):
+        self.success = bool(found.get("success", True))
+        self.message = found.get("message") or ""
+        self.answer = found.get("answer", "")
+
+
+def _operating_point(bearing, spec, rotor, args, common):
+    """(StabilityResult or None, RunningPoint, the bearing analysed): at the running
+    condition when the file states [journal]/[thermal], else today's analysis exactly."""
+    from ..inputs import OperatingPoint
+    from .running import running_stability
+
+    return running_stability(bearing, spec, rotor,
+                             OperatingPoint(args.speed_rpm, args.load_newton), **common)
+
+
+def _running_fields(point) -> dict:
+    """The clearance at speed's top-level fields of the answer (RUNNING_FIELDS)."""
+    d = point.to_dict()
+    return {"thermal_model": d["thermal_model"],
+            **{k: d[k] for k in RUNNING_FIELDS[1:-1]}, "running": d}
+
+
+def running_lines(d: dict) -> list:
+    """The text lines of a running point's dict (RunningPoint.to_dict)."""
+    import math
+
+    lines = [f"  clearance model: {d['thermal_model']}; running clearance "
+             f"{d['running_clearance_um']:.4g} µm (cold {d['cold_clearance_um']:.4g}, "
+             f"centrifugal growth {d['centrifugal_growth_um']:.3g}, thermal growth "
+             f"{d['thermal_growth_um']:.3g} µm)"]
+    if math.isfinite(d["film_temperature_c"]):
+        lines.append(f"  heat balance: film {d['film_temperature_c']:.1f} °C, journal "
+                     f"{d['journal_temperature_c']:.1f} °C, sleeve "
+                     f"{d['sleeve_temperature_c']:.1f} °C; drag {d['heat_generated_w']:.3g} W; "
+                     f"μ = {d['viscosity_pa_s']:.4g} Pa s "
+                     f"({d['thermal_static_solves']} static solves)")
+    if d["thermal_message"]:
+        lines.append(f"  {d['thermal_message']}")
+    return lines
+
+
 def _report(out, result, onset, table, csv) -> str:
     conv = out["conventions"]
     lines = [f"gfbopt stability — {out['bearing']}, rotor {out['rotor_mass_kg']:.4g} kg per "
              f"bearing, grid {out['grid']}",
              f"  conventions: {conv['film_convention']}; {conv['foil']} foil, "
              f"{conv['deflection_law']} deflection law, loss factor {conv['loss_factor']:g}"]
+    if out.get("running"):
+        lines += running_lines(out["running"])
+    else:
+        lines.append(f"  clearance model: {out['thermal_model']}")
     if result is not None:
         r = result
         lines += [

@@ -41,6 +41,19 @@ from .bearing import BearingGeometry
 from .bore_si import build_from_tables
 from .file_schema import BEARING, BEARING_FILE, check_file, check_table
 from .options import ModelOptions
+from .thermal_tables import RUNNING_EXAMPLE, RUNNING_TABLES
+
+#: the bearing file with the clearance at speed's ``[journal]`` and ``[thermal]`` tables
+#: (:mod:`gfbopt.inputs.thermal_tables`); the file every route checks against
+BEARING_FILE_RUNNING = dataclasses.replace(
+    BEARING_FILE, tables=BEARING_FILE.tables + RUNNING_TABLES,
+    example=BEARING_FILE.example + RUNNING_EXAMPLE,
+    doc=BEARING_FILE.doc + "  The optional `[journal]` and `[thermal]` tables give the "
+    "clearance at speed (centrifugal and thermal growth, Sutherland's viscosity, a lumped "
+    "heat balance), used by `gfbopt stability` and `gfbopt capacity`; a file with neither "
+    "keeps the isothermal, cold-clearance answers.")
+#: the commands that read [journal] and [thermal]; other routes refuse a file stating them
+RUNNING_ROUTES = "`gfbopt stability` and `gfbopt capacity` (gfbopt.thermal.files)"
 
 #: largest TOML file read [bytes] (a bearing or study file is a few kB)
 MAX_FILE_BYTES = 1_000_000
@@ -86,16 +99,26 @@ def read_bearing_file(path: str | Path) -> dict:
     """The file checked against :data:`~gfbopt.inputs.file_schema.BEARING_FILE`: {table or
     key: checked value} (defaults not filled).  ParameterError names the file and key."""
     name = Path(path).name
-    return check_file(read_toml(path), BEARING_FILE, name)
+    return check_file(read_toml(path), BEARING_FILE_RUNNING, name)
 
 
-def load_bearing(path: str | Path) -> BearingGeometry:
+def load_bearing(path: str | Path, running: bool = False) -> BearingGeometry:
     """The bearing described in the TOML file ``path`` (``[bearing]``, SI units), carrying
     the options of its ``[model]`` table (``.options``; nothing stated when there is none)
-    and the bearing as built (``.build``: ``[bore]``, ``[[pads]]``, ``[[zones]]``)."""
+    and the bearing as built (``.build``: ``[bore]``, ``[[pads]]``, ``[[zones]]``).
+
+    A file stating ``[journal]`` or ``[thermal]`` is refused unless ``running`` (the routes
+    of :data:`RUNNING_ROUTES`, through :func:`gfbopt.thermal.files.load_running_bearing`):
+    any other route would answer silently with the cold clearance."""
     name = Path(path).name
     data = read_toml(path)
-    tables = check_file(data, BEARING_FILE, name)              # every table and key checked
+    tables = check_file(data, BEARING_FILE_RUNNING, name)      # every table and key checked
+    for table in RUNNING_TABLES:
+        if table.name in tables and not running:
+            raise ParameterError(f"{name}: [{table.name}]", "…", "is read by "
+                                 f"{RUNNING_ROUTES} only in this version: this route would "
+                                 "use the cold clearance and a constant viscosity (use those "
+                                 "commands, or a file without the table)")
     options = _options(tables.get("model"), name)
     build = build_from_tables(data, where=name)                # [bore], [[pads]], [[zones]]
     bearing = bearing_from_dict(tables["bearing"], where=f"{name}: bearing", options=options)

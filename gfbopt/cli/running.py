@@ -1,0 +1,247 @@
+"""The one-bearing analyses at the running condition (issue 28): stability at an operating
+point, onset of whirl, load capacity and lift-off speed, with the running clearance and
+viscosity of :mod:`gfbopt.thermal` (growths, Sutherland, the lumped heat balance).
+
+They sit here, above :mod:`gfbopt.rotor`, because they call the rotor's analyses on the warm
+bearing (:func:`gfbopt.thermal.bearing.warm_bearing`); :mod:`gfbopt.thermal` itself stays
+below the rotor (static solves only).  Without ``[journal]`` and ``[thermal]`` each function
+is today's analysis, called once on the bearing as given.
+
+- :func:`running_stability`: the fixed point at the operating point, then
+  :func:`gfbopt.rotor.stability` of the warm bearing;
+- :func:`running_onset`: :func:`gfbopt.rotor.onset_speed` of the bearing frozen at the
+  running condition of a guess, then the secant method on the mass margin at the running
+  condition of each speed;
+- :func:`running_load_capacity` / :func:`running_lift_off`: the search repeated on the
+  bearing at the running condition of the previous answer (load or speed) until the answer
+  moves by less than ``tolerance``.
+"""
+from __future__ import annotations
+
+import dataclasses
+import math
+from typing import Optional
+
+from ..errors import ParameterError
+from ..inputs.grid import DEFAULT_GRID, Grid
+from ..inputs.rotor import OperatingPoint, Rotor
+from ..thermal.bearing import FilmCase, FilmDrag, limit_on_line, warm_bearing
+from ..thermal.running import (HEAT_BALANCE, ISOTHERMAL, RunningPoint, RunningSpec,
+                               running_point, without_heat)
+
+#: the clearance at speed's top-level fields of every answer
+RUNNING_KEYS = ("thermal_model", "running_clearance_um", "centrifugal_growth_um",
+                "thermal_growth_um", "film_temperature_c", "viscosity_pa_s")
+
+
+def _case(bearing, rotor, load_newton, options, grid, cache):
+    from ..rotor.analysis import resolve_case
+
+    case = resolve_case(bearing, rotor, load_newton, options=options, grid=grid, cache=cache)
+    return case, FilmCase(bearing, case.options, case.grid, case.cache, case.load_newton)
+
+
+def running_stability(bearing, spec: RunningSpec, rotor: Rotor,
+                      operating_point: OperatingPoint, *, options=None,
+                      grid: Grid = DEFAULT_GRID, cache=None):
+    """(StabilityResult at the running condition or None, the RunningPoint, the bearing
+    analysed).  No fixed point (runaway, closure): (None, the point whose message says why,
+    the bearing as given)."""
+    from ..rotor import stability
+
+    if spec.model_name == ISOTHERMAL:
+        return (stability(bearing, rotor, operating_point, options=options, grid=grid,
+                          cache=cache), without_heat(spec, operating_point.speed_rpm), bearing)
+    case, film = _case(bearing, rotor, operating_point.load_newton, options, grid, cache)
+    drag = FilmDrag(film)
+    point = running_point(spec, operating_point.speed_rpm, drag)
+    if not point.converged:
+        return None, point, bearing
+    try:
+        warm = warm_bearing(bearing, point)
+    except ParameterError as exc:
+        return None, dataclasses.replace(point, status="runaway", message=(
+            f"the running clearance {point.running_clearance * 1e6:.3g} µm cannot be "
+            f"analysed ({exc})")), bearing
+    result = stability(warm, rotor, operating_point, options=case.options, grid=case.grid,
+                       cache=case.cache, initial=drag.last)
+    return result, point, warm
+
+
+class _Margin:
+    """M_crit/M − 1 at the running condition of each speed, along one search (shared drag:
+    warm starts; counts evaluations and static solves)."""
+
+    def __init__(self, bearing, spec, case, film, rotor, load_newton):
+        self.bearing, self.spec, self.case, self.rotor = bearing, spec, case, rotor
+        self.load = load_newton
+        self.drag = FilmDrag(film)
+        self.evaluations = 0
+
+    def __call__(self, speed, prior=None):
+        from ..rotor import stability
+
+        self.evaluations += 1
+        point = running_point(self.spec, speed, self.drag, prior=prior)
+        if not point.converged:
+            return math.nan, point, None
+        result = stability(warm_bearing(self.bearing, point), self.rotor,
+                           OperatingPoint(speed, self.load), options=self.case.options,
+                           grid=self.case.grid, cache=self.case.cache, initial=self.drag.last)
+        return result.critical_mass_kg / self.rotor.mass_kg - 1.0, point, result
+
+    def stats(self) -> dict:
+        return {"thermal_evaluations": self.evaluations,
+                "thermal_static_solves": self.drag.solves}
+
+
+def running_onset(bearing, spec: RunningSpec, rotor: Rotor, load_newton: Optional[float],
+                  speed_range, *, guess_rpm=None, options=None, grid: Grid = DEFAULT_GRID,
+                  cache=None, progress=False, tolerance: float = 1e-4,
+                  max_steps: int = 8) -> dict:
+    """The onset of whirl with the clearance at speed (module docstring): the onset's dict
+    (:meth:`~gfbopt.rotor.onset.OnsetResult.to_dict`) with ``onset_speed_rpm`` at the running
+    condition, ``frozen_onset_speed_rpm`` (the frozen bearing's), ``running`` (the running
+    point there) and ``thermal_evaluations``/``thermal_static_solves``.  A thermal runaway
+    or closure before the onset is the answer instead ("thermal runaway from N rpm")."""
+    from ..rotor import onset_speed
+
+    low, high = speed_range
+    if spec.model_name == ISOTHERMAL:
+        found = onset_speed(bearing, rotor, load_newton, speed_range, options=options,
+                            grid=grid, cache=cache, progress=progress).to_dict()
+        return {**found, "frozen_onset_speed_rpm": found["onset_speed_rpm"],
+                "running": None, "thermal_evaluations": 0, "thermal_static_solves": 0}
+    case, film = _case(bearing, rotor, load_newton, options, grid, cache)
+    margin = _Margin(bearing, spec, case, film, rotor, case.load_newton)
+    guess = guess_rpm or math.sqrt(low * high)
+    frozen_point = running_point(spec, guess, margin.drag)
+    if not frozen_point.converged:
+        return _limited(spec, film, low, guess, margin)
+    frozen = onset_speed(warm_bearing(bearing, frozen_point), rotor, load_newton, speed_range,
+                         options=case.options, grid=case.grid, cache=case.cache,
+                         progress=progress)
+    out = {**frozen.to_dict(), "frozen_onset_speed_rpm": frozen.onset_speed_rpm,
+           "frozen_at_rpm": guess, "running": frozen_point.to_dict(), **margin.stats()}
+    if not math.isfinite(frozen.onset_speed_rpm):
+        out["answer"] = f"{frozen.answer} (the running condition frozen at {guess:.6g} rpm)"
+        return out
+    a = frozen.onset_speed_rpm
+    fa, pa, _ = margin(a, frozen_point.sample)
+    if not math.isfinite(fa):
+        return {**out, **_limited(spec, film, low, a, margin)}
+    b = a * (1.02 if fa > 0 else 0.98)         # the margin falls with speed at the onset
+    fb, pb, rb = margin(b, pa.sample)
+    for _ in range(max_steps):
+        if not math.isfinite(fb):
+            return {**out, **_limited(spec, film, low, b, margin)}
+        if fb == fa or abs(b - a) <= tolerance * b:
+            break
+        a, fa, pa, b = b, fb, pb, b - fb * (b - a) / (fb - fa)
+        fb, pb, rb = margin(b, pa.sample)
+    whirl = rb.threshold_whirl_frequency_hz
+    out.update(onset_speed_rpm=b, whirl_frequency_hz=whirl,
+               whirl_ratio=rb.threshold_whirl_ratio, running=pb.to_dict(), **margin.stats(),
+               answer=(f"onset of whirl at {b:.6g} rpm at the running clearance "
+                       f"{pb.running_clearance * 1e6:.4g} µm ({spec.model_name}), whirling "
+                       f"at {whirl:.4g} Hz (frozen at {guess:.6g} rpm: "
+                       f"{frozen.onset_speed_rpm:.6g} rpm)"))
+    return out
+
+
+def _limited(spec, film, low, failing_rpm, margin) -> dict:
+    found = limit_on_line(spec, film, low, failing_rpm)
+    stats = margin.stats()
+    stats["thermal_static_solves"] += found.pop("limit_static_solves")
+    return {"onset_speed_rpm": math.nan, "whirl_frequency_hz": math.nan,
+            "answer": found["message"], "success": True, **found, **stats}
+
+
+# ------------------------------------------------------------------ capacity, lift-off
+def _answer(result, point: RunningPoint, iterations: int, solves: int) -> dict:
+    d = point.to_dict()
+    return {**result.to_dict(), "running": d, "thermal_iterations": iterations,
+            "thermal_static_solves": solves, **{k: d[k] for k in RUNNING_KEYS}}
+
+
+def _failed(result, point, iterations, solves, key) -> dict:
+    out = _answer(result, point, iterations, solves)
+    out.update({key: math.nan, "success": True, "answer": point.message,
+                "message": point.message})
+    return out
+
+
+def _film(bearing, options, grid, cache, load_newton):
+    from ..static import SolverCache
+
+    _, film = _case(bearing, Rotor(1.0), load_newton, options, grid,
+                    cache or SolverCache(grid))
+    return film
+
+
+def running_load_capacity(bearing, spec: RunningSpec, speed_rpm, min_film_um, *,
+                          options=None, grid: Grid = DEFAULT_GRID, cache=None,
+                          tolerance=1e-3, max_steps=6) -> dict:
+    """The load capacity [N] at ``speed_rpm`` with the running clearance of the answer's
+    load: :meth:`CurveResult.to_dict` plus ``running`` and the clearance at speed's fields
+    (``thermal_iterations`` searches, ``thermal_static_solves`` of the fixed points)."""
+    from ..rotor.capacity import load_capacity
+    from ..static import SolverCache
+
+    cache = cache or SolverCache(grid)
+    kw = dict(options=options, grid=grid, cache=cache)
+    point = without_heat(spec, speed_rpm)                  # the centrifugal growth only
+    if not point.converged:
+        return _failed(load_capacity(bearing, speed_rpm, min_film_um, **kw), point, 0, 0,
+                       "load_capacity_newton")
+    result = load_capacity(warm_bearing(bearing, point), speed_rpm, min_film_um, **kw)
+    iterations, solves = 1, 0
+    if spec.model_name != HEAT_BALANCE or not math.isfinite(result.value):
+        return _answer(result, point, iterations, solves)
+    for _ in range(max_steps):
+        drag = FilmDrag(_film(bearing, options, grid, cache, result.value))
+        point = running_point(spec, speed_rpm, drag)
+        solves += drag.solves
+        if not point.converged:
+            return _failed(result, point, iterations, solves, "load_capacity_newton")
+        previous = result.value
+        result = load_capacity(warm_bearing(bearing, point), speed_rpm, min_film_um, **kw)
+        iterations += 1
+        if not math.isfinite(result.value) or \
+                abs(result.value - previous) <= tolerance * previous:
+            break
+    return _answer(result, point, iterations, solves)
+
+
+def running_lift_off(bearing, spec: RunningSpec, load_newton, min_film_um, *,
+                     max_speed_rpm=100_000.0, options=None, grid: Grid = DEFAULT_GRID,
+                     cache=None, tolerance=1e-3, max_steps=6) -> dict:
+    """The lift-off speed [rpm] under ``load_newton`` with the running clearance of the
+    answer's speed (module docstring)."""
+    from ..rotor.capacity import lift_off_speed
+    from ..static import SolverCache
+
+    cache = cache or SolverCache(grid)
+    kw = dict(options=options, grid=grid, cache=cache, max_speed_rpm=max_speed_rpm)
+    result = lift_off_speed(bearing, load_newton, min_film_um, **kw)
+    iterations, solves = 1, 0
+    point = without_heat(spec, result.value if math.isfinite(result.value)
+                         else max_speed_rpm)
+    if spec.model_name == ISOTHERMAL:
+        return _answer(result, point, iterations, solves)
+    film = _film(bearing, options, grid, cache, load_newton)
+    for _ in range(max_steps):
+        if not math.isfinite(result.value):
+            break
+        previous = result.value
+        drag = FilmDrag(film)
+        point = running_point(spec, previous, drag)
+        solves += drag.solves
+        if not point.converged:
+            return _failed(result, point, iterations, solves, "lift_off_speed_rpm")
+        result = lift_off_speed(warm_bearing(bearing, point), load_newton, min_film_um, **kw)
+        iterations += 1
+        if not math.isfinite(result.value) or \
+                abs(result.value - previous) <= tolerance * previous:
+            break
+    return _answer(result, point, iterations, solves)

@@ -1,0 +1,165 @@
+"""The clearance at speed on the bearing: the bearing file's [journal] and [thermal] tables
+(refusals before any solve), today's answers kept without them, the heat balance closing on
+the real film, and gfbopt stability / capacity reporting it (issue 28)."""
+import json
+import math
+import re
+from pathlib import Path
+
+import pytest
+
+from gfbopt.errors import ParameterError
+from gfbopt.inputs import Grid, OperatingPoint, Rotor
+from gfbopt.cli.running import running_stability
+from gfbopt.inputs.bearing_file import load_bearing
+from gfbopt.rotor import stability
+from gfbopt.static import SolverCache
+from gfbopt.thermal.bearing import FilmCase, FilmDrag
+from gfbopt.thermal.files import load_running_bearing
+from gfbopt.thermal.running import CENTRIFUGAL, HEAT_BALANCE, ISOTHERMAL, speed_line
+from tests.cli_inprocess import run_cli
+
+BEARINGS = Path(__file__).resolve().parents[2] / "problems" / "bearings"
+THERMAL = BEARINGS / "ruscitto_thermal.toml"
+GRID = Grid.parse("24x8")
+
+
+def with_tables(tmp_path, text, base=THERMAL):
+    path = tmp_path / "b.toml"
+    src = base.read_text()
+    path.write_text(src + "\n" + text if text else src)
+    return path
+
+
+def edit(tmp_path, old, new):
+    path = tmp_path / "b.toml"
+    src = THERMAL.read_text()
+    assert old in src
+    path.write_text(src.replace(old, new))
+    return path
+
+
+def test_files_name_their_model():
+    assert load_running_bearing(BEARINGS / "ruscitto.toml")[1].model_name == ISOTHERMAL
+    assert load_running_bearing(BEARINGS / "ruscitto_centrifugal.toml")[1].model_name == \
+        CENTRIFUGAL
+    assert load_running_bearing(THERMAL)[1].model_name == HEAT_BALANCE
+
+
+def test_other_routes_refuse_the_tables_rather_than_answer_cold():
+    with pytest.raises(ParameterError, match=r"ruscitto_thermal.toml: \[journal\].*cold "
+                                             r"clearance"):
+        load_bearing(THERMAL)
+
+
+@pytest.mark.parametrize("old, new, key", [
+    ("journal_to_ambient = 0.5", "journal_to_ambient = -0.5", "thermal.journal_to_ambient"),
+    ("cooling_mass_flow = 0.0", "cooling_mass_flow = -1e-3", "thermal.cooling_mass_flow"),
+    ("inner_radius = 0.0 ", "inner_radius = 19.05e-3 ", "journal.inner_radius"),
+    ("inner_radius = 0.0 ", "inner_radius = 0.03 ", "journal.inner_radius"),
+    ("density = 7850.0", "", "journal.density"),
+    ("expansion_coefficient = 12e-6  # alpha_j [1/K]", "", "journal.expansion_coefficient"),
+    ("ambient_temperature = 293.15", "ambient_temperature = -10.0",
+     "thermal.ambient_temperature"),
+    ("journal_to_ambient = 0.5", "journal_to_ambient = 0.5\nfilm_to_journal = 0.0\n"
+     "film_to_foil = 0.0", "thermal"),
+])
+def test_bad_tables_refused_in_one_line(tmp_path, old, new, key):
+    path = edit(tmp_path, old, new)
+    with pytest.raises(ParameterError) as err:
+        load_running_bearing(path)
+    text = str(err.value)
+    assert text.startswith("b.toml: ") and key in text and "\n" not in text
+    result = run_cli("stability", "--bearing", path, "--rotor-mass-kg", "1",
+                     "--speed-rpm", "30000", "--grid", "24x8")
+    assert result.returncode == 2 and key in result.stderr
+    assert len(result.stderr.strip().splitlines()) == 1
+
+
+def test_thermal_needs_journal(tmp_path):
+    src = THERMAL.read_text()
+    cut = src[src.index("# The journal"):src.index("# The lumped")]
+    path = tmp_path / "b.toml"
+    path.write_text(src.replace(cut, ""))
+    with pytest.raises(ParameterError, match=r"b.toml: thermal.*needs a \[journal\]"):
+        load_running_bearing(path)
+
+
+def test_isothermal_file_keeps_todays_answers_exactly():
+    bearing, spec = load_running_bearing(BEARINGS / "ruscitto.toml")
+    result, point, _ = running_stability(bearing, spec, Rotor(1.5), OperatingPoint(30e3, 20.0),
+                                      grid=GRID)
+    today = stability(bearing, Rotor(1.5), OperatingPoint(30e3, 20.0), grid=GRID)
+    assert point.running_clearance == bearing.radial_clearance
+    assert point.static_solves == 0
+    for key in ("critical_mass_kg", "eccentricity", "whirl_frequency_hz", "bearing_number"):
+        assert getattr(result, key) == getattr(today, key)
+
+
+def test_huge_conductances_give_ambient_and_todays_answers(tmp_path):
+    """Conductances of 1e15 W/K and a journal too light to grow: the ambient temperature,
+    the cold clearance, the stated μ and today's answers to 1e-10."""
+    path = edit(tmp_path, "density = 7850.0", "density = 1e-12")
+    src = path.read_text()
+    for key in ("journal_to_ambient = 0.5", "foil_to_sleeve = 5.0", "sleeve_to_ambient = 1.0"):
+        src = src.replace(key, key.split("=")[0] + "= 1e15")
+    path.write_text(src + "film_to_journal = 1e15\nfilm_to_foil = 1e15\n")
+    bearing, spec = load_running_bearing(path)
+    result, point, _ = running_stability(bearing, spec, Rotor(1.5), OperatingPoint(30e3, 20.0),
+                                      grid=GRID)
+    today = stability(bearing, Rotor(1.5), OperatingPoint(30e3, 20.0), grid=GRID)
+    assert abs(point.network.film_k - 293.15) < 1e-10
+    assert point.running_clearance == pytest.approx(bearing.radial_clearance, rel=1e-10)
+    assert point.viscosity == pytest.approx(bearing.viscosity, rel=1e-10)
+    for key in ("critical_mass_kg", "eccentricity", "whirl_frequency_hz", "bearing_number"):
+        assert getattr(result, key) == pytest.approx(getattr(today, key), rel=1e-10)
+
+
+def test_heat_balance_on_the_film_closes_and_rises_with_speed():
+    bearing, spec = load_running_bearing(THERMAL)
+    cache = SolverCache(GRID)
+    from gfbopt.inputs.options import resolve_model_options
+    drag = FilmDrag(FilmCase(bearing, resolve_model_options(bearing.options), GRID, cache, 20.0))
+    line = speed_line(spec, [15e3, 30e3, 45e3], drag)
+    assert all(p.converged for p in line.points)
+    for p in line.points:
+        assert p.network.heat_out_w == pytest.approx(p.network.power_w, rel=1e-9)
+        assert p.static_solves <= 3
+        assert p.network.to_side_leakage_w > 0            # the film's ends do leak
+    for name in ("power_w", "film_k"):
+        values = [getattr(p.network, name) for p in line.points]
+        assert values == sorted(values) and len(set(values)) == 3
+    growth = [p.centrifugal_growth + p.thermal_growth for p in line.points]
+    assert growth == sorted(growth)
+    assert len(cache) == 1                   # the clearance is a parameter: one build
+
+
+def test_stability_cli_reports_the_running_condition():
+    result = run_cli("stability", "--bearing", THERMAL, "--rotor-mass-kg", "1.5",
+                     "--load-newton", "20", "--speed-rpm", "30000", "--grid", "24x8",
+                     "--json")
+    assert result.returncode == 0, result.stderr
+    out = json.loads(result.stdout)
+    assert out["thermal_model"] == HEAT_BALANCE
+    assert 15 < out["running_clearance_um"] < 20 and out["film_temperature_c"] > 20
+    assert out["running_clearance_um"] == pytest.approx(
+        20 - out["centrifugal_growth_um"] - out["thermal_growth_um"], rel=1e-12)
+    assert out["viscosity_pa_s"] > 2.98e-5
+    text = run_cli("stability", "--bearing", BEARINGS / "ruscitto.toml", "--rotor-mass-kg",
+                   "1.5", "--speed-rpm", "30000", "--grid", "24x8").stdout
+    assert "clearance model: isothermal, cold clearance" in text
+
+
+def test_capacity_cli_reports_the_running_condition():
+    result = run_cli("capacity", "--bearing", BEARINGS / "ruscitto_centrifugal.toml",
+                     "--speed-rpm", "45000", "--min-film-um", "5", "--grid", "24x8", "--json")
+    assert result.returncode == 0, result.stderr
+    out = json.loads(result.stdout)
+    assert out["thermal_model"] == CENTRIFUGAL
+    # a 2 mm steel wall: u = ρω²b[(1 − ν)b² + (3 + ν)a²]/(4E)
+    w = 45e3 * math.pi / 30
+    b, a = 19.05e-3, 17.05e-3
+    u = 7850 * w**2 * b * (0.7 * b**2 + 3.3 * a**2) / (4 * 200e9)
+    assert out["centrifugal_growth_um"] == pytest.approx(u * 1e6, rel=1e-12)
+    assert out["running_clearance_um"] == pytest.approx(20 - u * 1e6, rel=1e-12)
+    assert math.isfinite(out["load_capacity_newton"])
