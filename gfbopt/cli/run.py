@@ -11,6 +11,12 @@ finish: workers or the Dask scheduler lost), 2 for a mistake in a study file or 
 130 after Ctrl-C and 143 after SIGTERM — in both cases the finished rows of a sampled study
 are written first and one line says what was kept and how to resume.
 
+Rotor studies take ``--rotor FILE`` and ``--top-speed RPM``: the study run on the user's
+rotor to that top speed, into ``RESULTS/NAME_on_<rotor>_to_<top>rpm/``, with the answer of a
+copy of the study file with ``rotor``, the top of ``speed_range_rpm``, ``name`` and ``title``
+edited (:mod:`gfbopt.studies.user_rotor`; a missing or invalid rotor file, a top speed not
+above the study's lowest speed: one line, exit 2, before any solve).
+
 Sampled studies (``kind = "sweep"``, :mod:`gfbopt.studies.doe`) also take ``--resume``
 (compute only the points not yet in ``RESULTS/NAME/store/``) and ``--scheduler ADDRESS`` (run
 on a Dask distributed cluster; docs/doe.md).  Other kinds run on the local executor whatever
@@ -86,12 +92,20 @@ def register(subparsers) -> None:
     run.add_argument("--scheduler", metavar="ADDRESS", default=None,
                      help="sampled studies: run on the Dask scheduler at ADDRESS, e.g. "
                      "tcp://127.0.0.1:8786 (a scheduler is trusted code; docs/doe.md)")
+    run.add_argument("--rotor", metavar="FILE", default=None,
+                     help="rotor studies: run on this rotor file instead of the study's "
+                     "(the result folder NAME_on_<rotor>; the same answer as a copy of the "
+                     "study file with rotor, name and title changed)")
+    run.add_argument("--top-speed", default=None, metavar="RPM",
+                     help="rotor studies: the top of speed_range_rpm (above its lowest "
+                     "speed)")
     run.set_defaults(handler=run_studies)
 
 
 def _load(path: str, args):
-    """Validate and plan one study file, with --grid and --max-points applied, refused when
-    its estimated memory or time is above --max-memory-gb or --max-minutes."""
+    """Validate and plan one study file, with --grid, --max-points, --rotor and --top-speed
+    applied (gfbopt.studies.user_rotor), refused when its estimated memory or time is above
+    --max-memory-gb or --max-minutes."""
     from pathlib import Path
 
     from ..errors import ParameterError
@@ -99,12 +113,22 @@ def _load(path: str, args):
     from ..studies.runner import read_study_file
     from .size import limits
 
-    if args.grid is None and args.max_points is None:
+    rotor, top = getattr(args, "rotor", None), getattr(args, "top_speed", None)
+    if args.grid is None and args.max_points is None and rotor is None and top is None:
         from ..studies import load_study
 
         return load_study(path, limits(args))
     data = read_study_file(path)
     schema = SCHEMAS.get(data.get("kind"), {})
+    if rotor is not None or top is not None:
+        from ..studies.user_rotor import on_user_rotor
+
+        if data.get("kind") not in SCHEMAS:        # the kind's own error first
+            from ..studies.spec import validate
+
+            validate(data, str(path))
+        name = data["name"] if isinstance(data.get("name"), str) else Path(path).stem
+        data = on_user_rotor(data, str(path), schema, rotor, top, name)
     if args.grid is not None:
         if "grid" not in schema and data.get("kind") in SCHEMAS:
             raise ParameterError("--grid", args.grid, f"{path}: a {data['kind']} study has "

@@ -64,6 +64,9 @@ class LimitReport:
     relaxed_value: float             # that design's value: the limit that would admit it
     relaxed_breach: float            # by how much it breaks the limit, relative (> 0)
     relaxed_point: str
+    #: the relaxations worth making, least first: (relaxed limit, merit it allows, point)
+    #: of every design breaking only this limit that beats every design nearer the limit
+    relaxation_steps: tuple = ()
 
     def to_dict(self) -> dict:
         return asdict(self)
@@ -98,13 +101,18 @@ def binding_limits(table: pd.DataFrame, problem: DesignProblem, best: Optional[d
         limit = c.lower if c.lower is not None else c.upper
         relaxed = _value(top, c.name) if top is not None else math.nan
         breach = (c.violation(relaxed) if top is not None else math.nan)
+        steps, reached = [], best_merit
+        for r in sorted(better, key=lambda r: c.violation(_value(r, c.name))):
+            if _value(r, merit) > reached:
+                reached = _value(r, merit)
+                steps.append((_value(r, c.name), reached, str(r.get("point", ""))))
         words, unit = LIMIT_WORDS.get(c.name, (f"limit on {c.name}", ""))
         out.append(LimitReport(
             c.name, words, unit, "lower" if c.lower is not None else "upper", float(limit),
             len(breaking), len(only), value, distance,
             bool(math.isfinite(distance) and 0.0 <= distance <= tolerance),
             _value(top, merit) if top is not None else math.nan, relaxed, breach,
-            str(top.get("point", "")) if top is not None else ""))
+            str(top.get("point", "")) if top is not None else "", tuple(steps)))
     return out
 
 
@@ -141,11 +149,17 @@ def limits_text(reports: list, total: int, failed: int, merit_unit: str = "rpm",
                      + ".")
     for r in reports:
         if math.isfinite(r.relaxed_merit):
-            lines.append(f"Relaxing the {r.words} from {_number(r.limit, r.unit)} to "
-                         f"{_number(r.relaxed_value, r.unit)} ({r.relaxed_breach:.0%} past "
-                         f"it) would allow a first onset of "
-                         f"{_number(r.relaxed_merit, merit_unit)} (design {r.relaxed_point}, "
-                         "the best evaluated design that breaks this limit alone).")
+            text = (f"Relaxing the {r.words} from {_number(r.limit, r.unit)} to "
+                    f"{_number(r.relaxed_value, r.unit)} ({r.relaxed_breach:.0%} past it) "
+                    f"would allow a first onset of {_number(r.relaxed_merit, merit_unit)} "
+                    f"(design {r.relaxed_point}, the best evaluated design that breaks this "
+                    "limit alone)")
+            if len(r.relaxation_steps) > 1:
+                first = r.relaxation_steps[0]
+                text += (f"; the least relaxation that gains anything, to "
+                         f"{_number(first[0], r.unit)}, allows "
+                         f"{_number(first[1], merit_unit)}")
+            lines.append(text + ".")
     return lines
 
 
@@ -159,5 +173,5 @@ def limits_frame(reports: list) -> pd.DataFrame:
                "active": "active_at_chosen", "relaxed_merit": "relaxed_first_onset_speed_rpm",
                "relaxed_value": "relaxed_limit_value", "relaxed_breach": "relaxed_breach",
                "relaxed_point": "relaxed_point"}
-    return pd.DataFrame([{columns[k]: v for k, v in r.to_dict().items()} for r in reports],
-                        columns=list(columns.values()))
+    return pd.DataFrame([{columns[k]: v for k, v in r.to_dict().items() if k in columns}
+                         for r in reports], columns=list(columns.values()))

@@ -20,10 +20,11 @@ design's value, or the bearing's as built when the space does not vary it.
 
 :func:`threshold_search` is the search on g(x) = first onset(x) − top speed along one
 lever: from the design's value x₀ towards each bound, ``steps`` evenly spaced values until
-g ≥ 0 (a bracket), then the Illinois method (secant steps that keep the bracket, never slower
-than about bisection) in that bracket to :data:`VALUE_TOLERANCE` of the bounds' span; the answer is the crossing
-nearer x₀ (the smallest change).  When no scanned value reaches the top speed the answer is
-"none within physical limits", with the first onset reached at each bound.  The scan can
+g ≥ 0 (a bracket), then the Illinois method (secant steps that keep the bracket, never
+slower than about bisection) in that bracket to :data:`VALUE_TOLERANCE` of the bounds'
+span; the answer is the crossing nearer x₀ (the smallest change).  When no scanned value
+reaches the top speed the answer is "none within physical limits", with the first onset
+reached at the better bound.  The scan can
 miss a crossing that comes and goes between two scanned values (a non-monotone onset);
 the values scanned are in the table so the reader can see it.
 
@@ -103,12 +104,14 @@ def parse_levers(table, file: str, bearings: tuple = ("A", "B"), variables: tupl
                     f"is not a lever (known: {', '.join(LEVERS)} and the continuous design "
                     "variables, shared or 'A:name')")
             raise ParameterError(key, name, rule)
-        if bearing is not None and (bearing not in bearings or name in LEVERS):
-            raise ParameterError(key, name, f"names no bearing of the rotor ({', '.join(bearings)})")
+        if bearing is not None and bearing not in bearings:
+            raise ParameterError(key, name, f"names no bearing of the rotor "
+                                 f"({', '.join(bearings)})")
         shared = bearing is None and name not in LEVERS
         if shared and any(":" in v and _variable(v) == var for v in variables):
+            each = ", ".join(f"{b}:{var}" for b in bearings)
             raise ParameterError(key, name, f"the study designs {var} per bearing: name the "
-                                 f"lever per bearing ({', '.join(f'{b}:{var}' for b in bearings)})")
+                                 f"lever per bearing ({each})")
         if not isinstance(spec, dict) or "low" not in spec or "high" not in spec:
             raise ParameterError(key, spec, "a lever needs its physical bounds: "
                                  "{low = ..., high = ...} in its unit "
@@ -116,8 +119,9 @@ def parse_levers(table, file: str, bearings: tuple = ("A", "B"), variables: tupl
         extra = sorted(set(spec) - set(LEVER_KEYS))
         if extra or (name != "side_load_n" and set(spec) - {"low", "high"}):
             bad = extra[0] if extra else sorted(set(spec) - {"low", "high"})[0]
-            raise ParameterError(f"{key}.{bad}", spec[bad], "is not a key of this lever "
-                                 f"(known: low, high{', direction_deg, position' if name == 'side_load_n' else ''})")
+            known = "low, high" + (", direction_deg, position" if name == "side_load_n" else "")
+            raise ParameterError(f"{key}.{bad}", spec[bad], f"is not a key of this lever "
+                                 f"(known: {known})")
         numbers = {}
         for k in spec:
             v = spec[k]

@@ -1,9 +1,9 @@
-"""The decision of a bearing-pair design study (:mod:`.rotor_design`): one function,
-:func:`answer`, makes the verdict and every ``summary.json`` key of the answer, so the
-console's last line, the README's first line and ``summary.json`` say the same thing; and
-the parts of the answer beyond the verdict — which limit binds (:mod:`gfbopt.design.decision`),
-what it would take (:mod:`gfbopt.design.what_it_takes`) or, for a design stable to the top
-speed, its margin.
+"""The decision of a bearing-pair design study (:mod:`.rotor_design`) beyond its verdict
+(one function, :func:`gfbopt.studies.rotor_report.answer`, makes the verdict and every
+``summary.json`` key of the answer from these parts, so the console's last line, the
+README's first line and ``summary.json`` say the same thing): which limit binds
+(:mod:`gfbopt.design.decision`), what it would take (:mod:`gfbopt.design.what_it_takes`) or,
+for a design stable to the top speed, its margin.
 """
 from __future__ import annotations
 
@@ -13,7 +13,6 @@ import math
 
 import pandas as pd
 
-from ..design.pareto import feasible_rows
 
 #: the what-it-would-take evaluations' store, beside the search's in the result folder
 LEVER_STORE = "what_it_takes_store"
@@ -28,38 +27,6 @@ ANSWER_COLUMNS = {"lever": "lever", "unit": "lever_unit", "words": "lever_words"
                   "limit_value": "at_bound_value",
                   "limit_onset_rpm": "at_bound_onset_speed_rpm",
                   "evaluations": "lever_evaluations", "message": "message"}
-
-
-def answer(chosen, why: str, table: pd.DataFrame, plan, check=None, whirl=None,
-           limits=None, levers=None, margin=None) -> dict:
-    """The study's answer as ``summary.json`` keys, the verdict among them — the one place
-    they are made (:func:`gfbopt.studies.rotor_report.verdict` words it): ``verdict``;
-    ``stable_to_top_speed`` (the chosen design's first onset ≥ the top speed);
-    ``best_first_onset_rpm`` (the best feasible first onset, None: none feasible);
-    ``answer_grid``; ``chosen_design`` (its variables and main outputs, None: none);
-    ``limits`` (one :class:`gfbopt.design.decision.LimitReport` per limit) and
-    ``active_limits`` (the names of the chosen design's active limits); ``what_it_would_take``
-    (one :class:`gfbopt.design.what_it_takes.LeverAnswer` per lever; None when not searched)
-    and ``margin`` (:func:`margin_of`; None unless the chosen design is stable)."""
-    from .rotor_report import verdict
-
-    ok = feasible_rows(table, plan.problem)
-    top = plan.settings.top_speed_rpm
-    design = None
-    if chosen is not None:
-        keep = [*plan.problem.names, "first_onset_speed_rpm", "first_mode",
-                "total_power_loss_w", "min_film_lowest_speed_um", "point"]
-        design = {k: chosen[k] for k in keep if k in chosen}
-    return {"verdict": verdict(chosen, why, plan, check, whirl),
-            "stable_to_top_speed": bool(chosen is not None
-                                        and chosen["first_onset_speed_rpm"] >= top),
-            "best_first_onset_rpm": float(ok["first_onset_speed_rpm"].max()) if len(ok)
-            else None,
-            "answer_grid": str(plan.settings.grid), "chosen_design": design,
-            "limits": [r.to_dict() for r in limits or []],
-            "active_limits": [r.name for r in limits or [] if r.active],
-            "what_it_would_take": None if levers is None else [a.to_dict() for a in levers],
-            "margin": margin}
 
 
 def margin_of(chosen: dict, robust: pd.DataFrame, top: float) -> dict:

@@ -193,8 +193,9 @@ def design_hash(study: Study) -> str:
 
 
 def plan(study: Study):
-    """Validate the study before any solve (:func:`gfbopt.design.rotor_spec.plan_rotor_design`,
-    and the levers of ``[what_it_would_take]``, :func:`gfbopt.design.what_it_takes.parse_levers`)."""
+    """Validate the study before any solve
+    (:func:`gfbopt.design.rotor_spec.plan_rotor_design`, and the levers of
+    ``[what_it_would_take]``, :func:`gfbopt.design.what_it_takes.parse_levers`)."""
     from ..design.what_it_takes import parse_levers
 
     p = plan_rotor_design(study, design_hash(study))

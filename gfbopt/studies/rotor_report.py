@@ -15,7 +15,7 @@ from ..design.pareto import feasible_rows
 from ..design.what_it_takes import answers_text
 from ..plotting.design_front import variable_label
 from .base import StudyResult
-from .rotor_decision import answer, answers_frame, margin_of, margin_text, run_levers
+from .rotor_decision import answers_frame, margin_of, margin_text, run_levers
 
 #: largest relative difference between a design's stored objectives and the same design
 #: evaluated again from scratch (a fresh solver cache): the evaluation is deterministic, so
@@ -260,6 +260,36 @@ def report(study, plan, search, run_tasks, stages, started: float, store,
     return StudyResult(study, tables=tables, figures=figures, checks=checks, options=options,
                        notes=notes, wall_time_s=time.perf_counter() - started,
                        verdict=text, answer=found)
+
+
+def answer(chosen, why: str, table: pd.DataFrame, plan, check=None, whirl=None,
+           limits=None, levers=None, margin=None) -> dict:
+    """The study's answer as ``summary.json`` keys, the verdict among them — the one place
+    they are made (:func:`verdict` words it): ``verdict``;
+    ``stable_to_top_speed`` (the chosen design's first onset ≥ the top speed);
+    ``best_first_onset_rpm`` (the best feasible first onset, None: none feasible);
+    ``answer_grid``; ``chosen_design`` (its variables and main outputs, None: none);
+    ``limits`` (one :class:`gfbopt.design.decision.LimitReport` per limit) and
+    ``active_limits`` (the names of the chosen design's active limits); ``what_it_would_take``
+    (one :class:`gfbopt.design.what_it_takes.LeverAnswer` per lever; None when not searched)
+    and ``margin`` (:func:`margin_of`; None unless the chosen design is stable)."""
+    ok = feasible_rows(table, plan.problem)
+    top = plan.settings.top_speed_rpm
+    design = None
+    if chosen is not None:
+        keep = [*plan.problem.names, "first_onset_speed_rpm", "first_mode",
+                "total_power_loss_w", "min_film_lowest_speed_um", "point"]
+        design = {k: chosen[k] for k in keep if k in chosen}
+    return {"verdict": verdict(chosen, why, plan, check, whirl),
+            "stable_to_top_speed": bool(chosen is not None
+                                        and chosen["first_onset_speed_rpm"] >= top),
+            "best_first_onset_rpm": float(ok["first_onset_speed_rpm"].max()) if len(ok)
+            else None,
+            "answer_grid": str(plan.settings.grid), "chosen_design": design,
+            "limits": [r.to_dict() for r in limits or []],
+            "active_limits": [r.name for r in limits or [] if r.active],
+            "what_it_would_take": None if levers is None else [a.to_dict() for a in levers],
+            "margin": margin}
 
 
 def robustness_text(c, r, band) -> str:

@@ -120,7 +120,8 @@ COMMON = {
     "name": opt("string", None, "study name (default: the file name)"),
     "kind": req("string", "study kind"),
     "title": req("string", "title, for bearing engineers"),
-    "source": req("string", "full citation of the source, with table or figure"),
+    "source": opt("string", UNSET, "full citation of the source, with table or figure "
+                  "(required of a shipped study: a file in gfbopt's problems/ folder)"),
     "notes": opt("strings", [], "notes printed in the report"),
 }
 GRID = {"grid": opt("grid", str(DEFAULT_GRID), "finite-difference grid NTHETAxNZ")}
@@ -455,7 +456,31 @@ def validate(data: dict, file: str) -> dict:
     if kind not in SCHEMAS:
         raise (top / "kind").error(kind, f"must be one of {', '.join(SCHEMAS)}"
                                    + _hint(kind, tuple(SCHEMAS)))
-    return check_table(data, {**COMMON, **SCHEMAS[kind]}, top)
+    out = check_table(data, {**COMMON, **SCHEMAS[kind]}, top)
+    if "source" not in out:
+        if shipped(file):
+            raise (top / "source").error(None, "is required of a study shipped in gfbopt's "
+                                         "problems/ folder (the full citation of the "
+                                         "source, with table or figure)")
+        out["source"] = USER_SOURCE
+    return out
+
+
+#: the ``source`` of a user's study that cites none
+USER_SOURCE = "none cited (a user's own study)"
+
+
+def shipped(file: str) -> bool:
+    """True for a study file that gfbopt ships: one inside the ``problems/`` folder beside
+    the ``gfbopt`` package (the checkout's; an installed wheel ships none), found by its
+    resolved path, so a copy anywhere else is the user's own study."""
+    from pathlib import Path
+
+    path = Path(file)
+    if not path.is_file():
+        return False
+    problems = Path(__file__).resolve().parents[2] / "problems"
+    return problems in path.resolve().parents
 
 
 def describe_schema(kind: str) -> list[tuple[str, str, str]]:

@@ -64,7 +64,9 @@ TERMS: dict[str, tuple[str, str]] = {
     "chosen_design": ("text", "summary.json: the chosen design's variables and main outputs "
                       "(null: no design meets every limit)"),
     "limits": ("text", "summary.json: one entry per limit (the columns of "
-                       "binding_limits.csv, without the limit_/chosen_ prefixes)"),
+                       "binding_limits.csv, without the limit_/chosen_ prefixes, and "
+                       "relaxation_steps: [relaxed limit, first onset it allows, point] of "
+                       "each relaxation that gains, least first)"),
     "active_limits": ("text", "summary.json: names of the limits active at the chosen design"),
     "what_it_would_take": ("text", "summary.json: one entry per lever (the columns of "
                            "what_it_would_take.csv); null when the chosen design is stable "

@@ -1,10 +1,11 @@
 """A planted stand-in for gfbopt.design.rotor_objectives.evaluate_rotor_design, for the
 decision of a design run (tests/integration/test_design_decision.py): the first onset
 
-    N₁ = 12,000 + 300 (35 − c) + 100,000 η + 150 F + offset   [rpm]
+    N₁ = 12,000 + 300 (35 − c) + 100,000 η + 150 F + 1,000 (m − 3.2) + offset   [rpm]
 
-(c the radial clearance [µm], η the loss factor, F the static side loads' sum [N], offset
-from GFBOPT_TEST_ONSET_OFFSET, default 0), capped at the end of the onset search; the
+(c the radial clearance [µm], η the loss factor, F the static side loads' sum [N], m the
+rotor's mass [kg], offset from GFBOPT_TEST_ONSET_OFFSET, default 0), capped at the end
+of the onset search; the
 start-up film 0.15 c − 1 [µm] (the 1.5 µm limit binds at c = 16.667 µm, where the onset is
 highest among the designs that meet it).  Every call is logged (η, F, c) when
 GFBOPT_TEST_DESIGN_LOG names a log."""
@@ -23,6 +24,7 @@ def planted_evaluation(system, settings, cache=None, near_onset_rpm=None, onset_
             f.write(f"{settings.grid} {settings.loss_factor!r} {force!r} {c!r} "
                     f"{int(onset_only)}\n")
     onset = (12000.0 + 300.0 * (35.0 - c) + 100000.0 * settings.loss_factor + 150.0 * force
+             + 1000.0 * (system.body.mass - 3.2)
              + float(os.environ.get("GFBOPT_TEST_ONSET_OFFSET", "0")))
     status = "onset"
     if onset >= settings.search_high_rpm:

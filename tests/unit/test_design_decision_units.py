@@ -33,9 +33,9 @@ def _best(table):
 
 
 def test_the_planted_active_limit_is_named_with_its_exclusions_and_relaxation():
-    """Designs at c = 12, 13, 14, 15.1 and 16, …, 40: the best feasible is c = 15.1 (film 1.51, 0.7 %
-    from the limit: active); c = 12, 13, 14 break the film limit alone (3 designs); the best
-    of them, c = 12 (film 1.2, 20 % past the limit), reaches 34,000 rpm."""
+    """Designs at c = 12, 13, 14, 15.1 and 16, …, 40: the best feasible is c = 15.1 (film
+    1.51, 0.7 % from the limit: active); c = 12, 13, 14 break the film limit alone (3
+    designs); the best of them, c = 12 (film 1.2, 20 % past the limit), reaches 34,000 rpm."""
     table = _table([12, 13, 14, 15.1, *range(16, 41)])
     best = _best(table)
     assert best["c"] == 15.1
@@ -121,3 +121,14 @@ def test_bad_levers_name_the_file_and_key(table, rule):
                                                         "B:radial_clearance_um"))
     text = str(info.value)
     assert rule in text and text.startswith("study.toml: what_it_would_take.")
+
+
+def test_the_relaxation_steps_run_from_the_least_relaxation_that_gains():
+    """c = 12, 13, 14 break the film limit alone (film 1.2, 1.3, 1.4): relaxing to 1.4
+    allows 33,000 rpm, to 1.3 33,500, to 1.2 34,000 — each step beats the one before."""
+    table = _table([12, 13, 14, 15.1, 20])
+    film, _ = binding_limits(table, PROBLEM, _best(table), merit="onset")
+    steps = [(round(v, 9), m) for v, m, _ in film.relaxation_steps]
+    assert steps == [(1.4, 33000.0), (1.3, 33500.0), (1.2, 34000.0)]
+    text = " ".join(limits_text([film], len(table), 0, "rpm"))
+    assert "the least relaxation that gains anything, to 1.4, allows 33,000 rpm" in text

@@ -1,0 +1,102 @@
+"""A study run on the user's own rotor: ``gfbopt run STUDY --rotor my_rotor.toml
+--top-speed 60000``.
+
+:func:`on_user_rotor` returns the study's table with the study's ``rotor`` replaced by the
+user's file (its absolute path, as the command line named it from the current folder) and
+the top of ``speed_range_rpm`` by the top speed; the name gets the rotor file's stem (the
+result folder ``RESULTS/<name>_on_<rotor>/``) and the title says it is the user's rotor, so
+the run answers exactly what an edited copy of the study file with those four keys changed
+answers.  The source, when the study cites one, is kept with a note that the rotor is the
+user's.  Each option is checked before any solve: the rotor file exists and is a valid
+rotor file (:func:`gfbopt.inputs.rotor_system.load_rotor`), the top speed is a finite
+number above the study's lowest speed; a mistake is one
+:class:`~gfbopt.errors.ParameterError` naming the option, its value and the rule.
+"""
+from __future__ import annotations
+
+import math
+import re
+from pathlib import Path
+from typing import Optional
+
+from ..errors import ParameterError
+
+
+def check_rotor_option(value: str) -> Path:
+    """The rotor file ``--rotor`` names (absolute), or ParameterError: missing, a
+    directory, or not a valid rotor file (the file's own first mistake quoted)."""
+    from ..inputs.rotor_system import load_rotor
+
+    path = Path(value).expanduser()
+    if not path.is_file():
+        rule = "is a directory: give a rotor file" if path.is_dir() else \
+            "no such rotor file (a path from the current folder)"
+        raise ParameterError("--rotor", value, rule)
+    try:
+        load_rotor(path)
+    except ParameterError as exc:
+        raise ParameterError("--rotor", value, f"is not a valid rotor file ({exc.name} = "
+                             f"{exc.value!r}: {exc.rule})") from None
+    except (OSError, UnicodeDecodeError, RecursionError) as exc:
+        raise ParameterError("--rotor", value, f"cannot be read as a rotor file "
+                             f"({type(exc).__name__})") from None
+    return path.resolve()
+
+
+def _stem(path: Path) -> str:
+    """The rotor file's stem as part of a folder name (letters, digits, '_', '-', '.')."""
+    stem = re.sub(r"[^A-Za-z0-9_.-]+", "_", path.stem).strip("_.") or "rotor"
+    return stem[:40]
+
+
+def on_user_rotor(data: dict, file: str, schema: dict, rotor: Optional[str],
+                  top_speed, name: str) -> dict:
+    """The study ``data`` (parsed, not yet validated) of ``file`` with ``--rotor`` and
+    ``--top-speed`` applied (module docstring; ``top_speed`` as typed: a number or its
+    text); ``schema``: its kind's keys; ``name``: the study's name as the file gives it
+    (or its file name)."""
+    out = dict(data)
+    kind = data.get("kind")
+    if rotor is not None and "rotor" not in schema:
+        raise ParameterError("--rotor", rotor, f"{file}: a {kind} study has no rotor (it "
+                             "applies to rotor studies, e.g. kind = \"rotor_bearing_design\")")
+    if top_speed is not None:
+        if "speed_range_rpm" not in schema or schema["speed_range_rpm"].length != 2:
+            raise ParameterError("--top-speed", top_speed, f"{file}: a {kind} study has no "
+                                 "[lowest, top] speed_range_rpm")
+        try:
+            top_speed = float(top_speed)
+        except (TypeError, ValueError):
+            raise ParameterError("--top-speed", top_speed, "must be a speed in rpm") \
+                from None
+        if not (math.isfinite(top_speed) and top_speed > 0.0):
+            raise ParameterError("--top-speed", top_speed, "must be a finite speed > 0 [rpm]")
+        speeds = data.get("speed_range_rpm")
+        if not (isinstance(speeds, list) and len(speeds) == 2
+                and all(isinstance(v, (int, float)) and not isinstance(v, bool)
+                        for v in speeds)):
+            raise ParameterError(f"{file}: speed_range_rpm", speeds, "must be [lowest, top] "
+                                 "running speeds [rpm]")
+        if not top_speed > speeds[0]:
+            raise ParameterError("--top-speed", top_speed, f"must be above the study's "
+                                 f"lowest speed {speeds[0]:g} rpm (speed_range_rpm of "
+                                 f"{file})")
+        out["speed_range_rpm"] = [float(speeds[0]), float(top_speed)]
+    mine = check_rotor_option(rotor) if rotor is not None else None
+    if mine is not None:
+        out["rotor"] = str(mine)
+    said = []
+    if mine is not None:
+        said.append(f"on the user's rotor {mine.name}")
+    if top_speed is not None:
+        said.append(f"to {top_speed:,.0f} rpm")
+    if said:
+        suffix = (f"_on_{_stem(mine)}" if mine is not None else "") + \
+            (f"_to_{top_speed:.0f}rpm" if top_speed is not None else "")
+        out["name"] = f"{name}{suffix}"[:100]
+        title = str(data.get("title", name))
+        out["title"] = f"{title} — {' '.join(said)}"
+        if isinstance(data.get("source"), str):
+            out["source"] = (f"{data['source']} (the study {file} run "
+                             f"{' '.join(said)}: the rotor and top speed are the user's)")
+    return out
