@@ -7,8 +7,9 @@ catch units given by mistake (positions in millimetres, inertias in kg mm²) and
 cannot be a machine (1e308 kg, 1e200 m).  With D the larger journal diameter, L a bearing's
 length, p_a its ambient pressure, c the smaller radial clearance:
 
-* **a flexible shaft** (``system.shaft``): every position on the shaft instead of the reach,
-  span and inertia limits below (:func:`_check_shaft`); the others apply.
+* **a flexible shaft** (``system.shaft``): every position on the shaft, and the shaft no
+  thicker than a bearing's journal where it runs in it, instead of the reach, span and
+  inertia limits below (:func:`_check_shaft`); the others apply.
 * **reach**: every axial position (bearings, side loads, imbalance planes, stations) within
   :data:`MAX_REACH_DIAMETERS` D of the centre of gravity, and the span between the bearings
   at most that too.  A rigid-rotor model needs a shaft far stiffer than its bearings: a solid
@@ -116,6 +117,7 @@ def _check_shaft(system, where: str) -> None:
                                             ("bearings", "side_loads", "imbalance",
                                              "stations")], where)
     a, b = system.bearings
+    _check_journals(system, where)
     overlap = 0.5 * (a.geometry.length + b.geometry.length)
     if system.span < overlap:
         raise ParameterError(f"{where}bearings[2].position", b.position, f"gives a span of "
@@ -124,6 +126,22 @@ def _check_shaft(system, where: str) -> None:
                              "first end)")
     _check_loads(system, where)
     _check_imbalance(system, where)
+
+
+def _check_journals(system, where: str) -> None:
+    """The shaft fits each bearing: the outer diameter of every element touching a bearing's
+    position is at most its journal's 2R (a sleeve may make the journal larger, nothing
+    makes it smaller; catches diameters in millimetres)."""
+    ends = system.shaft.ends
+    tol = 1e-9 * system.shaft.length
+    for support in system.bearings:
+        z, journal = support.position, 2.0 * support.geometry.radius
+        for k, (el, a, b) in enumerate(zip(system.shaft.elements, ends, ends[1:]), 1):
+            if a - tol <= z <= b + tol and el.outer_diameter > journal * (1 + 1e-9):
+                raise ParameterError(f"{where}shaft[{k}].outer_diameter", el.outer_diameter,
+                                     f"must be <= bearing {support.name}'s journal diameter "
+                                     f"2R = {journal:.6g} m at z = {z:g} m (the shaft runs in "
+                                     "the bearing; metres, not millimetres)")
 
 
 def _check_inertia(body, diameter: float, where: str) -> None:
@@ -147,7 +165,8 @@ def _check_loads(system, where: str) -> None:
                 * 2.0 * s.geometry.radius for s in system.bearings]
     weight = system.body.mass * STANDARD_GRAVITY
     if not weight <= sum(ceilings):
-        raise ParameterError(f"{where}rotor.mass", system.body.mass, f"weighs {weight:.4g} N "
+        key = "rotor.mass" if getattr(system, "shaft", None) is None else "shaft (total mass)"
+        raise ParameterError(f"{where}{key}", system.body.mass, f"weighs {weight:.4g} N "
                              f"under standard gravity, above what both bearings could carry "
                              f"({MAX_SPECIFIC_LOAD_RATIO:g} p_a L D each: {sum(ceilings):.4g} N)")
     for support, share, ceiling in zip(system.bearings, system.static_shares(), ceilings):

@@ -92,7 +92,8 @@ SCHEMA: tuple[Key, ...] = (
     Key("shaft", "length", "number", "m", True, None, "finite, > 0",
         "length of the element; the elements are given in order from the shaft's first end "
         "and each starts where the previous one ends"),
-    Key("shaft", "outer_diameter", "number", "m", True, None, "finite, > 0",
+    Key("shaft", "outer_diameter", "number", "m", True, None,
+        "finite, > 0; <= the journal diameter 2R of a bearing the element touches",
         "outer diameter of the element's hollow circular section"),
     Key("shaft", "inner_diameter", "number", "m", False, 0.0, "finite, >= 0, < outer_diameter",
         "bore of the element (0: solid)"),

@@ -118,6 +118,11 @@ def _edit(data, path, value):
     (("bearings", 0, "position"), -0.06, "bearings[1].position", "must lie on the shaft"),
     (("imbalance", 0, "position"), 0.5, "imbalance[1].position", "must lie on the shaft"),
     (("stations", 0, "position"), 0.5, "stations[1].position", "must lie on the shaft"),
+    (("shaft", 3, "outer_diameter"), 0.04, "shaft[4].outer_diameter",
+     "must be <= bearing A's journal diameter 2R = 0.0381 m at z = 0.06 m"),
+    (("shaft", 2, "outer_diameter"), 0.04, "shaft[3].outer_diameter",
+     "must be <= bearing A's journal diameter"),
+    (("shaft", 0, "outer_diameter"), 38.1, "shaft (total mass)", "above what both bearings"),
     (("rotor", None, "mass"), 5.0, "rotor.mass", "refused with a [[shaft]]"),
     (("rotor", None, "polar_inertia"), 5.0, "rotor.polar_inertia", "refused with a [[shaft]]"),
 ])
