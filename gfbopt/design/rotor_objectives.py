@@ -408,44 +408,58 @@ def _onset_row(line, settings: EvaluationSettings, root: float, unstable) -> dic
 
 #: the refinement from a nearby onset stops when the secant step from its latest speed (that
 #: speed's error, superlinear convergence) is at most this on ln N [-], a hundredth of the
-#: search's :data:`ONSET_TOLERANCE`; it gives up after ``NEAR_STEPS`` steps
-NEAR_TOLERANCE, NEAR_STEPS = ONSET_TOLERANCE / 100, 8
+#: search's :data:`ONSET_TOLERANCE` (it gives up after secant_root's ``SECANT_STEPS``)
+NEAR_TOLERANCE = ONSET_TOLERANCE / 100
+
+
+class _LeastMargin:
+    """The speed line as :func:`gfbopt.rotor.speed_line.secant_root` reads it: g = ln μ_c,
+    least over every mode, at a speed [rpm] (``full`` and ``local`` alike: the rotor's
+    crossings have one threshold); LookupError where a bearing is over capacity, a mode has
+    no crossing or μ_c ≤ 0."""
+
+    def __init__(self, line):
+        self.line = line
+
+    def full(self, speed: float) -> dict:
+        c = _lowest(self.line, speed)
+        if c in (None, "capacity") or c.inertia_scale <= 0.0:
+            raise LookupError
+        return {"g": math.log(c.inertia_scale)}
+
+    local = full
 
 
 def _secant_near(line, speeds: list, near: float) -> Optional[float]:
     """The first onset [rpm] by secant steps on g = ln μ_c (least over every mode) against
     ln N from ``near`` with the slope of μ_c ∝ N⁻² (as the rotor's refinement,
-    :mod:`gfbopt.rotor.mode_search`), each step inside the scan intervals next to ``near``:
-    typically 3 speeds.  None (then the scan from the lowest speed) when a step leaves them,
-    a bearing is over capacity, a mode has no crossing or μ_c does not fall with speed."""
+    :mod:`gfbopt.rotor.mode_search`), inside the scan intervals next to ``near`` — the
+    rotor's one onset secant, :func:`gfbopt.rotor.speed_line.secant_root`, to
+    :data:`NEAR_TOLERANCE` on ln N: typically 3 speeds.  None (then the scan from the lowest
+    speed) when a step leaves those intervals without a bracket, a bearing is over
+    capacity, a mode has no crossing, μ_c does not fall with speed or the secant does not
+    converge."""
     from ..rotor.mode_search import NOMINAL_SLOPE
+    from ..rotor.speed_line import secant_root
 
     k = next((j for j, s in enumerate(speeds) if s >= near), 0)
     if k == 0 or near > speeds[-1]:
         return None
-    a, b = math.log(speeds[max(k - 2, 0)]), math.log(speeds[min(k + 1, len(speeds) - 1)])
-
-    def g(x: float) -> float:
-        c = _lowest(line, math.exp(x))
-        if c in (None, "capacity") or c.inertia_scale <= 0.0:
-            raise LookupError
-        return math.log(c.inertia_scale)
+    low, high = speeds[max(k - 2, 0)], speeds[min(k + 1, len(speeds) - 1)]
+    margin = _LeastMargin(line)
     try:
-        x, gx, slope = math.log(near), g(math.log(near)), NOMINAL_SLOPE
-        for _ in range(NEAR_STEPS):
-            step = -gx / slope
-            if abs(step) <= NEAR_TOLERANCE:
-                return math.exp(x)
-            if not a < x + step < b:
-                return None
-            g_new = g(x + step)
-            slope = (g_new - gx) / step
-            if not slope < 0.0:
-                return None
-            x, gx = x + step, g_new
+        u0 = math.log(near)
+        g0 = margin.full(near)["g"]
+        found = secant_root(margin, low, high, NEAR_TOLERANCE, start=[(u0, g0)],
+                            first=u0 - g0 / NOMINAL_SLOPE)
     except LookupError:                 # a bearing over capacity or a mode without crossing
         return None
-    return None
+    if found is None:
+        return None
+    at_start = abs(found[0] - u0) <= NEAR_TOLERANCE     # no step taken: no slope measured
+    if not (found[1] < 0.0 or (at_start and math.isnan(found[1]))):
+        return None                                      # μ_c does not fall with speed
+    return math.exp(found[0])
 
 
 def evaluate_rotor_design(system, settings: EvaluationSettings, cache=None,
