@@ -148,12 +148,12 @@ def inertia_roots_many(rotor: RotorCase, states: SpeedStates, whirl_ratios,
 
 def mass_mac(mass: np.ndarray, a: np.ndarray, b: np.ndarray) -> np.ndarray:
     """MAC_ij = |a_iᴴ M b_j|²/((a_iᴴ M a_i)(b_jᴴ M b_j)) ∈ [0, 1] of the columns of a, b
-    (n × r each; ``mass``: M, symmetric positive definite)."""
+    (n × r each, or batches (k, n, r); ``mass``: M, symmetric positive definite)."""
     ma, mb = mass @ a, mass @ b
-    cross = np.abs(a.conj().T @ mb) ** 2
-    na = np.einsum("ij,ij->j", a.conj(), ma).real
-    nb = np.einsum("ij,ij->j", b.conj(), mb).real
-    return cross / np.maximum(np.outer(na, nb), 1e-300)
+    cross = np.abs(np.swapaxes(a.conj(), -1, -2) @ mb) ** 2
+    na = np.einsum("...ij,...ij->...j", a.conj(), ma).real
+    nb = np.einsum("...ij,...ij->...j", b.conj(), mb).real
+    return cross / np.maximum(na[..., :, None] * nb[..., None, :], 1e-300)
 
 
 def _assignments(mass: np.ndarray, vectors: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -161,15 +161,16 @@ def _assignments(mass: np.ndarray, vectors: np.ndarray) -> tuple[np.ndarray, np.
     columns, roots in any order): (perm (samples − 1, n), its MAC (samples − 1, n)) such that
     root perm[k, i] of point k + 1 continues root i of point k — the optimal assignment on
     1 − MAC (module docstring; the continuation of a root does not depend on how the roots of
-    point k are ordered)."""
-    perms, macs = [], []
-    for x, y in zip(vectors[:-1], vectors[1:]):
-        mac = mass_mac(mass, x, y)
-        rows, cols = linear_sum_assignment(1.0 - mac)
-        perms.append(cols)
-        macs.append(mac[rows, cols])
+    point k are ordered).  Where every root's best match is a different root, that is the
+    optimal assignment (each takes its own maximum); elsewhere
+    :func:`scipy.optimize.linear_sum_assignment` decides."""
+    mac = mass_mac(mass, vectors[:-1], vectors[1:])                    # (k, n, n)
+    perm = np.argmax(mac, axis=2)
     n = vectors.shape[1]
-    return (np.array(perms, dtype=int).reshape(-1, n), np.array(macs).reshape(-1, n))
+    distinct = np.sort(perm, axis=1) == np.arange(n)
+    for k in np.flatnonzero(~distinct.all(axis=1)):
+        perm[k] = linear_sum_assignment(1.0 - mac[k])[1]
+    return perm, np.take_along_axis(mac, perm[:, :, None], axis=2)[:, :, 0]
 
 
 def _ambiguous(values: np.ndarray, perm: np.ndarray, macs: np.ndarray) -> np.ndarray:
@@ -201,10 +202,21 @@ def _adaptive_scan(roots, mass: np.ndarray, gammas: np.ndarray
     (roots (m, n), eigenvectors (m, n, n)); ``mass``: M of the MAC."""
     nu, vec = roots(np.asarray(gammas, dtype=float))
     pts = {float(g): (x, v) for g, x, v in zip(gammas, nu, vec)}
+    known: dict = {}                       # interval (left, right) -> (perm, MAC)
     while True:
         g = np.array(sorted(pts))
         vals = np.array([pts[x][0] for x in g])
-        perm, macs = _assignments(mass, np.array([pts[x][1] for x in g]))
+        pairs = list(zip(g[:-1], g[1:]))
+        new = [k for k, pair in enumerate(pairs) if pair not in known]
+        if new:
+            left = np.array([pts[pairs[k][0]][1] for k in new])
+            right = np.array([pts[pairs[k][1]][1] for k in new])
+            both = np.empty((2 * len(new),) + left.shape[1:], dtype=left.dtype)
+            both[0::2], both[1::2] = left, right
+            p_new, m_new = _assignments(mass, both)
+            known.update((pairs[k], (p_new[2 * j], m_new[2 * j])) for j, k in enumerate(new))
+        perm = np.array([known[pair][0] for pair in pairs])
+        macs = np.array([known[pair][1] for pair in pairs])
         if len(pts) >= MAX_SAMPLES:
             break
         wide = (np.diff(g) > MIN_SPACING) & _ambiguous(vals, perm, macs)
