@@ -23,7 +23,8 @@ takes the file's first table — holding ``n`` (the node), ``tag``, ``speed`` an
 ``frequency`` (the axes, rad/s, strictly increasing), every coefficient of the element's
 signature as an n_speed × n_frequency nested list (kxx … cyy from :func:`bearing_tables`;
 kzz, czz and the added masses mxx … mzz zero) and ``radial_clearance`` [m].  Written with
-the standard library only (ROSS need not be installed).
+the standard library only (ROSS need not be installed).  :func:`ross_shaft_rotor` assembles
+a gfbopt flexible shaft (:mod:`gfbopt.rotor.shaft`) in ROSS, element for element.
 """
 from __future__ import annotations
 

@@ -122,8 +122,9 @@ def test_overhung_disk_forward_and_backward_whirl():
     m, it, ip, omega = 5.0, 0.02, 0.035, 2000.0
     area, inertia = section(d, 0.0)
     kga = shear_coefficient(0.0, d, NU) * G_MOD * area
-    flex = np.array([[length**3 / (3 * E * inertia) + length / kga, length**2 / (2 * E * inertia)],
-                     [length**2 / (2 * E * inertia), length / (E * inertia)]])
+    ei = E * inertia
+    flex = np.array([[length**3 / (3 * ei) + length / kga, length**2 / (2 * ei)],
+                     [length**2 / (2 * ei), length / ei]])
     (k11, k12), (_, k22) = np.linalg.inv(flex)
     # (k11 − mΩ²)(k22 − I_t Ω² + I_p ω Ω) − k12² = 0, a quartic in Ω
     poly = np.polymul([-m, 0.0, k11], [-it, ip * omega, k22]) - np.array([0, 0, 0, 0, k12**2])
@@ -150,7 +151,8 @@ def test_free_free_has_four_rigid_body_modes_and_the_rigid_inertia():
     """Free–free: four zero frequencies (two translations, two tilts), the fifth a bending
     mode; the rigid-body motions carry exactly the model's mass and inertia about the CG."""
     el = [ShaftElement(0.1, 0.03, RHO, E, 0.01, NU), ShaftElement(0.2, 0.02, RHO, E)]
-    model = ShaftModel(tuple(el), (Disk(0.05, 2.0, 0.004, 0.007), Disk(0.27, 1.0, 0.001, 0.002)))
+    model = ShaftModel(tuple(el), (Disk(0.05, 2.0, 0.004, 0.007),
+                                   Disk(0.27, 1.0, 0.001, 0.002)))
     s = build_shaft(model)
     w2 = eigh(s.stiffness(), s.mass(), eigvals_only=True)
     assert np.all(np.abs(w2[:4]) < 1e-9 * w2[4]) and w2[4] > 1e4
