@@ -325,6 +325,7 @@ class LeverEvaluations:
             self.known = {str(r["point"]): r for r in frame.to_dict(orient="records")}
         self.evaluated = self.reused = 0
         self.rows: list = []
+        self.seconds = math.nan          # wall time of the searches (set by the caller)
 
     def row(self, lever: Lever, value: float, onset_only: bool = True) -> dict:
         from .optimiser import evaluate_points
@@ -422,9 +423,10 @@ def _number(value: float, unit: str) -> str:
 
 
 def answers_text(answers: list, top: float, onset: float, evaluated: int = 0,
-                 reused: int = 0) -> str:
+                 reused: int = 0, seconds: float = math.nan) -> str:
     """The answers in one sentence (README notes); ``evaluated``, ``reused``: the
-    evaluations made and those answered from the store."""
+    evaluations made and those answered from the store; ``seconds``: the wall time of
+    the levers' searches."""
     parts = []
     for a in answers:
         if a.found:
@@ -443,4 +445,5 @@ def answers_text(answers: list, top: float, onset: float, evaluated: int = 0,
     return (f"What it would take to be stable to {_number(top, 'rpm')} (the chosen design, "
             f"first onset {_number(onset, 'rpm')}), one lever at a time: "
             + "; ".join(parts) + f" ({evaluated} evaluations, {reused} more answered from "
-            "the store).")
+            "the store" + (f"; {seconds:.1f} s of wall time" if math.isfinite(seconds) else "")
+            + ").")

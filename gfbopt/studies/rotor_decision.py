@@ -10,6 +10,7 @@ from __future__ import annotations
 import hashlib
 import json
 import math
+import time
 
 import pandas as pd
 
@@ -100,7 +101,9 @@ def run_levers(study, plan, chosen: dict, store, run_tasks, resume: bool, step):
     design = {n: float(chosen[n]) for n in plan.problem.names}
     ev = LeverEvaluations(rotor_objectives.evaluate_rotor_design, plan.system, design,
                           plan.settings, plan.problem, lstore, run_tasks)
+    t0 = time.perf_counter()
     answers = what_it_would_take(levers, ev, float(chosen["first_onset_speed_rpm"]), step)
+    ev.seconds = time.perf_counter() - t0
     return answers, ev
 
 
