@@ -165,6 +165,76 @@ def ross_shaft_rotor(structure, bearing_elements=()):
 ROSS_LATERAL = (0, 1, 3, 4)
 
 
+def ross_lateral_map(nodes: int) -> np.ndarray:
+    """P (4 nodes × 6 nodes): gfbopt's q = (x, y, ψx, ψy) per node from ROSS's (x, y, z, α,
+    β, θ): ψx = dx/dz = β (a rotation about y), ψy = dy/dz = −α (a rotation about x)."""
+    p = np.zeros((4 * nodes, 6 * nodes))
+    for k in range(nodes):
+        p[4 * k, 6 * k] = p[4 * k + 1, 6 * k + 1] = p[4 * k + 2, 6 * k + 4] = 1.0
+        p[4 * k + 3, 6 * k + 3] = -1.0
+    return p
+
+
+class RossStructure:
+    """A shaft assembled by ROSS (a ``ross.Rotor`` of shaft elements and disks, without
+    bearings), taken in as a :class:`~gfbopt.rotor.structure.Structure` (``kind = "shaft"``):
+    its lateral M, G (per rad/s), K and C at rest, mapped to gfbopt's degrees of freedom by
+    :func:`ross_lateral_map` (M_g = P M Pᵀ, …); positions from ROSS's first node; station(z)
+    at a node picks x, y, between nodes the element's Timoshenko interpolation (its Φ);
+    total mass and centre of gravity ROSS's.  ROSS's bearings are left out: gfbopt adds its
+    own at their stations."""
+
+    kind = "shaft"
+
+    def __init__(self, rotor):
+        self.rotor = rotor
+        self.nodes = tuple(float(z) for z in rotor.nodes_pos)
+        p = ross_lateral_map(len(self.nodes))
+        self._m = p @ np.asarray(rotor.M(0.0)) @ p.T
+        self._g = p @ np.asarray(rotor.G()) @ p.T
+        self._k = p @ np.asarray(rotor.K(0.0)) @ p.T
+        self._c = p @ np.asarray(rotor.C(0.0)) @ p.T
+        self._elements = sorted(rotor.shaft_elements, key=lambda e: e.n)
+
+    size = property(lambda self: 4 * len(self.nodes))
+    total_mass = property(lambda self: float(self.rotor.m))
+    centre_of_gravity = property(lambda self: float(self.rotor.CG))
+
+    @property
+    def dof_names(self) -> tuple:
+        return tuple(f"{d}_{k}" for k in range(len(self.nodes))
+                     for d in ("x", "y", "psi_x", "psi_y"))
+
+    def mass(self) -> np.ndarray:
+        return self._m.copy()
+
+    def gyroscopic(self) -> np.ndarray:
+        return self._g.copy()
+
+    def stiffness(self) -> np.ndarray:
+        return self._k.copy()
+
+    def damping(self) -> np.ndarray:
+        return self._c.copy()
+
+    def station(self, position: float) -> np.ndarray:
+        from .beam_element import interpolation
+
+        z, tol = float(position), 1e-9 * self.nodes[-1]
+        if not self.nodes[0] - tol <= z <= self.nodes[-1] + tol:
+            raise ParameterError("position", position, f"must lie on the ROSS shaft, "
+                                 f"{self.nodes[0]:g} <= z <= {self.nodes[-1]:g} m")
+        s = np.zeros((2, self.size))
+        k = int(np.argmin(np.abs(np.array(self.nodes) - z)))
+        if abs(self.nodes[k] - z) <= tol:
+            s[0, 4 * k], s[1, 4 * k + 1] = 1.0, 1.0
+            return s
+        e = int(np.searchsorted(self.nodes, z)) - 1
+        el = self._elements[e]
+        s[:, 4 * e:4 * e + 8] = interpolation((z - self.nodes[e]) / el.L, el.L, el.phi)
+        return s
+
+
 def ross_modes(rotor, speed_rpm: float, num_modes: int = 8) -> list:
     """ROSS's matched-whirl modes at ``speed_rpm`` (``run_modal(speed, matched_whirl=True)``;
     its warnings, e.g. a whirl frequency that did not converge, are kept): dicts of
