@@ -97,7 +97,7 @@ class _Margin:
 
 def running_onset(bearing, spec: RunningSpec, rotor: Rotor, load_newton: Optional[float],
                   speed_range, *, guess_rpm=None, options=None, grid: Grid = DEFAULT_GRID,
-                  cache=None, progress=False, tolerance: float = 1e-4,
+                  cache=None, progress=False, tolerance: float = 2e-4,
                   max_steps: int = 8) -> dict:
     """The onset of whirl with the clearance at speed (module docstring): the onset's dict
     (:meth:`~gfbopt.rotor.onset.OnsetResult.to_dict`) with ``onset_speed_rpm`` at the running
@@ -130,7 +130,9 @@ def running_onset(bearing, spec: RunningSpec, rotor: Rotor, load_newton: Optiona
     fa, pa, _ = margin(a, frozen_point.sample)
     if not math.isfinite(fa):
         return {**out, **_limited(spec, film, low, a, margin)}
-    b = a * (1.02 if fa > 0 else 0.98)         # the margin falls with speed at the onset
+    slope = _frozen_slope(frozen, a)           # d(margin)/d(speed) of the frozen bearing
+    step = -fa / slope if slope else -math.copysign(0.02 * a, -fa)
+    b = a + max(-0.1 * a, min(0.1 * a, step))  # a Newton step on the frozen slope
     fb, pb, rb = margin(b, pa.sample)
     for _ in range(max_steps):
         if not math.isfinite(fb):
@@ -147,6 +149,17 @@ def running_onset(bearing, spec: RunningSpec, rotor: Rotor, load_newton: Optiona
                        f"at {whirl:.4g} Hz (frozen at {guess:.6g} rpm: "
                        f"{frozen.onset_speed_rpm:.6g} rpm)"))
     return out
+
+
+def _frozen_slope(frozen, onset: float) -> float:
+    """d(M_crit/M − 1)/d(speed) [1/rpm] of the frozen search near its onset, from the two
+    rows of its scan nearest the onset (0: not available)."""
+    rows = sorted((r for r in frozen.scan if math.isfinite(r.get("mass_margin", math.nan))),
+                  key=lambda r: abs(r["speed_rpm"] - onset))[:2]
+    if len(rows) < 2 or rows[0]["speed_rpm"] == rows[1]["speed_rpm"]:
+        return 0.0
+    (s0, m0), (s1, m1) = ((r["speed_rpm"], r["mass_margin"]) for r in rows)
+    return (m1 - m0) / (s1 - s0)
 
 
 def _limited(spec, film, low, failing_rpm, margin) -> dict:
