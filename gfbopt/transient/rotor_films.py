@@ -70,6 +70,7 @@ class FusedFilms:
         self.periodic, self.law = tm.periodic, tm.law.name
         self.compression_only = tm.compression_only
         self.damped = tm.foil_state is not None
+        self.shared_mean = self.law == "simple" and not self.damped
         self.ambient = tm.ambient
         m = self.shape[0]
         div = np.asarray(film_divisor, dtype=float)
@@ -90,6 +91,10 @@ class FusedFilms:
         ends = zw[[0, -1]].sum() / self.zw_sum
         self.zw_inner = np.concatenate([[0.0], zw[1:-1] / self.zw_sum, [0.0]])
         self.live = (~self.ambient).astype(float)
+        # Σ_j w_j P_j of a row from Φ̄ = Σ_inner w_j Φ_j / Σ w (the recovery's own mean):
+        # Φ̄ Σw / a + (w_0 + w_n) on a live row (P = 1 on the axial ends), Σ w at ambient
+        self.pz_gain = self.zw_sum * self.live
+        self.pz_fill = (self.zw_sum * ends) * self.live + self.zw_sum * self.ambient
         self.ambient_fill = (1.0 - ends) * self.ambient                       # (m,)
         self.s_ends, self.s4 = self.s * (ends - 1.0), 4.0 * self.s             # (N, m)
         rows = -np.transpose(trig, (0, 2, 1)) * tm.theta_weight[:, None]      # (K, m, 2)
@@ -108,6 +113,10 @@ class FusedFilms:
         self._spread = np.empty((4, big * rows, w))
         self._bufs = [np.zeros(big * rows * w) for _ in range(5)]
         self._edge_index = None
+        self._mean, self._pz = np.empty((big, m)), np.empty((big, m))
+        self._interior = np.ones(self.shape)          # 1 at a film's interior nodes, else 0
+        self._interior[:, [0, -1]] = 0.0
+        self._interior[self.ambient, :] = 0.0
 
     def evaluate(self, z: np.ndarray, xy: np.ndarray, speed, out: np.ndarray,
                  min_film: np.ndarray, max_deflection: Optional[np.ndarray]) -> np.ndarray:
@@ -133,7 +142,9 @@ class FusedFilms:
         hr = (np.dot(xy.reshape(big, 2), self.trig) if self.same_angles
               else np.einsum("ni,nim->nm", xy.reshape(big, 2), self.trig))
         hr += self.base
-        a = self._film(hr, phi, flat)
+        # Φ̄ (B·K, m): the axial-mean law's recovery and the force share it
+        mean = np.matmul(phi, self.zw_inner, out=self._mean) if self.shared_mean else None
+        a = self._film(hr, mean, flat)
         ae = np.concatenate([a[:, -1:], a, a[:, :1]], axis=1) if self.periodic else a
         rows = ae.shape[1]
         coef, scale, spread = self._coef, self._scale, self._spread
@@ -153,8 +164,13 @@ class FusedFilms:
         pf[self._edges(big)] = 1.0                   # P = 1 on the axial ends and ambient rows
         if self.periodic:
             pe[:, 0], pe[:, -1] = pe[:, m], pe[:, 1]
-        # the film force and the foil's target from one axial mean Σ w P
-        pz = np.dot(pe.reshape(-1, w), self.zw).reshape(big, rows)[:, off:off + m]
+        # the film force and the foil's target from one axial mean Σ w P (from Φ̄ and 1/a)
+        if mean is not None:
+            pz = np.multiply(mean, coef[0, :, off:off + m], out=self._pz)
+            pz *= self.pz_gain
+            pz += self.pz_fill
+        else:
+            pz = np.dot(pe.reshape(-1, w), self.zw).reshape(big, rows)[:, off:off + m]
         forces = (np.dot(pz, self.force_rows) if self.same_angles
                   else np.einsum("nm,nmi->ni", pz, self.force_rows))
         np.subtract(self.force_ends, forces, out=forces)
@@ -183,8 +199,8 @@ class FusedFilms:
         pf *= spread[3].reshape(-1)                  # P H Λ/(2Δθ) over the time scale
         res[w:-w] -= pf[2 * w:]
         res[w:-w] += pf[:-2 * w]
-        res[self._edges(big)] = 0.0
-        outflat[:, :n].reshape(big, m, w)[...] = res.reshape(big, rows, w)[:, off:off + m]
+        np.multiply(res.reshape(big, rows, w)[:, off:off + m], self._interior,   # 0 on the
+                    out=outflat[:, :n].reshape(big, m, w))                        # boundary
         low = min_film.reshape(-1)
         np.minimum(low, a.min(axis=1), out=low)
         if max_deflection is not None:
@@ -205,16 +221,16 @@ class FusedFilms:
             self._edge_index = (big, np.flatnonzero(mask))
         return self._edge_index[1]
 
-    def _film(self, hr: np.ndarray, phi: np.ndarray, flat: np.ndarray) -> np.ndarray:
+    def _film(self, hr: np.ndarray, mean: np.ndarray, flat: np.ndarray) -> np.ndarray:
         """The row film a (B·K, m): H_r + W (damped), H_r (rigid), or the axial-mean law's
-        closed form a² − b a − S Φ̃ = 0 (:meth:`gfbopt.physics.foil_laws.SimpleLaw.recover`)."""
+        closed form a² − b a − S Φ̃ = 0 (:meth:`gfbopt.physics.foil_laws.SimpleLaw.recover`),
+        with Φ̃ from the row means ``mean`` = Σ_inner w Φ / Σ w."""
         m = self.shape[0]
         if self.damped:
             return hr + flat[:, self.n:self.n + m]
         if self.law == "rigid":
             return hr
-        phit = np.dot(phi, self.zw_inner)             # Φ̃ (foil_recovery.row_mean_phi)
-        phit *= self.live
+        phit = mean * self.live                       # Φ̃ (foil_recovery.row_mean_phi)
         phit += self.ambient_fill * hr                # rows at ambient: P̄ − 1 = 0
         b = hr + self.s_ends
         disc = b * b

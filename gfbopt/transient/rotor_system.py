@@ -63,6 +63,7 @@ from ..rotor.rigid import gyroscopic_matrix, mass_matrix, rotation, station_matr
 from .foil_state import foil_bound
 from .rotor_films import FusedFilms, AtSpeed, largest_deflection, fusable
 from .rotor_batch import Runs, runs  # noqa: F401  (re-exported: the batch of runs)
+from .rotor_layout import Layout, empty_states, layout, stackable  # noqa: F401  (re-exported)
 from .system import (State, TransientModel, film_force, flux_residual, pressure_and_film,
                      stiffness_bound)
 
@@ -185,86 +186,23 @@ def rotor_transient_model(mass_matrix, gyroscopic, bearings, static_force, imbal
     return RotorTransientModel(m, g, bearings, q, tuple(imbalance), omega)
 
 
-# ------------------------------------------------------------------------- layout
-@dataclass(frozen=True)
-class Layout:
-    """Where each part of a packed state sits.  A batch is one array (B, K, L): slot k
-    holds bearing k's Φ (first) and foil state W (next); the rotor's q̃, q̃' and τ are the
-    last 9 entries of slot 0 (the other slots' tails stay 0).  Bearings of one film structure
-    are then one contiguous (B·K, …) view, so the one-bearing kernel runs once for all."""
+def imbalance_shapes(model: RotorTransientModel) -> tuple[np.ndarray, np.ndarray]:
+    """(U, V) [N at ω_ref], the generalised force of every imbalance plane at once.
 
-    phi: tuple          # per bearing: shape of Φ
-    foil: tuple         # per bearing: shape of W, or None
-    width: int          # L
-    phi_size: tuple = ()    # per bearing: entries of Φ
-    foil_size: tuple = ()   # per bearing: entries of W (0 without a foil state)
-
-    @property
-    def rotor(self) -> int:
-        """Start of q̃ in slot 0 (then q̃' at +4, τ at +8)."""
-        return self.width - 9
-
-    @property
-    def filled(self) -> int:
-        """Entries every slot's film and foil state fill (the rest of a slot is padding)."""
-        return min(p + f for p, f in zip(self.phi_size, self.foil_size))
-
-    def phi_of(self, z: np.ndarray, k: int) -> np.ndarray:
-        return z[:, k, :self.phi_size[k]].reshape((z.shape[0],) + self.phi[k])
-
-    def foil_of(self, z: np.ndarray, k: int) -> Optional[np.ndarray]:
-        if self.foil[k] is None:
-            return None
-        n = self.phi_size[k]
-        return z[:, k, n:n + self.foil_size[k]].reshape((z.shape[0],) + self.foil[k])
-
-    def rotor_of(self, z: np.ndarray) -> np.ndarray:
-        """q̃, q̃' and τ of every run, (B, 9) (a view)."""
-        return z[:, 0, self.rotor:]
-
-
-def layout(model: RotorTransientModel) -> Layout:
-    phis, foils, width = [], [], 0
-    for b in model.bearings:
-        fs = b.tm.foil_state
-        phis.append(tuple(b.tm.shape))
-        foils.append(None if fs is None else tuple(fs.equilibrium.shape))
-        width = max(width, int(np.prod(b.tm.shape)) +
-                    (0 if fs is None else int(np.prod(fs.equilibrium.shape))))
-    sizes = tuple(int(np.prod(p)) for p in phis)
-    foil_sizes = tuple(0 if f is None else int(np.prod(f)) for f in foils)
-    return Layout(tuple(phis), tuple(foils), width + 9, sizes, foil_sizes)
-
-
-def empty_states(model: RotorTransientModel, batch: int) -> np.ndarray:
-    """Zero states of ``batch`` runs, (B, K, L)."""
-    return np.zeros((batch, len(model.bearings), layout(model).width))
-
-
-def stackable(model: RotorTransientModel) -> bool:
-    """True when every bearing has the same film structure (grid, film, law, S, Λ, foil
-    state, speed), so one call of the one-bearing kernel serves all of them at once."""
-    first = model.bearings[0]
-    a = first.tm
-    for b in model.bearings[1:]:
-        t = b.tm
-        fa, fb = a.foil_state, t.foil_state
-        same = (t.shape == a.shape and t.periodic == a.periodic and t.law.name == a.law.name
-                and t.compliance == a.compliance and t.bearing_number == a.bearing_number
-                and t.compression_only == a.compression_only and t.gumbel == a.gumbel
-                and t.dtheta == a.dtheta and t.dz == a.dz and t.foil_data is None
-                and a.foil_data is None and b.model_speed == first.model_speed
-                and np.array_equal(t.cos, a.cos) and np.array_equal(t.sin, a.sin)
-                and np.array_equal(t.theta_weight, a.theta_weight)
-                and np.array_equal(t.z_weight, a.z_weight)
-                and all(_same(getattr(t, name, None), getattr(a, name, None))
-                        for name in ("ambient", "bore", "compliance_rows"))
-                and (fa is None) == (fb is None)
-                and (fa is None or (fa.relaxation_time == fb.relaxation_time
-                                    and fa.layout == fb.layout)))
-        if not same:
-            return False
-    return True
+    A plane j (amount u_j, phase φ_j, station T_j with rows T_j0, T_j1) at shaft angle
+    ϑ_j = ϑ + φ_j pushes with u_j ω_ref² [r² (cos ϑ_j, sin ϑ_j) + a (sin ϑ_j, −cos ϑ_j)]; with
+    cos ϑ_j, sin ϑ_j expanded in cos ϑ, sin ϑ this is Q_u = α U + β V (α = r² cos ϑ + a sin ϑ,
+    β = r² sin ϑ − a cos ϑ) with U = Σ u_j ω_ref² (cos φ_j T_j0 + sin φ_j T_j1) and
+    V = Σ u_j ω_ref² (cos φ_j T_j1 − sin φ_j T_j0): two shapes, whatever the planes."""
+    w2 = model.reference_speed ** 2
+    u = np.zeros(4)
+    v = np.zeros(4)
+    for p in model.imbalance:
+        t = station_matrix(p.position)
+        c, s = math.cos(p.phase), math.sin(p.phase)
+        u += p.amount * w2 * (c * t[0] + s * t[1])
+        v += p.amount * w2 * (c * t[1] - s * t[0])
+    return u, v
 
 
 # ------------------------------------------------------------------ the system
@@ -295,11 +233,13 @@ class RotorRightHandSide:
         self.accel_each = minv[None] / scale[:, None, None]                # (B, 4, 4)
         self.gyro = (np.linalg.inv(model.mass_matrix) @ model.gyroscopic).T.copy()
         self.static = model.static_force
-        self.amounts = np.array([p.amount * w * w for p in model.imbalance])  # u ω_ref² [N]
-        self.moments = self.amounts * np.array([p.position for p in model.imbalance])
-        self.phases = np.array([p.phase for p in model.imbalance])
-        self._planes = [(float(f), float(u), float(m)) for f, u, m in
-                        zip(self.phases, self.amounts, self.moments)]
+        self.shape_u, self.shape_v = imbalance_shapes(model)         # Q_u = α U + β V
+        self._planes = bool(model.imbalance)
+        if self.accel is not None:   # q̃'' = [f | α β | r q̃'] @ combined + M⁻¹Q_s, one product
+            self.combined = np.vstack([self.from_local @ self.accel, self.shape_u @ self.accel,
+                                       self.shape_v @ self.accel, -self.gyro])
+            self.static_accel = self.static @ self.accel
+            self._stack = np.zeros((batch.size, 2 * k + 6))
         self.film_divisor = [2.0 * b.tm.bearing_number * (w / b.model_speed)
                              for b in model.bearings]
         self.foil_factor = [b.model_speed / w for b in model.bearings]
@@ -377,20 +317,31 @@ class RotorRightHandSide:
                                          self.max_deflection if self.track_deflection else None)
         else:
             forces = self._films_one_by_one(z, xy, speed, out)
+        velocity = rotor[:, 4:8]
+        tail = out[:, 0, start:]
+        tail[:, :4] = velocity
+        tail[:, 8] = 1.0
+        if self.accel is not None and nb == self._stack.shape[0]:
+            x, two_k = self._stack, forces.shape[1] * 2
+            x[:, :two_k] = forces.reshape(nb, -1)
+            if self._planes:
+                self._phase_terms(tau, x[:, two_k:two_k + 2])
+            np.multiply(velocity, speed if isinstance(speed, float) else speed[:, None],
+                        out=x[:, two_k + 2:])
+            acc = np.dot(x, self.combined)
+            acc += self.static_accel
+            tail[:, 4:8] = acc
+            return out
         load = np.dot(forces.reshape(nb, -1), self.from_local)
         load += self.static
         if self._planes:
             load += self._imbalance(tau)
         acc = (np.dot(load, self.accel) if self.accel is not None
                else np.einsum("bij,bj->bi", self.accel_each, load))
-        velocity = rotor[:, 4:8]
         turn = np.dot(velocity, self.gyro)
         turn *= speed if isinstance(speed, float) else speed[:, None]
         acc -= turn
-        tail = out[:, 0, start:]
-        tail[:, :4] = velocity
         tail[:, 4:8] = acc
-        tail[:, 8] = 1.0
         return out
 
     def _films_one_by_one(self, z, xy, speed, out) -> np.ndarray:
@@ -434,34 +385,29 @@ class RotorRightHandSide:
                     np.maximum(self.max_deflection[:, j], d, out=self.max_deflection[:, j])
         return forces
 
-    def _imbalance(self, tau: np.ndarray) -> np.ndarray:
-        """Q_u (B, 4) [N] of every run at τ (module docstring)."""
-        if self.same_speed:          # one shaft angle for the batch: J planes in scalars
+    def _phase_terms(self, tau: np.ndarray, out: np.ndarray) -> np.ndarray:
+        """(α, β) (B, 2) of every run at τ, into ``out``: Q_u = α U + β V
+        (:func:`imbalance_shapes`), α = r² cos ϑ + a sin ϑ, β = r² sin ϑ − a cos ϑ with
+        r = ω/ω_ref, a = dr/dτ, ϑ the shaft angle; times each run's imbalance scale."""
+        if self.same_speed:          # one shaft angle for the batch: scalars
             t = float(tau[0])
             r0, a = float(self.runs.speed[0]), float(self.runs.ramp[0])
-            r = r0 + a * t
-            base = r0 * t + 0.5 * a * t * t
-            one = [0.0, 0.0, 0.0, 0.0]
-            for phase, amount, moment in self._planes:
-                c, s = math.cos(base + phase), math.sin(base + phase)
-                fx, fy = r * r * c + a * s, r * r * s - a * c
-                one[0] += fx * amount
-                one[1] += fy * amount
-                one[2] += fx * moment
-                one[3] += fy * moment
-            return self.runs.imbalance_scale[:, None] * np.array(one)[None, :]
-        r = self.runs.speed_at(tau)
-        angle = self.runs.angle_at(tau)[:, None] + self.phases[None, :]       # (B, J)
-        c, s = np.cos(angle), np.sin(angle)
-        a = self.runs.ramp[:, None]
-        r2 = (r * r)[:, None]
-        fx = r2 * c + a * s
-        fy = r2 * s - a * c
-        out = np.empty((tau.size, 4))
-        out[:, 0], out[:, 1] = fx @ self.amounts, fy @ self.amounts
-        out[:, 2], out[:, 3] = fx @ self.moments, fy @ self.moments
+            r2 = (r0 + a * t) ** 2
+            c, s = math.cos(r0 * t + 0.5 * a * t * t), math.sin(r0 * t + 0.5 * a * t * t)
+            return np.multiply(self.runs.imbalance_scale[:, None],
+                               (r2 * c + a * s, r2 * s - a * c), out=out)
+        r2 = self.runs.speed_at(tau) ** 2
+        angle = self.runs.angle_at(tau)
+        c, s, a = np.cos(angle), np.sin(angle), self.runs.ramp
+        out[:, 0] = r2 * c + a * s
+        out[:, 1] = r2 * s - a * c
         out *= self.runs.imbalance_scale[:, None]
         return out
+
+    def _imbalance(self, tau: np.ndarray) -> np.ndarray:
+        """Q_u (B, 4) [N] of every run at τ (module docstring)."""
+        ab = self._phase_terms(tau, np.empty((tau.size, 2)))
+        return np.outer(ab[:, 0], self.shape_u) + np.outer(ab[:, 1], self.shape_v)
 
     # ---------------------------------------------------------------- stiffness
     def stiffness(self, z: np.ndarray) -> float:
@@ -481,10 +427,3 @@ class RotorRightHandSide:
                 p, h = pressure_and_film(s.phi, s.x, s.y, tm, deflection=s.w)
                 rho = max(rho, foil_bound(p, h, tm) * self.foil_factor[k])
         return rho
-
-
-def _same(a, b) -> bool:
-    """Two optional per-row arrays of the bearing as built are equal (or both absent)."""
-    if a is None or b is None:
-        return a is None and b is None
-    return bool(np.array_equal(a, b))
