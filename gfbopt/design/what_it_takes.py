@@ -104,6 +104,9 @@ def parse_levers(table, file: str, bearings: tuple = ("A", "B"), variables: tupl
                     f"is not a lever (known: {', '.join(LEVERS)} and the continuous design "
                     "variables, shared or 'A:name')")
             raise ParameterError(key, name, rule)
+        if zone_variable(var) and not any(_variable(v) == var for v in variables):
+            raise ParameterError(key, name, "a per-zone bump variable is a lever only when "
+                                 "the study varies it (its start is the design's value)")
         if bearing is not None and bearing not in bearings:
             raise ParameterError(key, name, f"names no bearing of the rotor "
                                  f"({', '.join(bearings)})")

@@ -114,7 +114,8 @@ def test_each_value_is_evaluated_once_and_a_failure_stops_that_direction():
     ({"C:length_mm": {"low": 10.0, "high": 50.0}}, "names no bearing"),
     ({"radial_clearance_um": {"low": 10.0, "high": 50.0}}, "name the lever per bearing"),
     ({"loss_factor": {"low": 0.0, "high": 0.5, "direction_deg": 3.0}}, "is not a key"),
-    ({"length_mm": {"low": 10.0, "high": True}}, "must be a finite number")])
+    ({"length_mm": {"low": 10.0, "high": True}}, "must be a finite number"),
+    ({"zone1_bump_pitch_mm": {"low": 2.0, "high": 5.0}}, "only when the study varies it")])
 def test_bad_levers_name_the_file_and_key(table, rule):
     with pytest.raises(ParameterError) as info:
         parse_levers(table, "study.toml", ("A", "B"), ("A:radial_clearance_um",

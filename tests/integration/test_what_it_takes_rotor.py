@@ -1,0 +1,55 @@
+"""What it would take on the real blower rotor (slow: a few dozen two-bearing onset
+searches at 24x8): the side load found makes the chosen design stable to the top speed, a
+side load 1e-3 of the span smaller does not, and the figures are those of evaluations made
+again from scratch."""
+from __future__ import annotations
+
+import copy
+import math
+from pathlib import Path
+
+import pytest
+
+from gfbopt.design.rotor_objectives import evaluate_rotor_design
+from gfbopt.design.what_it_takes import lever_point, parse_levers
+from gfbopt.inputs import read_toml
+from gfbopt.studies import study_from_dict
+from gfbopt.studies.rotor_design import run_design
+
+ROOT = Path(__file__).resolve().parents[2]
+FILE = ROOT / "problems" / "rotor_bearing_design.toml"
+
+pytestmark = pytest.mark.slow
+
+
+def test_the_side_load_found_is_the_threshold_on_the_blower(tmp_path):
+    data = copy.deepcopy(read_toml(FILE))
+    data.update(name="rd_levers", grid="24x8", search_grid="24x8", regrid_designs=1,
+                limit_cycle_revolutions=0.0, speed_range_rpm=[4000.0, 24000.0])
+    data["variables"] = [{"name": "radial_clearance_um", "low": 18.0, "high": 30.0}]
+    data["search"] = {"method": "nsga2", "budget": 4, "population": 4, "seed": 1}
+    data["robustness"] = {"samples": 2, "designs": 1, "tolerances": {}}
+    data["what_it_would_take"] = {"side_load_n": {"low": 0.0, "high": 200.0},
+                                  "loss_factor": {"low": 0.0, "high": 0.02}}
+    loaded = study_from_dict(data, name="rd_levers", file=str(FILE), directory=FILE.parent)
+    result = run_design(loaded, tmp_path)
+    answers = {a["lever"]: a for a in result.answer["what_it_would_take"] or []}
+    assert result.answer["stable_to_top_speed"] is False, result.answer["verdict"]
+    plan = loaded.plan
+    chosen = result.answer["chosen_design"]
+    design = {n: float(chosen[n]) for n in plan.problem.names}
+    levers = {v.name: v for v in parse_levers(data["what_it_would_take"], str(FILE))}
+    side = answers["side_load_n"]
+    assert side["found"], side
+    top = plan.settings.top_speed_rpm
+
+    def onset(value: float) -> float:
+        row = evaluate_rotor_design(**lever_point(levers["side_load_n"], value, plan.system,
+                                                  design, plan.settings), onset_only=True)
+        return row["first_onset_speed_rpm"]
+    assert onset(side["value"]) == pytest.approx(side["onset_rpm"], rel=1e-9)
+    assert onset(side["value"]) >= top
+    assert onset(side["value"] - 1e-3 * 200.0) < top          # the smallest, to 1e-3
+    eta = answers["loss_factor"]                               # η to 0.02 cannot
+    assert not eta["found"] and eta["limit_value"] == 0.02 and eta["limit_onset_rpm"] < top
+    assert not math.isnan(eta["limit_onset_rpm"])
