@@ -30,6 +30,8 @@ from typing import Optional
 
 from scipy.optimize import brentq
 
+from .speed_line import secant_root
+
 #: the secant refinement stops when the next secant step from its latest point would be at
 #: most this on ln N [-]: that step estimates the latest point's error (superlinear
 #: convergence of a nearly linear g), which is returned
@@ -135,7 +137,7 @@ def _refined(line, label, stable, unstable, tol, method, margin, seed=None) -> M
             first = (a, _log_scale(stable[1])), (b, _log_scale(unstable[1])), unstable[1]
         else:
             first = seed(line, label, whirl)
-        root = _secant(line, label, a, b, *first[:2], whirl, first[2])[0]
+        root = _onset_secant(line, label, a, b, *first[:2], whirl, first[2])[0]
     if root is None:
         root = brentq(lambda x: line.margin(x, label, whirl), stable[0], unstable[0],
                       xtol=tol * stable[0], rtol=tol)
@@ -152,34 +154,29 @@ def _log_scale(crossing) -> float:
     return math.log(crossing.inertia_scale) if crossing.inertia_scale > 0 else -math.inf
 
 
-def _secant(line, label: str, a: float, b: float, p0: tuple, p1: tuple,
+def _onset_secant(line, label: str, a: float, b: float, p0: tuple, p1: tuple,
             whirl: float, near=None) -> tuple:
-    """(onset [rpm] or None, last slope dg/d ln N) of mode ``label`` in the bracket
-    ln N ∈ (a, b), g = ln μ_c > 0 at a and ≤ 0 at b: secant steps from the points p0, p1 =
-    (ln N, g), bisection whenever a step would leave the bracket or a value is not finite
-    (module docstring of :mod:`gfbopt.rotor.system`).  None when not converged.  Each step
-    follows the mode from the latest crossing (``near`` at first: :func:`_follow`)."""
-    (x0, g0), (x1, g1) = p0, p1
-    slope = math.nan
-    for _ in range(SECANT_STEPS):
-        finite = math.isfinite(g0) and math.isfinite(g1) and g1 != g0
-        x = x1 - g1 * (x1 - x0) / (g1 - g0) if finite else 0.5 * (a + b)
-        if not a < x < b:
-            x = 0.5 * (a + b)
-        c = _follow(line, math.exp(x), label, whirl, near)
-        gx = _log_scale(c)
+    """(onset [rpm] or None, last slope dg/d ln N or nan) of mode ``label`` in the bracket
+    ln N ∈ (a, b), g = ln μ_c > 0 at a and ≤ 0 at b: the package's one onset secant
+    (:func:`gfbopt.rotor.speed_line.secant_root`, bracketed, from the points p0, p1 =
+    (ln N, g), bisection whenever a step would leave the bracket or a value is not finite;
+    module docstring of :mod:`gfbopt.rotor.system`), stopped when its next step from the
+    latest point evaluated would be at most :data:`SECANT_TOLERANCE` and that point
+    returned.  None when not converged.  Each step follows the mode from the latest
+    crossing (``near`` at first: :func:`_follow`)."""
+    state = {"whirl": whirl, "near": near}
+
+    def g(speed: float, full: bool = False) -> float:
+        c = _follow(line, speed, label, state["whirl"], state["near"])
         if c is not None:
-            whirl, near = c.whirl_ratio, c
-        if gx > 0:
-            a = x
-        else:
-            b = x
-        if math.isfinite(gx) and math.isfinite(g1) and gx != g1:
-            slope = (gx - g1) / (x - x1)
-            if abs(gx / slope) <= SECANT_TOLERANCE:
-                return math.exp(x), slope
-        x0, g0, x1, g1 = x1, g1, x, gx
-    return None, slope
+            state["whirl"], state["near"] = c.whirl_ratio, c
+        return _log_scale(c)
+
+    found = secant_root(g, math.exp(a), math.exp(b), SECANT_TOLERANCE, start=[p0, p1],
+                        bracketed=True, last=True, steps=SECANT_STEPS)
+    if found is None:
+        return None, math.nan
+    return math.exp(found[0]), found[1]
 
 
 def _follow(line, speed: float, label: str, whirl: float, near):
@@ -216,9 +213,10 @@ def guided_onset(fine, coarse, speeds: list, label: str, tol: float) -> Optional
     def seed(line, label, whirl):
         """The fine secant's start: the coarse onset and the coarse slope."""
         a, b = math.log(coarse_stable[0]), math.log(coarse_unstable[0])
-        root, slope = _secant(coarse, label, a, b, (a, _log_scale(coarse_stable[1])),
-                              (b, _log_scale(coarse_unstable[1])), whirl,
-                              coarse_unstable[1])
+        root, slope = _onset_secant(coarse, label, a, b,
+                                    (a, _log_scale(coarse_stable[1])),
+                                    (b, _log_scale(coarse_unstable[1])), whirl,
+                                    coarse_unstable[1])
         x0 = math.log(root) if root is not None else 0.5 * (a + b)
         near = coarse.follow(math.exp(x0), label, whirl) if root is not None else None
         at = _follow(line, math.exp(x0), label, whirl, near)

@@ -82,7 +82,8 @@ from ..progress import progress as progress_bar
 from ..static import SolverCache
 from ..threads import single_threaded
 from .analysis import resolve_case
-from .speed_line import Guide, GuideFailed, SpeedLine, onset_whirl_ratio, secant_root
+from .speed_line import (BearingLine, Guide, GuideFailed, line_function, onset_whirl_ratio,
+                         secant_root)
 
 #: largest ratio between successive scan speeds [-]
 SCAN_RATIO = 1.25
@@ -259,7 +260,7 @@ def onset_speed(bearing: BearingGeometry, rotor: Rotor, load_newton: Optional[fl
                         options=options, grid=grid, cache=cache)
     count = max(2, math.ceil(math.log(high / low) / math.log(SCAN_RATIO) - 1e-9) + 1)
     speeds = [low * (high / low) ** (k / (count - 1)) for k in range(count)]
-    line = SpeedLine(case, fast_path=(method == "secant"))
+    line = BearingLine(case, fast_path=(method == "secant"))
     guide, note = None, ""
     if guide_grid is not None:
         guide = Guide(dataclasses.replace(case, grid=guide_grid))
@@ -284,7 +285,7 @@ def onset_speed(bearing: BearingGeometry, rotor: Rotor, load_newton: Optional[fl
 
 
 # ------------------------------------------------------------------- the reference
-def _scan_search(line: SpeedLine, speeds: list, bar) -> tuple:
+def _scan_search(line: BearingLine, speeds: list, bar) -> tuple:
     """gfbopt 0.2's search: scan, then Brent's method on f with full thresholds."""
     previous = None
     for speed in speeds:
@@ -303,7 +304,7 @@ def _scan_search(line: SpeedLine, speeds: list, bar) -> tuple:
     return "stable", math.nan
 
 
-def _narrow(line: SpeedLine, low: float, high: float) -> None:
+def _narrow(line: BearingLine, low: float, high: float) -> None:
     """Refine between scan speeds ``low`` and ``high``: scan whirl ratios near the
     threshold's branch only, when both ends are on the same one."""
     ends = [r["whirl_ratio"] for r in line.rows if r["speed_rpm"] in (low, high)]
@@ -314,7 +315,7 @@ def _narrow(line: SpeedLine, low: float, high: float) -> None:
 
 
 # --------------------------------------------------------------- the secant search
-def _secant_search(line: SpeedLine, speeds: list, guide: Optional[SpeedLine], bar) -> tuple:
+def _secant_search(line: BearingLine, speeds: list, guide: Optional[BearingLine], bar) -> tuple:
     """Scan (on the guide when there is one), then the secant refinement (module doc)."""
     scan = guide if guide is not None else line
     bracket, first = None, True
@@ -355,7 +356,7 @@ def _secant_search(line: SpeedLine, speeds: list, guide: Optional[SpeedLine], ba
     return "onset", onset
 
 
-def _lowest(line: SpeedLine, guide: Optional[SpeedLine], speed: float) -> float:
+def _lowest(line: BearingLine, guide: Optional[BearingLine], speed: float) -> float:
     """f at the lowest scan speed on the fine grid: a local threshold from the guide's
     crossing there when the guide's mass margin and the fine local one are both at least
     :data:`COARSE_MARGIN` (stable on the fine grid by the guide's own test), else the full
@@ -369,7 +370,7 @@ def _lowest(line: SpeedLine, guide: Optional[SpeedLine], speed: float) -> float:
     return line.f(speed)
 
 
-def _stable_above(line: SpeedLine, speed: float) -> bool:
+def _stable_above(line: BearingLine, speed: float) -> bool:
     """True when the fine grid is stable at ``speed`` (the first scan speed above the
     guided onset).  A local threshold (the onset's branch, followed from the nearest
     crossing) that is unstable settles it: the full threshold is the smallest crossing mass,
@@ -380,7 +381,7 @@ def _stable_above(line: SpeedLine, speed: float) -> bool:
     return line.f(speed) > 0
 
 
-def _confirm(line: SpeedLine, guide: SpeedLine, speeds: list, upto: float) -> Optional[float]:
+def _confirm(line: BearingLine, guide: BearingLine, speeds: list, upto: float) -> Optional[float]:
     """The first scan speed below ``upto`` where the fine grid is unstable, among those whose
     coarse mass margin is below :data:`COARSE_MARGIN` (recomputed on the fine grid); None
     when every scan speed below ``upto`` is stable on the fine grid by that test."""
@@ -395,11 +396,11 @@ def _confirm(line: SpeedLine, guide: SpeedLine, speeds: list, upto: float) -> Op
     return None
 
 
-def _guided(line: SpeedLine, guide: SpeedLine, low: float, high: float, lowest: float,
+def _guided(line: BearingLine, guide: BearingLine, low: float, high: float, lowest: float,
             highest: float) -> Optional[float]:
     """The fine onset from the coarse one: the coarse secant in [low, high], then the fine
     secant from there with a first Newton step on the coarse slope; None if it fails."""
-    coarse = secant_root(guide, low, high, COARSE_TOLERANCE)
+    coarse = secant_root(line_function(guide), low, high, COARSE_TOLERANCE)
     if coarse is None:
         return None
     u0, slope = coarse
@@ -407,14 +408,15 @@ def _guided(line: SpeedLine, guide: SpeedLine, low: float, high: float, lowest: 
     if not (math.isfinite(row["g"]) and slope < 0):
         return None
     u1 = u0 - row["g"] / slope
-    found = secant_root(line, lowest, highest, SECANT_TOLERANCE, start=[(u0, row["g"])],
+    found = secant_root(line_function(line), lowest, highest, SECANT_TOLERANCE,
+                        start=[(u0, row["g"])],
                         first=u1, error_tol=ERROR_TOLERANCE)
     return _confirmed(line, found)
 
 
-def _refine(line: SpeedLine, low: float, high: float) -> float:
+def _refine(line: BearingLine, low: float, high: float) -> float:
     """The onset in the fine bracket [low, high] (f(low) > 0 ≥ f(high), full thresholds)."""
-    found = _confirmed(line, secant_root(line, low, high, SECANT_TOLERANCE,
+    found = _confirmed(line, secant_root(line_function(line), low, high, SECANT_TOLERANCE,
                                          error_tol=ERROR_TOLERANCE))
     if found is not None:
         return found
@@ -427,7 +429,7 @@ def _refine(line: SpeedLine, low: float, high: float) -> float:
                   rtol=4 * 2.2e-16)
 
 
-def _confirmed(line: SpeedLine, found) -> Optional[float]:
+def _confirmed(line: BearingLine, found) -> Optional[float]:
     """The converged speed if the full threshold there puts the root within
     :data:`CONFIRM_TOLERANCE` of it (one Newton step on g with the secant's slope), else None
     (another branch took over, or the secant failed).  The check bounds the error of the
@@ -447,14 +449,14 @@ def _confirmed(line: SpeedLine, found) -> Optional[float]:
 _INTERNAL = ("f", "g", "root")
 
 
-def _rows(line: Optional[SpeedLine]) -> list:
+def _rows(line: Optional[BearingLine]) -> list:
     if line is None:
         return []
     return [{k: v for k, v in r.items() if k not in _INTERNAL}
             for r in sorted(line.rows, key=lambda r: r["speed_rpm"])]
 
 
-def _result(line: SpeedLine, guide: Optional[SpeedLine], kind: str, onset: float,
+def _result(line: BearingLine, guide: Optional[BearingLine], kind: str, onset: float,
             method: str, t0: float, note: str = "", margin_upto: float = math.inf,
             **common) -> OnsetResult:
     """The result; the smallest margin is taken over the rows up to ``margin_upto`` (the

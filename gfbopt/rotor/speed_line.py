@@ -1,6 +1,7 @@
-"""The rotor's mass–speed line as a function to search: f(N) and g(N), full or local thresholds.
+"""One bearing's mass–speed line as a function to search: f(N) and g(N), full or local
+thresholds; and the package's one onset secant, :func:`secant_root`.
 
-:class:`SpeedLine` evaluates, at a speed N [rpm], the margin of the rotor along its line
+:class:`BearingLine` evaluates, at a speed N [rpm], the margin of the rotor along its line
 (:mod:`gfbopt.rotor.onset`): f = (M̄c − M̄)/(M̄c + M̄) in [−1, 1] (> 0 stable, finite even when
 M̄c is 0 or ∞, for the bracketing scan) and g = ln(M̄c/M̄) (for the secant refinement: M̄
 grows as N², M̄c slowly, so g is nearly linear in ln N).  Each evaluation
@@ -60,8 +61,10 @@ WHIRL_SPAN = 0.02
 SECANT_STEPS = 16
 
 
-class SpeedLine:
-    """f and g along the mass–speed line of ``case`` on its grid (module docstring)."""
+class BearingLine:
+    """f and g along one bearing's mass–speed line of ``case`` on its grid (module
+    docstring; the rotor's line of both bearings and every mode is
+    :class:`gfbopt.rotor.system.SpeedLine`)."""
 
     def __init__(self, case: Case, threshold_options: Optional[dict] = None,
                  fast_path: bool = True):
@@ -72,7 +75,7 @@ class SpeedLine:
         self._solutions: dict = {}
         self._rows: dict = {}
         self._last = None                            # (speed, equilibrium, linearisation)
-        self.guide: Optional["SpeedLine"] = None     # a coarse line whose solutions start ours
+        self.guide: Optional["BearingLine"] = None   # a coarse line whose solutions start ours
 
     @property
     def solutions(self) -> dict:
@@ -227,7 +230,7 @@ class GuideFailed(Exception):
     failure): the search goes on without the guide."""
 
 
-class Guide(SpeedLine):
+class Guide(BearingLine):
     """The coarse guide's line: its failures are :class:`GuideFailed`, never the answer."""
 
     def full(self, speed: float) -> dict:
@@ -244,14 +247,23 @@ class Guide(SpeedLine):
 
 
 @single_threaded
-def secant_root(line: SpeedLine, low: float, high: float, tol: float, start=None,
-                first: Optional[float] = None, error_tol: float = 0.0) -> Optional[tuple]:
-    """(u*, dg/du) with g(u*) = 0, u = ln N [rpm], by secant steps safeguarded by bisection.
+def secant_root(g, low: float, high: float, tol: float, start=None,
+                first: Optional[float] = None, error_tol: float = 0.0,
+                bracketed: bool = False, last: bool = False,
+                steps: int = SECANT_STEPS) -> Optional[tuple]:
+    """(u*, dg/du) with g(u*) = 0, u = ln N [rpm], by secant steps safeguarded by bisection:
+    the one onset secant of the package (one bearing, :mod:`gfbopt.rotor.onset`; each mode of
+    the rotor, :mod:`gfbopt.rotor.mode_search`).
 
-    [lo, hi] = [ln ``low``, ln ``high``].  Without ``start``, it is a bracket whose ends are
-    evaluated with full thresholds (g(lo) > 0 ≥ g(hi)); with ``start`` = [(u0, g0)] and a
-    ``first`` point, the secant starts there and [lo, hi] only bounds it until a sign change
-    brackets the root.  Interior points use local thresholds.
+    ``g(speed_rpm, full)`` is the function searched (``full``: the caller's reference
+    evaluation, e.g. a full threshold rather than a local one), or a line whose
+    ``full(speed)`` and ``local(speed)`` rows carry ``"g"`` (:func:`line_function` reads
+    it: a :class:`BearingLine`).  [lo, hi] = [ln ``low``, ln ``high``].  Without ``start``,
+    it is a bracket whose ends are evaluated with ``full`` (g(lo) > 0 ≥ g(hi)); with ``start``
+    = the points [(u, g), …] already known, the secant starts from the last two of them (or
+    from the last one and a ``first`` point), and [lo, hi] is the bracket when ``bracketed``
+    (the root lies in it: bisection from the first step), else it only bounds the secant
+    until a sign change brackets the root.  Interior points use ``full=False``.
 
     Converged when the next secant point u* is at most ``tol`` from the last point, or when
     its estimated error is at most ``error_tol``: the secant's error after a step is
@@ -259,26 +271,30 @@ def secant_root(line: SpeedLine, low: float, high: float, tol: float, start=None
     root the errors are the steps, so the estimate is :data:`ERROR_FACTOR` (C ≤ 1 assumed;
     measured C ≈ 0.03 on the Ruscitto speed line) times |step to u*| × |step before| (used
     only when the steps shrink and the step is at most :data:`ERROR_STOP_STEP`).  u* is
-    returned without evaluating it: the caller confirms it with the full threshold there
-    (:func:`gfbopt.rotor.onset`), which bounds its error whatever C is.  None when the secant
-    leaves the bounds without a bracket or does not converge in :data:`SECANT_STEPS`
-    steps."""
+    returned without evaluating it (the caller confirms it: :func:`gfbopt.rotor.onset`), or,
+    with ``last``, the last point evaluated (whose error that step estimates: the rotor's
+    mode search, whose answer is read at an evaluated speed).  The convergence test is
+    applied from the first point evaluated on (at once when ``start`` and ``first`` are
+    given).  None when the secant leaves the bounds without a bracket or does not converge
+    in ``steps`` steps."""
+    if hasattr(g, "full"):                       # a line: its rows' g
+        g = line_function(g)
     lo, hi = math.log(low), math.log(high)
-    ends = {lo: low, hi: high} if start is None else {}
+    ends = {lo: low, hi: high} if start is None or bracketed else {}
 
-    def g(u, full=False):
-        speed = ends.get(u, math.exp(u))
-        return (line.full(speed) if full else line.local(speed))["g"]
+    def value(u, full=False):
+        return g(ends.get(u, math.exp(u)), full)
 
     if start is None:
-        points = [(lo, g(lo, True)), (hi, g(hi, True))]
+        points = [(lo, value(lo, True)), (hi, value(hi, True))]
         a, b = lo, hi
         u = None
     else:
         points = list(start)
-        a = b = None
+        a, b = (lo, hi) if bracketed else (None, None)
         u = first
-    for step in range(SECANT_STEPS):
+    early = start is not None and first is not None
+    for step in range(steps):
         (u0, g0), (u1, g1) = (points[-2], points[-1]) if len(points) > 1 else (
             (None, None), points[-1])
         predicted = u is not None or (g0 is not None and math.isfinite(g0)
@@ -289,10 +305,9 @@ def secant_root(line: SpeedLine, low: float, high: float, tol: float, start=None
             u, predicted = 0.5 * (a + b), False   # bisection inside the bracket
         if u is None or not lo <= u <= hi:
             return None
-        if predicted and (step > 0 or start is not None) and _converged(
-                u, u0, u1, tol, error_tol):
-            return u, slope(points)               # u: the next secant point
-        gu = g(u)
+        if predicted and (step > 0 or early) and _converged(u, u0, u1, tol, error_tol):
+            return (u1 if last else u), slope(points)
+        gu = value(u)
         if not math.isfinite(gu) and a is None:
             return None
         if a is None:
@@ -310,6 +325,14 @@ def secant_root(line: SpeedLine, low: float, high: float, tol: float, start=None
             return u, slope(points)
         u = None
     return None
+
+
+def line_function(line: "BearingLine"):
+    """g(speed, full) of one bearing's line for :func:`secant_root`: its row's g with the
+    full threshold (``full``) or a local one."""
+    def g(speed: float, full: bool = False) -> float:
+        return (line.full(speed) if full else line.local(speed))["g"]
+    return g
 
 
 def _secant_point(points: list) -> Optional[float]:
