@@ -11,6 +11,7 @@ module                 commands
 :mod:`.run`            ``gfbopt run``
 :mod:`.rotor`          ``gfbopt rotor`` (two bearings: onset of each mode, Campbell, imbalance)
 :mod:`.capacity`       ``gfbopt capacity`` (load capacity, lift-off speed)
+:mod:`.export_ross`    ``gfbopt export-ross`` (each bearing's K, C table as a ROSS 3.x file)
 :mod:`.formats`        ``gfbopt formats`` (file formats and study kinds, from the schemas)
 :mod:`.common`         operating-point options, refusal of ignored options, JSON output
 :mod:`.si`             a bearing file's [model] options merged with the command line
@@ -35,12 +36,12 @@ from ..errors import ConvergenceError, GfboptError, ParameterError
 from ..version import __version__
 from . import design, formats, linear, run, stability, static, transient
 from . import rotor
-from . import capacity
+from . import capacity, export_ross
 from .common import Parser
 from .size import GUARDED, add_limits, check_command
 
 COMMANDS = (static, linear, stability, transient, design, run, rotor, formats)
-COMMANDS += (capacity,)
+COMMANDS += (capacity, export_ross)
 
 
 def build_parser() -> Parser:

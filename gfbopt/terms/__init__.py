@@ -6,9 +6,9 @@ adding its module to :data:`_PARTS`.
 """
 from __future__ import annotations
 
-from . import rotor_transient
+from . import design, friction, rotor_transient, shaft, thermal
 
-_PARTS = (rotor_transient,)
+_PARTS = (rotor_transient, shaft, thermal, friction, design)
 
 
 def _merged() -> dict:
