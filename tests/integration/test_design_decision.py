@@ -151,6 +151,34 @@ def test_the_lever_search_resumes_from_its_store(study, tmp_path):
     assert again.answer["verdict"] == first.answer["verdict"]
 
 
+def test_a_run_killed_in_its_lever_searches_resumes_with_each_evaluation_once(
+        study, tmp_path, monkeypatch):
+    """Killed after 5 lever evaluations (Ctrl-C inside the stage): those 5 are in the
+    store; the resumed run evaluates only the others, so over both runs every lever
+    evaluation of an uninterrupted run is made exactly once, with the same answer."""
+    from design_decision_evaluation import _levered
+
+    loaded = load_study(study)
+    clean = run_design(loaded, tmp_path / "clean")
+    log = tmp_path / "calls.log"
+    whole = [line for line in log.read_text().splitlines() if _levered(line)]
+    log.write_text("")
+    monkeypatch.setenv("GFBOPT_TEST_STOP_AFTER_LEVERS", "5")
+    with pytest.raises(KeyboardInterrupt):
+        run_design(loaded, tmp_path / "killed")
+    monkeypatch.delenv("GFBOPT_TEST_STOP_AFTER_LEVERS")
+    from gfbopt.doe.store import read_results
+
+    kept = read_results(tmp_path / "killed" / "rd_decision" / "what_it_takes_store")
+    assert len(kept) == 5
+    again = run_design(loaded, tmp_path / "killed", resume=True)
+    done = [line for line in log.read_text().splitlines() if _levered(line)]
+    assert len(done) == len(whole) + 1             # + the call that was killed
+    assert sorted(done[:5] + done[6:]) == sorted(whole)
+    assert again.answer["what_it_would_take"] == clean.answer["what_it_would_take"]
+    assert "5 more answered from the store" in " ".join(again.notes)
+
+
 def test_a_stable_design_reports_its_margin(study, tmp_path, monkeypatch):
     """Every design stable (the onset raised by 40,000 rpm): the verdict says so, the
     margin is the chosen design's onset over the top speed and its worst case under the
