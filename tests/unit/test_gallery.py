@@ -39,12 +39,13 @@ def png_size(path: Path) -> tuple[int, int]:
 
 
 def test_the_gallery_is_there():
-    """The six questions of the gallery, each a sphinx-gallery script: a docstring whose
+    """The questions of the gallery, each a sphinx-gallery script: a docstring whose
     first lines are a title underlined with '=', then ``# %%`` cells, and figures promised."""
     names = [p.stem for p in EXAMPLES]
     assert names == ["plot_01_bearing_stability", "plot_02_rotor_campbell",
                      "plot_03_bearing_as_built", "plot_04_run_up_waterfall",
-                     "plot_05_doe_sobol", "plot_06_results_pandas"]
+                     "plot_05_doe_sobol", "plot_06_results_pandas",
+                     "plot_07_design_my_rotor"]
     for script in EXAMPLES:
         lines = script.read_text().splitlines()
         assert lines[0] == '"""' and lines[2] == "=" * len(lines[1]), script.name
