@@ -1,5 +1,7 @@
-"""Rigid rotors in SI units: is the rotor stable, with what margin, from what speed, and the
-bearing's stiffness and damping for rotordynamics codes.
+"""Rotors on gas foil bearings in SI units: is the rotor stable, with what margin, from what
+speed, in which mode, and the bearing's stiffness and damping for rotordynamics codes.  One
+bearing carrying a rigid rotor's share, or a rotor of any size on two bearings (a rigid body
+or a flexible shaft), every two-bearing analysis on one structure contract.
 
 =========================  ==================================================================
 module                     answers
@@ -10,19 +12,30 @@ module                     answers
                            decrement) at one operating point
 :mod:`.onset`              :func:`onset_speed` — the lowest speed of whirl on the rotor's
                            mass–speed line (load and mass fixed)
-:mod:`.speed_line`         the mass–speed line as a function to search; the secant onset root
+:mod:`.speed_line`         one bearing's mass–speed line (``BearingLine``); the package's one
+                           onset secant (``secant_root``)
 :mod:`.coefficients`       :func:`coefficient_table` — K [N/m], C [N s/m] against excitation
                            frequency [Hz], matched whirl
 :mod:`.capacity`           load capacity and lift-off speed for a minimum-film limit
-*a rigid rotor on two bearings*
-:mod:`.rigid`              mass, gyroscopic and station matrices, load sharing, dynamic stiffness
+*the rotor's structure*
+:mod:`.structure`          the contract: M, G, K, C of any size and the station matrix S(z);
+                           the rigid body (``RigidStructure``); ``structure_of(system)``
+:mod:`.rigid`              the rigid body's matrices, load sharing, bearing transformations,
+                           dynamic stiffness and imbalance forces on any structure
+:mod:`.beam_element`       Timoshenko beam element and disk matrices
+:mod:`.shaft`              the flexible shaft of beam elements and disks on the contract
+:mod:`.condensed`          a shaft condensed on its bearings and a few modes (Craig–Bampton)
+*a rotor on two bearings*
 :mod:`.supports`           both bearings at one speed: equilibria, linearisations, impedances
 :mod:`.reduced`            a bearing's impedance from its Krylov space (Schur form)
 :mod:`.matched_whirl`      the exact threshold at one speed: whirl frequencies and inertia scales
+                           of every mode (n degrees of freedom, branches matched by MAC)
 :mod:`.probe`              stability below the first threshold crossing
-:mod:`.system`             onset of every mode along the speed line (the API ``gfbopt rotor`` wraps)
+:mod:`.system`             onset of every mode along the speed line (``SpeedLine``, the API
+                           ``gfbopt rotor`` wraps)
 :mod:`.mode_search`        the mode-by-mode part of that search
-:mod:`.modes`              mode shapes and their labels (forward/backward, cylindrical/conical)
+:mod:`.modes`              mode shapes and their one label (forward/backward, cylindrical/
+                           conical/mixed, bending n)
 :mod:`.campbell`           full-system eigenvalues at one speed
 :mod:`.tracking`           Campbell modes tracked over speed and named as the onsets
 :mod:`.diagrams`           Campbell diagram, imbalance response, per-bearing approximation
