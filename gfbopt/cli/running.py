@@ -70,25 +70,48 @@ def running_stability(bearing, spec: RunningSpec, rotor: Rotor,
 
 class _Margin:
     """M_crit/M − 1 at the running condition of each speed, along one search (shared drag:
-    warm starts; counts evaluations and static solves)."""
+    warm starts; counts evaluations and static solves).  The threshold is the local crossing
+    on the branch of the previous one (:func:`gfbopt.linear.crossings.local_crossing`, as the
+    onset search's own secant uses), the full threshold when that fails."""
 
     def __init__(self, bearing, spec, case, film, rotor, load_newton):
         self.bearing, self.spec, self.case, self.rotor = bearing, spec, case, rotor
         self.load = load_newton
         self.drag = FilmDrag(film)
         self.evaluations = 0
+        self.near = None                 # (whirl ratio, root) of the last crossing
+
+    def start_near(self, whirl: float, mass_parameter: float, load_parameter: float):
+        """Follow the branch of a crossing at whirl ratio γ, mass M̄, load W̄0."""
+        if math.isfinite(whirl) and math.isfinite(mass_parameter):
+            self.near = (whirl, mass_parameter * whirl**2 * load_parameter)
 
     def __call__(self, speed, prior=None):
-        from ..rotor import stability
+        """(margin, the running point, (whirl ratio, whirl frequency [Hz]))."""
+        from ..inputs.conversions import rpm_to_rad_per_s, whirl_frequency_hz
+        from ..linear import linear_threshold, linearise
+        from ..linear.crossings import local_crossing
+        from ..rotor.analysis import equilibrium, resolve_case
 
         self.evaluations += 1
         point = running_point(self.spec, speed, self.drag, prior=prior)
         if not point.converged:
             return math.nan, point, None
-        result = stability(warm_bearing(self.bearing, point), self.rotor,
-                           OperatingPoint(speed, self.load), options=self.case.options,
-                           grid=self.case.grid, cache=self.case.cache, initial=self.drag.last)
-        return result.critical_mass_kg / self.rotor.mass_kg - 1.0, point, result
+        warm = resolve_case(warm_bearing(self.bearing, point), self.rotor, self.load,
+                            options=self.case.options, grid=self.case.grid,
+                            cache=self.case.cache)
+        sol = equilibrium(warm, speed, self.drag.last)
+        lin = linearise(sol, warm.cache(sol.model, warm.grid))
+        found = None if self.near is None else local_crossing(lin, *self.near)
+        if found is not None:
+            mcrit, whirl = found.mass, found.whirl
+            self.near = (found.whirl, found.root)
+        else:
+            thr = linear_threshold(lin)
+            mcrit, whirl = thr.critical_mass, thr.whirl_ratio
+            self.start_near(whirl, mcrit, lin.load)
+        margin = mcrit / warm.mass_parameter(speed) - 1.0
+        return margin, point, (whirl, whirl_frequency_hz(whirl, rpm_to_rad_per_s(speed)))
 
     def stats(self) -> dict:
         return {"thermal_evaluations": self.evaluations,
@@ -127,6 +150,9 @@ def running_onset(bearing, spec: RunningSpec, rotor: Rotor, load_newton: Optiona
         out["answer"] = f"{frozen.answer} (the running condition frozen at {guess:.6g} rpm)"
         return out
     a = frozen.onset_speed_rpm
+    frozen_case = resolved_case(warm_bearing(bearing, frozen_point), rotor, load_newton,
+                                case)
+    margin.start_near(frozen.whirl_ratio, frozen_case.mass_parameter(a), frozen_case.load)
     fa, pa, _ = margin(a, frozen_point.sample)
     if not math.isfinite(fa):
         return {**out, **_limited(spec, film, low, a, margin)}
@@ -141,14 +167,22 @@ def running_onset(bearing, spec: RunningSpec, rotor: Rotor, load_newton: Optiona
             break
         a, fa, pa, b = b, fb, pb, b - fb * (b - a) / (fb - fa)
         fb, pb, rb = margin(b, pa.sample)
-    whirl = rb.threshold_whirl_frequency_hz
+    ratio, whirl = rb
     out.update(onset_speed_rpm=b, whirl_frequency_hz=whirl,
-               whirl_ratio=rb.threshold_whirl_ratio, running=pb.to_dict(), **margin.stats(),
+               whirl_ratio=ratio, running=pb.to_dict(), **margin.stats(),
                answer=(f"onset of whirl at {b:.6g} rpm at the running clearance "
                        f"{pb.running_clearance * 1e6:.4g} µm ({spec.model_name}), whirling "
                        f"at {whirl:.4g} Hz (frozen at {guess:.6g} rpm: "
                        f"{frozen.onset_speed_rpm:.6g} rpm)"))
     return out
+
+
+def resolved_case(bearing, rotor, load_newton, like):
+    """The stability case of ``bearing`` with the options, grid and cache of ``like``."""
+    from ..rotor.analysis import resolve_case
+
+    return resolve_case(bearing, rotor, load_newton, options=like.options, grid=like.grid,
+                        cache=like.cache)
 
 
 def _frozen_slope(frozen, onset: float) -> float:
