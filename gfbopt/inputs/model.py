@@ -28,6 +28,8 @@ MAX_FRICTION_STIFFNESS_RATIO = 1e3
 #: foil models whose bump foundation carries the friction element (the rigid surface has no
 #: bumps; the beam's foundation has no per-unit factor yet, see physics/friction.py)
 FRICTION_FOILS = ("simple",)
+#: largest exponent n of the hardening bump k0/(1 − δ/δ_lim)^n accepted [-]
+MAX_HARDENING_EXPONENT = 10.0
 
 
 #: the unit-less radian names of gfbopt <= 0.2 and what replaced them (degrees at the edge)
@@ -127,6 +129,14 @@ class BearingModel:
     friction_stiffness_ratio : κ = k_f/k_b [-], 0 < κ ≤ 1000 (default 1): the friction
         element's spring over the bump's stiffness (its stuck stiffness); used only when
         μ_f > 0.
+    hardening_exponent : n [-] of the hardening bump k = k0/(1 − δ/δ_lim)^n
+        (:mod:`gfbopt.physics.hardening`): 0 (default) is off, today's linear bump; else
+        1 ≤ n ≤ 10 (n ≥ 1: the bump is flat only under an infinite load, the hard limit).
+        Foil 'simple' with the axial-mean law only (the 'hardened' foil law).  Statics use the
+        hardened law, the linear analysis its tangent at the static deflection.
+    hardening_limit : W_lim = δ_lim/c [-], the deflection at which the bump is flat, in
+        radial clearances (δ_lim ≤ the bump height h_b, checked where h_b is known: the
+        bearing file's [model]); needed when n > 0.
     as_built : the bearing as built (:class:`gfbopt.inputs.bore.AsBuilt`: bore profile,
         pads, bump zones), or None for a round bore, one top foil and a uniform foundation.
     """
@@ -145,6 +155,8 @@ class BearingModel:
     as_built: Optional[AsBuilt] = None
     friction_coefficient: float = 0.0
     friction_stiffness_ratio: float = 1.0
+    hardening_exponent: float = 0.0
+    hardening_limit: float = math.inf
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "bearing_number",
@@ -191,6 +203,7 @@ class BearingModel:
                 "must be 0 when the compliance S = 0 (the foundation does not deflect, so "
                 "there is nothing for its structural damping to act on)"))
         self._check_friction()
+        self._check_hardening()
         if self.as_built is not None:
             check_as_built(self)
 
@@ -217,6 +230,23 @@ class BearingModel:
                                  "foundation has no per-unit friction element yet); use "
                                  f"foil {', '.join(repr(f) for f in FRICTION_FOILS)}")
 
+    def _check_hardening(self) -> None:
+        n = check_nonnegative("hardening_exponent", self.hardening_exponent)
+        object.__setattr__(self, "hardening_exponent", n)
+        if n == 0.0:
+            return
+        if not 1.0 <= n <= MAX_HARDENING_EXPONENT:
+            raise ParameterError("hardening_exponent", self.hardening_exponent,
+                                 f"must be 0 (off) or in [1, {MAX_HARDENING_EXPONENT:g}] (n < 1 "
+                                 "flattens the bump at a finite load)")
+        object.__setattr__(self, "hardening_limit",
+                           check_positive("hardening_limit", self.hardening_limit))
+        if self.is_rigid or self.foil != "simple" or self.deflection_law != "mean":
+            raise ParameterError("hardening_exponent", self.hardening_exponent,
+                                 "the hardening bump needs a bump foundation of foil 'simple' "
+                                 "with deflection_law 'mean' (not rigid, S = 0, beam or the "
+                                 "local law)")
+
     @property
     def has_friction(self) -> bool:
         """True when the bumps carry Coulomb friction (μ_f > 0)."""
@@ -239,12 +269,15 @@ class BearingModel:
     @property
     def foil_law(self) -> str:
         """Name of the foil law in :mod:`gfbopt.physics.foil_laws` this model uses:
-        'rigid' (also any S = 0), 'simple' (axial-mean law), 'local' or 'beam'."""
+        'rigid' (also any S = 0), 'simple' (axial-mean law), 'local', 'beam' or 'hardened'
+        (the axial-mean law with hardening bumps)."""
         if self.is_rigid:
             return "rigid"
         if self.foil == "beam":
             return "beam"
-        return "local" if self.deflection_law == "local" else "simple"
+        if self.deflection_law == "local":
+            return "local"
+        return "hardened" if self.hardening_exponent > 0.0 else "simple"
 
     def options(self) -> dict:
         """The formulation options, as every output states them (angles in degrees)."""
@@ -259,6 +292,9 @@ class BearingModel:
                 **({} if not self.has_friction else {
                     "friction_coefficient": self.friction_coefficient,
                     "friction_stiffness_ratio": self.friction_stiffness_ratio}),
+                **({} if self.hardening_exponent == 0.0 else {
+                    "hardening_exponent": self.hardening_exponent,
+                    "hardening_limit": self.hardening_limit}),
                 **({} if self.as_built is None else self.as_built.describe())}
 
     def groups(self) -> dict:

@@ -33,16 +33,18 @@ from ..physics.friction import describing_function
 class FrictionUnits:
     """The friction elements of the foil units of one linearisation [-].
 
-    coefficient μ_f; stiffness_ratio κ; slip X_s,u per unit [clearances].
+    coefficient μ_f; stiffness_ratio κ (the element's spring over the bump's stiffness in the
+    linearisation: κ, or κ S_t,u/S_u per unit over a hardening bump's tangent); slip X_s,u
+    per unit [clearances].
     """
 
     coefficient: float
-    stiffness_ratio: float
+    stiffness_ratio: object
     slip: np.ndarray
 
     @classmethod
     def of(cls, terms: ComplianceTerms, coefficient: float,
-           stiffness_ratio: float) -> "FrictionUnits":
+           stiffness_ratio: object) -> "FrictionUnits":
         """The elements of the units of ``terms`` (a law with foil units)."""
         if terms.unit_columns is None:
             raise ValueError("the foil law has no foil units to carry friction")
@@ -50,7 +52,11 @@ class FrictionUnits:
         carried = np.asarray(terms.unit_gain) != 0          # compression-only bumps let go
         slip = np.where(carried, coefficient * gauge * terms.unit_compliance
                         / stiffness_ratio, 0.0)
-        return cls(float(coefficient), float(stiffness_ratio), slip)
+        # the element's spring is κ times the bump's small-deflection stiffness; over a
+        # hardening bump's tangent stiffness it is κ S_t/S0
+        ratio = (float(stiffness_ratio) if terms.unit_softening is None
+                 else stiffness_ratio * np.asarray(terms.unit_softening, dtype=float))
+        return cls(float(coefficient), ratio, slip)
 
     def describing(self, amplitude: Optional[np.ndarray], sign: float = 1.0) -> np.ndarray:
         """D(β_u) per unit: the element's complex stiffness over its spring (module doc)."""

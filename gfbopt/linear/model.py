@@ -166,7 +166,9 @@ def _perturbation_context(solution: StaticSolution, solver: StaticSolver,
         film_sensitivity=lambda: film_sensitivity(
             st, p_full, solution.film.ravel(), model.bearing_number, dz,
             function=_kept_sensitivity(solver)),
-        row_compliance=row_values(model, st, solution.seam_angle_rad)[1], pressure_rows=st.row)
+        row_compliance=row_values(model, st, solution.seam_angle_rad)[1], pressure_rows=st.row,
+        hardening=((model.hardening_exponent, model.hardening_limit)
+                   if getattr(model, "hardening_exponent", 0.0) > 0.0 else None))
 
 
 def _kept_sensitivity(solver: StaticSolver) -> ca.Function:

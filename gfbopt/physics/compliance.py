@@ -39,6 +39,7 @@ class PerturbationContext:
     on demand: only the local law needs it).
     row_compliance : S per θ row (bump zones; None: the uniform ``compliance``);
     pressure_rows : the θ row of each unknown pressure node.
+    hardening : (n, W_lim) of the hardening bump ('hardened' law), None otherwise.
     """
 
     compliance: float
@@ -56,6 +57,7 @@ class PerturbationContext:
     film_sensitivity: Callable[[], sp.spmatrix]
     row_compliance: Optional[np.ndarray] = None
     pressure_rows: Optional[np.ndarray] = None
+    hardening: Optional[tuple] = None
 
     def rows(self):
         """S per θ row (or the uniform S)."""
@@ -86,8 +88,9 @@ class ComplianceTerms:
     of unit u sit in column ``unit_columns[u]`` of a and b only, so a factor k_u per unit
     scales those columns (:meth:`apply` with an array); its deflection perturbation is
     δW_u = ``unit_gain[u]`` ŷ[unit_columns[u]] / k_u, under the gauge pressure
-    ``unit_gauge[u]`` (P̄ − 1 or P − 1) on a bump of compliance ``unit_compliance[u]`` [-].
-    None for a law without units (the beam).
+    ``unit_gauge[u]`` (P̄ − 1 or P − 1) on a bump of compliance ``unit_compliance[u]`` [-]
+    (small deflections); ``unit_softening[u]`` = tangent/small-deflection compliance of a
+    hardening bump (None: 1).  None for a law without units (the beam).
     """
 
     a: sp.csc_matrix
@@ -97,6 +100,7 @@ class ComplianceTerms:
     unit_gain: Optional[np.ndarray] = None
     unit_gauge: Optional[np.ndarray] = None
     unit_compliance: Optional[np.ndarray] = None
+    unit_softening: Optional[np.ndarray] = None
 
     def multiplier(self, stiffness_factor):
         """m: the factor on these entries for a foundation stiffness k·K_f [-] (k a number,

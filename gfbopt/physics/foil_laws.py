@@ -25,6 +25,7 @@ rigid      W = 0 (plain gas bearing, or any S = 0)                —
 simple     W = S q, q = P̄ − 1 (axial-mean law, Heshmat's strips)   Heshmat et al. (1983)
 local      W = S (P − 1) at every node                            e.g. Peng & Carpino (1993)
 beam       C d⁴W/dθ⁴ + W/S = q, Hermite elements                  thesis eq. (4.2), App. B
+hardened   W = W_h(q), k = k0/(1 − δ/δ_lim)^n (axial-mean law)   :mod:`.hardening` (chosen)
 =========  =====================================================  ===========================
 
 ``compression_only`` (bumps cannot pull the foil inward): W = S max(q, 0), S max(P − 1, 0), or
@@ -37,8 +38,6 @@ stiffness and damping coefficients for elastically supported gas foil bearings",
 """
 from __future__ import annotations
 
-import abc
-from dataclasses import dataclass
 from typing import Optional
 
 import casadi as ca
@@ -46,146 +45,19 @@ import numpy as np
 import scipy.sparse as sp
 
 from ..errors import ParameterError
-from .algebra import is_symbolic, positive_part
+from .algebra import is_symbolic
 from .beam import BeamMatrices, beam_deflection, beam_dofs, beam_matrices, beam_residual
-from .compliance import ComplianceTerms, PerturbationContext, active, embed
+from .compliance import ComplianceTerms, active, embed
+from .foil_law_base import (ENGINES, TRANSIENT_ENGINES, FoilLaw, FoilParameters,
+                            simple_deflection)
+from .hardening import hardened_foil_deflection, hardened_tangent_compliance
 from .foil_recovery import (beam_film, node_compliance, row_mean_phi, rows_to_nodes,
                             set_boundary)
 
-#: Engines a law may support: the CasADi/IPOPT equilibrium, the linearisation, and the
-#: transient integrators.
-ENGINES = ("static", "linear", "rk4", "rkc", "bdf")
-#: The transient integrators among them.
-TRANSIENT_ENGINES = ("rk4", "rkc", "bdf")
-
-
-@dataclass(frozen=True)
-class FoilParameters:
-    """The foil's groups as the static equations see them (numbers or CasADi symbols).
-
-    compliance S [-], coefficient C [-] (beam only), compression_only 0/1.
-    """
-
-    compliance: object
-    coefficient: object
-    compression_only: object
-
-
-def simple_deflection(q, compliance, compression_only):
-    """W = S q, or S max(q, 0) when ``compression_only`` is 1 [-].
-
-    q : gauge pressure (P̄ − 1 per row, or P − 1 per node) [-]; compliance S [-];
-    compression_only 0 or 1 (may be a CasADi parameter, so the choice is arithmetic).
-    """
-    return compliance * ((1 - compression_only) * q + compression_only * positive_part(q))
-
-
-class FoilLaw(abc.ABC):
-    """Base class: one foil law (see the module docstring for the contract)."""
-
-    #: registry name
-    name: str = ""
-    #: one line for reports
-    description: str = ""
-    #: the law whose static model serves this one (the rigid bearing is the simple
-    #: foundation with S = 0, so it needs no model of its own)
-    static_structure: str = ""
-    #: engines that support the law (subset of ENGINES)
-    engines: tuple = ()
-    #: True when the lifted film variable of the static model is the whole film H (> 0
-    #: bound); False when it is only the rigid part (the local law adds W per node)
-    lifted_film_is_total: bool = True
-    #: engines that model the structural loss factor η (others are refused a damped model,
-    #: :func:`foil_law`): linear (hysteretic), transient (Kelvin–Voigt state, docs/PHYSICS.md §7)
-    loss_factor_engines: tuple = ()
-    #: the transient's Kelvin–Voigt state: one W per θ 'rows', per 'nodes', or None
-    damped_state: Optional[str] = None
-    #: why the transient engines do not model η for this law, if they do not
-    damped_transient_refusal: str = ""
-    #: engines that model the bumps' Coulomb friction (``BearingModel.friction_coefficient``,
-    #: a spring–slider element beside each bump, :mod:`gfbopt.physics.friction`): the static
-    #: equilibrium (friction holds no static deflection, so it is today's) and the linear
-    #: analysis (stuck stiffness for small orbits; the describing function at a stated
-    #: amplitude).  Others are refused a model with friction by :func:`foil_law`.
-    friction_engines: tuple = ()
-
-    # ------------------------------------------------------------------ static model
-    def extra_unknowns(self, grid) -> int:
-        """Number of foil unknowns beside the film (e.g. the beam's Hermite dofs)."""
-        return 0
-
-    def prepare(self, grid, dpsi: float):
-        """Grid-dependent data the law needs (e.g. beam matrices), or None."""
-        return None
-
-    @abc.abstractmethod
-    def static_film(self, h_rigid, lifted, mean_gauge, p_full, u, foil: FoilParameters, st,
-                    data) -> tuple:
-        """(H at every node, lifted-film equations per row, extra foil equations or None).
-
-        h_rigid : H_r per row; lifted : the lifted film per row; mean_gauge : P̄ − 1 per row;
-        p_full : P at every node (flat); u : extra unknowns; st : the grid's Stencil.
-        Numbers or CasADi symbols.
-        """
-
-    @abc.abstractmethod
-    def deflection(self, p_full, mean_gauge, u, foil: FoilParameters, st, data) -> tuple:
-        """(W at every node (flat), max |foil equation residual|) from a solved state (numpy)."""
-
-    @abc.abstractmethod
-    def start(self, h_rigid, mean_gauge, foil: FoilParameters, st, data) -> tuple:
-        """(lifted film per row, extra unknowns) consistent with a guessed pressure (numpy)."""
-
-    # ------------------------------------------------------------------ linear model
-    def squeeze_film_slope(self, pressure: np.ndarray, compliance: float,
-                           compression_only: bool) -> Optional[np.ndarray]:
-        """∂H/∂P at the unknown nodes where the film follows the local pressure, else None.
-
-        The squeeze term −2Λ ∂(PH)/∂τ then carries −2Λ P (∂H/∂P) Ṗ besides −2Λ H Ṗ.
-        """
-        return None
-
-    def compliance_terms(self, ctx: PerturbationContext) -> Optional[ComplianceTerms]:
-        """The entries of the linearised equations that carry the foundation compliance S
-        (:class:`ComplianceTerms`), or None when the law has no foundation (rigid).
-
-        This is the foil's dynamic compliance in the linearisation: the linear analysis
-        replaces S by S/(1 + iη sign γ) in exactly these entries.
-        """
-        return None
-
-    # --------------------------------------------------------------- transient model
-    def transient_data(self, model, grid, periodic: bool, dtheta: float):
-        """Precomputed data of the transient recovery (e.g. the beam's compliance map)."""
-        return None
-
-    @abc.abstractmethod
-    def recover(self, phi: np.ndarray, hr: np.ndarray, tm, guess=None, cache=None) -> tuple:
-        """(P, H) of a batch from Φ = P H (B, m, n_z + 1) and the rigid film H_r (B, m).
-
-        H has shape (B, m, n_z + 1) when it varies along Z, else (B, m, 1).
-        """
-
-    def recover_deflected(self, phi: np.ndarray, hr: np.ndarray, w: np.ndarray, tm) -> tuple:
-        """(P, H) from Φ (B, m, n_z + 1), H_r (B, m) and the damped transient's state W:
-        H = H_r + W, P = Φ/H (no foil equation to solve)."""
-        raise ParameterError("loss_factor", self.name, "this foil law has no damped transient")
-
-    def deflection_target(self, p: np.ndarray, tm) -> np.ndarray:
-        """S q, or S max(q, 0) (compression only), in the :attr:`damped_state` layout [-]."""
-        raise ParameterError("loss_factor", self.name, "this foil law has no damped transient")
-
-    def check_engine(self, engine: str, damped: bool = False) -> None:
-        """Refuse an engine the law does not support, or does not support with structural
-        damping when ``damped`` (one line naming both)."""
-        name = "method" if engine in TRANSIENT_ENGINES else "engine"
-        if engine not in self.engines:
-            raise ParameterError(name, engine, f"does not support the {self.name} foil law "
-                                 f"({self.description}); supported: {', '.join(self.engines)}")
-        if damped and engine not in self.loss_factor_engines:
-            raise ParameterError(name, engine, "does not model structural damping (η > 0) of "
-                                 f"the {self.name} foil law; supported: "
-                                 f"{', '.join(self.loss_factor_engines)}")
+#: re-exported from :mod:`.foil_law_base` (the contract every law implements)
+__all__ = ["BeamLaw", "ENGINES", "FOIL_LAWS", "FoilLaw", "FoilParameters", "LocalLaw", "RigidLaw",
+           "HardenedLaw", "SimpleLaw", "TRANSIENT_ENGINES",
+           "foil_law", "simple_deflection", "static_structure"]
 
 
 class SimpleLaw(FoilLaw):
@@ -404,9 +276,63 @@ class BeamLaw(FoilLaw):
         return p, a[:, :, None]
 
 
+class HardenedLaw(SimpleLaw):
+    """The axial-mean foundation with hardening bumps, W = W_h(P̄ − 1): the stiffness
+    k0/(1 − δ/δ_lim)^n rises as the bump flattens, the bump height the hard limit
+    (:func:`gfbopt.physics.hardening.hardened_foil_deflection`).  Statics use the hardened
+    law; the linear analysis its tangent at the static deflection.  Its own static structure
+    (the 'simple' build, today's, is untouched); needs the build to pass (n, W_lim) in
+    :attr:`FoilParameters.hardening`."""
+
+    name = "hardened"
+    description = "hardening bumps, W = W_h(P̄ − 1), k = k0/(1 − δ/δ_lim)^n"
+    static_structure = "hardened"
+    engines = ("static", "linear")
+    loss_factor_engines = ("linear",)
+    damped_state = None
+    friction_engines = ("static", "linear")
+    damped_transient_refusal = "no transient recovery of the hardening bump yet"
+
+    @staticmethod
+    def _w(q, foil):
+        if foil.hardening is None:
+            raise ParameterError("hardening_exponent", "on", "the static build does not pass "
+                                 "the hardening bump's parameters (gfbopt.static.model "
+                                 "PARAMETERS); use hardening_exponent = 0")
+        n, limit = foil.hardening
+        return hardened_foil_deflection(q, foil.compliance, n, limit, foil.compression_only)
+
+    def static_film(self, h_rigid, lifted, mean_gauge, p_full, u, foil, st, data):
+        return rows_to_nodes(lifted, st), lifted - (h_rigid + self._w(mean_gauge, foil)), None
+
+    def deflection(self, p_full, mean_gauge, u, foil, st, data):
+        return rows_to_nodes(self._w(mean_gauge, foil), st), 0.0
+
+    def start(self, h_rigid, mean_gauge, foil, st, data):
+        return np.maximum(h_rigid + self._w(mean_gauge, foil), 1e-3), np.zeros(0)
+
+    def compliance_terms(self, ctx):
+        # as the simple law's, with the tangent compliance dW/dq at the static deflection
+        n, limit = ctx.hardening
+        s0 = np.broadcast_to(np.asarray(ctx.rows(), dtype=float), ctx.mean_gauge.shape)
+        tangent = hardened_tangent_compliance(ctx.mean_gauge, s0, n, limit,
+                                              ctx.compression_only)
+        values = -tangent / (2.0 * ctx.length_ratio)
+        a = sp.csc_matrix((values, (ctx.film_rows, ctx.axial_cols)), shape=(ctx.size, ctx.size))
+        with np.errstate(divide="ignore", invalid="ignore"):
+            softening = np.where(s0 > 0, tangent / np.where(s0 > 0, s0, 1.0), 1.0)
+        return ComplianceTerms(a, None, "compliance", unit_columns=np.asarray(ctx.axial_cols),
+                               unit_gain=-values, unit_gauge=np.asarray(ctx.mean_gauge),
+                               unit_compliance=np.array(s0), unit_softening=softening)
+
+    def recover(self, phi, hr, tm, guess=None, cache=None):
+        raise ParameterError("hardening_exponent", "on", "the transient engines do not model "
+                             "the hardening bump yet")
+
+
 #: The registry: law name → law.
 FOIL_LAWS: dict[str, FoilLaw] = {law.name: law for law in (RigidLaw(), SimpleLaw(), LocalLaw(),
-                                                           BeamLaw())}
+                                                           BeamLaw(), HardenedLaw())}
 
 
 def foil_law(model, engine: Optional[str] = None) -> FoilLaw:
@@ -459,4 +385,6 @@ def static_structure(model) -> str:
         return "beam"
     if model.foil == "simple" and model.deflection_law == "local":
         return "local"
+    if getattr(model, "hardening_exponent", 0.0) > 0.0:
+        return "hardened"
     return "simple"

@@ -37,13 +37,16 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+import casadi as ca
 import numpy as np
 
 from ..errors import ParameterError
+from .algebra import is_symbolic, positive_part
 from ..inputs.checks import check_positive
 
 __all__ = ["HardeningLaw", "check_hardening_limit", "describe", "hardened_deflection",
-           "hardened_reaction", "hardened_stiffness"]
+           "hardened_foil_deflection", "hardened_reaction", "hardened_stiffness",
+           "hardened_tangent_compliance"]
 
 
 @dataclass(frozen=True)
@@ -135,3 +138,48 @@ def describe(law: HardeningLaw) -> str:
     return (f"hardening bump k = k0/(1 − δ/δ_lim)^n, k0 = {law.stiffness:.4g} N/m³, "
             f"δ_lim = {law.limit * 1e6:.4g} µm, n = {law.exponent:.4g}")
 
+
+
+# ------------------------------------------------------- the foil law's form (non-dimensional)
+#: |n − 1| below which the n → 1 series of log(1 + (n − 1) x)/(n − 1) is used
+_SERIES_BELOW = 1e-6
+
+
+def _exponent_term(x, e):
+    """g = log(1 + e x)/e (→ x as e → 0), e = n − 1 ≥ 0, on numbers or CasADi symbols."""
+    series = x - 0.5 * e * x * x + e * e * x * x * x / 3.0
+    if is_symbolic(x, e):
+        return ca.if_else(ca.fabs(e) < _SERIES_BELOW, series, ca.log1p(e * x) / e)
+    if abs(float(e)) < _SERIES_BELOW:
+        return series
+    return np.log1p(e * x) / e
+
+
+def hardened_foil_deflection(q, compliance, exponent, limit, compression_only):
+    """W(q) of the hardening foundation in clearances (numbers or CasADi symbols).
+
+    W = W_lim [1 − (1 + (n − 1) S q⁺/W_lim)^(−1/(n − 1))] (n = 1: W_lim [1 − exp(−S q⁺/W_lim)])
+    in compression, plus the linear S min(q, 0) in tension unless ``compression_only``; S the
+    small-deflection compliance, n ≥ 1 the exponent, W_lim = δ_lim/c the limit.  The closed
+    inverse of the module docstring's reaction, so the foil law keeps an explicit W(q).
+    """
+    qp = positive_part(q)
+    x = compliance * qp / limit
+    w = -limit * _expm1(-_exponent_term(x, exponent - 1.0))     # W_lim (1 − e^(−g)), exact
+    return w + (1 - compression_only) * compliance * (q - qp)
+
+
+def hardened_tangent_compliance(q, compliance, exponent, limit, compression_only):
+    """dW/dq of :func:`hardened_foil_deflection` (numpy): S (1 + (n − 1) x)^(−n/(n − 1)),
+    x = S q⁺/W_lim, in compression; S in tension (0 when ``compression_only``)."""
+    q = np.asarray(q, dtype=float)
+    x = compliance * np.maximum(q, 0.0) / limit
+    e = exponent - 1.0
+    g = _exponent_term(x, e)
+    slope = compliance * np.exp(-g) / (1.0 + e * x)
+    tension = 0.0 if compression_only else compliance
+    return np.where(q > 0, slope, tension * np.ones_like(q))
+
+
+def _expm1(x):
+    return ca.expm1(x) if is_symbolic(x) else np.expm1(x)
