@@ -10,26 +10,68 @@ bdf        scipy's implicit BDF with a sparse Jacobian, rotor by rotor (:mod:`.b
 =========  ===================================================================================
 
 Each method is one module with one ``integrate_*`` function of the same signature, listed in
-:data:`METHODS`; the driver validates the input once and dispatches.
+:data:`METHODS` with the options it takes and, for the explicit methods, its step of a packed
+system (``step(f, z, Δτ, stages)``).  :func:`check_method` validates a method and its options
+once for every driver: :func:`integrate_orbits` (one bearing, a batch of rotors) dispatches to
+the method's integrator; :func:`gfbopt.transient.rotor_run.integrate_rotor` (the whole rotor
+on its bearings) advances with the method's step (explicit methods only: bdf is refused there).
 """
 from __future__ import annotations
 
+from dataclasses import dataclass
 from typing import Callable, Optional
 
 from ..errors import ParameterError
 from ..threads import single_threaded
 from .bdf import integrate_bdf
 from .result import OrbitBatch, check_masses, check_positive
-from .rk4 import integrate_rk4
-from .rkc import integrate_rkc
+from .rk4 import integrate_rk4, rk4_array_step
+from .rkc import integrate_rkc, rkc_step
 from .system import State, TransientModel
 
-#: method name → (integrator, options it accepts beyond the common ones)
-METHODS: dict[str, tuple[Callable, tuple]] = {
-    "rk4": (integrate_rk4, ("time_step", "check_every")),
-    "rkc": (integrate_rkc, ("time_step", "stages", "check_every")),
-    "bdf": (integrate_bdf, ("rtol", "atol")),
+@dataclass(frozen=True)
+class Method:
+    """One integration method: ``integrate`` the one-bearing batch integrator, ``options``
+    the keyword options it accepts beyond the common ones, ``step`` one explicit step
+    ``step(f, z, dt, stages) -> z`` of a packed system dz/dτ = f(z) (None: implicit).
+    It unpacks as the pair ``(integrate, options)``, as the table's entries always did."""
+
+    integrate: Callable
+    options: tuple
+    step: Optional[Callable] = None
+
+    def __iter__(self):
+        return iter((self.integrate, self.options))
+
+    def __getitem__(self, k):
+        return (self.integrate, self.options)[k]
+
+
+#: method name → :class:`Method` (integrator, options, packed step)
+METHODS: dict[str, Method] = {
+    "rk4": Method(integrate_rk4, ("time_step", "check_every"), rk4_array_step),
+    "rkc": Method(integrate_rkc, ("time_step", "stages", "check_every"), rkc_step),
+    "bdf": Method(integrate_bdf, ("rtol", "atol")),
 }
+
+
+def check_method(method: str, options: dict, *, explicit: bool = False) -> Method:
+    """The :class:`Method` named ``method``, after checking it and its ``options`` (a
+    given option the method does not use is refused, not ignored; ``explicit``: a driver
+    that needs the method's packed step refuses an implicit method)."""
+    if method not in METHODS:
+        raise ParameterError("method", method, f"must be one of {', '.join(METHODS)}")
+    spec = METHODS[method]
+    if explicit and spec.step is None:
+        usable = ", ".join(m for m, s in METHODS.items() if s.step is not None)
+        raise ParameterError("method", method, f"has no explicit step for this driver; "
+                             f"one of {usable}")
+    for key, value in options.items():
+        if key not in spec.options and value is not None:
+            users = [m for m, s in METHODS.items() if key in s.options]
+            raise ParameterError(key, value, f"applies to method={'/'.join(users) or '?'} "
+                                 f"only, not to method='{method}'")
+    return spec
 
 
 @single_threaded
@@ -69,14 +111,7 @@ def integrate_orbits(tm: TransientModel, mass, revolutions: float = 10.0, *,
     -------
     OrbitBatch, with ``success`` False and a message when the integration failed at run time.
     """
-    if method not in METHODS:
-        raise ParameterError("method", method, f"must be one of {', '.join(METHODS)}")
-    integrate, accepted = METHODS[method]
-    for key, value in method_options.items():
-        if key not in accepted and value is not None:
-            users = [m for m, (_, opts) in METHODS.items() if key in opts]
-            raise ParameterError(key, value, f"applies to method={'/'.join(users) or '?'} "
-                                 f"only, not to method='{method}'")
+    integrate = check_method(method, method_options).integrate
     options = {k: v for k, v in method_options.items() if v is not None}
     tm.law.check_engine(method, damped=tm.foil_state is not None)
     mass = check_masses(mass)

@@ -66,6 +66,27 @@ def rk4_step(f, y, dt, weight=1.0):
     return y.axpy(w, k1).axpy(2 * w, k2).axpy(2 * w, k3).axpy(w, k4)
 
 
+class _Rows:
+    """Packed rows (a numpy array, leading axis the batch) with the ``axpy`` that
+    :func:`rk4_step` needs."""
+
+    __slots__ = ("z",)
+
+    def __init__(self, z: np.ndarray):
+        self.z = z
+
+    def axpy(self, alpha, d: "_Rows") -> "_Rows":
+        a = np.asarray(alpha, dtype=float)
+        return _Rows(self.z + (a[:, None, None] if a.ndim else a) * d.z)
+
+
+def rk4_array_step(f, z: np.ndarray, dt: float, stages=None) -> np.ndarray:
+    """One RK4 step of a packed system dz/dτ = f(z) (a (B, ...) numpy array; ``alpha`` of
+    a stage scalar or per run); ``stages`` is unused (the signature of every method's
+    ``step`` in :data:`gfbopt.transient.orbit.METHODS`)."""
+    return rk4_step(lambda r: _Rows(f(r.z)), _Rows(z), dt).z
+
+
 def stable_time_step(tm: TransientModel, state: State, safety: float = STEP_SAFETY) -> float:
     """Largest RK4 step Δτ [rad] with Δτ·λ_max ≤ safety × 2.78 (Gershgorin bound)."""
     return safety * RK4_STABILITY_RADIUS / stiffness_bound(state, tm)

@@ -39,19 +39,17 @@ import numpy as np
 
 from ..errors import ConvergenceError, ParameterError
 from ..inputs.checks import check_positive
-from .rk4 import RK4_STABILITY_RADIUS, STEP_SAFETY, rk4_step
-from .rkc import (MAX_STAGES, MAX_STEP, STAGE_SAFETY, STEPS_PER_FILM_TIME,
-                  STEPS_PER_ROTOR_PERIOD, film_time, rkc_stability_interval, rkc_step,
-                  stages_for)
+from .orbit import check_method
+from .rk4 import RK4_STABILITY_RADIUS, STEP_SAFETY
+from .rkc import MAX_STAGES, MAX_STEP, STAGE_SAFETY, rkc_stability_interval, stages_for
+from .rotor_steps import (  # noqa: F401  (the step rules; rotor_frequency re-exported)
+    PERIOD_CHECKS, _SpeedStep, _check_stages, _first_step, _hermite, _stages_at, accuracy_step,
+    rotor_frequency, rotor_period)
 from .rotor_system import RotorRightHandSide, RotorTransientModel, Runs, layout
 
 #: film H at which a bearing is in contact (the one-bearing engine's default: the film
 #: model — no asperities, no slip — says nothing closer than 2 % of the clearance)
 CONTACT_FILM = 0.02
-METHODS = ("rkc", "rk4")
-#: a ramp re-measures T_rotor every this many stage checks (8 evaluations each: ≈ 1 % of
-#: the run's at 72 × 20)
-PERIOD_CHECKS = 10
 
 
 @dataclass(frozen=True, eq=False)
@@ -114,64 +112,6 @@ class RotorRun:
         return float(self.shaft_angle(0)[-1] / (2 * math.pi)) if self.tau.size else 0.0
 
 
-class _Rows:
-    """Packed rows with the ``axpy`` that :func:`.rk4.rk4_step` needs."""
-
-    __slots__ = ("z",)
-
-    def __init__(self, z: np.ndarray):
-        self.z = z
-
-    def axpy(self, alpha, d: "_Rows") -> "_Rows":
-        a = np.asarray(alpha, dtype=float)
-        return _Rows(self.z + (a[:, None, None] if a.ndim else a) * d.z)
-
-
-def rotor_frequency(rhs: RotorRightHandSide, z: np.ndarray, h: float = 1e-6) -> float:
-    """Fastest rotor frequency [rad per rad of τ] on the films' instantaneous stiffness.
-
-    ∂q̃''/∂q̃ at fixed films (central differences, every run at once), with the gyroscopic
-    term: the largest |Im λ| of [[0, I], [∂q̃''/∂q̃, −r M⁻¹G]] over the runs.
-    """
-    lay = rhs.layout
-    cols = []
-    for j in range(4):
-        plus, minus = z.copy(), z.copy()
-        lay.rotor_of(plus)[:, j] += h
-        lay.rotor_of(minus)[:, j] -= h
-        cols.append((lay.rotor_of(rhs(plus))[:, 4:8] - lay.rotor_of(rhs(minus))[:, 4:8])
-                    / (2 * h))
-    stiff = np.stack(cols, axis=-1)                                   # (B, 4, 4)
-    rate = rhs.runs.speed_at(lay.rotor_of(z)[:, 8])
-    fastest = 0.0
-    for b in range(z.shape[0]):
-        comp = np.zeros((8, 8))
-        comp[:4, 4:] = np.eye(4)
-        comp[4:, :4] = stiff[b]
-        comp[4:, 4:] = -rate[b] * rhs.gyro
-        fastest = max(fastest, float(np.abs(np.linalg.eigvals(comp).imag).max()))
-    return fastest
-
-
-def rotor_period(rhs: RotorRightHandSide, z: np.ndarray, h: float = 1e-6) -> float:
-    """Shortest period [rad of τ] of the rotor on the films' instantaneous stiffness
-    (:func:`rotor_frequency`); at least one shaft revolution at the run's speed (as the
-    one-bearing engine's rule)."""
-    rate = rhs.runs.speed_at(rhs.layout.rotor_of(z)[:, 8])
-    return 2 * math.pi / max(rotor_frequency(rhs, z, h), float(np.max(rate)))
-
-
-def accuracy_step(rhs: RotorRightHandSide, z: np.ndarray, top_speed: float,
-                  max_step: float = MAX_STEP) -> float:
-    """The default RKC step Δτ (module docstring); ``top_speed`` = max ω/ω_ref of the run;
-    ``max_step`` [rad of shaft rotation at the top speed]."""
-    films = min(film_time(b.tm) * rhs.model.reference_speed / b.model_speed
-                for b in rhs.model.bearings)
-    return min(max_step / top_speed, rotor_period(rhs, z) / STEPS_PER_ROTOR_PERIOD,
-               films / STEPS_PER_FILM_TIME)
-
-
-
 def integrate_rotor(model: RotorTransientModel, batch: Runs, duration: float,
                     initial: np.ndarray, *, method: str = "rkc",
                     time_step: Optional[float] = None, stages: Optional[int] = None,
@@ -182,8 +122,10 @@ def integrate_rotor(model: RotorTransientModel, batch: Runs, duration: float,
     """Advance a batch of rotor runs over ``duration`` rad of τ from the packed ``initial``
     rows (:func:`.rotor_setup.equilibrium_states`).
 
-    method : 'rkc' (default) or 'rk4'; time_step Δτ [rad] and stages (rkc) : default from
-    accuracy and the stiffness bound (module docstring), refused when outside the stability
+    method : 'rkc' (default) or 'rk4', an explicit method of the one table
+    :data:`gfbopt.transient.orbit.METHODS` (advanced by its packed step; 'bdf' is refused);
+    time_step Δτ [rad] and stages (rkc) : default from accuracy and the stiffness bound
+    (module docstring), refused when outside the stability
     region; sample_every : Δτ between stored samples; contact_film : H at contact [-];
     foil_travel : largest foil deflection W [clearances] before the bumps are exhausted
     (None: not checked); max_step : rkc's accuracy limit [rad of shaft rotation at the top
@@ -195,10 +137,8 @@ def integrate_rotor(model: RotorTransientModel, batch: Runs, duration: float,
     one-bearing engine does.
     """
     t0 = time.perf_counter()
-    if method not in METHODS:
-        raise ParameterError("method", method, f"must be one of {', '.join(METHODS)}")
-    if stages is not None and method != "rkc":
-        raise ParameterError("stages", stages, "applies to method='rkc' only")
+    advance = check_method(method, {"time_step": time_step, "stages": stages},
+                           explicit=True).step          # the one METHODS table (.orbit)
     duration = check_positive("duration", duration)
     sample_every = check_positive("sample_every", sample_every)
     contact_film = float(contact_film)
@@ -270,10 +210,7 @@ def integrate_rotor(model: RotorTransientModel, batch: Runs, duration: float,
                 h = min(dt, duration - tau) if exact_end and step == n_steps else dt
             before = z
             try:
-                if method == "rkc":
-                    z = rkc_step(rhs, z, h, stages)
-                else:
-                    z = rk4_step(lambda r: _Rows(rhs(r.z)), _Rows(z), h).z
+                z = advance(rhs, z, h, stages)
             except ConvergenceError as err:
                 failure = f"the foil recovery failed at τ = {tau:.4g}: {err}"
                 break
@@ -373,96 +310,3 @@ def integrate_rotor(model: RotorTransientModel, batch: Runs, duration: float,
                     contact, contact_tau, contact_bearing, tuple(kinds), dt,
                     tuple(sorted(used)) if method == "rkc" else (), evaluations,
                     time.perf_counter() - t0, method, not failure, failure, options)
-
-
-class _SpeedStep:
-    """Δτ(τ, runs) of a ramp: ``max_step`` rad of shaft rotation at the highest speed any
-    live run reaches over the step, at most T_rotor/30 and T_film/4 (module docstring).
-    T_rotor follows the rotor (:meth:`refresh`, from :func:`rotor_frequency` at the current
-    state): the films soften from the stiff low-speed equilibrium within the first tenth of
-    a run-up, so the start's period would hold the cap ≈ 20 % shorter than the rotor needs
-    for the rest of the ramp (blower rotor on its preloaded bearings, 72 × 20)."""
-
-    def __init__(self, rhs: RotorRightHandSide, z: np.ndarray, max_step: float):
-        self.max_step = max_step
-        self.film_cap = min(film_time(b.tm) * rhs.model.reference_speed / b.model_speed
-                            for b in rhs.model.bearings) / STEPS_PER_FILM_TIME
-        self.refresh(rhs, z)
-
-    def refresh(self, rhs: RotorRightHandSide, z: np.ndarray) -> None:
-        """Re-measure the rotor's fastest frequency (8 right-hand-side evaluations)."""
-        fastest = rotor_frequency(rhs, z)
-        self.cap = self.film_cap if not fastest > 0 else min(
-            self.film_cap, 2 * math.pi / fastest / STEPS_PER_ROTOR_PERIOD)
-
-    def __call__(self, tau: float, batch: Runs) -> float:
-        r = batch.speed_at(tau)
-        r_hi = np.maximum(r, batch.speed_at(tau + self.max_step / np.max(r)))
-        return min(self.max_step / float(np.max(r_hi)), self.cap)
-
-
-def _stages_at(dt: float, rho: float, stages, fixed_stages: bool) -> tuple:
-    """(Δτ, s) of a speed-following step: the fewest stages with Δτ·ρ ≤ 0.9 β(s) (ρ the
-    largest bound met so far), or, with the stages given, Δτ shortened to their interval."""
-    if fixed_stages:
-        return min(dt, STAGE_SAFETY * rkc_stability_interval(stages) / rho), stages
-    s = stages_for(dt * rho)
-    if s > MAX_STAGES:
-        s = MAX_STAGES
-        dt = STAGE_SAFETY * rkc_stability_interval(s) / rho
-    return dt, s
-
-
-def _hermite(lay, before: np.ndarray, after: np.ndarray, tau0: float, h: float,
-             at: float) -> np.ndarray:
-    """q̃ (B, 4) at τ = ``at`` inside the step [τ0, τ0 + h]: the cubic Hermite interpolant
-    of q̃ and q̃' at both ends (fourth order, above the second-order step's own error)."""
-    a, b = lay.rotor_of(before), lay.rotor_of(after)
-    s = (at - tau0) / h
-    s2, s3 = s * s, s * s * s
-    return ((2 * s3 - 3 * s2 + 1) * a[:, :4] + (s3 - 2 * s2 + s) * h * a[:, 4:8]
-            + (-2 * s3 + 3 * s2) * b[:, :4] + (s3 - s2) * h * b[:, 4:8])
-
-
-def _check_stages(stages):
-    """A given RKC stage count as an int in [2, MAX_STAGES] (None stays None)."""
-    if stages is None:
-        return None
-    if isinstance(stages, bool) or not float(stages).is_integer() \
-            or not 2 <= int(stages) <= MAX_STAGES:
-        raise ParameterError("stages", stages, f"must be an integer in [2, {MAX_STAGES}]")
-    return int(stages)
-
-
-def _first_step(rhs: RotorRightHandSide, z: np.ndarray, rho: float, top: float, method: str,
-                time_step, stages, max_step: float = MAX_STEP) -> tuple:
-    """(Δτ, stages) at the start; a given step or stage count outside the stability region
-    is refused with the bound it violates."""
-    if method == "rk4":
-        limit = RK4_STABILITY_RADIUS / rho
-        if time_step is None:
-            return STEP_SAFETY * limit, None
-        dt = check_positive("time_step", time_step)
-        if dt > limit:
-            raise ParameterError("time_step", time_step, f"exceeds the RK4 stability limit "
-                                 f"{limit:.4g} of the discretised system (Gershgorin bound)")
-        return dt, None
-    stages = _check_stages(stages)
-    dt = (check_positive("time_step", time_step) if time_step is not None
-          else accuracy_step(rhs, z, top, max_step))
-    if stages is None:
-        stages = stages_for(dt * rho)
-        if stages > MAX_STAGES:
-            if time_step is not None:
-                raise ParameterError("time_step", time_step, f"Δτ·ρ = {dt * rho:.4g} needs "
-                                     f"more than {MAX_STAGES} RKC stages")
-            stages = MAX_STAGES
-            dt = STAGE_SAFETY * rkc_stability_interval(stages) / rho
-    elif dt * rho > rkc_stability_interval(stages):
-        if time_step is None:
-            dt = STAGE_SAFETY * rkc_stability_interval(stages) / rho
-        else:
-            raise ParameterError("time_step", time_step, f"Δτ·ρ = {dt * rho:.4g} exceeds the "
-                                 f"RKC stability interval β({stages}) = "
-                                 f"{rkc_stability_interval(stages):.4g}")
-    return dt, stages

@@ -1,0 +1,158 @@
+"""The rotor transient's step rules: the first step and stages, the rotor's own period, and
+the speed-following step of a ramp (:func:`.rotor_run.integrate_rotor`; rules in its module
+docstring).  Times are rad of τ = ω_ref t; ρ is the Gershgorin bound of the films and foil
+states (:meth:`.rotor_system.RotorRightHandSide.stiffness`)."""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ..errors import ParameterError
+from ..inputs.checks import check_positive
+from .rk4 import RK4_STABILITY_RADIUS, STEP_SAFETY
+from .rkc import (MAX_STAGES, MAX_STEP, STAGE_SAFETY, STEPS_PER_FILM_TIME,
+                  STEPS_PER_ROTOR_PERIOD, film_time, rkc_stability_interval, stages_for)
+from .rotor_batch import Runs
+from .rotor_system import RotorRightHandSide
+
+#: a ramp re-measures T_rotor every this many stage checks (8 evaluations each: ≈ 1 % of
+#: the run's at 72 × 20)
+PERIOD_CHECKS = 10
+
+
+def rotor_frequency(rhs: RotorRightHandSide, z: np.ndarray, h: float = 1e-6) -> float:
+    """Fastest rotor frequency [rad per rad of τ] on the films' instantaneous stiffness.
+
+    ∂q̃''/∂q̃ at fixed films (central differences, every run at once), with the gyroscopic
+    term: the largest |Im λ| of [[0, I], [∂q̃''/∂q̃, −r M⁻¹G]] over the runs.
+    """
+    lay = rhs.layout
+    cols = []
+    for j in range(4):
+        plus, minus = z.copy(), z.copy()
+        lay.rotor_of(plus)[:, j] += h
+        lay.rotor_of(minus)[:, j] -= h
+        cols.append((lay.rotor_of(rhs(plus))[:, 4:8] - lay.rotor_of(rhs(minus))[:, 4:8])
+                    / (2 * h))
+    stiff = np.stack(cols, axis=-1)                                   # (B, 4, 4)
+    rate = rhs.runs.speed_at(lay.rotor_of(z)[:, 8])
+    fastest = 0.0
+    for b in range(z.shape[0]):
+        comp = np.zeros((8, 8))
+        comp[:4, 4:] = np.eye(4)
+        comp[4:, :4] = stiff[b]
+        comp[4:, 4:] = -rate[b] * rhs.gyro
+        fastest = max(fastest, float(np.abs(np.linalg.eigvals(comp).imag).max()))
+    return fastest
+
+
+def rotor_period(rhs: RotorRightHandSide, z: np.ndarray, h: float = 1e-6) -> float:
+    """Shortest period [rad of τ] of the rotor on the films' instantaneous stiffness
+    (:func:`rotor_frequency`); at least one shaft revolution at the run's speed (as the
+    one-bearing engine's rule)."""
+    rate = rhs.runs.speed_at(rhs.layout.rotor_of(z)[:, 8])
+    return 2 * math.pi / max(rotor_frequency(rhs, z, h), float(np.max(rate)))
+
+
+def accuracy_step(rhs: RotorRightHandSide, z: np.ndarray, top_speed: float,
+                  max_step: float = MAX_STEP) -> float:
+    """The default RKC step Δτ (module docstring); ``top_speed`` = max ω/ω_ref of the run;
+    ``max_step`` [rad of shaft rotation at the top speed]."""
+    films = min(film_time(b.tm) * rhs.model.reference_speed / b.model_speed
+                for b in rhs.model.bearings)
+    return min(max_step / top_speed, rotor_period(rhs, z) / STEPS_PER_ROTOR_PERIOD,
+               films / STEPS_PER_FILM_TIME)
+
+
+class _SpeedStep:
+    """Δτ(τ, runs) of a ramp: ``max_step`` rad of shaft rotation at the highest speed any
+    live run reaches over the step, at most T_rotor/30 and T_film/4 (module docstring).
+    T_rotor follows the rotor (:meth:`refresh`, from :func:`rotor_frequency` at the current
+    state): the films soften from the stiff low-speed equilibrium within the first tenth of
+    a run-up, so the start's period would hold the cap ≈ 20 % shorter than the rotor needs
+    for the rest of the ramp (blower rotor on its preloaded bearings, 72 × 20)."""
+
+    def __init__(self, rhs: RotorRightHandSide, z: np.ndarray, max_step: float):
+        self.max_step = max_step
+        self.film_cap = min(film_time(b.tm) * rhs.model.reference_speed / b.model_speed
+                            for b in rhs.model.bearings) / STEPS_PER_FILM_TIME
+        self.refresh(rhs, z)
+
+    def refresh(self, rhs: RotorRightHandSide, z: np.ndarray) -> None:
+        """Re-measure the rotor's fastest frequency (8 right-hand-side evaluations)."""
+        fastest = rotor_frequency(rhs, z)
+        self.cap = self.film_cap if not fastest > 0 else min(
+            self.film_cap, 2 * math.pi / fastest / STEPS_PER_ROTOR_PERIOD)
+
+    def __call__(self, tau: float, batch: Runs) -> float:
+        r = batch.speed_at(tau)
+        r_hi = np.maximum(r, batch.speed_at(tau + self.max_step / np.max(r)))
+        return min(self.max_step / float(np.max(r_hi)), self.cap)
+
+
+def _stages_at(dt: float, rho: float, stages, fixed_stages: bool) -> tuple:
+    """(Δτ, s) of a speed-following step: the fewest stages with Δτ·ρ ≤ 0.9 β(s) (ρ the
+    largest bound met so far), or, with the stages given, Δτ shortened to their interval."""
+    if fixed_stages:
+        return min(dt, STAGE_SAFETY * rkc_stability_interval(stages) / rho), stages
+    s = stages_for(dt * rho)
+    if s > MAX_STAGES:
+        s = MAX_STAGES
+        dt = STAGE_SAFETY * rkc_stability_interval(s) / rho
+    return dt, s
+
+
+def _hermite(lay, before: np.ndarray, after: np.ndarray, tau0: float, h: float,
+             at: float) -> np.ndarray:
+    """q̃ (B, 4) at τ = ``at`` inside the step [τ0, τ0 + h]: the cubic Hermite interpolant
+    of q̃ and q̃' at both ends (fourth order, above the second-order step's own error)."""
+    a, b = lay.rotor_of(before), lay.rotor_of(after)
+    s = (at - tau0) / h
+    s2, s3 = s * s, s * s * s
+    return ((2 * s3 - 3 * s2 + 1) * a[:, :4] + (s3 - 2 * s2 + s) * h * a[:, 4:8]
+            + (-2 * s3 + 3 * s2) * b[:, :4] + (s3 - s2) * h * b[:, 4:8])
+
+
+def _check_stages(stages):
+    """A given RKC stage count as an int in [2, MAX_STAGES] (None stays None)."""
+    if stages is None:
+        return None
+    if isinstance(stages, bool) or not float(stages).is_integer() \
+            or not 2 <= int(stages) <= MAX_STAGES:
+        raise ParameterError("stages", stages, f"must be an integer in [2, {MAX_STAGES}]")
+    return int(stages)
+
+
+def _first_step(rhs: RotorRightHandSide, z: np.ndarray, rho: float, top: float, method: str,
+                time_step, stages, max_step: float = MAX_STEP) -> tuple:
+    """(Δτ, stages) at the start; a given step or stage count outside the stability region
+    is refused with the bound it violates."""
+    if method == "rk4":
+        limit = RK4_STABILITY_RADIUS / rho
+        if time_step is None:
+            return STEP_SAFETY * limit, None
+        dt = check_positive("time_step", time_step)
+        if dt > limit:
+            raise ParameterError("time_step", time_step, f"exceeds the RK4 stability limit "
+                                 f"{limit:.4g} of the discretised system (Gershgorin bound)")
+        return dt, None
+    stages = _check_stages(stages)
+    dt = (check_positive("time_step", time_step) if time_step is not None
+          else accuracy_step(rhs, z, top, max_step))
+    if stages is None:
+        stages = stages_for(dt * rho)
+        if stages > MAX_STAGES:
+            if time_step is not None:
+                raise ParameterError("time_step", time_step, f"Δτ·ρ = {dt * rho:.4g} needs "
+                                     f"more than {MAX_STAGES} RKC stages")
+            stages = MAX_STAGES
+            dt = STAGE_SAFETY * rkc_stability_interval(stages) / rho
+    elif dt * rho > rkc_stability_interval(stages):
+        if time_step is None:
+            dt = STAGE_SAFETY * rkc_stability_interval(stages) / rho
+        else:
+            raise ParameterError("time_step", time_step, f"Δτ·ρ = {dt * rho:.4g} exceeds the "
+                                 f"RKC stability interval β({stages}) = "
+                                 f"{rkc_stability_interval(stages):.4g}")
+    return dt, stages
