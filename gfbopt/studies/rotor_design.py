@@ -244,7 +244,8 @@ def run_stages(p, workers: int, levers: int = 0) -> list:
             Stage("default-grid check", p.regrid_designs,
                   grid_cost(p.default_settings.grid, s.grid), workers),
             Stage("tolerances", tolerances, 1.0, workers),
-            Stage("what it would take", levers * LEVER_EVALUATIONS, 1.0),
+            *([Stage("what it would take", levers * LEVER_EVALUATIONS, 1.0)] if levers
+              else []),
             Stage("reproduction", 1, 1.0)]
 
 

@@ -137,7 +137,8 @@ def report(study, plan, search, run_tasks, stages, started: float, store,
            resume: bool = False) -> StudyResult:
     """The StudyResult of a finished search (module docstring); ``stages``: the run's
     :class:`gfbopt.progress.Stages` (``"whirl at top speed"``, ``"default-grid check"``,
-    ``"tolerances"``, ``"reproduction"``); ``started``: the run's time.perf_counter() at its
+    ``"tolerances"``, ``"what it would take"`` when the study names levers,
+    ``"reproduction"``); ``started``: the run's time.perf_counter() at its
     start (the wall time stated covers the whole study: search, default-grid check,
     robustness, the orbit at the top speed and the reproduction); ``store``: the search's
     :class:`gfbopt.doe.ResultStore` (the table of every evaluation has its columns, and the
@@ -176,9 +177,10 @@ def report(study, plan, search, run_tasks, stages, started: float, store,
                             plan.loss_factor_band, r.samples, r.seed, problem, run_tasks, step)
     check = default.iloc[0].to_dict() if len(default) else None
     limits = binding_limits(table, problem, chosen)
-    step = stages.stage("what it would take")
     levers, lever_runs, margin = None, None, None
-    if chosen is not None and chosen["first_onset_speed_rpm"] < s.top_speed_rpm:
+    named = bool(study.spec.get("what_it_would_take"))   # its stage exists (run_stages)
+    step = stages.stage("what it would take") if named else None
+    if chosen is not None and chosen["first_onset_speed_rpm"] < s.top_speed_rpm and named:
         levers, lever_runs = run_levers(study, plan, chosen, store, run_tasks, resume, step)
         levers = levers if lever_runs is not None else None
     elif chosen is not None:
