@@ -22,7 +22,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Sequence
+from typing import Optional, Sequence
 
 import numpy as np
 import pandas as pd
@@ -30,13 +30,16 @@ import pandas as pd
 from ..errors import ParameterError
 from ..inputs.checks import check_positive
 from ..sparse_lu import factor
-from .model import Linearisation, impedance
-from .threshold import linear_threshold
+from .crossings import direct_local_crossing
+from .model import Linearisation
+from .threshold import LinearThreshold, linear_threshold
 
 #: relative change of M̄c between two fixed-point iterations counted as converged
 ONSET_TOLERANCE = 1e-7
 #: most fixed-point iterations of :func:`onset_at_amplitude`
 MAX_ITERATIONS = 40
+#: most restarts from the full threshold search when it finds another branch
+OUTER_ROUNDS = 3
 
 
 @dataclass(frozen=True)
@@ -60,11 +63,7 @@ class FrictionOnset:
 def mode_shape(lin: Linearisation, mass: float, whirl: float) -> np.ndarray:
     """ξ = (δX, δY): the null vector of M̄W̄0 s² I + Z(s) at s = iγ, scaled so that the orbit
     Re(ξ e^{iτ}) has semi-major axis 1 [clearances]."""
-    s = 1j * whirl
-    d = mass * lin.load * s * s * np.eye(2) + impedance(lin, s)
-    xi = np.linalg.svd(d)[2][-1].conj()
-    semi_major = math.sqrt(0.5 * (np.vdot(xi, xi).real + abs(xi @ xi)))
-    return xi / semi_major
+    return _mode_and_response(lin, mass, whirl)[0]
 
 
 def deflection_amplitudes(lin: Linearisation, xi: np.ndarray, whirl: float) -> np.ndarray:
@@ -76,43 +75,82 @@ def deflection_amplitudes(lin: Linearisation, xi: np.ndarray, whirl: float) -> n
     return np.abs(lin.compliance.deflection(y, lin.stiffness_factor(s)))
 
 
+def _mode_and_response(lin: Linearisation, mass: float, whirl: float) -> tuple:
+    """(ξ of unit semi-major axis, the perturbation ŷ per unit ξ columns X = (A+sB)⁻¹C_ξ)
+    from one LU at s = iγ."""
+    s = 1j * whirl
+    a, b = lin.system(s)
+    lu = factor((a + s * b).astype(complex), lin.factoriser)
+    x = lu.solve(lin.c_xi.astype(complex))
+    d = mass * lin.load * s * s * np.eye(2) + lin.force @ x
+    xi = np.linalg.svd(d)[2][-1].conj()
+    semi_major = math.sqrt(0.5 * (np.vdot(xi, xi).real + abs(xi @ xi)))
+    return xi / semi_major, x
+
+
+def _amplitudes(lin: Linearisation, amplitude: float, mass: float, whirl: float) -> np.ndarray:
+    """|δW_u| for the threshold mode at (M̄, γ) scaled to the orbit amplitude A."""
+    xi, x = _mode_and_response(lin, mass, whirl)
+    y = -(x @ (amplitude * xi))
+    return np.abs(lin.compliance.deflection(y, lin.stiffness_factor(1j * whirl)))
+
+
 def onset_at_amplitude(lin: Linearisation, amplitude: float,
-                       whirl_range: tuple = (0.02, 1.2)) -> FrictionOnset:
+                       whirl_range: tuple = (0.02, 1.2),
+                       stuck: Optional[LinearThreshold] = None) -> FrictionOnset:
     """M̄c(A): the threshold with the friction elements at the orbit amplitude A (module doc).
 
     lin : a linearisation of a model with friction (``friction_coefficient`` > 0);
-    amplitude : A [clearances], > 0.  Iterates mode shape ↔ describing function from the
-    stuck foundation until M̄c changes by less than :data:`ONSET_TOLERANCE` relative.
+    amplitude : A [clearances], > 0; stuck : the small-motion threshold of ``lin`` when known
+    (:func:`linear_threshold` of ``lin.at_amplitude(None)``).  Iterates mode shape ↔
+    describing function from the stuck foundation until M̄c changes by less than
+    :data:`ONSET_TOLERANCE` relative: each step follows the crossing by Newton's method on γ
+    (:func:`~.crossings.direct_local_crossing`, an LU per step) and one LU gives the mode
+    shape and the units' deflections; the full threshold search then confirms the branch
+    (it finds the smallest crossing and checks stability below it) — when it finds another,
+    the iteration restarts from it.
     """
     if lin.friction is None:
         raise ParameterError("friction_coefficient", 0.0, "must be > 0 for the onset against "
                              "the orbit amplitude (the bumps have no friction)")
     amp = check_positive("amplitude", amplitude)
     current = lin.at_amplitude(None)
-    previous = math.nan
-    stuck = 1.0
-    for it in range(1, MAX_ITERATIONS + 1):
-        th = linear_threshold(current, whirl_range)
+    th = stuck if stuck is not None else linear_threshold(current, whirl_range)
+    iterations, stuck_share = 0, 1.0
+    for _ in range(OUTER_ROUNDS):
         mc, gamma = th.critical_mass, th.whirl_ratio
         if not (math.isfinite(mc) and mc > 0):
-            return FrictionOnset(amp, mc, gamma, stuck, it, True, th.message)
-        if abs(mc - previous) <= ONSET_TOLERANCE * mc:
-            return FrictionOnset(amp, mc, gamma, stuck, it, True)
-        previous = mc
-        xi = amp * mode_shape(current, mc, gamma)
-        w = deflection_amplitudes(current, xi, gamma)
-        stuck = lin.friction.stuck_fraction(w)
-        current = lin.at_amplitude(w)
-    return FrictionOnset(amp, previous, gamma, stuck, MAX_ITERATIONS, False,
-                         f"mode shape and describing function did not settle in "
-                         f"{MAX_ITERATIONS} iterations")
+            return FrictionOnset(amp, mc, gamma, stuck_share, iterations, True, th.message)
+        settled = False
+        while iterations < MAX_ITERATIONS:
+            iterations += 1
+            w = _amplitudes(current, amp, mc, gamma)
+            stuck_share = lin.friction.stuck_fraction(w)
+            current = lin.at_amplitude(w)
+            found = direct_local_crossing(current, gamma, mc * gamma**2 * lin.load,
+                                          whirl_range)
+            if found is None:
+                break
+            change = abs(found.mass - mc)
+            mc, gamma = found.mass, found.whirl
+            if change <= ONSET_TOLERANCE * mc:
+                settled = True
+                break
+        th = linear_threshold(current, whirl_range)       # the branch, and stability below
+        if settled and abs(th.critical_mass - mc) <= 10 * ONSET_TOLERANCE * mc:
+            return FrictionOnset(amp, th.critical_mass, th.whirl_ratio, stuck_share,
+                                 iterations, True)
+    return FrictionOnset(amp, th.critical_mass, th.whirl_ratio, stuck_share, iterations,
+                         False, f"mode shape and describing function did not settle in "
+                                f"{iterations} iterations")
 
 
 def onset_curve(lin: Linearisation, amplitudes: Sequence[float],
                 whirl_range: tuple = (0.02, 1.2)) -> pd.DataFrame:
     """M̄c against the orbit amplitude: one row per amplitude (columns in
     :mod:`gfbopt.terms.friction`)."""
-    rows = [onset_at_amplitude(lin, a, whirl_range) for a in amplitudes]
+    stuck = linear_threshold(lin.at_amplitude(None), whirl_range)
+    rows = [onset_at_amplitude(lin, a, whirl_range, stuck) for a in amplitudes]
     return pd.DataFrame({"orbit_amplitude": [r.amplitude for r in rows],
                          "critical_mass": [r.critical_mass for r in rows],
                          "whirl_ratio": [r.whirl_ratio for r in rows],
@@ -158,7 +196,7 @@ def settled_amplitude(lin: Linearisation, mass: float, samples: int = 12,
     grid = h_min * np.geomspace(smallest, 1.0, samples)
     low = None
     for a in grid:
-        here = onset_at_amplitude(lin, a, whirl_range)
+        here = onset_at_amplitude(lin, a, whirl_range, small)
         if here.critical_mass >= m:
             high = a
             break
@@ -171,12 +209,12 @@ def settled_amplitude(lin: Linearisation, mass: float, samples: int = 12,
         low = high * 1e-3
     while high / low - 1.0 > xtol:
         mid = math.sqrt(low * high)
-        here = onset_at_amplitude(lin, mid, whirl_range)
+        here = onset_at_amplitude(lin, mid, whirl_range, small)
         if here.critical_mass >= m:
             high = mid
         else:
             low = mid
-    final = onset_at_amplitude(lin, high, whirl_range)
+    final = onset_at_amplitude(lin, high, whirl_range, small)
     return SettledOrbit(m, small.critical_mass, high, final.whirl_ratio, True, h_min,
                         f"bounded whirl of A = {high:.4g} c at γ = {final.whirl_ratio:.4f} "
                         f"(M̄ = {m:.4g} above the stuck onset M̄c = "
