@@ -10,8 +10,10 @@ is today's analysis, called once on the bearing as given.
 - :func:`running_stability`: the fixed point at the operating point, then
   :func:`gfbopt.rotor.stability` of the warm bearing;
 - :func:`running_onset`: :func:`gfbopt.rotor.onset_speed` of the bearing frozen at the
-  running condition of a guess, then the secant method on the mass margin at the running
-  condition of each speed;
+  running condition of a guess, then a Newton step (on the frozen search's slope) and the
+  secant method on the mass margin at the running condition of each speed, until the next
+  step is below ``tolerance`` (relative): that step's speed is the onset, and the running
+  point reported is the last one evaluated (at most ``tolerance`` away in speed);
 - :func:`running_load_capacity` / :func:`running_lift_off`: the search repeated on the
   bearing at the running condition of the previous answer (load or speed) until the answer
   moves by less than ``tolerance``.
@@ -160,14 +162,19 @@ def running_onset(bearing, spec: RunningSpec, rotor: Rotor, load_newton: Optiona
     step = -fa / slope if slope else -math.copysign(0.02 * a, -fa)
     b = a + max(-0.1 * a, min(0.1 * a, step))  # a Newton step on the frozen slope
     fb, pb, rb = margin(b, pa.sample)
+    onset = b
     for _ in range(max_steps):
         if not math.isfinite(fb):
             return {**out, **_limited(spec, film, low, b, margin)}
-        if fb == fa or abs(b - a) <= tolerance * b:
+        if fb == fa:
             break
-        a, fa, pa, b = b, fb, pb, b - fb * (b - a) / (fb - fa)
+        onset = b - fb * (b - a) / (fb - fa)
+        if abs(onset - b) <= tolerance * onset:
+            break                  # the secant's last step: the running point stays at b
+        a, fa, pa, b = b, fb, pb, onset
         fb, pb, rb = margin(b, pa.sample)
     ratio, whirl = rb
+    b = onset
     out.update(onset_speed_rpm=b, whirl_frequency_hz=whirl,
                whirl_ratio=ratio, running=pb.to_dict(), **margin.stats(),
                answer=(f"onset of whirl at {b:.6g} rpm at the running clearance "
