@@ -45,7 +45,7 @@ def test_the_gallery_is_there():
     assert names == ["plot_01_bearing_stability", "plot_02_rotor_campbell",
                      "plot_03_bearing_as_built", "plot_04_run_up_waterfall",
                      "plot_05_doe_sobol", "plot_06_results_pandas",
-                     "plot_07_design_my_rotor"]
+                     "plot_07_design_my_rotor", "plot_08_export_ross"]
     for script in EXAMPLES:
         lines = script.read_text().splitlines()
         assert lines[0] == '"""' and lines[2] == "=" * len(lines[1]), script.name
