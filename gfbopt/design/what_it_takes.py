@@ -344,8 +344,8 @@ class LeverEvaluations:
             row = {k: result.get(k) for k in STORE_SCHEMA if k in result}
             row.update(point=key, lever=lever.name, lever_value=float(value),
                        onset_only=onset_only, success=bool(result.get("success", False)))
-            row["feasible"] = (not onset_only and row["success"]
-                               and self.problem.feasible({**result, "success": True}))
+            row["feasible"] = (None if onset_only else         # limits not evaluated
+                               bool(row["success"]) and self.problem.feasible(result))
             if self.store is not None:
                 self.store.append([row])
             self.known[key] = row

@@ -12,7 +12,7 @@ import pandas as pd
 
 from ..design.decision import binding_limits, failed_count, limits_frame, limits_text
 from ..design.pareto import feasible_rows
-from ..design.what_it_takes import answers_text
+from ..design.what_it_takes import STORE_SCHEMA, answers_text
 from ..plotting.design_front import variable_label
 from .base import StudyResult
 from .rotor_decision import answers_frame, margin_of, margin_text, run_levers
@@ -220,7 +220,7 @@ def report(study, plan, search, run_tasks, stages, started: float, store,
     if levers:
         tables["what_it_would_take.csv"] = answers_frame(levers)
         tables["what_it_would_take_evaluations.csv"] = pd.DataFrame(
-            lever_runs.rows).drop_duplicates("point")
+            lever_runs.rows).drop_duplicates("point").reindex(columns=list(STORE_SCHEMA))
     if whirl is not None:
         tables["whirl_at_top_speed.csv"] = pd.DataFrame(
             [{**b, "speed_rpm": s.top_speed_rpm, "revolutions": whirl["revolutions"],
