@@ -47,8 +47,12 @@ DESIGN_VARIABLES = {
     "compliance": ("-", "compliance S, realised by the geometric program (least stress)"),
     "preload_depth_um": ("µm", "mechanical preload depth (shim thickness or lobe depth)"),
     "preload_count": ("-", "number of shims or lobes (whole)"),
+    "preload_offset_deg": ("deg", "centre of the first shim or lobe from the load line"),
+    "preload_width_deg": ("deg", "angular width of each shim (shims only)"),
     "pads": ("-", "number of top-foil pads, evenly spaced (whole)"),
 }
+#: the variables that make the preload (the study's ``[bore]`` form)
+PRELOAD = ("preload_depth_um", "preload_count", "preload_offset_deg", "preload_width_deg")
 #: the bump-geometry variables that ``compliance`` replaces
 BUMP_GEOMETRY = ("bump_pitch_mm", "bump_half_length_mm", "bump_thickness_um")
 #: SI attribute and scale of each bump-geometry variable
@@ -158,13 +162,17 @@ def _bearing_design(geometry, values: dict, settings: EvaluationSettings):
                   for var in BUMP_GEOMETRY if (k, var) in zoned}
             zones.append(ZoneSpec(edges[k - 1], edges[k], **si))
         build = dataclasses.replace(build, zones=tuple(zones))
-    if "preload_depth_um" in values or "preload_count" in values:
+    if any(v in values for v in PRELOAD):
         count = int(round(values.get("preload_count", settings.preload_count)))
-        depth = values.get("preload_depth_um", 0.0) * 1e-6
+        held = build.bore.preload_depth if build.bore.kind in ("shims", "lobes") else None
+        depth = (values["preload_depth_um"] * 1e-6 if "preload_depth_um" in values
+                 else held or 0.0)         # the bearing file's own depth when not varied
+        width = values.get("preload_width_deg", settings.bore_width_deg)
         bore = (BoreSpec() if depth == 0.0 or count == 0 else
                 BoreSpec(settings.bore_kind, count, preload_depth=depth,
-                         width_deg=settings.bore_width_deg if settings.bore_kind == "shims"
-                         else 0.0, offset_deg=settings.bore_offset_deg))
+                         width_deg=width if settings.bore_kind == "shims" else 0.0,
+                         offset_deg=values.get("preload_offset_deg",
+                                               settings.bore_offset_deg)))
         build = dataclasses.replace(build, bore=bore)
     if "pads" in values:
         n = int(round(values["pads"]))

@@ -21,12 +21,15 @@ from dataclasses import dataclass
 
 from ..errors import ParameterError
 from .problem import Constraint, DesignProblem, Objective, Variable
-from .rotor_objectives import (BUMP_GEOMETRY, DESIGN_VARIABLES, EvaluationSettings,
-                               known_variable, zone_variable)
+from .rotor_objectives import (BUMP_GEOMETRY, DESIGN_VARIABLES, PRELOAD,
+                               EvaluationSettings, known_variable, zone_variable)
 from .search import SearchSettings
 
 GOALS = ("front", "max_onset", "stable_then_min_power")
 BORE_KINDS = ("shims", "lobes")
+#: keys of ``[search]`` that tune the converged search (nsga2_refine), passed to
+#: :class:`~.search.SearchSettings` when the study's schema has them
+REFINE_KEYS = ("generations", "first_step", "step_tolerance", "improvement")
 #: the design variables that take whole numbers
 WHOLE = ("preload_count", "pads")
 
@@ -60,6 +63,9 @@ class RotorDesignPlan:
     regrid_designs: int = 3
     limit_cycle_revolutions: float = 0.0
     limit_cycle_grid: object = None
+    #: the study's ``[what_it_would_take]`` table as written (None: absent), validated by
+    #: :mod:`gfbopt.design.what_it_takes`, not here
+    what_it_would_take: object = None
 
 
 def _zone_edges(edges, where) -> tuple:
@@ -105,7 +111,15 @@ def _variables(rows: list, where, bearings: tuple, zones: int = 0) -> tuple:
         except ParameterError as exc:
             raise w.error(exc.value, exc.rule) from None
         low = min(values) if values is not None else row["low"]
-        if var not in ("preload_depth_um",) and var not in WHOLE and low <= 0:
+        if var == "preload_offset_deg":
+            from ..inputs.bore import START_RANGE_DEG, degrees_in
+
+            for key in ("low", "high"):
+                try:
+                    degrees_in(name, row[key], *START_RANGE_DEG)
+                except ParameterError as exc:
+                    raise (w / key).error(row[key], exc.rule) from None
+        elif var not in ("preload_depth_um",) and var not in WHOLE and low <= 0:
             raise w.error([row["low"], row["high"]], f"{var} must be > 0")
         if var in ("preload_depth_um",) and low < 0:
             raise w.error([row["low"], row["high"]], "a preload depth must be >= 0")
@@ -212,6 +226,72 @@ def _check_buildable(study, system, variables: tuple, settings: EvaluationSettin
                                              f"inputs: {exc}") from None
 
 
+def _on(bearing: str, name: str) -> bool:
+    """True when variable ``name`` (``A:var`` or shared ``var``) changes ``bearing``."""
+    return ":" not in name or name.split(":", 1)[0] == bearing
+
+
+def _ends(v) -> tuple:
+    """(least, largest) value a variable takes."""
+    return (min(v.values), max(v.values)) if v.discrete else (v.low, v.high)
+
+
+def _check_levers(study, system, variables: tuple, settings: EvaluationSettings) -> None:
+    """Levers a bearing cannot take, refused at plan time per bearing (one line naming the
+    study key and the rule): a preload at least as deep as the bearing's smallest radial
+    clearance (the shim or lobe closes the film); lobes on a bearing with pads (a lobed bore
+    is one ring: the pads' ends would cut the lobes); a shim width with lobes, or a width
+    whose shims overlap (count × width > 360°); a preload count, offset or width on a
+    bearing with no preload (they would change nothing)."""
+    where = study.where("variables")
+    for support in system.bearings:
+        b, g = support.name, support.geometry
+        build = g.build
+        mine = [(k, v) for k, v in enumerate(variables) if _on(b, v.name)]
+        by_var = {v.name.split(":")[-1]: (k, v) for k, v in mine}
+        clearances = [_ends(v)[0] for _, v in mine
+                      if v.name.split(":")[-1] == "radial_clearance_um"]
+        c_low = min(clearances) if clearances else g.radial_clearance * 1e6
+        held = build.bore if build is not None else None
+        held_depth = (held.preload_depth if held is not None and held.kind in
+                      ("shims", "lobes") and held.preload_depth is not None else None)
+        if "preload_depth_um" in by_var:
+            k, v = by_var["preload_depth_um"]
+            deepest = _ends(v)[1]
+            if deepest >= c_low:
+                raise (where / k / ("values" if v.discrete else "high")).error(
+                    deepest, f"a preload of {deepest:g} µm on bearing {b} is at least its "
+                    f"smallest radial clearance ({c_low:g} µm): the shim or lobe closes the "
+                    "film; keep the preload depth below the clearance")
+        elif any(var in by_var for var in PRELOAD) and not held_depth:
+            k, v = next(by_var[var] for var in PRELOAD if var in by_var)
+            raise (where / k / "name").error(v.name, f"bearing {b} has no preload (no "
+                                             "preload_depth_um variable, and its file has "
+                                             "no shims or lobes by depth): this lever "
+                                             "changes nothing")
+        kind = settings.bore_kind if any(var in by_var for var in PRELOAD) else (
+            held.kind if held is not None else "round")
+        pads = (_ends(by_var["pads"][1])[1] if "pads" in by_var else
+                len(build.pads) if build is not None else 0)
+        if kind == "lobes" and pads > 1:
+            k = by_var["pads"][0] if "pads" in by_var else next(
+                k for var, (k, _) in by_var.items() if var in PRELOAD)
+            raise (where / k / "name").error(variables[k].name, f"bearing {b} would have "
+                                             f"lobes and {pads:g} pads: a lobed bore cannot "
+                                             "take pads (use shims, or one top foil)")
+        if "preload_width_deg" in by_var:
+            k, v = by_var["preload_width_deg"]
+            count = (_ends(by_var["preload_count"][1])[1] if "preload_count" in by_var
+                     else settings.preload_count)
+            if kind != "shims":
+                raise (where / k / "name").error(v.name, f"a width is a shim's: bearing "
+                                                 f"{b}'s preload is {kind}")
+            if count * _ends(v)[1] > 360.0:
+                raise (where / k / "high").error(_ends(v)[1], f"{count:g} shims of "
+                                                 f"{_ends(v)[1]:g}° overlap (count × width "
+                                                 "must be at most 360°)")
+
+
 def plan_rotor_design(study, study_hash: str = "") -> RotorDesignPlan:
     """Validate a ``rotor_bearing_design`` study (:mod:`gfbopt.studies.rotor_design`) and
     build its plan — no solve."""
@@ -260,7 +340,8 @@ def plan_rotor_design(study, study_hash: str = "") -> RotorDesignPlan:
     q = s["search"]
     try:
         search = SearchSettings(q["method"], q["budget"], q["population"], q["startup"],
-                                q["batch"], q["seed"])
+                                q["batch"], q["seed"], **{k: q[k] for k in REFINE_KEYS
+                                                          if q.get(k) is not None})
     except ParameterError as exc:
         raise study.where("search", exc.name).error(exc.value, exc.rule) from None
     bore = s["bore"]
@@ -298,6 +379,8 @@ def plan_rotor_design(study, study_hash: str = "") -> RotorDesignPlan:
     settings = EvaluationSettings(grid=Grid.parse(s["search_grid"]), **common)
     default = EvaluationSettings(grid=Grid.parse(s["grid"]), **common)
     _check_buildable(study, system, variables, settings)
+    _check_levers(study, system, variables, settings)
     return RotorDesignPlan(system, problem, search, settings, default, band, s["goal"],
                            robustness, study_hash, s["regrid_designs"],
-                           s["limit_cycle_revolutions"], Grid.parse(s["limit_cycle_grid"]))
+                           s["limit_cycle_revolutions"], Grid.parse(s["limit_cycle_grid"]),
+                           s.get("what_it_would_take"))
