@@ -53,3 +53,56 @@ def test_the_side_load_found_is_the_threshold_on_the_blower(tmp_path):
     eta = answers["loss_factor"]                               # η to 0.02 cannot
     assert not eta["found"] and eta["limit_value"] == 0.02 and eta["limit_onset_rpm"] < top
     assert not math.isnan(eta["limit_onset_rpm"])
+
+
+def test_the_override_answers_as_an_edited_copy_on_real_physics(tmp_path):
+    """``--rotor`` (a 5 kg blower) and ``--top-speed 30000`` against a copy of the study with
+    those keys edited, on the real evaluation at 24x8 with 4 designs: the same summary.json
+    except names and timings."""
+    import json
+
+    from cli_inprocess import run_cli
+
+    blower = ROOT / "problems" / "rotors" / "blower.toml"
+    rotor = tmp_path / "heavy.toml"
+    rotor.write_text(blower.read_text().replace("mass = 3.2 ", "mass = 5.0 ").replace(
+        '"../bearings/ruscitto.toml"', f'"{ROOT / "problems" / "bearings" / "ruscitto.toml"}"'))
+    base = f"""
+kind = "rotor_bearing_design"
+title = "tiny"
+grid = "24x8"
+search_grid = "24x8"
+regrid_designs = 1
+limit_cycle_revolutions = 0.0
+goal = "front"
+heaviest_load_factor = 2.0
+min_film_um = 1.5
+[[variables]]
+name = "radial_clearance_um"
+low = 18.0
+high = 30.0
+[search]
+method = "nsga2"
+budget = 4
+population = 4
+seed = 1
+[what_it_would_take]
+side_load_n = {{low = 0.0, high = 40.0}}
+"""
+    study = tmp_path / "tiny.toml"
+    study.write_text(f'rotor = "{blower}"\nspeed_range_rpm = [4000.0, 45000.0]\n' + base)
+    copy_ = tmp_path / "copy.toml"
+    copy_.write_text('rotor = "heavy.toml"\nspeed_range_rpm = [4000.0, 30000.0]\n' + base)
+    results = tmp_path / "results"
+    for args in ([study, "--rotor", rotor, "--top-speed", "30000"], [copy_]):
+        out = run_cli("run", *args, "--results", results, "--workers", "1")
+        assert out.returncode == 0, out.stderr
+    skip = ("name", "title", "source", "problem_file", "wall_time_s", "provenance")
+
+    def answer(name):
+        s = json.loads((results / name / "summary.json").read_text())
+        s["notes"] = [n for n in s["notes"] if not n.startswith(("Search:", "What it"))]
+        return {k: v for k, v in s.items() if k not in skip}
+    a, b = answer("tiny_on_heavy_to_30000rpm"), answer("copy")
+    assert a == b
+    assert a["verdict"].startswith(("Stable to 30,000 rpm", "No design in this space"))
