@@ -426,10 +426,10 @@ def _number(value: float, unit: str) -> str:
 
 
 def answers_text(answers: list, top: float, onset: float, evaluated: int = 0,
-                 reused: int = 0, seconds: float = math.nan) -> str:
+                 reused: int = 0, seconds: float = math.nan, grid: str = "") -> str:
     """The answers in one sentence (README notes); ``evaluated``, ``reused``: the
     evaluations made and those answered from the store; ``seconds``: the wall time of
-    the levers' searches."""
+    the levers' searches; ``grid``: the grid they were evaluated on."""
     parts = []
     for a in answers:
         if a.found:
@@ -447,6 +447,7 @@ def answers_text(answers: list, top: float, onset: float, evaluated: int = 0,
                          f"[{a.low:g}, {a.high:g}] ({reached})")
     return (f"What it would take to be stable to {_number(top, 'rpm')} (the chosen design, "
             f"first onset {_number(onset, 'rpm')}), one lever at a time: "
-            + "; ".join(parts) + f" ({evaluated} evaluations, {reused} more answered from "
+            + "; ".join(parts) + f" ({evaluated} evaluations"
+            + (f" on the {grid} grid" if grid else "") + f", {reused} more answered from "
             "the store" + (f"; {seconds:.1f} s of wall time" if math.isfinite(seconds) else "")
             + ").")

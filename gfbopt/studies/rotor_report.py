@@ -192,7 +192,7 @@ def report(study, plan, search, run_tasks, stages, started: float, store,
     if levers:
         notes.append(answers_text(levers, s.top_speed_rpm, chosen["first_onset_speed_rpm"],
                                   lever_runs.evaluated, lever_runs.reused,
-                                  lever_runs.seconds))
+                                  lever_runs.seconds, str(s.grid)))
     if margin is not None:
         notes.append(margin_text(margin, s.search_high_rpm))
     mean = search.evaluation_time_s / search.evaluated if search.evaluated else math.nan
