@@ -7,6 +7,14 @@ and transients (:mod:`gfbopt.transient`) → analyses as table rows (:mod:`gfbop
 executors (:mod:`gfbopt.parallel`), studies (:mod:`gfbopt.studies`), figures
 (:mod:`gfbopt.plotting`) and the command line (:mod:`gfbopt.cli`).
 
+What a user calls is at the top (:mod:`gfbopt.api`): ``gfbopt.load_bearing``,
+``gfbopt.load_rotor``, one bearing's ``stability``, ``onset_speed``, ``load_capacity``,
+``lift_off_speed``, the rotor's ``analyse_rotor``, ``rotor_orbit``, ``rotor_ramp``, and the
+study runner ``run_study`` (``gfbopt run``, the bearing-pair design among its studies) and
+``run_doe``; each takes ``grid=`` as a :class:`Grid` or as the command line writes it
+(``"72x20"``).  Those of :mod:`gfbopt.api` are imported on first use, so ``import gfbopt``
+costs only the static solver's imports.
+
 Importing gfbopt changes no global state: BLAS/OpenMP threads are limited to one inside its
 solver calls and given back after each (:mod:`gfbopt.threads`); the command line and the pool
 workers pin them for the whole process; nothing is set at import.
