@@ -210,6 +210,9 @@ def run(args) -> int:
         out["onset_whirl_frequency_hz"] = found.get("whirl_frequency_hz")
         if result is None and "conventions" in found:
             out["conventions"] = found["conventions"]
+        if args.speed_rpm is None and found.get("running"):    # the onset's running point
+            d = found["running"]
+            out.update({k: d[k] for k in RUNNING_FIELDS[:-1]}, running=d)
     done = [r for r in (result, onset) if r is not None]
     success = all(r.success for r in done)
     out["success"] = success

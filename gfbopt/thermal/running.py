@@ -194,6 +194,7 @@ class RunningPoint:
             return kelvin - KELVIN if n is not None else math.nan
 
         return {
+            "speed_rpm": self.speed_rpm,
             "thermal_model": self.model, "thermal_status": self.status,
             "thermal_message": self.message,
             "cold_clearance_um": self.cold_clearance * 1e6,

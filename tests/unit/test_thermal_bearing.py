@@ -163,3 +163,37 @@ def test_capacity_cli_reports_the_running_condition():
     assert out["centrifugal_growth_um"] == pytest.approx(u * 1e6, rel=1e-12)
     assert out["running_clearance_um"] == pytest.approx(20 - u * 1e6, rel=1e-12)
     assert math.isfinite(out["load_capacity_newton"])
+
+
+def test_capacity_with_heat_is_at_the_running_condition_of_its_answer():
+    from gfbopt.cli.running import running_load_capacity
+    from gfbopt.thermal.running import running_point
+
+    bearing, spec = load_running_bearing(THERMAL)
+    found = running_load_capacity(bearing, spec, 45e3, 5.0, grid=GRID)
+    load = found["load_capacity_newton"]
+    assert found["thermal_model"] == HEAT_BALANCE and math.isfinite(load)
+    assert found["thermal_iterations"] >= 2
+    from gfbopt.inputs.options import resolve_model_options
+    drag = FilmDrag(FilmCase(bearing, resolve_model_options(bearing.options), GRID,
+                             SolverCache(GRID), load))
+    again = running_point(spec, 45e3, drag)
+    # the last search ran at the running condition of the previous answer (≤ 0.1 % away)
+    assert again.running_clearance * 1e6 == pytest.approx(found["running_clearance_um"],
+                                                          rel=2e-3)
+
+
+def test_lift_off_and_closure_are_reported(tmp_path):
+    lift = run_cli("capacity", "--bearing", THERMAL, "--lift-off", "--load-newton", "30",
+                   "--min-film-um", "3", "--grid", "24x8", "--json")
+    assert lift.returncode == 0, lift.stderr
+    out = json.loads(lift.stdout)
+    assert out["thermal_model"] == HEAT_BALANCE and math.isfinite(out["lift_off_speed_rpm"])
+    assert out["running"]["speed_rpm"] == pytest.approx(out["lift_off_speed_rpm"], rel=2e-3)
+    soft = tmp_path / "soft.toml"
+    src = (BEARINGS / "ruscitto_centrifugal.toml").read_text()
+    soft.write_text(src.replace("youngs_modulus = 200e9 ", "youngs_modulus = 2e9 "))
+    closed = run_cli("stability", "--bearing", soft, "--rotor-mass-kg", "1.5",
+                     "--load-newton", "20", "--speed-rpm", "45000", "--grid", "24x8")
+    assert closed.returncode == 0, closed.stderr
+    assert "the journal reaches the foil at 45000 rpm" in closed.stdout
