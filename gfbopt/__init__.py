@@ -22,9 +22,16 @@ workers pin them for the whole process; nothing is set at import.
 from .errors import ConvergenceError, GfboptError, ParameterError
 from .inputs import (DEFAULT_GRID, BearingGeometry, BearingModel, Grid, OperatingPoint, Rotor,
                      load_bearing)
+from .inputs.grid import accepts_grid_strings as _accepts_grid_strings
 from .inputs.grid import as_grid
-from .static import SolverCache, StaticSolution, StaticSolver, solve_static, solver_for
+from .static import SolverCache, StaticSolution, StaticSolver
+from .static import solve_static as _solve_static
+from .static import solver_for as _solver_for
 from .version import __version__
+
+#: the static solver's functions, taking grid="72x20" too (gfbopt.static's own take a Grid)
+solve_static = _accepts_grid_strings(_solve_static)
+solver_for = _accepts_grid_strings(_solver_for)
 
 #: names loaded from :mod:`gfbopt.api` on first use (it imports the rotor, transient, study
 #: and DOE layers; ``import gfbopt`` stays as cheap as the static solver's imports)

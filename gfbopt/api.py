@@ -26,48 +26,22 @@ name                       what it answers (the command that wraps it)
 =========================  ==================================================================
 
 The functions are the library's own (same docstrings, arguments and results); the only
-addition is the grid's string form, read by :func:`~gfbopt.inputs.grid.as_grid` with the
-command line's one-line message for a malformed one (``grid = '72x': must be written
-NTHETAxNZ, e.g. 72x20``).  Importing this module imports the solvers (CasADi): ``import
+addition is the grid's string form (:func:`~gfbopt.inputs.grid.accepts_grid_strings`), read
+by :func:`~gfbopt.inputs.grid.as_grid` with the command line's one-line message for a
+malformed one (``grid = '72x': must be written NTHETAxNZ, e.g. 72x20``).  Importing this module imports the solvers (CasADi): ``import
 gfbopt`` loads it only when one of these names is first used.
 """
 from __future__ import annotations
 
-import functools
-import inspect
-
 from .doe import run_doe
 from .inputs import load_bearing
-from .inputs.grid import as_grid
+from .inputs.grid import accepts_grid_strings, as_grid
 from .inputs.rotor_system import load_rotor
 from .rotor import coefficient_table, onset_speed, stability
 from .rotor.analyse import analyse_rotor
 from .rotor.capacity import lift_off_speed, load_capacity
 from .studies import load_study, run_study
 from .transient import rotor_orbit, rotor_ramp
-
-#: the arguments read as grids (``coarse_grid`` keeps its own "auto"/None forms)
-GRID_ARGUMENTS = ("grid",)
-
-
-def accepts_grid_strings(function):
-    """``function`` with its ``grid`` argument (positional or keyword) passed through
-    :func:`~gfbopt.inputs.grid.as_grid` first; signature and docstring kept."""
-    signature = inspect.signature(function)
-    names = [name for name in GRID_ARGUMENTS if name in signature.parameters]
-    if not names:
-        return function
-
-    @functools.wraps(function)
-    def wrapper(*args, **kwargs):
-        bound = signature.bind_partial(*args, **kwargs)
-        for name in names:
-            if name in bound.arguments:
-                bound.arguments[name] = as_grid(bound.arguments[name])
-        return function(*bound.args, **bound.kwargs)
-
-    return wrapper
-
 
 stability = accepts_grid_strings(stability)
 onset_speed = accepts_grid_strings(onset_speed)

@@ -1,6 +1,8 @@
 """The finite-difference grid and the default resolution."""
 from __future__ import annotations
 
+import functools
+import inspect
 import re
 from dataclasses import dataclass
 
@@ -62,6 +64,24 @@ def as_grid(value) -> "Grid":
         return Grid.parse(value)
     raise ParameterError("grid", value,
                          "must be a gfbopt Grid or a string written NTHETAxNZ, e.g. 72x20")
+
+
+def accepts_grid_strings(function):
+    """``function`` with its ``grid`` argument (positional or keyword) read by
+    :func:`as_grid` first, so that it takes ``"72x20"`` as well as a :class:`Grid`;
+    signature and docstring kept (``__wrapped__`` is the function itself)."""
+    signature = inspect.signature(function)
+    if "grid" not in signature.parameters:
+        return function
+
+    @functools.wraps(function)
+    def wrapper(*args, **kwargs):
+        bound = signature.bind_partial(*args, **kwargs)
+        if "grid" in bound.arguments and bound.arguments["grid"] is not None:
+            bound.arguments["grid"] = as_grid(bound.arguments["grid"])
+        return function(*bound.args, **bound.kwargs)
+
+    return wrapper
 
 
 #: Default grid: its load error is <= 0.5 % of the grid-converged value over the validation

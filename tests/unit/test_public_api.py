@@ -74,6 +74,8 @@ def test_malformed_grid_string_gets_the_command_lines_message(text, capsys):
                  lambda: gfbopt.lift_off_speed(None, 1.0, 1.0, grid=text),
                  lambda: gfbopt.rotor_orbit(None, 1.0, 1.0, grid=text),
                  lambda: gfbopt.rotor_ramp(None, 1.0, 2.0, 1.0, grid=text),
+                 lambda: gfbopt.solve_static(None, eccentricity=0.5, grid=text),
+                 lambda: gfbopt.solver_for(None, text),
                  lambda: as_grid(text)):
         with pytest.raises(ParameterError) as info:
             call()
@@ -86,6 +88,14 @@ def test_grid_of_another_type_names_both_forms():
         gfbopt.stability(None, None, None, grid=(72, 20))
     with pytest.raises(ParameterError, match=r"^grid n_z = 21: must be even"):
         gfbopt.analyse_rotor(None, (1, 2), grid="72x21")   # the Grid's own rules still apply
+
+
+def test_static_solver_functions_take_grid_strings():
+    model = gfbopt.BearingModel(bearing_number=1.0, compliance=0.0)
+    assert gfbopt.solver_for(model, "24x8").grid == Grid(24, 8)
+    by_text = gfbopt.solve_static(model, eccentricity=0.5, grid="24x8")
+    by_grid = gfbopt.solve_static(model, eccentricity=0.5, grid=Grid(24, 8))
+    assert by_text.success and by_text.load == by_grid.load
 
 
 def test_a_grid_string_reaches_the_solver():
