@@ -144,3 +144,18 @@ def test_settled_orbit_where_friction_restores_the_threshold():
     assert onset_at_amplitude(lin, orbit.amplitude).critical_mass >= mass
     assert onset_at_amplitude(lin, orbit.amplitude * (1 - 2e-4)).critical_mass < mass
     assert orbit.verdict.startswith("bounded whirl of A = ")
+
+
+def test_stuck_bumps_are_a_stiffer_foundation_where_they_carry():
+    # compression-only bumps act only where q > 0, and there every slider is loaded: stuck,
+    # the foundation is k_b (1 + κ) on every acting bump, i.e. the scalar factor 1 + κ of
+    # the bare bearing's linearisation (an independent path: no foil units)
+    bare = linearise(_solved(compression_only=True))
+    rub = linearise(_solved(compression_only=True, friction_coefficient=0.2,
+                            friction_stiffness_ratio=1.5))
+    acting = rub.compliance.unit_gain != 0
+    assert np.array_equal(rub.friction.slip > 0, acting & (rub.compliance.unit_gauge > 0))
+    for s in (0.3j, 0.5j, 0.8j):
+        z_ref = impedance(bare, s, 2.5)
+        np.testing.assert_allclose(impedance(rub, s), z_ref, rtol=1e-10,
+                                   atol=1e-10 * abs(z_ref).max())
