@@ -15,6 +15,13 @@ BEARING_FILE`, documented for users in ``docs/formats/bearing_file.md`` (generat
     deflection_law = "mean"     # "mean" | "local"
     loss_factor = 0.0           # structural loss factor η of the bumps [-]
 
+    [journal]                   # optional: the journal's centrifugal growth
+    [thermal]                   # optional: the lumped heat balance (needs [journal])
+
+(:mod:`gfbopt.inputs.thermal_tables`; read by :func:`gfbopt.thermal.files.load_running_bearing`
+for ``gfbopt stability`` and ``gfbopt capacity``; :func:`load_bearing` refuses them on every
+other route rather than answer with the cold clearance.)
+
 The file is checked as strictly as a study file, before anything is built: an unknown table or
 key (``[modle]``) is refused with "did you mean", and a geometry that cannot be built (a bump
 thicker than its half length, 2 l0 > s, a clearance of 1e-300 m) is refused with the rule.
@@ -96,7 +103,7 @@ def bearing_from_dict(table: dict, where: str = "bearing",
 
 
 def read_bearing_file(path: str | Path) -> dict:
-    """The file checked against :data:`~gfbopt.inputs.file_schema.BEARING_FILE`: {table or
+    """The file checked against :data:`BEARING_FILE_RUNNING`: {table or
     key: checked value} (defaults not filled).  ParameterError names the file and key."""
     name = Path(path).name
     return check_file(read_toml(path), BEARING_FILE_RUNNING, name)
