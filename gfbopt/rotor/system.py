@@ -355,5 +355,11 @@ def _modes(line: SpeedLine, guide: Optional[SpeedLine], speeds: list, tol: float
 
 
 def without_gyroscopics(system: RotorSystem) -> RotorSystem:
-    """The same rotor with I_p = 0 (no gyroscopic coupling), for comparisons."""
+    """The same rigid rotor with I_p = 0 (no gyroscopic coupling), for comparisons.
+    ParameterError for a shaft of beam elements: its gyroscopic matrix comes from its elements
+    and disks, which the rotor file states."""
+    if getattr(system, "shaft", None) is not None:
+        raise ParameterError("shaft", "beam elements", "the comparison without gyroscopic "
+                             "coupling (I_p = 0) is defined for a rigid rotor; a shaft's "
+                             "gyroscopic terms come from its elements and disks")
     return replace(system, body=replace(system.body, polar_inertia=0.0))

@@ -92,3 +92,13 @@ def test_the_flexible_rotor_runs_end_to_end():
     resp = imbalance_response(line, (10000.0,), show_progress=False, refine_peaks=False)
     assert set(resp.table["station"]) == {"A", "B", "motor"}
     assert (resp.table["amplitude_um"] > 0).all()
+
+
+def test_the_comparison_without_gyroscopics_is_refused_for_a_shaft():
+    """without_gyroscopics zeroes a rigid body's I_p; a shaft's gyroscopic terms come from its
+    elements and disks, so it says so instead of returning the same rotor."""
+    from gfbopt.errors import ParameterError
+    from gfbopt.rotor.system import without_gyroscopics
+
+    with pytest.raises(ParameterError, match="rigid rotor"):
+        without_gyroscopics(_system())
