@@ -219,6 +219,8 @@ class BearingModel:
                                  f"must be <= {MAX_FRICTION_STIFFNESS_RATIO:g} (k_f/k_b)")
         object.__setattr__(self, "friction_coefficient", mu)
         object.__setattr__(self, "friction_stiffness_ratio", kappa)
+        if self.has_friction and not mu > 0.0:
+            mu = max(z.friction_coefficient or 0.0 for z in self.as_built.zones)
         if mu > 0.0 and self.is_rigid:
             raise ParameterError("friction_coefficient", self.friction_coefficient, (
                 "must be 0 with foil='rigid' (a rigid bearing has no bumps to rub)"
@@ -249,8 +251,10 @@ class BearingModel:
 
     @property
     def has_friction(self) -> bool:
-        """True when the bumps carry Coulomb friction (μ_f > 0)."""
-        return self.friction_coefficient > 0.0
+        """True when the bumps carry Coulomb friction (μ_f > 0, here or in a bump zone)."""
+        zones = () if self.as_built is None else self.as_built.zones
+        return self.friction_coefficient > 0.0 or any(
+            (getattr(z, "friction_coefficient", None) or 0.0) > 0.0 for z in zones)
 
     @property
     def seam_angle_rad(self) -> Optional[float]:

@@ -33,12 +33,12 @@ from ..physics.friction import describing_function
 class FrictionUnits:
     """The friction elements of the foil units of one linearisation [-].
 
-    coefficient μ_f; stiffness_ratio κ (the element's spring over the bump's stiffness in the
+    coefficient μ_f (one, or per unit with friction zones); stiffness_ratio κ (the element's spring over the bump's stiffness in the
     linearisation: κ, or κ S_t,u/S_u per unit over a hardening bump's tangent); slip X_s,u
     per unit [clearances].
     """
 
-    coefficient: float
+    coefficient: object
     stiffness_ratio: object
     slip: np.ndarray
 
@@ -56,7 +56,8 @@ class FrictionUnits:
         # hardening bump's tangent stiffness it is κ S_t/S0
         ratio = (float(stiffness_ratio) if terms.unit_softening is None
                  else stiffness_ratio * np.asarray(terms.unit_softening, dtype=float))
-        return cls(float(coefficient), ratio, slip)
+        mu = float(coefficient) if np.ndim(coefficient) == 0 else np.asarray(coefficient, float)
+        return cls(mu, ratio, slip)
 
     def describing(self, amplitude: Optional[np.ndarray], sign: float = 1.0) -> np.ndarray:
         """D(β_u) per unit: the element's complex stiffness over its spring (module doc)."""
@@ -81,3 +82,16 @@ class FrictionUnits:
             return 1.0
         amp = np.abs(np.asarray(amplitude, dtype=float))
         return float(np.mean(amp[loaded] <= self.slip[loaded]))
+
+
+def friction_rows(model, st, origin) -> np.ndarray:
+    """μ_f per θ row of the stencil ``st`` with its origin at ``origin`` [rad]: each bump
+    zone's own coefficient where the bearing states one (``Zone.friction_coefficient``, None:
+    the model's), else the model's ``friction_coefficient`` [-]."""
+    m = st.n_theta_nodes
+    ab = getattr(model, "as_built", None)
+    rows = getattr(ab, "friction_rows", None)
+    if rows is None or not ab.housing_fixed:
+        return np.full(m, float(model.friction_coefficient))
+    theta = (0.0 if origin is None else origin) + st.psi
+    return np.asarray(rows(theta, model.friction_coefficient), dtype=float)

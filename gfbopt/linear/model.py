@@ -22,7 +22,7 @@ from ..inputs.model import renamed_radian_attribute
 from ..inputs.conversions import rpm_to_rad_per_s, stiffness_scale, whirl_frequency_hz
 from ..physics.compliance import ComplianceTerms, PerturbationContext
 from ..physics.foil_laws import foil_law
-from .friction_units import FrictionUnits
+from .friction_units import FrictionUnits, friction_rows
 from ..static import StaticSolution, StaticSolver, solver_for
 from ..static.build import row_values
 from ..sparse_lu import Factoriser, factor
@@ -141,9 +141,10 @@ def linearise(solution: StaticSolution, solver: Optional[StaticSolver] = None) -
                       shape=(n, n))
     terms = law.compliance_terms(_perturbation_context(solution, solver, n))
     friction = None
-    if getattr(model, "friction_coefficient", 0.0) > 0 and terms is not None:
-        friction = FrictionUnits.of(terms, model.friction_coefficient,
-                                    model.friction_stiffness_ratio)
+    if getattr(model, "has_friction", False) and terms is not None:
+        mu_rows = friction_rows(model, st, solution.seam_angle_rad)
+        mu = mu_rows if law.name != "local" else mu_rows[st.row]     # rows, or nodes
+        friction = FrictionUnits.of(terms, mu, model.friction_stiffness_ratio)
     return Linearisation(solution, blocks.a, b, blocks.c_xi, blocks.force, solution.load,
                          terms, model.loss_factor, solver.factoriser, friction)
 

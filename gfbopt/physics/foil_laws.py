@@ -347,7 +347,7 @@ def foil_law(model, engine: Optional[str] = None) -> FoilLaw:
     """
     law = FOIL_LAWS[model.foil_law]
     mu = getattr(model, "friction_coefficient", 0.0)
-    if mu > 0.0 and engine not in law.friction_engines:
+    if getattr(model, "has_friction", mu > 0.0) and engine not in law.friction_engines:
         who = ("the transient engines" if engine == "transient" else
                f"the {engine} engine" if engine else "an unnamed engine")
         raise ParameterError("friction_coefficient", mu, "Coulomb friction of the bumps is "
