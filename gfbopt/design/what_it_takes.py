@@ -149,6 +149,10 @@ def _physical(name: str, var: str) -> tuple:
         return 0.0, 1.0
     if name == "side_load_n" or var == "preload_depth_um":
         return 0.0, math.inf
+    if var == "preload_offset_deg":
+        return -360.0, 360.0
+    if var == "preload_width_deg":
+        return math.ulp(0.0), 360.0
     return math.ulp(0.0), math.inf                  # a length, clearance, thickness: > 0
 
 
@@ -268,13 +272,27 @@ def start_value(lever: Lever, system, design: dict, settings) -> float:
             return float(design[key])
     support = next((b for b in system.bearings if b.name == bearing), system.bearings[0])
     g = support.geometry
+    bore = getattr(g.build, "bore", None)
+    preloaded = bore is not None and getattr(bore, "kind", "round") != "round"
     built = {"radial_clearance_um": g.radial_clearance * 1e6, "length_mm": g.length * 1e3,
              "bump_pitch_mm": g.bump_pitch * 1e3, "bump_half_length_mm":
              g.bump_half_length * 1e3, "bump_thickness_um": g.bump_thickness * 1e6,
              "compliance": getattr(g, "compliance", math.nan),
-             "preload_depth_um": 1e6 * float(getattr(getattr(g.build, "bore", None),
-                                                     "preload_depth", 0.0) or 0.0)}
+             "preload_depth_um": 1e6 * float(getattr(bore, "preload_depth", 0.0) or 0.0),
+             "preload_offset_deg": bore.offset_deg if preloaded else settings.bore_offset_deg,
+             "preload_width_deg": bore.width_deg if preloaded else settings.bore_width_deg}
     return float(built.get(var, math.nan))
+
+
+def check_starts(levers: tuple, system, settings, file: str) -> None:
+    """Every lever has a value to start from on this rotor (a design variable the space
+    does not vary is taken as built): else one ParameterError naming ``file`` and the key,
+    before any solve."""
+    for lever in levers:
+        if not math.isfinite(start_value(lever, system, {}, settings)):
+            raise ParameterError(f"{file}: what_it_would_take.{lever.name}", lever.name,
+                                 "has no as-built value on the rotor's bearings to start "
+                                 "from: make it a design variable of the study")
 
 
 def lever_point(lever: Lever, value: float, system, design: dict, settings) -> dict:

@@ -196,11 +196,14 @@ def plan(study: Study):
     """Validate the study before any solve
     (:func:`gfbopt.design.rotor_spec.plan_rotor_design`, and the levers of
     ``[what_it_would_take]``, :func:`gfbopt.design.what_it_takes.parse_levers`)."""
-    from ..design.what_it_takes import parse_levers
+    from ..design.what_it_takes import check_starts, parse_levers
 
     p = plan_rotor_design(study, design_hash(study))
-    parse_levers(study.spec.get("what_it_would_take") or None, study.file,
-                 tuple(b.name for b in p.system.bearings), tuple(p.problem.names))
+    levers = parse_levers(study.spec.get("what_it_would_take") or None, study.file,
+                          tuple(b.name for b in p.system.bearings), tuple(p.problem.names))
+    check_starts(tuple(v for v in levers if v.name not in p.problem.names
+                       and v.name.split(":")[-1] not in p.problem.names),
+                 p.system, p.settings, study.file)
     return p
 
 
