@@ -124,13 +124,15 @@ class ThermalNetwork:
                                      "temperature: below 0 K is not a temperature)")
         for name in ("journal_to_ambient", "foil_to_sleeve", "sleeve_to_ambient",
                      "film_to_journal", "film_to_foil", "cooling_mass_flow",
-                     "cooling_conductance", "sleeve_expansion_coefficient",
-                     "sutherland_constant"):
+                     "cooling_conductance"):
             value = getattr(self, name)
             if value is not None and not value >= 0:
                 raise ParameterError(f"{where}.{name}", value, "must be >= 0 (a negative "
                                      "conductance or flow would carry heat against the "
                                      "temperature difference)")
+        for name in ("sleeve_expansion_coefficient", "sutherland_constant"):
+            if not getattr(self, name) >= 0:
+                raise ParameterError(f"{where}.{name}", getattr(self, name), "must be >= 0")
         for name in ("gas_conductivity", "gas_specific_heat", "gas_constant"):
             if not getattr(self, name) > 0:
                 raise ParameterError(f"{where}.{name}", getattr(self, name), "must be > 0")
