@@ -8,7 +8,9 @@ from the shaft's first end, the ``[rotor]`` table is optional and gives only ``n
 the same mass and inertia (about the centre of gravity, :attr:`RotorSystem.
 centre_of_gravity` from the first end).
 
-A rotor file is a TOML file (keys below are a contract; :data:`SCHEMA` lists them all and
+A rotor file is a TOML file (keys below are a contract;
+:data:`gfbopt.inputs.rotor_schema.ROTOR_FILE` declares them all in
+:mod:`gfbopt.inputs.file_schema`'s language, the validator below checks them against it and
 ``docs/formats/rotor_file.md`` is generated from it)::
 
     [rotor]
@@ -58,7 +60,7 @@ statics are legal (:mod:`gfbopt.rotor.rigid` rotates that bearing's frame).
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Optional, Union
 
@@ -67,16 +69,14 @@ from .bearing import BearingGeometry
 from .bearing_file import load_bearing_file, read_toml
 from .checks import check_angle_deg, check_finite, check_nonnegative, check_positive
 from .conversions import STANDARD_GRAVITY
+from .file_schema import Field, Table, check_fields, check_file, check_table
 from .options import ModelOptions
 from .rotor_limits import check_rotor_limits
+from .rotor_schema import BEARING_MODEL, BEARINGS, ROTOR_FILE, SHAFT_ROTOR
 from .shaft_file import ShaftModel, shaft_from_file
-from .rotor_schema import RIGID_ONLY, SCHEMA, TABLES as _TABLES, Key, schema_markdown  # noqa: F401
 
 #: the number of bearings a rotor file must give (the rigid-rotor model has two supports)
 BEARING_COUNT = 2
-
-
-_TOP_LEVEL_OTHER = ("source", "notes")
 
 
 # ------------------------------------------------------------------ dataclasses
@@ -293,26 +293,30 @@ def load_rotor(path: Union[str, Path]) -> RotorSystem:
 def rotor_from_dict(data: dict, directory: Union[str, Path] = ".",
                     where: str = "<rotor>") -> RotorSystem:
     """A :class:`RotorSystem` from the tables of a rotor file (``directory``: where bearing
-    files are looked up; ``where`` names the source in errors)."""
+    files are looked up; ``where`` names the source in errors).
+
+    Every key is checked against :data:`~gfbopt.inputs.rotor_schema.ROTOR_FILE` by
+    :mod:`~gfbopt.inputs.file_schema`'s checkers (unknown keys and tables with did-you-mean,
+    missing, wrong type, non-finite, out of bounds); the rules between keys and tables that
+    the schema states in words are enforced here and by the objects built (rows are
+    numbered from 1 in the messages: ``bearings[2].position``)."""
     directory = Path(directory)
     if not isinstance(data, dict):
         raise ParameterError(where, data, "must be a table")
-    unknown = sorted(set(data) - set(_TABLES) - set(_TOP_LEVEL_OTHER))
-    if unknown:
-        raise ParameterError(f"{where}: {unknown[0]}", data[unknown[0]],
-                             _unknown_rule(unknown[0], _TABLES + _TOP_LEVEL_OTHER))
+    check_file({k: v for k, v in data.items() if k not in _TABLES}, _TOP_LEVEL, where)
     shaft = shaft_from_file(data, _rows(data, "shaft", where), _rows(data, "disks", where),
-                            _table, _build, where)
+                            _row, _build, where)
     if shaft is None and "rotor" not in data:
-        raise ParameterError(f"{where}: [rotor]", None, "table is required but missing")
+        raise ParameterError(f"{where}: [rotor]", None, "table is required but missing (a "
+                             "rigid rotor's mass and inertia; or give [[shaft]] elements)")
     if shaft is None:
-        rotor = _table(data["rotor"], "rotor", f"{where}: rotor")
+        rotor = _row(data["rotor"], "rotor", f"{where}: rotor")
         body = _build(RotorBody, f"{where}: rotor", mass=rotor["mass"],
                       transverse_inertia=rotor["transverse_inertia"],
-                      polar_inertia=_positive_polar(rotor["polar_inertia"], where),
-                      name=rotor["name"])
+                      polar_inertia=rotor["polar_inertia"], name=rotor["name"])
     else:
-        rotor = _table(data.get("rotor", {}), "rotor", f"{where}: rotor", skip=RIGID_ONLY)
+        rotor = _filled(check_table(data.get("rotor", {}), SHAFT_ROTOR, f"{where}: rotor"),
+                        SHAFT_ROTOR)
         body = shaft_body(shaft, rotor["name"])
     bearing_rows = _rows(data, "bearings", where)
     if len(bearing_rows) != BEARING_COUNT:
@@ -326,18 +330,16 @@ def rotor_from_dict(data: dict, directory: Union[str, Path] = ".",
             if isinstance(row, dict) and "position" not in row:
                 raise ParameterError(f"{where}: side_loads[{k}].position", None, "is required "
                                      "with a [[shaft]] (m from the shaft's first end)")
-    loads = [_build(SideLoad, f"{where}: side_loads[{k}]", **_table(row, "side_loads",
-                                                                    f"{where}: side_loads[{k}]"))
+    loads = [_build(SideLoad, f"{where}: side_loads[{k}]",
+                    **_row(row, "side_loads", f"{where}: side_loads[{k}]"))
              for k, row in enumerate(load_rows, 1)]
     planes = [_plane(row, k, where) for k, row in enumerate(_rows(data, "imbalance", where), 1)]
     stations = [_build(Station, f"{where}: stations[{k}]",
-                       **_table(row, "stations", f"{where}: stations[{k}]"))
+                       **_row(row, "stations", f"{where}: stations[{k}]"))
                 for k, row in enumerate(_rows(data, "stations", where), 1)]
-    gravity = check_nonnegative(f"{where}: rotor.gravity", rotor["gravity"])
-    direction = check_angle_deg(f"{where}: rotor.gravity_direction_deg",
-                                rotor["gravity_direction_deg"])
     return RotorSystem(body, tuple(bearings), tuple(loads), tuple(planes), tuple(stations),
-                       gravity=gravity, gravity_direction_deg=direction, source=where,
+                       gravity=rotor["gravity"],
+                       gravity_direction_deg=rotor["gravity_direction_deg"], source=where,
                        shaft=shaft)
 
 
@@ -363,59 +365,43 @@ def _shaft_body(shaft, body, where: str) -> RotorBody:
     return body
 
 
-def _unknown_rule(key: str, known) -> str:
-    import difflib
+# ------------------------------------------------------------------ checking, with file_schema
+#: the rotor file's tables by name (``[bearings.model]`` is checked with its bearing)
+_TABLE = {t.name: t for t in ROTOR_FILE.tables if "." not in t.name}
+_TABLES = tuple(_TABLE)
+#: the top level of a rotor file for :func:`~gfbopt.inputs.file_schema.check_file`: its
+#: top-level keys, and its tables named (for "did you mean") but checked row by row here
+_TOP_LEVEL = replace(ROTOR_FILE, tables=tuple(replace(t, required=False)
+                                              for t in _TABLE.values()))
+#: a [[bearings]] row's keys with ``model`` (its [bearings.model] table, checked by
+#: :meth:`ModelOptions.from_table` against file_schema's MODEL): named for "did you mean"
+#: and the list of known keys; the sub-table itself is taken out before the row is checked
+_BEARING_KEYS = (*BEARINGS.fields, Field("model", "text", "-", BEARING_MODEL.doc,
+                                         default=None))
 
-    close = difflib.get_close_matches(key, known, n=1)
-    hint = f" (did you mean '{close[0]}'?)" if close else ""
-    return f"is not a key here{hint}; known: {', '.join(known)}"
 
-
-def _table(table, name: str, where: str, skip: tuple = ()) -> dict:
-    """Check one table against :data:`SCHEMA` (unknown, missing, kind); defaults filled;
-    ``skip``: keys not allowed here (a shaft's [rotor] table)."""
-    keys = {k.name: k for k in SCHEMA if k.table == name and k.name not in skip}
-    if not isinstance(table, dict):
-        raise ParameterError(where, table, "must be a table")
-    unknown = sorted(set(table) - set(keys))
-    if unknown:
-        raise ParameterError(f"{where}.{unknown[0]}", table[unknown[0]],
-                             _unknown_rule(unknown[0], tuple(keys)))
-    out = {}
-    for key in keys.values():
-        if key.name not in table:
-            if key.required:
-                raise ParameterError(f"{where}.{key.name}", None,
-                                     f"is required but missing ({key.doc} [{key.unit}])")
-            if key.default is not None and key.kind == "number":
-                out[key.name] = key.default
-            continue
-        value = table[key.name]
-        if key.kind == "number" and (isinstance(value, bool) or
-                                     not isinstance(value, (int, float))):
-            raise ParameterError(f"{where}.{key.name}", value, f"must be a number [{key.unit}]")
-        if key.kind == "string" and not isinstance(value, str):
-            raise ParameterError(f"{where}.{key.name}", value, "must be a string")
-        if key.kind == "table" and not isinstance(value, dict):
-            raise ParameterError(f"{where}.{key.name}", value, "must be a table")
-        if key.kind == "number":
-            try:
-                value = float(value)
-            except OverflowError:          # an integer beyond the float range
-                raise ParameterError(f"{where}.{key.name}", value, "must be finite (not NaN "
-                                     f"or infinite) [{key.unit}]") from None
-        out[key.name] = value
-    if name == "rotor":
-        out.setdefault("name", "rotor")
+def _filled(checked: dict, table: Table) -> dict:
+    """A checked table with the defaults of the keys it does not state (None: no default)."""
+    out = dict(checked)
+    for f in table.fields:
+        if f.name not in out and not f.required and f.default is not None:
+            out[f.name] = f.default
     return out
 
 
+def _row(row, name: str, where: str) -> dict:
+    """One table (``[rotor]``) or row (``[[shaft]]`` …) checked against the schema's table
+    ``name`` by :func:`~gfbopt.inputs.file_schema.check_table`, defaults filled."""
+    return _filled(check_table(row, _TABLE[name], where), _TABLE[name])
+
+
 def _rows(data: dict, name: str, where: str) -> list:
+    """The rows of array table ``name`` (a single ``[name]`` table is one row)."""
     rows = data.get(name, [])
     if isinstance(rows, dict):
         rows = [rows]
     if not isinstance(rows, list):
-        raise ParameterError(f"{where}: {name}", rows, f"must be a list of [[{name}]] tables")
+        raise ParameterError(f"{where}: {name}", rows, f"must be a list of tables ([[{name}]])")
     return rows
 
 
@@ -427,23 +413,18 @@ def _build(cls, where: str, *args, **kwargs):
         raise ParameterError(f"{where}.{exc.name}", exc.value, exc.rule) from None
 
 
-def _positive_polar(value: float, where: str) -> float:
-    if not (math.isfinite(value) and value > 0):
-        raise ParameterError(f"{where}: rotor.polar_inertia", value, "must be finite and > 0 "
-                             "[kg m²] (every real rotor has a polar inertia)")
-    return value
-
-
 def _bearing(row, k: int, directory: Path, where: str) -> BearingSupport:
     here = f"{where}: bearings[{k}]"
-    table = _table(row, "bearings", here)
+    model = row.get("model") if isinstance(row, dict) else None
+    rest = {key: v for key, v in row.items() if key != "model"} if isinstance(row, dict) else row
+    table = check_fields(rest, _BEARING_KEYS, here, f"[{BEARINGS.name}]")
     file = directory / table["file"]
     if not file.is_file():
         raise ParameterError(f"{here}.file", table["file"],
                              f"must name an existing bearing file (looked for {file})")
     geometry, options = load_bearing_file(file)
-    if "model" in table:
-        options = ModelOptions.from_table(table["model"], where=f"{here}.model").over(options)
+    if model is not None:
+        options = ModelOptions.from_table(model, where=f"{here}.model").over(options)
     return _build(BearingSupport, here, name=table.get("name", "AB"[k - 1]),
                   position=table["position"], geometry=geometry, options=options,
                   file=str(file))
@@ -451,7 +432,7 @@ def _bearing(row, k: int, directory: Path, where: str) -> BearingSupport:
 
 def _plane(row, k: int, where: str) -> ImbalancePlane:
     here = f"{where}: imbalance[{k}]"
-    table = _table(row, "imbalance", here)
+    table = _row(row, "imbalance", here)
     stated = [key for key in ("amount_kg_m", "amount_g_mm") if key in table]
     if not stated:
         raise ParameterError(f"{here}.amount_kg_m", None, "is required: give the imbalance "
@@ -460,9 +441,5 @@ def _plane(row, k: int, where: str) -> ImbalancePlane:
         raise ParameterError(f"{here}.amount_g_mm", table["amount_g_mm"],
                              "contradicts amount_kg_m: give one of the two")
     amount = table.get("amount_kg_m", table.get("amount_g_mm", 0.0) * 1e-6)
-    if "amount_g_mm" in table and not (math.isfinite(table["amount_g_mm"])
-                                       and table["amount_g_mm"] > 0):
-        raise ParameterError(f"{here}.amount_g_mm", table["amount_g_mm"], "must be finite "
-                             "and > 0 [g mm]")
     return _build(ImbalancePlane, here, amount_kg_m=amount, position=table["position"],
                   phase_deg=table["phase_deg"], name=table.get("name", f"plane {k}"))

@@ -1,5 +1,6 @@
 """A flexible shaft in SI units: its beam elements and disks, as the rotor file gives them
-(``[[shaft]]`` and ``[[disks]]``, :data:`gfbopt.inputs.rotor_schema.SCHEMA`).
+(``[[shaft]]`` and ``[[disks]]``, declared by :data:`gfbopt.inputs.rotor_schema.SHAFT` and
+:data:`~gfbopt.inputs.rotor_schema.DISKS` in :mod:`gfbopt.inputs.file_schema`'s language).
 
 The shaft is a chain of hollow circular elements given in order from its first end; element
 k spans [z_k, z_k + l_k], so consecutive elements join by construction and the shaft has no
@@ -180,8 +181,9 @@ def check_on_shaft(model: ShaftModel, key: str, position: float) -> float:
 
 def shaft_from_rows(shaft_rows: list, disk_rows: list, table, build, where: str) -> ShaftModel:
     """The :class:`ShaftModel` of a rotor file's ``[[shaft]]`` and ``[[disks]]`` rows;
-    ``table(row, name, here)`` checks a row against the schema, ``build(cls, here, **kw)``
-    builds with the key named (both from :mod:`.rotor_system`)."""
+    ``table(row, name, here)`` checks a row against the schema's table ``name`` (key by key,
+    defaults filled), ``build(cls, here, **kw)`` builds with the key named (both from
+    :mod:`.rotor_system`); the rules between keys are the built objects' own."""
     elements = []
     for k, row in enumerate(shaft_rows, 1):
         here = f"{where}: shaft[{k}]"

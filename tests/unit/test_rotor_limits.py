@@ -117,7 +117,8 @@ def test_directions_beyond_a_turn_are_refused(tmp_path, table, key):
                           "position = 0.065\n"}[table]
     rotor = "gravity_direction_deg = 1e300\n" if table == "rotor" else ""
     path = _rotor(tmp_path, rotor=rotor, extra=extra)
-    with pytest.raises(ParameterError, match=rf"{key} = 1e\+300: must lie in \[-360, 360\]"):
+    with pytest.raises(ParameterError, match=rf"{key} = 1e\+300: must be <= 360 deg "
+                       r"\(a direction: \[-360, 360\] degrees"):
         load_rotor(path)
     load_rotor(_rotor(tmp_path, rotor=rotor.replace("1e300", "-90.0"),
                       extra=extra.replace("1e300", "-90.0")))

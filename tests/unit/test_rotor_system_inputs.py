@@ -8,7 +8,9 @@ import numpy as np
 import pytest
 
 from gfbopt.errors import ParameterError
-from gfbopt.inputs.rotor_system import SCHEMA, load_rotor, rotor_from_dict, schema_markdown
+from gfbopt.file_formats import PAGES, render_format
+from gfbopt.inputs.rotor_schema import ROTOR_FILE, schema_markdown
+from gfbopt.inputs.rotor_system import load_rotor, rotor_from_dict
 from gfbopt.rotor.rigid import (bearing_loads, gyroscopic_matrix, mass_matrix, seam_from_load,
                                 transformation)
 
@@ -113,9 +115,17 @@ def test_matrices_and_gyroscopic_sign():
 
 
 def test_schema_documents_every_key_and_docs_page_is_current():
-    page = schema_markdown()
-    for key in SCHEMA:
-        assert f"`{key.name}`" in page
+    """The page is ROTOR_FILE rendered as every file format is (file_formats.render_format),
+    names every key of every table, and is what docs/formats/rotor_file.md holds."""
+    page = render_format(ROTOR_FILE)
+    assert schema_markdown() == page == PAGES["rotor_file.md"]()
+    tables = {t.name: t for t in ROTOR_FILE.tables}
+    assert set(tables) == {"rotor", "bearings", "bearings.model", "side_loads", "imbalance",
+                           "stations", "shaft", "disks"}
+    for table in ROTOR_FILE.tables:
+        head = f"[[{table.name}]]" if table.array else f"[{table.name}]"
+        section = page.split(f"## `{head}`")[1].split("\n## ")[0]
+        for f in table.fields:
+            assert f"| `{f.name}` |" in section, (table.name, f.name)
     stored = (ROOT / "docs" / "formats" / "rotor_file.md").read_text()
-    assert stored == page, ("docs/formats/rotor_file.md is stale: run python -m "
-                            "gfbopt.inputs.rotor_system > docs/formats/rotor_file.md")
+    assert stored == page, "docs/formats/rotor_file.md is stale: run python -m gfbopt.file_formats"
