@@ -52,7 +52,7 @@ onset = gfbopt.onset_speed(bearing, rotor, 20.0, (5000.0, 50000.0), grid=GRID)
 print(onset.answer)
 
 scan = sorted(onset.scan, key=lambda row: row["speed_rpm"])
-fig, ax = plt.subplots(figsize=(6.4, 4.2))
+fig, ax = plt.subplots(layout="constrained", figsize=(6.4, 4.2))
 ax.plot([r["speed_rpm"] for r in scan], [100 * r["mass_margin"] for r in scan], "o-",
         label="mass margin $M_c/M - 1$")
 ax.axhline(0.0, color="k", lw=0.8)
@@ -76,9 +76,8 @@ below = gfbopt.stability(bearing, rotor, gfbopt.OperatingPoint(12000.0, 20.0), g
 table = gfbopt.coefficient_table(below.linearisation, bearing, 12000.0, None,
                                  below.threshold_whirl_ratio)
 print(table.table[["frequency_hz", "kxx_N_per_m", "kyy_N_per_m", "cxx_Ns_per_m"]].round(1))
-fig, (ax_k, ax_c) = plt.subplots(1, 2, figsize=(10, 4.0))
+fig, (ax_k, ax_c) = plt.subplots(1, 2, layout="constrained", figsize=(10, 4.0))
 plot_coefficients(table.table, "stiffness", ax=ax_k, title="stiffness at 12,000 rpm, 20 N")
 plot_coefficients(table.table, "damping", ax=ax_c, title="damping at 12,000 rpm, 20 N")
-fig.tight_layout()
 fig.savefig(OUT / "coefficients.png", dpi=110)
 table.write_csv(OUT / "coefficients.csv")

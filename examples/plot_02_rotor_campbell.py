@@ -52,10 +52,9 @@ print(f"the {first.first_mode} mode whirls first, from {first.onset_speed_rpm:,.
 # its log decrement — a mode whirls where its log decrement crosses zero, at the onsets
 # marked (the matched-whirl answers, not read off the scan).
 onsets = {m.label: m.onset_speed_rpm for m in analysis.onsets.modes}
-fig, axes = plt.subplots(2, 1, figsize=(7.2, 6.4), sharex=True)
+fig, axes = plt.subplots(2, 1, layout="constrained", figsize=(7.2, 6.4), sharex=True)
 plot_campbell(analysis.campbell.table, onsets, axes=axes,
               title=f"Campbell diagram, 3.2 kg blower rotor ({GRID} grid)")
-fig.tight_layout()
 fig.savefig(OUT / "campbell.png", dpi=110)
 
 # %%
@@ -63,11 +62,10 @@ fig.savefig(OUT / "campbell.png", dpi=110)
 # ----------------------
 # The synchronous orbit at each bearing from the rotor file's imbalance planes, up to the
 # first onset (above it the linear response has no meaning: the rotor whirls).
-fig, axes = plt.subplots(2, 1, figsize=(7.2, 6.0), sharex=True)
+fig, axes = plt.subplots(2, 1, layout="constrained", figsize=(7.2, 6.0), sharex=True)
 plot_imbalance_response(analysis.imbalance.table, analysis.imbalance.peaks, onsets,
                         axes=axes, title=f"imbalance response ({GRID} grid)",
                         unstable_from_rpm=analysis.imbalance.unstable_from_rpm)
-fig.tight_layout()
 fig.savefig(OUT / "imbalance_response.png", dpi=110)
 
 # %%

@@ -55,7 +55,7 @@ bearings = {"round bore": gfbopt.load_bearing(RUSCITTO),
 profile = bearings["3 shims, 6 µm"].build.bore.profile(20e-6)
 theta_deg = np.linspace(0.0, 360.0, 721)
 clearance_um = 20.0 * (1.0 + profile.clearance_change(np.radians(theta_deg)))
-fig, ax = plt.subplots(figsize=(6.4, 3.6))
+fig, ax = plt.subplots(layout="constrained", figsize=(6.4, 3.6))
 plot_bore_profile(theta_deg, clearance_um, ax=ax, nominal_um=20.0,
                   title="bore of the shimmed Ruscitto bearing (3 × 60°, 6 µm)")
 fig.savefig(OUT / "bore_profile.png", dpi=110)
@@ -80,10 +80,9 @@ capacity = gfbopt.load_capacity(bearings["round bore"], 30000.0, 5.0, grid=GRID)
 lift_off = gfbopt.lift_off_speed(bearings["round bore"], 20.0, 5.0, grid=GRID)
 print(capacity.answer)
 print(lift_off.answer)
-fig, (ax_w, ax_n) = plt.subplots(1, 2, figsize=(10, 4.0))
+fig, (ax_w, ax_n) = plt.subplots(1, 2, layout="constrained", figsize=(10, 4.0))
 plot_capacity_curve(capacity.to_dict(), ax=ax_w, title="load capacity at 30,000 rpm")
 plot_capacity_curve(lift_off.to_dict(), ax=ax_n, title="lift-off under 20 N")
-fig.tight_layout()
 fig.savefig(OUT / "capacity.png", dpi=110)
 
 # %%
@@ -92,7 +91,7 @@ fig.savefig(OUT / "capacity.png", dpi=110)
 # Each static equilibrium gives the drag torque over Petroff's (``torque_ratio``) and in SI
 # ``drag_torque_nm`` and ``power_loss_w`` (:func:`gfbopt.analyses.static_point`).
 speeds = np.linspace(10000.0, 45000.0, 6)
-fig, ax = plt.subplots(figsize=(6.4, 4.2))
+fig, ax = plt.subplots(layout="constrained", figsize=(6.4, 4.2))
 for name, bearing in bearings.items():
     rows = [static_point(bearing_model(bearing, speed), load=bearing.nondimensional_load(20.0),
                          grid=gfbopt.as_grid(GRID), geometry=bearing) for speed in speeds]

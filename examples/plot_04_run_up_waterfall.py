@@ -53,12 +53,11 @@ if summary["contact"]:
 # -----------------------------
 # Amplitude [µm, log colour] against whirl frequency [Hz] and shaft speed [rpm]; the dashed
 # line is the linear onset, the dotted one where the subsynchronous line appears.
-fig, axes = plt.subplots(1, len(result.names), figsize=(11, 4.6))
+fig, axes = plt.subplots(1, len(result.names), layout="constrained", figsize=(11, 4.6))
 for ax, name, waterfall in zip(axes, result.names, result.waterfalls[0]):
     plot_waterfall(waterfall, ax=ax, bearing=name, linear_onset_rpm=linear,
                    appearance_rpm=result.onset.get(f"subsync_appearance_{name}_rpm", math.nan),
                    title=f"waterfall at bearing {name} ({GRID} grid)")
-fig.tight_layout()
 fig.savefig(OUT / "waterfall.png", dpi=110)
 
 # %%
@@ -66,9 +65,8 @@ fig.savefig(OUT / "waterfall.png", dpi=110)
 # ---------------------------------------------------
 tables = {name: w.table() for name, w in zip(result.names, result.waterfalls[0])
           if w.time_s.size}
-fig, axes = plt.subplots(2, 1, figsize=(6.6, 6.4), sharex=True)
+fig, axes = plt.subplots(2, 1, layout="constrained", figsize=(6.6, 6.4), sharex=True)
 plot_components(tables, axes=axes, linear_onset_rpm=linear,
                 threshold_um=result.onset.get("subsync_threshold_um", math.nan),
                 title="1× and subsynchronous components, run-up 8,000 → 20,000 rpm")
-fig.tight_layout()
 fig.savefig(OUT / "components.png", dpi=110)

@@ -84,19 +84,18 @@ print(table[["point", "radial_clearance", "bump_pitch", "load_newton",
 # -------------
 # First-order S1 (what the input explains alone) and total ST (with its interactions), with
 # 95 % bootstrap intervals — still wide at 64 base samples: a real study takes 256 or more.
-fig, axes = plt.subplots(1, 2, figsize=(10, 4.0))
+fig, axes = plt.subplots(1, 2, layout="constrained", figsize=(10, 4.0))
 for ax, output in zip(axes, ("min_film_thickness_um", "power_loss_w")):
     indices = sobol_indices(plan, table, output)
     print(output, indices.table.round(2).to_string(index=False), sep="\n")
     plot_sobol_indices(indices.table, ax=ax, output=output)
 fig.suptitle("Sobol indices at 30,000 rpm (Saltelli, N = 64, 24x8 grid)")
-fig.tight_layout()
 fig.savefig(OUT / "sobol_indices.png", dpi=110)
 
 # %%
 # The scatter behind them
 # -----------------------
-fig, ax = plt.subplots(figsize=(6.4, 4.2))
+fig, ax = plt.subplots(layout="constrained", figsize=(6.4, 4.2))
 points = ax.scatter(table["radial_clearance"] * 1e6, table["power_loss_w"],
                     c=table["load_newton"], cmap="viridis", s=18)
 fig.colorbar(points, ax=ax, label="static load [N]")

@@ -46,7 +46,7 @@ print(f"chosen: c = {chosen['radial_clearance_um']:.3g} µm, shims "
 # The trade-off: first onset against drag
 # ---------------------------------------
 # The same rows as ``design_front.png`` in the results folder, redrawn from the CSV.
-fig, ax = plt.subplots(figsize=(6.8, 4.6))
+fig, ax = plt.subplots(layout="constrained", figsize=(6.8, 4.6))
 for feasible, part in evaluations.groupby("feasible"):
     ax.scatter(part["total_power_loss_w"], part["first_onset_speed_rpm"],
                s=14 if feasible else 8, alpha=0.9 if feasible else 0.4,
@@ -76,7 +76,7 @@ blower = ROOT / "results" / "rotor_blower"
 modes = pd.read_csv(blower / "modes.csv")
 print(modes[["label", "onset_speed_rpm", "whirl_frequency_hz", "status"]].to_string(index=False))
 campbell = pd.read_csv(blower / "campbell.csv")
-fig, ax = plt.subplots(figsize=(6.8, 4.4))
+fig, ax = plt.subplots(layout="constrained", figsize=(6.8, 4.4))
 for label, part in campbell.groupby("track_label"):
     ax.plot(part["speed_rpm"], part["log_decrement"], "o-", ms=3, label=label)
 ax.axhline(0.0, color="k", lw=0.8)

@@ -112,7 +112,7 @@ if (folder / "chosen.csv").is_file():
           f"{TOP_SPEED_RPM:,.0f} rpm")
 print(f"{len(evaluations)} designs evaluated, {int(evaluations['feasible'].sum())} feasible")
 
-fig, ax = plt.subplots(figsize=(7.0, 4.8))
+fig, ax = plt.subplots(layout="constrained", figsize=(7.0, 4.8))
 plot_design_front(evaluations, front, None if chosen is None else chosen.to_dict(), TOP_SPEED_RPM,
                   1.25 * TOP_SPEED_RPM, ax=ax,
                   title="designs of my 3.0 kg rotor's bearing pair (24x8 search grid)")

@@ -57,7 +57,7 @@ frequency_hz = np.asarray(table["frequency"]) / (2.0 * np.pi)
 print(f"node {table['n']}, radial clearance {table['radial_clearance'] * 1e6:.3g} µm, "
       f"{len(speed_rpm)} speeds × {len(frequency_hz)} frequencies")
 
-fig, (ax_k, ax_c) = plt.subplots(1, 2, figsize=(10.5, 4.2))
+fig, (ax_k, ax_c) = plt.subplots(1, 2, layout="constrained", figsize=(10.5, 4.2))
 for i, speed in enumerate(speed_rpm):
     ax_k.plot(frequency_hz, np.asarray(table["kxx"])[i] / 1e6, "o-", ms=3,
               label=f"{speed:,.0f} rpm")
@@ -70,5 +70,4 @@ for ax in (ax_k, ax_c):
     ax.legend(fontsize=8, title="shaft speed")
 ax_k.set_title("bearing A of the blower rotor: stiffness (36x10 grid)")
 ax_c.set_title("bearing A: damping against whirl frequency")
-fig.tight_layout()
 fig.savefig(OUT / "ross_table_bearing_a.png", dpi=110)

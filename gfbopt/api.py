@@ -28,8 +28,9 @@ name                       what it answers (the command that wraps it)
 The functions are the library's own (same docstrings, arguments and results); the only
 addition is the grid's string form (:func:`~gfbopt.inputs.grid.accepts_grid_strings`), read
 by :func:`~gfbopt.inputs.grid.as_grid` with the command line's one-line message for a
-malformed one (``grid = '72x': must be written NTHETAxNZ, e.g. 72x20``).  Importing this module imports the solvers (CasADi): ``import
-gfbopt`` loads it only when one of these names is first used.
+malformed one (``grid = '72x': must be written NTHETAxNZ, e.g. 72x20``).  Importing this
+module imports the solvers (CasADi): ``import gfbopt`` loads it only when one of these names
+is first used.
 """
 from __future__ import annotations
 
