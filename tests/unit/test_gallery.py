@@ -20,9 +20,11 @@ EXAMPLES = sorted((ROOT / "examples").glob("plot_*.py"))
 #: ``OUT = Path(os.environ.get("GFBOPT_EXAMPLES_OUTPUT", ...)) / "SUBFOLDER"``
 _OUT = re.compile(r'OUT = Path\(os\.environ\.get\("GFBOPT_EXAMPLES_OUTPUT".*\)\) / "([\w-]+)"')
 _SAVED = re.compile(r'savefig\(OUT / "([\w.-]+\.png)"')
-#: CPU seconds one example may take (user + system of the child; 2-4 s measured on a
-#: loaded 2-core machine, the interpreter and CasADi import included)
-CPU_LIMIT_S = 15.0
+#: CPU seconds one example may take (user + system of the child, the interpreter and CasADi
+#: import included): 1.2-7 s measured on a loaded 2-core machine, the design example the
+#: most; twice that margin for contention, while an example on the default 144x36 grid
+#: would take minutes
+CPU_LIMIT_S = 30.0
 
 
 def promised(script: Path) -> tuple[str, list]:
