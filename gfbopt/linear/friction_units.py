@@ -33,9 +33,9 @@ from ..physics.friction import describing_function
 class FrictionUnits:
     """The friction elements of the foil units of one linearisation [-].
 
-    coefficient μ_f (one, or per unit with friction zones); stiffness_ratio κ (the element's spring over the bump's stiffness in the
-    linearisation: κ, or κ S_t,u/S_u per unit over a hardening bump's tangent); slip X_s,u
-    per unit [clearances].
+    coefficient μ_f (one, or one per unit with friction zones); stiffness_ratio κ (the
+    element's spring over the bump's stiffness in the linearisation: κ, or κ S_t,u/S_u per
+    unit over a hardening bump's tangent); slip X_s,u per unit [clearances].
     """
 
     coefficient: object

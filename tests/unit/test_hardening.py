@@ -38,7 +38,8 @@ def test_small_deflections_are_linear_and_tension_is_linear():
 def test_hard_limit():
     law = HardeningLaw(K0, LIM, 1.0)
     # every finite load leaves the bump short of flat (n >= 1)
-    assert float(law.deflection(30 * K0 * LIM)) == pytest.approx(LIM * (1 - math.exp(-30)), rel=1e-12)
+    assert float(law.deflection(30 * K0 * LIM)) == pytest.approx(LIM * (1 - math.exp(-30)),
+                                                                 rel=1e-12)
     with pytest.raises(ParameterError, match="hard limit"):
         law.tangent(LIM)
     with pytest.raises(ParameterError, match="flattens"):
