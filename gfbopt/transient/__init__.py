@@ -1,4 +1,4 @@
-"""Nonlinear transients of a rigid rotor on gas foil bearings (numpy, batched over rotors).
+"""Nonlinear transients of rotors on gas foil bearings (numpy, batched over rotors).
 
 ==========================  ========================================================================
 module                      responsibility
@@ -12,17 +12,22 @@ module                      responsibility
 :mod:`.rkc`                 damped Runge–Kutta–Chebyshev (RKC2), batched: stages from the
                             stiffness bound, step from accuracy (the default of the searches)
 :mod:`.bdf`                 scipy's implicit BDF with a sparse Jacobian, rotor by rotor
-:mod:`.orbit`               the driver :func:`integrate_orbits` and the :data:`METHODS` table
+:mod:`.orbit`               the one :data:`METHODS` table (integrator, options, packed step),
+                            :func:`check_method` and the driver :func:`integrate_orbits`
 :mod:`.result`              :class:`OrbitBatch`, the result every method returns
 :mod:`.fits`                matrix-pencil growth rates and verdicts
 :mod:`.mode`                the least-stable linear mode shape as a starting perturbation
 :mod:`.critical_mass`       the critical-mass search and limit-cycle amplitudes
-*a rigid rotor on two bearing films*
+*a rotor structure of any size (rigid body, condensed shaft) on two bearing films*
 :mod:`.rotor_setup`         a rotor in SI as the transient model of the rotor and both films
 :mod:`.rotor_io`            the rotor file's dataclasses as :class:`~.rotor_setup.RotorInput`
+:mod:`.rotor_model`         the model: a :class:`~gfbopt.rotor.structure.Structure` on its films
+:mod:`.rotor_layout`        where each part of a packed batch state sits
+:mod:`.rotor_films`         both bearings' films in one fused numpy evaluation
 :mod:`.rotor_system`        the whole rotor and both films as one method-of-lines system
 :mod:`.rotor_batch`         a batch of rotor runs: speed profile, inertia and imbalance scales
-:mod:`.rotor_run`           integrating the rotor on both films (RKC default, RK4 reference)
+:mod:`.rotor_steps`         the rotor's step rules (its own period, a ramp's speed-following step)
+:mod:`.rotor_run`           integrating the rotor with a method of :data:`METHODS` (RKC default)
 :mod:`.rotor_result`        the result post-processed for engineers (SI, µm)
 :mod:`.spectra`             waterfall, synchronous and subsynchronous components, limit cycles
 :mod:`.rotor_analysis`      an orbit at constant speed, a run-up or coast-down

@@ -16,7 +16,7 @@ import numpy as np
 from ..errors import ParameterError
 from ..inputs.options import resolve_model_options
 from ..inputs.rotor_system import RotorSystem
-from .rotor_setup import RotorBearing, RotorInput, imbalance_planes
+from .rotor_setup import RotorBearing, RotorInput, gravity_force, imbalance_planes
 
 
 def rotor_input(system: RotorSystem, imbalance=None) -> RotorInput:
@@ -35,7 +35,8 @@ def rotor_input(system: RotorSystem, imbalance=None) -> RotorInput:
                                                        load.away_from_gravity_deg))
         bearings.append(RotorBearing(support.geometry, support.position,
                                      options.model_kwargs(), support.name))
-    force, moment = applied_loads(system)
+    centre = float(getattr(system, "centre_of_gravity", 0.0) or 0.0)
+    force, moment = applied_loads(system, centre)
     static = np.array([force[0], force[1], moment[0], moment[1]], dtype=float)
     planes = system.imbalance if imbalance is None else tuple(imbalance)
     unbalance = imbalance_planes([(p.amount_kg_m, p.phase_deg, p.position) for p in planes])
@@ -53,8 +54,25 @@ def rotor_input(system: RotorSystem, imbalance=None) -> RotorInput:
         "imbalance": [{"amount_kg_m": p.amount_kg_m, "amount_g_mm": p.amount_kg_m * 1e6,
                        "phase_deg": p.phase_deg, "position_m": p.position} for p in planes],
         "source": system.source}
+    structure, generalised = shaft_input(system)
     return RotorInput(mass_matrix(body), gyroscopic_matrix(body), tuple(bearings), static,
-                      unbalance, description)
+                      unbalance, description, structure, generalised)
+
+
+def shaft_input(system: RotorSystem) -> tuple:
+    """(structure, Q_s) of a rotor with a shaft: the shaft of beam elements condensed on its
+    bearing stations (:func:`gfbopt.rotor.condensed.condensed`, its lowest held modes: the
+    transient's step follows the highest mode kept, :func:`.rotor_steps.rotor_frequency`)
+    and its weight and side loads as a generalised force (:func:`.rotor_setup.gravity_force`);
+    (None, None) for the rigid body."""
+    if getattr(system, "shaft", None) is None:
+        return None, None
+    from ..rotor.condensed import condensed
+    from ..rotor.shaft import shaft_structure
+
+    structure = condensed(shaft_structure(system), [b.position for b in system.bearings])
+    loads = [(*load.vector, load.position) for load in system.side_loads]
+    return structure, gravity_force(structure, system.weight_vector, loads)
 
 
 def frame_check(rotor: RotorInput, system: RotorSystem) -> float:

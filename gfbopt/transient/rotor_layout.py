@@ -3,7 +3,8 @@ bearings' films can run through one call of the one-bearing kernel (:func:`stack
 
 A batch of B runs of a rotor on K bearings is one array (B, K, L): slot k holds bearing k's
 film Φ_k and (with a loss factor) its foil state W_k; the rotor's coordinates, velocities
-and τ are the tail of slot 0 (:mod:`.rotor_system`).
+and τ are the tail of slot 0 (:mod:`.rotor_system`), 2n + 1 entries for a structure of n
+degrees of freedom.
 """
 from __future__ import annotations
 
@@ -16,8 +17,9 @@ import numpy as np
 @dataclass(frozen=True)
 class Layout:
     """Where each part of a packed state sits.  A batch is one array (B, K, L): slot k
-    holds bearing k's Φ (first) and foil state W (next); the rotor's q̃, q̃' and τ are the
-    last 9 entries of slot 0 (the other slots' tails stay 0).  Bearings of one film structure
+    holds bearing k's Φ (first) and foil state W (next); the rotor's q̃, q̃' (n each, the
+    structure's degrees of freedom) and τ are the last 2n + 1 entries of slot 0 (the other
+    slots' tails stay 0).  Bearings of one film structure
     are then one contiguous (B·K, …) view, so the one-bearing kernel runs once for all."""
 
     phi: tuple          # per bearing: shape of Φ
@@ -25,11 +27,12 @@ class Layout:
     width: int          # L
     phi_size: tuple = ()    # per bearing: entries of Φ
     foil_size: tuple = ()   # per bearing: entries of W (0 without a foil state)
+    dofs: int = 4           # n, the rotor structure's degrees of freedom
 
     @property
     def rotor(self) -> int:
-        """Start of q̃ in slot 0 (then q̃' at +4, τ at +8)."""
-        return self.width - 9
+        """Start of q̃ in slot 0 (then q̃' at +n, τ at +2n)."""
+        return self.width - (2 * self.dofs + 1)
 
     @property
     def filled(self) -> int:
@@ -46,7 +49,7 @@ class Layout:
         return z[:, k, n:n + self.foil_size[k]].reshape((z.shape[0],) + self.foil[k])
 
     def rotor_of(self, z: np.ndarray) -> np.ndarray:
-        """q̃, q̃' and τ of every run, (B, 9) (a view)."""
+        """q̃, q̃' and τ of every run, (B, 2n + 1) (a view)."""
         return z[:, 0, self.rotor:]
 
 
@@ -60,7 +63,8 @@ def layout(model) -> Layout:
                     (0 if fs is None else int(np.prod(fs.equilibrium.shape))))
     sizes = tuple(int(np.prod(p)) for p in phis)
     foil_sizes = tuple(0 if f is None else int(np.prod(f)) for f in foils)
-    return Layout(tuple(phis), tuple(foils), width + 9, sizes, foil_sizes)
+    n = int(model.dofs)
+    return Layout(tuple(phis), tuple(foils), width + 2 * n + 1, sizes, foil_sizes, n)
 
 
 def empty_states(model, batch: int) -> np.ndarray:

@@ -56,8 +56,9 @@ CONTACT_FILM = 0.02
 class RotorRun:
     """What a rotor transient kept (module docstring), for a batch of B runs, K bearings.
 
-    tau (n,) [rad of τ = ω_ref t]; q (B, n, 4): rotor coordinates x, y [m], slopes [rad]
-    (NaN after a run's contact); min_film (B, K, n): smallest film H of each bearing since
+    tau (n,) [rad of τ = ω_ref t]; q (B, n, d): the structure's d coordinates (the rigid
+    body's x, y [m] and slopes [rad]; ``model.structure.dof_names``) (NaN after a run's
+    contact); min_film (B, K, n): smallest film H of each bearing since
     the previous sample [-]; run_min_film (B, K) and run_min_film_tau (B, K): the smallest
     film of the whole run and when; max_deflection (B, K): largest foil deflection W [-];
     contact (B,) bool, contact_tau (B,), contact_bearing (B,) (index, −1 none),
@@ -101,10 +102,14 @@ class RotorRun:
         return self.runs.speed[run] * self.tau + 0.5 * self.runs.ramp[run] * self.tau ** 2
 
     def journal(self, run: int = 0, bearing: int = 0) -> tuple[np.ndarray, np.ndarray]:
-        """(x, y) of the journal at ``bearing`` [m], global frame, from the bearing centre."""
+        """(x, y) of the journal at ``bearing`` [m], global frame, from the bearing centre
+        (S(z_k) q of the structure; the rigid body's x + z ψx, y + z ψy)."""
         z = self.model.bearings[bearing].position
         q = self.q[run]
-        return q[:, 0] + z * q[:, 2], q[:, 1] + z * q[:, 3]
+        if self.model.rigid:
+            return q[:, 0] + z * q[:, 2], q[:, 1] + z * q[:, 3]
+        s = self.model.station(z)
+        return q @ s[0], q @ s[1]
 
     @property
     def revolutions(self) -> float:
@@ -151,7 +156,8 @@ def integrate_rotor(model: RotorTransientModel, batch: Runs, duration: float,
                              "the batch (rotor_setup.equilibrium_states)")
     for b in model.bearings:
         b.tm.law.check_engine(method, damped=b.tm.foil_state is not None)
-    lay.rotor_of(z)[:, 8] = 0.0
+    dofs = lay.dofs
+    lay.rotor_of(z)[:, 2 * dofs] = 0.0
     rhs = RotorRightHandSide(model, batch, track_deflection=foil_travel is not None)
     top = float(np.max(np.maximum(batch.speed, batch.speed_at(duration))))
     rho = rhs.stiffness(z)
@@ -169,7 +175,7 @@ def integrate_rotor(model: RotorTransientModel, batch: Runs, duration: float,
     per_sample = max(1, int(round(sample_every / dt)))
     nb, k = batch.size, len(model.bearings)
     live = np.arange(nb)
-    q_now = np.full((nb, 4), np.nan)
+    q_now = np.full((nb, dofs), np.nan)
     h_low = np.full((nb, k), np.inf)                 # since the last sample
     run_min = np.full((nb, k), np.inf)
     run_min_tau = np.full((nb, k), np.nan)
@@ -194,7 +200,7 @@ def integrate_rotor(model: RotorTransientModel, batch: Runs, duration: float,
         hs.append(h_low.copy())
         h_low[live] = np.inf
 
-    record(tau, lay.rotor_of(z)[:, :4])
+    record(tau, lay.rotor_of(z)[:, :dofs])
     h_low[:] = run_min
     next_sample = sample_every                        # follow: the uniform sample grid
     done_revs = 0
@@ -215,7 +221,7 @@ def integrate_rotor(model: RotorTransientModel, batch: Runs, duration: float,
                 failure = f"the foil recovery failed at τ = {tau:.4g}: {err}"
                 break
             tau += h
-            if not np.all(np.isfinite(lay.rotor_of(z)[:, :8])):
+            if not np.all(np.isfinite(lay.rotor_of(z)[:, :2 * dofs])):
                 failure = (f"the integration blew up (non-finite state) at τ = {tau:.4g} "
                            f"with Δτ = {dt:.4g}" + (f" and {stages} stages"
                                                     if method == "rkc" else ""))
@@ -246,9 +252,9 @@ def integrate_rotor(model: RotorTransientModel, batch: Runs, duration: float,
                     next_sample += sample_every
                 ended = tau >= duration - 1e-9 * dt
                 if (touching.any() or ended) and abs(taus[-1] - tau) > 1e-9 * h:
-                    record(tau, lay.rotor_of(z)[:, :4])
+                    record(tau, lay.rotor_of(z)[:, :dofs])
             elif step % per_sample == 0 or step == n_steps or touching.any():
-                record(tau, lay.rotor_of(z)[:, :4])
+                record(tau, lay.rotor_of(z)[:, :dofs])
             if touching.any():
                 if touching.all():
                     break

@@ -25,8 +25,9 @@ from ..inputs.conversions import rpm_to_rad_per_s
 from ..inputs.grid import Grid
 from ..static import SolverCache, StaticSolution, solve_static
 from .rotor_system import (BearingFilm, ImbalancePlane, RotorTransientModel, empty_states,
-                           layout, rotation, rotor_transient_model, station_matrix)
-from .system import rigid_film, transient_model
+                           layout, rigid_structure, rotation, station_matrix,
+                           structure_transient_model)
+from .system import film_force, rigid_film, transient_model
 
 
 @dataclass(frozen=True)
@@ -43,10 +44,17 @@ class RotorBearing:
 
 @dataclass(frozen=True, eq=False)
 class RotorInput:
-    """The rotor as the transient engine needs it (SI; coordinates of
-    :data:`gfbopt.transient.rotor_system.DOF`): mass_matrix, gyroscopic (per unit spin
-    speed) (4, 4); bearings : two RotorBearing; static_force Q_s (4,) [N, N m];
-    imbalance : ImbalancePlane per plane; description : what the outputs state about it."""
+    """The rotor as the transient engine needs it (SI): mass_matrix, gyroscopic (per unit
+    spin speed) (4, 4) of the rigid body (coordinates :data:`gfbopt.transient.rotor_system.DOF`,
+    positions from the CG); bearings : two RotorBearing; static_force (4,) [N, N m]: the
+    applied static force and its moment about the axial origin (what the two bearings carry,
+    by force and moment balance); imbalance : ImbalancePlane per plane; description : what
+    the outputs state about it.
+
+    structure : another rotor structure (:class:`gfbopt.rotor.structure.Structure`, e.g. a
+    condensed shaft, positions from its first end), None for the rigid body of the matrices;
+    generalised_force : its generalised static force Q_s (n,) [N] (gravity spread over its
+    mass, side loads at their stations), required with a structure."""
 
     mass_matrix: np.ndarray
     gyroscopic: np.ndarray
@@ -54,10 +62,43 @@ class RotorInput:
     static_force: np.ndarray
     imbalance: tuple = ()
     description: dict = field(default_factory=dict)
+    structure: object = None
+    generalised_force: Optional[np.ndarray] = None
 
     def with_imbalance(self, imbalance: tuple) -> "RotorInput":
         return RotorInput(self.mass_matrix, self.gyroscopic, self.bearings,
-                          self.static_force, tuple(imbalance), self.description)
+                          self.static_force, tuple(imbalance), self.description,
+                          self.structure, self.generalised_force)
+
+    def rotor_structure(self):
+        """The structure the transient integrates (the rigid body of the matrices if none)."""
+        if self.structure is None:
+            return rigid_structure(self.mass_matrix, self.gyroscopic)
+        return self.structure
+
+    def structure_force(self) -> np.ndarray:
+        """Q_s (n,) of :meth:`rotor_structure` [N, N m]."""
+        if self.structure is None:
+            return np.asarray(self.static_force, dtype=float)
+        if self.generalised_force is None:
+            raise ParameterError("generalised_force", None, "a rotor structure needs its "
+                                 "generalised static force (gravity_force)")
+        return np.asarray(self.generalised_force, dtype=float)
+
+
+def gravity_force(structure, weight, loads=()) -> np.ndarray:
+    """Q_s (n,) [N] of ``structure``: the weight (w_x, w_y) [N] spread over its mass
+    (M r, r the rigid translation: 1 on the degrees of freedom named ``x…``/``y…`` times
+    w / total mass, 0 on tilts and modal coordinates) and the point ``loads`` (f_x, f_y, z)
+    [N, N, m] at their stations S(z)ᵀ f.  The rigid body's is (w_x, w_y, 0, 0) + loads."""
+    names = [str(n) for n in structure.dof_names]
+    g = np.asarray(weight, dtype=float) / float(structure.total_mass)
+    shape = np.array([g[0] if n.startswith("x") else g[1] if n.startswith("y") else 0.0
+                      for n in names])
+    q = np.asarray(structure.mass(), dtype=float) @ shape
+    for fx, fy, z in loads:
+        q = q + np.asarray(structure.station(z), dtype=float).T @ np.array([fx, fy], float)
+    return q
 
 
 def static_force_of(loads) -> np.ndarray:
@@ -130,8 +171,8 @@ def build_model(rotor: RotorInput, model_speed_rpm: float, grid: Grid, *,
         films.append(BearingFilm(tm, b.geometry, float(b.position), float(psi), omega_m,
                                  b.label or f"bearing {k + 1}"))
     ref = omega_m if reference_speed_rpm is None else rpm_to_rad_per_s(reference_speed_rpm)
-    model = rotor_transient_model(rotor.mass_matrix, rotor.gyroscopic, films,
-                                  rotor.static_force, rotor.imbalance, ref)
+    model = structure_transient_model(rotor.rotor_structure(), films, rotor.structure_force(),
+                                      rotor.imbalance, ref)
     return model, solutions
 
 
@@ -176,10 +217,13 @@ def iso_g_imbalance(grade_mm_per_s: float, mass: float, max_speed_rpm: float) ->
 def equilibrium_states(model: RotorTransientModel, batch: int, solutions=None) -> np.ndarray:
     """States (B, K, L) of the static equilibrium: each film at its bearing's static
     solution (``solutions``, default the one its model was built from), the rotor where
-    both journals sit at their equilibria (T_k q = R(ψ_k) c_k (X_k, Y_k), four equations)."""
+    both journals sit at their equilibria, S_k q = R(ψ_k) c_k (X_k, Y_k) — the rigid body's
+    four equations; a structure with stiffness also K q = Q_s + Σ S_kᵀ F_k (its static
+    deflection under the films' forces, whose balance the statics made; least squares,
+    exact when they balance)."""
     lay = layout(model)
     z = empty_states(model, 1)
-    targets, stations = [], []
+    targets, stations, forces = [], [], np.zeros(model.dofs)
     for k, b in enumerate(model.bearings):
         sol = b.tm.static if solutions is None else solutions[k]
         if sol.pressure.shape != b.tm.shape:
@@ -193,18 +237,32 @@ def equilibrium_states(model: RotorTransientModel, batch: int, solutions=None) -
             w = sol.film - hr[:, None]
             lay.foil_of(z, k)[0] = w if b.tm.foil_state.layout == "nodes" else w[:, 0]
         targets.append(rotation(b.frame_angle) @ np.array([x0, y0]) * b.clearance)
-        stations.append(station_matrix(b.position))
-    q = np.linalg.solve(np.vstack(stations), np.concatenate(targets))
-    lay.rotor_of(z)[0, :4] = q / model.clearance_ref
+        stations.append(model.station(b.position))
+        if not model.rigid:
+            fx, fy = film_force(sol.pressure[None], b.tm)
+            forces += (model.from_local()[k] @ np.array([float(fx[0]), float(fy[0])]))
+    if model.rigid:
+        q = np.linalg.solve(np.vstack(stations), np.concatenate(targets))
+    else:
+        system = np.vstack([model.stiffness] + stations)
+        rhs = np.concatenate([model.static_force + forces] + targets)
+        q = np.linalg.lstsq(system, rhs, rcond=None)[0]
+    lay.rotor_of(z)[0, :model.dofs] = q / model.clearance_ref
     return np.repeat(z, batch, axis=0)
 
 
 def set_station_velocities(model: RotorTransientModel, z: np.ndarray, velocities) -> np.ndarray:
     """Set q̃' so that the journals move at ``velocities`` (K, 2) [clearances per rad of τ,
-    global x, y at each bearing] (one set for every run, or (B, K, 2)); returns ``z``."""
+    global x, y at each bearing] (one set for every run, or (B, K, 2)); returns ``z``.  A
+    structure of more than four degrees of freedom gets the smallest q̃' that does it."""
     v = np.broadcast_to(np.asarray(velocities, dtype=float), (z.shape[0], len(model.bearings), 2))
-    stations = np.vstack([station_matrix(b.position) for b in model.bearings])
+    stations = np.vstack([model.station(b.position) for b in model.bearings])
     scale = np.array([b.clearance / model.clearance_ref for b in model.bearings])
     rhs = (v * scale[None, :, None]).reshape(z.shape[0], -1)
-    layout(model).rotor_of(z)[:, 4:8] = np.linalg.solve(stations, rhs.T).T
+    n = model.dofs
+    if stations.shape[0] == n:
+        velocity = np.linalg.solve(stations, rhs.T).T
+    else:
+        velocity = np.linalg.lstsq(stations, rhs.T, rcond=None)[0].T
+    layout(model).rotor_of(z)[:, n:2 * n] = velocity
     return z

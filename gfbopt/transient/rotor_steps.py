@@ -25,24 +25,34 @@ def rotor_frequency(rhs: RotorRightHandSide, z: np.ndarray, h: float = 1e-6) -> 
     """Fastest rotor frequency [rad per rad of τ] on the films' instantaneous stiffness.
 
     ∂q̃''/∂q̃ at fixed films (central differences, every run at once), with the gyroscopic
-    term: the largest |Im λ| of [[0, I], [∂q̃''/∂q̃, −r M⁻¹G]] over the runs.
+    term: the largest |Im λ| of [[0, I], [∂q̃''/∂q̃, ∂q̃''/∂q̃']] over the runs.  It holds the
+    structure's own frequencies (a shaft's stiffness K is in ∂q̃''/∂q̃), so the step cap
+    T_rotor/30 respects the highest mode the structure keeps.  The rigid body's velocity
+    block is −r (M⁻¹G)ᵀ, as this rule was measured with (the gyroscopic term of the
+    opposite spin: the same frequencies for an isotropic support); a structure with
+    stiffness or damping gets ∂q̃''/∂q̃' by central differences too (2n more evaluations).
     """
-    lay = rhs.layout
-    cols = []
-    for j in range(4):
-        plus, minus = z.copy(), z.copy()
-        lay.rotor_of(plus)[:, j] += h
-        lay.rotor_of(minus)[:, j] -= h
-        cols.append((lay.rotor_of(rhs(plus))[:, 4:8] - lay.rotor_of(rhs(minus))[:, 4:8])
-                    / (2 * h))
-    stiff = np.stack(cols, axis=-1)                                   # (B, 4, 4)
-    rate = rhs.runs.speed_at(lay.rotor_of(z)[:, 8])
+    lay, n = rhs.layout, rhs.dofs
+
+    def columns(offset: int) -> np.ndarray:
+        cols = []
+        for j in range(n):
+            plus, minus = z.copy(), z.copy()
+            lay.rotor_of(plus)[:, offset + j] += h
+            lay.rotor_of(minus)[:, offset + j] -= h
+            cols.append((lay.rotor_of(rhs(plus))[:, n:2 * n]
+                         - lay.rotor_of(rhs(minus))[:, n:2 * n]) / (2 * h))
+        return np.stack(cols, axis=-1)                                # (B, n, n)
+
+    stiff = columns(0)
+    rate = rhs.runs.speed_at(lay.rotor_of(z)[:, 2 * n])
+    turn = columns(n) if rhs.elastic else None
     fastest = 0.0
     for b in range(z.shape[0]):
-        comp = np.zeros((8, 8))
-        comp[:4, 4:] = np.eye(4)
-        comp[4:, :4] = stiff[b]
-        comp[4:, 4:] = -rate[b] * rhs.gyro
+        comp = np.zeros((2 * n, 2 * n))
+        comp[:n, n:] = np.eye(n)
+        comp[n:, :n] = stiff[b]
+        comp[n:, n:] = -rate[b] * rhs.gyro if turn is None else turn[b]
         fastest = max(fastest, float(np.abs(np.linalg.eigvals(comp).imag).max()))
     return fastest
 
@@ -51,7 +61,7 @@ def rotor_period(rhs: RotorRightHandSide, z: np.ndarray, h: float = 1e-6) -> flo
     """Shortest period [rad of τ] of the rotor on the films' instantaneous stiffness
     (:func:`rotor_frequency`); at least one shaft revolution at the run's speed (as the
     one-bearing engine's rule)."""
-    rate = rhs.runs.speed_at(rhs.layout.rotor_of(z)[:, 8])
+    rate = rhs.runs.speed_at(rhs.layout.rotor_of(z)[:, 2 * rhs.dofs])
     return 2 * math.pi / max(rotor_frequency(rhs, z, h), float(np.max(rate)))
 
 
@@ -105,13 +115,13 @@ def _stages_at(dt: float, rho: float, stages, fixed_stages: bool) -> tuple:
 
 def _hermite(lay, before: np.ndarray, after: np.ndarray, tau0: float, h: float,
              at: float) -> np.ndarray:
-    """q̃ (B, 4) at τ = ``at`` inside the step [τ0, τ0 + h]: the cubic Hermite interpolant
+    """q̃ (B, n) at τ = ``at`` inside the step [τ0, τ0 + h]: the cubic Hermite interpolant
     of q̃ and q̃' at both ends (fourth order, above the second-order step's own error)."""
-    a, b = lay.rotor_of(before), lay.rotor_of(after)
+    a, b, n = lay.rotor_of(before), lay.rotor_of(after), lay.dofs
     s = (at - tau0) / h
     s2, s3 = s * s, s * s * s
-    return ((2 * s3 - 3 * s2 + 1) * a[:, :4] + (s3 - 2 * s2 + s) * h * a[:, 4:8]
-            + (-2 * s3 + 3 * s2) * b[:, :4] + (s3 - s2) * h * b[:, 4:8])
+    return ((2 * s3 - 3 * s2 + 1) * a[:, :n] + (s3 - 2 * s2 + s) * h * a[:, n:2 * n]
+            + (-2 * s3 + 3 * s2) * b[:, :n] + (s3 - s2) * h * b[:, n:2 * n])
 
 
 def _check_stages(stages):

@@ -1,8 +1,12 @@
-"""The whole rigid rotor and the films of both its bearings as one method-of-lines system.
+"""The whole rotor and the films of both its bearings as one method-of-lines system.
 
-Rotor (4 degrees of freedom, SI, gfbopt.rotor.rigid's convention)
---------------------------------------------------------------
-Global frame: x along gravity (the static load line by default), y 90° ahead of x in the
+Rotor (a structure of n degrees of freedom, :mod:`.rotor_model`)
+----------------------------------------------------------------
+Any :class:`gfbopt.rotor.structure.Structure`: M q̈ + (C + ω G) q̇ + K q = Σ_k S_kᵀ F_k + Q_s
++ Q_u(t), the bearings, imbalance planes and probes at stations S(z) (2 × n); a shaft is
+condensed on its bearing stations (:mod:`gfbopt.rotor.condensed`) before it gets here.  The
+rigid body (the rest of this section; gfbopt.rotor.rigid's convention) keeps the arithmetic
+it always had, K = C = 0 adding no term.  Global frame: x along gravity (the static load line by default), y 90° ahead of x in the
 direction of rotation, z along the shaft so that the spin ω is positive about +z.  The
 generalised coordinates are q = (x, y, a_x, a_y): the centre-of-gravity displacement [m] and
 the slopes of the shaft axis dx/dz, dy/dz [rad].  A station at axial position z (from the CG)
@@ -44,7 +48,7 @@ its time constant in seconds, t_f = τ_f/ω_m, through a run-up (a viscous eleme
 the hysteretic loss at the reference whirl frequency ν_ref ω_m/2π of the model speed).  Each
 run of a batch has its own speed ω = ω_ref (r0 + a τ), shaft angle ϑ = r0 τ + a τ²/2.
 
-State of a batch of B runs, one row each:  [Φ_1 … Φ_K | W_1 … W_K | q̃ (4) | q̃' (4) | τ],
+State of a batch of B runs, one row each:  [Φ_1 … Φ_K | W_1 … W_K | q̃ (n) | q̃' (n) | τ],
 q̃ = q/c_ref (c_ref the first bearing's clearance), primes d/dτ.  τ is carried as a state
 (τ' = 1) so that every Runge–Kutta stage sees its own time (both methods integrate it exactly).
 """
@@ -57,153 +61,16 @@ from typing import Optional
 import numpy as np
 
 from ..errors import ParameterError
-from ..inputs.bearing import BearingGeometry
-from ..inputs.rotor_system import RotorBody
-from ..rotor.rigid import gyroscopic_matrix, mass_matrix, rotation, station_matrix
 from .foil_state import foil_bound
 from .rotor_films import FusedFilms, AtSpeed, largest_deflection, fusable
 from .rotor_batch import Runs, runs  # noqa: F401  (re-exported: the batch of runs)
+from .rotor_model import (DOF, BearingFilm, ImbalancePlane,  # noqa: F401  (re-exported)
+                          RotorTransientModel, imbalance_shapes, rigid_rotor_matrices,
+                          rigid_structure, rotation,
+                          rotor_transient_model, station_matrix, structure_transient_model)
 from .rotor_layout import Layout, empty_states, layout, stackable  # noqa: F401  (re-exported)
 from .system import (State, TransientModel, film_force, flux_residual, pressure_and_film,
                      stiffness_bound)
-
-#: names of the generalised coordinates, in order (gfbopt.rotor.rigid's q = (x, y, ψx, ψy))
-DOF = ("x", "y", "psi_x", "psi_y")
-
-
-def rigid_rotor_matrices(mass: float, transverse_inertia: float,
-                         polar_inertia: float) -> tuple[np.ndarray, np.ndarray]:
-    """(M, G) of a rigid rotor [kg, kg m²] in the coordinates :data:`DOF` (gfbopt.rotor.rigid's
-    :func:`~gfbopt.rotor.rigid.mass_matrix` and :func:`~gfbopt.rotor.rigid.gyroscopic_matrix`;
-    the inputs are checked by :class:`~gfbopt.inputs.rotor_system.RotorBody`)."""
-    body = RotorBody(mass, transverse_inertia, polar_inertia)
-    return mass_matrix(body), gyroscopic_matrix(body)
-
-
-@dataclass(frozen=True, eq=False)
-class BearingFilm:
-    """One bearing of the rotor: its transient film model and where it sits.
-
-    tm : the one-bearing model (about the bearing's equilibrium at ``model_speed``);
-    geometry : the bearing in SI (R, c, p_a); position : z [m] from the CG;
-    frame_angle : ψ [rad], the bearing's load line (its X axis) from the global x, in the
-    direction of rotation; model_speed : ω_m [rad/s] at which ``tm`` was built;
-    label : for outputs.
-    """
-
-    tm: TransientModel
-    geometry: BearingGeometry
-    position: float
-    frame_angle: float
-    model_speed: float
-    label: str = ""
-
-    @property
-    def force_scale(self) -> float:
-        """p_a R² [N per unit non-dimensional force]."""
-        return self.geometry.ambient_pressure * self.geometry.radius ** 2
-
-    @property
-    def clearance(self) -> float:
-        return self.geometry.radial_clearance
-
-
-@dataclass(frozen=True)
-class ImbalancePlane:
-    """amount u = m e [kg m], > 0; phase φ [rad] from the shaft's reference mark in the
-    direction of rotation; position z [m] from the CG."""
-
-    amount: float
-    phase: float
-    position: float
-
-
-@dataclass(frozen=True, eq=False)
-class RotorTransientModel:
-    """The rotor and its bearing films (module docstring); everything in SI.
-
-    mass_matrix M, gyroscopic G (per unit spin speed) : (4, 4); bearings : BearingFilm per
-    bearing; static_force Q_s (4,) [N, N m]; imbalance : ImbalancePlane per plane;
-    reference_speed ω_ref [rad/s] (the time unit τ = ω_ref t).
-    """
-
-    mass_matrix: np.ndarray
-    gyroscopic: np.ndarray
-    bearings: tuple
-    static_force: np.ndarray
-    imbalance: tuple
-    reference_speed: float
-
-    @property
-    def clearance_ref(self) -> float:
-        return self.bearings[0].clearance
-
-    @property
-    def stations(self) -> np.ndarray:
-        """T_k of each bearing, (K, 2, 4)."""
-        return np.array([station_matrix(b.position) for b in self.bearings])
-
-    def to_local(self) -> np.ndarray:
-        """A_k (K, 2, 4): q̃ → (X_k, Y_k), the journal in bearing k's frame over c_k."""
-        c = self.clearance_ref
-        return np.array([rotation(-b.frame_angle) @ station_matrix(b.position) * (c / b.clearance)
-                         for b in self.bearings])
-
-    def from_local(self) -> np.ndarray:
-        """B_k (K, 4, 2): bearing k's non-dimensional film force → generalised force [N]."""
-        return np.array([station_matrix(b.position).T @ rotation(b.frame_angle) * b.force_scale
-                         for b in self.bearings])
-
-
-def rotor_transient_model(mass_matrix, gyroscopic, bearings, static_force, imbalance=(),
-                          reference_speed: Optional[float] = None) -> RotorTransientModel:
-    """Check and assemble a :class:`RotorTransientModel` (two bearings at distinct positions;
-    ``reference_speed`` defaults to the first bearing's model speed)."""
-    m = np.asarray(mass_matrix, dtype=float)
-    g = np.asarray(gyroscopic, dtype=float)
-    if m.shape != (4, 4) or g.shape != (4, 4) or not np.all(np.isfinite(m)) \
-            or not np.all(np.isfinite(g)):
-        raise ParameterError("mass_matrix", m.shape, "M and G must be finite 4 × 4 matrices")
-    if np.any(np.linalg.eigvalsh(0.5 * (m + m.T)) <= 0):
-        raise ParameterError("mass_matrix", np.diag(m).tolist(), "must be positive definite")
-    bearings = tuple(bearings)
-    if len(bearings) != 2:
-        raise ParameterError("bearings", len(bearings), "a rigid rotor on exactly two "
-                             "bearings is supported")
-    if bearings[0].position == bearings[1].position:
-        raise ParameterError("bearings.position", bearings[0].position,
-                             "the two bearings must sit at different axial positions")
-    q = np.asarray(static_force, dtype=float).ravel()
-    if q.shape != (4,) or not np.all(np.isfinite(q)):
-        raise ParameterError("static_force", static_force, "must be 4 finite numbers "
-                             "(generalised force of the coordinates x, y, slope_x, slope_y)")
-    for k, plane in enumerate(imbalance):
-        if not (math.isfinite(plane.amount) and plane.amount > 0):
-            raise ParameterError(f"imbalance[{k}].amount", plane.amount, "must be > 0 [kg m]")
-    omega = bearings[0].model_speed if reference_speed is None else float(reference_speed)
-    if not (math.isfinite(omega) and omega > 0):
-        raise ParameterError("reference_speed", reference_speed, "must be > 0 [rad/s]")
-    return RotorTransientModel(m, g, bearings, q, tuple(imbalance), omega)
-
-
-def imbalance_shapes(model: RotorTransientModel) -> tuple[np.ndarray, np.ndarray]:
-    """(U, V) [N at ω_ref], the generalised force of every imbalance plane at once.
-
-    A plane j (amount u_j, phase φ_j, station T_j with rows T_j0, T_j1) at shaft angle
-    ϑ_j = ϑ + φ_j pushes with u_j ω_ref² [r² (cos ϑ_j, sin ϑ_j) + a (sin ϑ_j, −cos ϑ_j)]; with
-    cos ϑ_j, sin ϑ_j expanded in cos ϑ, sin ϑ this is Q_u = α U + β V (α = r² cos ϑ + a sin ϑ,
-    β = r² sin ϑ − a cos ϑ) with U = Σ u_j ω_ref² (cos φ_j T_j0 + sin φ_j T_j1) and
-    V = Σ u_j ω_ref² (cos φ_j T_j1 − sin φ_j T_j0): two shapes, whatever the planes."""
-    w2 = model.reference_speed ** 2
-    u = np.zeros(4)
-    v = np.zeros(4)
-    for p in model.imbalance:
-        t = station_matrix(p.position)
-        c, s = math.cos(p.phase), math.sin(p.phase)
-        u += p.amount * w2 * (c * t[0] + s * t[1])
-        v += p.amount * w2 * (c * t[1] - s * t[0])
-    return u, v
-
 
 # ------------------------------------------------------------------ the system
 class RotorRightHandSide:
@@ -222,24 +89,33 @@ class RotorRightHandSide:
         self.stack = stackable(model) if stack is None else stack
         self.track_deflection = track_deflection
         self.fuse = fusable(model) if fuse is None else fuse   # fuse=False: one-bearing kernels
-        k = len(model.bearings)
-        self.to_local = np.vstack(list(model.to_local())).T.copy()        # (4, 2K)
-        self.from_local = np.hstack(list(model.from_local())).T.copy()    # (2K, 4)
+        k, n = len(model.bearings), model.dofs
+        self.dofs = n
+        self.to_local = np.vstack(list(model.to_local())).T.copy()        # (n, 2K)
+        self.from_local = np.hstack(list(model.from_local())).T.copy()    # (2K, n)
         c, w = model.clearance_ref, model.reference_speed
         minv = np.linalg.inv(model.mass_matrix) / (c * w * w)
         scale = batch.inertia_scale
         self.uniform_mass = bool(np.all(scale == scale[0])) if scale.size else True
         self.accel = (minv / scale[0]).T.copy() if self.uniform_mass and scale.size else None
-        self.accel_each = minv[None] / scale[:, None, None]                # (B, 4, 4)
+        self.accel_each = minv[None] / scale[:, None, None]                # (B, n, n)
         self.gyro = (np.linalg.inv(model.mass_matrix) @ model.gyroscopic).T.copy()
         self.static = model.static_force
+        # the structure's own forces, −C q̇ − K q [N] from q̃', q̃ (none for the rigid body)
+        self.elastic = not model.rigid and bool(np.any(model.stiffness) or
+                                                np.any(model.damping))
+        self.damp_force = -(model.damping.T * (c * w)) if self.elastic else None   # q̃' → N
+        self.stiff_force = -(model.stiffness.T * c) if self.elastic else None       # q̃ → N
         self.shape_u, self.shape_v = imbalance_shapes(model)         # Q_u = α U + β V
         self._planes = bool(model.imbalance)
-        if self.accel is not None:   # q̃'' = [f | α β | r q̃'] @ combined + M⁻¹Q_s, one product
-            self.combined = np.vstack([self.from_local @ self.accel, self.shape_u @ self.accel,
-                                       self.shape_v @ self.accel, -self.gyro])
+        if self.accel is not None:   # q̃'' = [f | α β | r q̃' (| q̃' | q̃)] @ combined + M⁻¹Q_s
+            blocks = [self.from_local @ self.accel, self.shape_u @ self.accel,
+                      self.shape_v @ self.accel, -self.gyro]
+            if self.elastic:
+                blocks += [self.damp_force @ self.accel, self.stiff_force @ self.accel]
+            self.combined = np.vstack(blocks)
             self.static_accel = self.static @ self.accel
-            self._stack = np.zeros((batch.size, 2 * k + 6))
+            self._stack = np.zeros((batch.size, 2 * k + 2 + (3 if self.elastic else 1) * n))
         self.film_divisor = [2.0 * b.tm.bearing_number * (w / b.model_speed)
                              for b in model.bearings]
         self.foil_factor = [b.model_speed / w for b in model.bearings]
@@ -266,7 +142,8 @@ class RotorRightHandSide:
     # ---------------------------------------------------------------- pieces
     def journals(self, z: np.ndarray) -> np.ndarray:
         """(X_k, Y_k) of every run, (B, K, 2)."""
-        return np.dot(self.layout.rotor_of(z)[:, :4], self.to_local).reshape(z.shape[0], -1, 2)
+        return np.dot(self.layout.rotor_of(z)[:, :self.dofs], self.to_local).reshape(
+            z.shape[0], -1, 2)
 
     def _speed(self, tau: np.ndarray):
         """ω/ω_ref: a float when every run turns at the same speed, else (B,)."""
@@ -305,10 +182,10 @@ class RotorRightHandSide:
     # ---------------------------------------------------------------- RHS
     def __call__(self, z: np.ndarray) -> np.ndarray:
         self.evaluations += 1
-        nb, start = z.shape[0], self._rotor_start
+        nb, start, n = z.shape[0], self._rotor_start, self.dofs
         rotor = z[:, 0, start:]                        # q̃, q̃', τ (Layout.rotor_of)
-        tau = rotor[:, 8]
-        xy = np.dot(rotor[:, :4], self.to_local).reshape(nb, -1, 2)       # journals()
+        tau = rotor[:, 2 * n]
+        xy = np.dot(rotor[:, :n], self.to_local).reshape(nb, -1, 2)       # journals()
         speed = self._speed(tau)
         out = np.empty_like(z)
         out[:, :, self._filled:] = 0.0                 # padding (the rotor's tail is set below)
@@ -317,31 +194,36 @@ class RotorRightHandSide:
                                          self.max_deflection if self.track_deflection else None)
         else:
             forces = self._films_one_by_one(z, xy, speed, out)
-        velocity = rotor[:, 4:8]
+        velocity = rotor[:, n:2 * n]
         tail = out[:, 0, start:]
-        tail[:, :4] = velocity
-        tail[:, 8] = 1.0
+        tail[:, :n] = velocity
+        tail[:, 2 * n] = 1.0
         if self.accel is not None and nb == self._stack.shape[0]:
             x, two_k = self._stack, forces.shape[1] * 2
             x[:, :two_k] = forces.reshape(nb, -1)
             if self._planes:
                 self._phase_terms(tau, x[:, two_k:two_k + 2])
             np.multiply(velocity, speed if isinstance(speed, float) else speed[:, None],
-                        out=x[:, two_k + 2:])
+                        out=x[:, two_k + 2:two_k + 2 + n])
+            if self.elastic:
+                x[:, two_k + 2 + n:two_k + 2 + 2 * n] = velocity
+                x[:, two_k + 2 + 2 * n:] = rotor[:, :n]
             acc = np.dot(x, self.combined)
             acc += self.static_accel
-            tail[:, 4:8] = acc
+            tail[:, n:2 * n] = acc
             return out
         load = np.dot(forces.reshape(nb, -1), self.from_local)
         load += self.static
         if self._planes:
             load += self._imbalance(tau)
+        if self.elastic:
+            load += np.dot(velocity, self.damp_force) + np.dot(rotor[:, :n], self.stiff_force)
         acc = (np.dot(load, self.accel) if self.accel is not None
                else np.einsum("bij,bj->bi", self.accel_each, load))
         turn = np.dot(velocity, self.gyro)
         turn *= speed if isinstance(speed, float) else speed[:, None]
         acc -= turn
-        tail[:, 4:8] = acc
+        tail[:, n:2 * n] = acc
         return out
 
     def _films_one_by_one(self, z, xy, speed, out) -> np.ndarray:
@@ -405,7 +287,7 @@ class RotorRightHandSide:
         return out
 
     def _imbalance(self, tau: np.ndarray) -> np.ndarray:
-        """Q_u (B, 4) [N] of every run at τ (module docstring)."""
+        """Q_u (B, n) [N] of every run at τ (module docstring)."""
         ab = self._phase_terms(tau, np.empty((tau.size, 2)))
         return np.outer(ab[:, 0], self.shape_u) + np.outer(ab[:, 1], self.shape_v)
 
@@ -414,7 +296,7 @@ class RotorRightHandSide:
         """Gershgorin bound ρ [per rad of τ] of the films and foil states at ``z`` (the
         one-bearing bound, with each bearing's Λ at its current speed)."""
         xy = self.journals(z)
-        r = float(np.max(self.runs.speed_at(self.layout.rotor_of(z)[:, 8])))
+        r = float(np.max(self.runs.speed_at(self.layout.rotor_of(z)[:, 2 * self.dofs])))
         rho = 0.0
         for k, b in enumerate(self.model.bearings):
             tm = b.tm

@@ -1,0 +1,115 @@
+"""The rotor transient on the structure contract (gfbopt.rotor.structure): a rotor of any
+size integrates.
+
+* The generic n-degree-of-freedom path (least-squares equilibrium, stations from the
+  structure, journals S(z) q) run on the rigid body is the rigid path to round-off (the
+  rigid path itself is unchanged bit for bit: the rigid body keeps its own arithmetic).
+* problems/rotors/flexible_rotor.toml (20 Timoshenko elements, condensed on its bearing
+  stations with 8 held modes: 12 degrees of freedom) at 20,000 rpm, 36 × 10: its static
+  equilibrium (the shaft's deflection under gravity and the films) is a rest point of the
+  transient, and a kicked run of 3 revolutions stays in its film with the explicit step
+  under T/30 of the structure's highest kept mode (the step rule's rotor period includes
+  the shaft's stiffness).
+"""
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from gfbopt.inputs.grid import Grid
+from gfbopt.inputs.rotor_system import load_rotor
+from gfbopt.rotor.structure import RigidStructure, is_rigid
+from gfbopt.static import SolverCache
+from gfbopt.transient.rotor_io import rotor_input
+from gfbopt.transient.rotor_run import integrate_rotor
+from gfbopt.transient.rotor_setup import (build_model, equilibrium_states, gravity_force,
+                                          set_station_velocities)
+from gfbopt.transient.rotor_system import RotorRightHandSide, runs
+
+ROOT = Path(__file__).resolve().parents[2]
+GRID = Grid(36, 10)
+
+
+class _Generic:
+    """The rigid body seen through the contract only (not recognised as rigid)."""
+
+    kind = "generic"
+
+    def __init__(self, body):
+        self._rigid = RigidStructure(body)
+
+    def __getattr__(self, name):
+        return getattr(self._rigid, name)
+
+
+@pytest.fixture(scope="module")
+def blower():
+    system = load_rotor(ROOT / "problems/rotors/blower.toml")
+    return system, rotor_input(system)
+
+
+def test_the_generic_path_on_the_rigid_body_is_the_rigid_path(blower):
+    system, rigid_input = blower
+    generic = _Generic(system.body)
+    assert not is_rigid(generic)
+    q_s = gravity_force(generic, system.weight_vector,
+                        [(*load.vector, load.position) for load in system.side_loads])
+    np.testing.assert_allclose(q_s, rigid_input.static_force, rtol=0, atol=1e-12)
+    generic_input = type(rigid_input)(rigid_input.mass_matrix, rigid_input.gyroscopic,
+                                      rigid_input.bearings, rigid_input.static_force,
+                                      rigid_input.imbalance, rigid_input.description,
+                                      generic, q_s)
+    cache = SolverCache(GRID)
+    a, _ = build_model(rigid_input, 30_000.0, GRID, cache=cache)
+    b, _ = build_model(generic_input, 30_000.0, GRID, cache=cache)
+    assert a.rigid and not b.rigid
+    za = set_station_velocities(a, equilibrium_states(a, 1), [[1e-3, 0.0], [0.0, 1e-3]])
+    zb = set_station_velocities(b, equilibrium_states(b, 1), [[1e-3, 0.0], [0.0, 1e-3]])
+    np.testing.assert_allclose(zb, za, rtol=0, atol=1e-13)
+    ra, rb = (integrate_rotor(m, runs(1, ramp=1e-3), 2 * math.pi, z.copy())
+              for m, z in ((a, za), (b, zb)))
+    assert ra.evaluations == rb.evaluations and ra.success and rb.success
+    scale = np.abs(ra.q).max()
+    np.testing.assert_allclose(rb.q, ra.q, rtol=0, atol=1e-10 * scale)
+    for k in range(2):
+        np.testing.assert_allclose(rb.journal(0, k), ra.journal(0, k), rtol=0,
+                                   atol=1e-10 * scale)
+
+
+@pytest.fixture(scope="module")
+def flexible():
+    system = load_rotor(ROOT / "problems/rotors/flexible_rotor.toml")
+    rotor = rotor_input(system, imbalance=())
+    model, _ = build_model(rotor, 20_000.0, GRID, cache=SolverCache(GRID))
+    return rotor, model
+
+
+def test_a_flexible_shaft_rests_at_its_static_equilibrium(flexible):
+    rotor, model = flexible
+    assert rotor.structure.size == 12 and not model.rigid
+    z = equilibrium_states(model, 1)
+    rhs = RotorRightHandSide(model, runs(1))
+    n = model.dofs
+    tail = rhs(z)[0, 0, rhs.layout.rotor:]
+    films = np.abs(rhs.from_local @ rhs.accel).max()     # one unit of film force, q̃''
+    assert np.abs(tail[n:2 * n]).max() < 1e-9 * films
+    deflection = z[0, 0, rhs.layout.rotor + 4:rhs.layout.rotor + n]     # held modes η
+    assert np.abs(deflection).max() > 1e-4      # gravity does bend the shaft (η ≠ 0)
+
+
+def test_a_kicked_flexible_rotor_runs_in_its_film_at_the_structures_step(flexible):
+    _, model = flexible
+    z = set_station_velocities(model, equilibrium_states(model, 1),
+                               [[1e-3, 1e-3], [1e-3, 1e-3]])
+    run = integrate_rotor(model, runs(1), 2 * math.pi * 3, z)
+    assert run.success and not run.contact.any()
+    assert run.q.shape[2] == 12 and np.all(np.isfinite(run.q))
+    highest = math.sqrt(np.linalg.eigvals(np.linalg.solve(model.mass_matrix,
+                                                          model.stiffness)).real.max())
+    assert run.time_step * highest / model.reference_speed <= 2 * math.pi / 30
+    for k in range(2):
+        x, y = run.journal(0, k)
+        c = model.bearings[k].clearance
+        assert 0 < np.ptp(x) < 0.1 * c and 0 < np.ptp(y) < 0.1 * c
+    assert run.run_min_film.min() > 0.3
