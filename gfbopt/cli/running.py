@@ -79,7 +79,7 @@ class _Margin:
     def __init__(self, bearing, spec, case, film, rotor, load_newton):
         self.bearing, self.spec, self.case, self.rotor = bearing, spec, case, rotor
         self.load = load_newton
-        self.drag = FilmDrag(film)
+        self.drag = FilmDrag(film, start=coarse_start(case.grid, case.cache))
         self.evaluations = 0
         self.near = None                 # (whirl ratio, root) of the last crossing
 
@@ -94,6 +94,7 @@ class _Margin:
         from ..linear import linear_threshold, linearise
         from ..linear.crossings import local_crossing
         from ..rotor.analysis import equilibrium, resolve_case
+        from ..static import solve_static
 
         self.evaluations += 1
         point = running_point(self.spec, speed, self.drag, prior=prior)
@@ -102,7 +103,13 @@ class _Margin:
         warm = resolve_case(warm_bearing(self.bearing, point), self.rotor, self.load,
                             options=self.case.options, grid=self.case.grid,
                             cache=self.case.cache)
-        sol = equilibrium(warm, speed, self.drag.last)
+        sol = None
+        if self.drag.last is not None:     # Newton from the fixed point's last film
+            model = warm.model(speed)
+            sol = solve_static(model, load=warm.load, solver=warm.cache(model, warm.grid),
+                               initial=self.drag.last, fast_path=True)
+        if sol is None or not sol.success:
+            sol = equilibrium(warm, speed, self.drag.last)
         lin = linearise(sol, warm.cache(sol.model, warm.grid))
         found = None if self.near is None else local_crossing(lin, *self.near)
         if found is not None:
@@ -182,6 +189,26 @@ def running_onset(bearing, spec: RunningSpec, rotor: Rotor, load_newton: Optiona
                        f"at {whirl:.4g} Hz (frozen at {guess:.6g} rpm: "
                        f"{frozen.onset_speed_rpm:.6g} rpm)"))
     return out
+
+
+def coarse_start(grid: Grid, cache):
+    """A FilmDrag ``start`` on fine grids: the equilibrium on the onset search's coarse guide
+    grid (:data:`gfbopt.rotor.onset.COARSE_GRID`, on grids with ≥ GUIDE_FACTOR× its cells,
+    the same build the guided search uses) interpolated onto the fine grid
+    (:func:`gfbopt.rotor.speed_line.transferred_start`), so that the first fine solve is a
+    Newton solve instead of a cold IPOPT one; None on coarser grids."""
+    from ..rotor.onset import COARSE_GRID, GUIDE_FACTOR
+    from ..rotor.speed_line import transferred_start
+    from ..static import solve_static
+
+    coarse_cells = COARSE_GRID.n_theta * COARSE_GRID.n_z
+    if grid.n_theta * grid.n_z < GUIDE_FACTOR * coarse_cells:
+        return None
+
+    def start(model, solver, load):
+        sol = solve_static(model, load=load, solver=cache(model, COARSE_GRID))
+        return transferred_start(sol, solver, model) if sol.success else None
+    return start
 
 
 def resolved_case(bearing, rotor, load_newton, like):

@@ -77,10 +77,13 @@ class FilmCase:
 class FilmDrag:
     """The drag function of the fixed point for one case: a warm-started static solve of the
     bearing at (speed, clearance, viscosity) under the case's load, on the case's cached
-    build.  Counts its solves (``solves``) and keeps the last solution (``last``)."""
+    build.  Counts its solves (``solves``) and keeps the last solution (``last``).
 
-    def __init__(self, case: FilmCase):
-        self.case, self.solves, self.last = case, 0, None
+    ``start`` (optional): (model, solver, load W̄) → a StaticSolution to warm-start the first
+    solve from (e.g. a coarse grid's equilibrium interpolated onto this grid), or None."""
+
+    def __init__(self, case: FilmCase, start=None):
+        self.case, self.solves, self.last, self.start = case, 0, None, start
 
     def __call__(self, speed_rpm, clearance, viscosity, film_k) -> Optional[DragSample]:
         from ..physics.torque import drag_torque_and_power
@@ -95,8 +98,14 @@ class FilmDrag:
         solver = self.case.cache(model, self.case.grid)
         load = geometry.nondimensional_load(self.case.load_newton)
         self.solves += 1
-        sol = solve_static(model, load=load, solver=solver, initial=self.last,
-                           fast_path=self.last is not None)
+        initial = self.last
+        if initial is None and self.start is not None:
+            initial = self.start(model, solver, load)
+        sol = solve_static(model, load=load, solver=solver, initial=initial,
+                           fast_path=initial is not None)
+        if not sol.success and initial is not None and self.last is None:
+            self.solves += 1
+            sol = solve_static(model, load=load, solver=solver)
         if not sol.success and self.last is not None:
             self.solves += 1
             sol = solve_static(model, load=load, solver=solver)
