@@ -55,7 +55,7 @@ def running_stability(bearing, spec: RunningSpec, rotor: Rotor,
         return (stability(bearing, rotor, operating_point, options=options, grid=grid,
                           cache=cache), without_heat(spec, operating_point.speed_rpm), bearing)
     case, film = _case(bearing, rotor, operating_point.load_newton, options, grid, cache)
-    drag = FilmDrag(film)
+    drag = FilmDrag(film, start=coarse_start(case.grid, case.cache))
     point = running_point(spec, operating_point.speed_rpm, drag)
     if not point.converged:
         return None, point, bearing
@@ -280,7 +280,8 @@ def running_load_capacity(bearing, spec: RunningSpec, speed_rpm, min_film_um, *,
     if spec.model_name != HEAT_BALANCE or not math.isfinite(result.value):
         return _answer(result, point, iterations, solves)
     for _ in range(max_steps):
-        drag = FilmDrag(_film(bearing, options, grid, cache, result.value))
+        drag = FilmDrag(_film(bearing, options, grid, cache, result.value),
+                        start=coarse_start(grid, cache))
         point = running_point(spec, speed_rpm, drag)
         solves += drag.solves
         if not point.converged:
@@ -315,7 +316,7 @@ def running_lift_off(bearing, spec: RunningSpec, load_newton, min_film_um, *,
         if not math.isfinite(result.value):
             break
         previous = result.value
-        drag = FilmDrag(film)
+        drag = FilmDrag(film, start=coarse_start(grid, cache))
         point = running_point(spec, previous, drag)
         solves += drag.solves
         if not point.converged:
