@@ -93,3 +93,23 @@ def test_running_onset_zeroes_the_margin_at_its_own_running_condition():
     assert found["running"]["running_clearance_um"] == pytest.approx(
         point.running_clearance * 1e6, rel=1e-6)
     assert len(cache) <= 2               # the frozen onset's coarse guide and the 24x8 grid
+
+
+def test_coarse_start_gives_the_same_running_point():
+    """On a fine grid the fixed point's first solve starts from the coarse guide's
+    equilibrium: the same running point as from a cold IPOPT start (to the fixed point's
+    tolerance), every solve of it a Newton solve."""
+    from gfbopt.cli.running import coarse_start
+
+    bearing, spec = load_running_bearing(THERMAL)
+    grid = Grid.parse("96x30")
+    cache = SolverCache(grid)
+    case = FilmCase(bearing, resolve_model_options(bearing.options), grid, cache, 20.0)
+    start = coarse_start(grid, cache)
+    assert start is not None and coarse_start(GRID, cache) is None
+    warm, cold = FilmDrag(case, start=start), FilmDrag(case)
+    a = running_point(spec, 30e3, warm)
+    b = running_point(spec, 30e3, cold)
+    assert a.running_clearance == pytest.approx(b.running_clearance, rel=1e-7)
+    assert a.network.film_k == pytest.approx(b.network.film_k, abs=0.02)
+    assert warm.last.solver == "newton"
