@@ -105,6 +105,9 @@ class RotorRightHandSide:
         self.elastic = not model.rigid and bool(np.any(model.stiffness) or
                                                 np.any(model.damping))
         self.damp_force = -(model.damping.T * (c * w)) if self.elastic else None   # q̃' → N
+        #: the structure's highest natural frequency [per rad of τ] (√ of M⁻¹K's largest)
+        self.structure_rate = float(np.sqrt(max(0.0, np.linalg.eigvals(np.linalg.solve(
+            model.mass_matrix, model.stiffness)).real.max())) / w) if self.elastic else 0.0
         self.stiff_force = -(model.stiffness.T * c) if self.elastic else None       # q̃ → N
         self.shape_u, self.shape_v = imbalance_shapes(model)         # Q_u = α U + β V
         self._planes = bool(model.imbalance)
@@ -294,10 +297,12 @@ class RotorRightHandSide:
     # ---------------------------------------------------------------- stiffness
     def stiffness(self, z: np.ndarray) -> float:
         """Gershgorin bound ρ [per rad of τ] of the films and foil states at ``z`` (the
-        one-bearing bound, with each bearing's Λ at its current speed)."""
+        one-bearing bound, with each bearing's Λ at its current speed), at least the
+        structure's highest natural frequency on rigid supports (:attr:`structure_rate`,
+        0 for the rigid body): an explicit step within ρ is within that mode's too."""
         xy = self.journals(z)
         r = float(np.max(self.runs.speed_at(self.layout.rotor_of(z)[:, 2 * self.dofs])))
-        rho = 0.0
+        rho = self.structure_rate
         for k, b in enumerate(self.model.bearings):
             tm = b.tm
             lam = self.base_lambda[k] * r
