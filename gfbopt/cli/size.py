@@ -146,5 +146,5 @@ def _top_speed(args) -> None:
     elif args.command == "stability" and getattr(args, "bearing", None):
         from ..inputs import load_bearing
 
-        guard.top_speed([(args.bearing, load_bearing(args.bearing))], span[1],
+        guard.top_speed([(args.bearing, load_bearing(args.bearing, running=True))], span[1],
                         "--speed-range")
