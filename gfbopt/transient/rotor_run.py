@@ -5,7 +5,8 @@ one-bearing engine (:func:`.rkc.rkc_step`, :func:`.rk4.rk4_step`), with the same
 
 * rkc — Δτ from accuracy, min(0.1 rad of shaft rotation at the run's top speed, T_rotor/30,
   T_film/4), T_rotor the shortest period of the rotor on the films' instantaneous stiffness
-  with its gyroscopic coupling (:func:`rotor_period`), T_film the slowest film relaxation
+  with its gyroscopic coupling and the structure's own stiffness (a shaft's highest kept
+  mode: :func:`.rotor_steps.rotor_frequency`, :func:`rotor_period`), T_film the slowest film relaxation
   (:func:`.rkc.film_time`); stages the fewest with Δτ·ρ ≤ 0.9 β(s), ρ the Gershgorin bound
   of every bearing's film and foil state at its current speed, re-checked every
   ``check_every`` steps (stages raised when it grew);
@@ -19,7 +20,8 @@ one-bearing engine (:func:`.rkc.rkc_step`, :func:`.rk4.rk4_step`), with the same
   (a heavy rotor: the study rotor's run-up to contact took 2.2× fewer evaluations).
   The record stays uniform in time: samples every ``sample_every`` are interpolated inside
   the step (cubic Hermite in q̃ and q̃', fourth order, below the step's own error);
-* rk4 — Δτ = 0.9 × 2.78/ρ, re-checked likewise; a given step above the limit is refused.
+* rk4 — Δτ = 0.9 × 2.78/ρ, re-checked likewise; a given step above the limit is refused
+  (ρ is at least the structure's highest natural frequency on rigid supports).
 
 Memory.  A run keeps, per stored sample (every ``sample_every`` rad of τ), τ, the four rotor
 coordinates and each bearing's smallest film since the previous sample — 4 + K floats per
