@@ -28,8 +28,8 @@ _FROM = "from the centre of gravity (signed); with a [[shaft]], from the shaft's
 _LARGE = ("a shaft element: above 0, at most 1 km; one in millimetres is caught by the "
           "rotor's limits")
 
-ROTOR = Table("rotor", "the rigid rotor's mass and inertia, and gravity; with a [[shaft]] "
-              "optional and without mass or inertia", fields=(
+ROTOR = Table("rotor", "the rigid rotor's mass and inertia, and gravity: required for a "
+              "rigid rotor; with a [[shaft]] optional, and without mass or inertia", fields=(
     Field("name", "string", "text", "label in reports", default="rotor"),
     Field("mass", "number", "kg", "mass of the whole rotor (rigid rotor only)", positive=True),
     Field("transverse_inertia", "number", "kg m²", "transverse (diametral) moment of inertia "
