@@ -62,6 +62,11 @@ FOLLOW_FRACTION = 0.3
 #: at most this many scan points in all, and no interval narrower than MIN_SPACING [-]
 MAX_SAMPLES = 240
 MIN_SPACING = 1e-5
+#: a shaft's crossings with μ_c above this are not reported [-]: its bending modes reach the
+#: axis only on a rotor this much heavier (μ_c ~ 1e6 measured for a steel shaft on foil
+#: bearings), at whirl frequencies that are not its own; the rigid body's four roots are all
+#: reported, as always
+SHAFT_SCALE_LIMIT = 1e3
 #: a branch's continuation between two scan points is sure when the MAC of its shapes is at
 #: least this; else the interval is halved [-]
 SURE_MAC = 0.5
@@ -230,8 +235,8 @@ def _adaptive_scan(roots, mass: np.ndarray, gammas: np.ndarray
 
 def crossings(rotor: RotorCase, states: SpeedStates, whirl_range=WHIRL_RANGE,
               samples: int = SAMPLES) -> list:
-    """Every mode crossing (:class:`ModeCrossing`) with μ_c > 0 at this speed, lowest μ_c
-    first (module docstring), preceded by one with μ_c = 0 when the probe below the first
+    """Every mode crossing (:class:`ModeCrossing`) with μ_c > 0 at this speed (a shaft's up
+    to :data:`SHAFT_SCALE_LIMIT`), lowest μ_c first (module docstring), preceded by one with μ_c = 0 when the probe below the first
     crossing finds a growing mode (:mod:`.probe`: the massless journal is unstable).
     ``states`` must be complete (no bearing over capacity)."""
     gammas = np.linspace(whirl_range[0], whirl_range[1], samples)
@@ -253,6 +258,8 @@ def crossings(rotor: RotorCase, states: SpeedStates, whirl_range=WHIRL_RANGE,
                                values[k + 1, branch], positions, names)
             if crossing is not None and not any(_same(crossing, c) for c in found):
                 found.append(crossing)
+    if not is_rigid(rotor.structure):
+        found = [c for c in found if c.inertia_scale <= SHAFT_SCALE_LIMIT]
     found.sort(key=lambda c: (c.inertia_scale, c.whirl_ratio))
     low_scale = _probed(rotor, states, found, whirl_range, positions, names)
     return ([low_scale] if low_scale is not None else []) + found

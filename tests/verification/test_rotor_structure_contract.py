@@ -201,9 +201,9 @@ def test_generic_structure_of_the_rigid_body_gives_its_answers(blower):
 
 def test_a_stiff_bending_pair_gives_the_rigid_rotors_onsets(blower):
     """k_b = 1e12 N/m (10⁶ × the bearings'): every rigid-body mode's onset and whirl
-    frequency within 1e-4 (measured 2e-10); the bending pair's own modes are found, named
-    bending and stable over the range (their μ_c is ~1e7: they would whirl only on a rotor
-    ten million times heavier)."""
+    frequency within 1e-4 (measured 2e-10); the bending pair's own crossings (μ_c ~ 1e7:
+    they would whirl only on a rotor ten million times heavier) are not reported
+    (matched_whirl.SHAFT_SCALE_LIMIT)."""
     system, rotor = blower
     stiff = _on(rotor, condensed(WithBending(system.body, 1e12), rotor.positions))
     assert stiff.structure.size == 6
@@ -217,9 +217,8 @@ def test_a_stiff_bending_pair_gives_the_rigid_rotors_onsets(blower):
         if math.isfinite(x.onset_speed_rpm):
             assert y.onset_speed_rpm == pytest.approx(x.onset_speed_rpm, rel=1e-4)
             assert y.whirl_frequency_hz == pytest.approx(x.whirl_frequency_hz, rel=1e-4)
-    extra = [m for label, m in flexible.items() if label not in rigid]
-    assert extra and all("bending" in m.label and not math.isfinite(m.onset_speed_rpm)
-                         for m in extra)
+    # the bending pair's own crossings (μ_c ~ 1e7) are beyond SHAFT_SCALE_LIMIT: not reported
+    assert sorted(flexible) == sorted(rigid)
 
 
 def test_a_soft_bending_pair_runs_end_to_end_with_bending_named(blower):
