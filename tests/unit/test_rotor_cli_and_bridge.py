@@ -33,7 +33,7 @@ _BEARING = '[[bearings]]\nfile = "{f}"\nposition = {z}\n'
 
 @pytest.mark.parametrize("text,expect", [
     (_ROTOR.format(m=0) + _BEARING.format(f=BEARING, z=-0.03) + _BEARING.format(f=BEARING, z=0.03),
-     "rotor.mass = 0.0: must be > 0"),
+     "rotor.mass = 0: must be > 0"),
     (_ROTOR.format(m=3) + _BEARING.format(f=BEARING, z=0.03) + _BEARING.format(f=BEARING, z=0.03),
      "bearings[2].position = 0.03: must differ"),
     (_ROTOR.format(m=3) + _BEARING.format(f=BEARING, z=0.03),
