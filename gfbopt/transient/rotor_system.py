@@ -279,6 +279,10 @@ class RotorRightHandSide:
             r0, a = float(self.runs.speed[0]), float(self.runs.ramp[0])
             r2 = (r0 + a * t) ** 2
             c, s = math.cos(r0 * t + 0.5 * a * t * t), math.sin(r0 * t + 0.5 * a * t * t)
+            if out.shape[0] == 1:                    # one run: two scalar stores
+                u = float(self.runs.imbalance_scale[0])
+                out[0, 0], out[0, 1] = u * (r2 * c + a * s), u * (r2 * s - a * c)
+                return out
             return np.multiply(self.runs.imbalance_scale[:, None],
                                (r2 * c + a * s, r2 * s - a * c), out=out)
         r2 = self.runs.speed_at(tau) ** 2
