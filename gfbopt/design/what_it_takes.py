@@ -160,8 +160,10 @@ def _physical(name: str, var: str) -> tuple:
 @dataclass(frozen=True)
 class Threshold:
     """The answer of :func:`threshold_search`: ``found``; ``value`` (NaN: none) and the
-    first onset there [rpm]; the bound whose onset is the higher and that onset [rpm] (what
-    the lever reaches at its limit); every value tried and its onset; a note."""
+    first onset there [rpm]; of the farthest values reached towards each bound (the bound,
+    or the last before an evaluation failed) the one whose onset is the higher and that
+    onset [rpm] (what the lever reaches at its limit); every value tried and its onset; a
+    note."""
 
     found: bool
     value: float
@@ -170,6 +172,14 @@ class Threshold:
     limit_onset_rpm: float
     tried: tuple
     message: str = ""
+
+
+def scan_values(start: float, low: float, high: float, steps: int = SCAN_STEPS) -> list:
+    """The values the scan of :func:`threshold_search` tries, towards ``high`` then
+    ``low`` (``steps`` each, evenly spaced from ``start``; none towards a bound equal to
+    the start)."""
+    return [start + (bound - start) * k / steps for bound in (high, low) if bound != start
+            for k in range(1, steps + 1)]
 
 
 def threshold_search(onset: Callable[[float], float], start: float, low: float,
@@ -194,12 +204,10 @@ def threshold_search(onset: Callable[[float], float], start: float, low: float,
                          "the design already reaches the top speed")
     xtol = tolerance * (high - low)
     found, ends, notes = [], [], []
-    for bound in (high, low):
-        if bound == start:
-            continue
+    values = scan_values(start, low, high, steps)
+    for way in range(len(values) // steps):
         previous = start
-        for k in range(1, steps + 1):
-            x = start + (bound - start) * k / steps
+        for x in values[way * steps:(way + 1) * steps]:
             y = f(x)
             if not math.isfinite(y):
                 notes.append(f"the evaluation failed at {x:.4g}")
@@ -208,8 +216,8 @@ def threshold_search(onset: Callable[[float], float], start: float, low: float,
                 found.append(_refine(f, previous, x, target, xtol))
                 break
             previous = x
-        if bound in tried and math.isfinite(tried[bound]):
-            ends.append((bound, tried[bound]))
+        if previous != start:           # the farthest value reached this way
+            ends.append((previous, tried[previous]))
     tried_items = tuple(sorted(tried.items()))
     end = max(ends, key=lambda e: e[1], default=(math.nan, math.nan))
     if found:
@@ -328,11 +336,22 @@ STORE_SCHEMA = {"point": "string", "lever": "string", "lever_value": "float64",
                 "wall_time_s": "float64"}
 
 
+def _lever_task(argument: dict) -> dict:
+    """One lever evaluation in a worker (or here): ``run_points`` with the worker's solver
+    cache, so a failure is a row with ``success = False``."""
+    from ..parallel import run_points, worker_cache
+
+    return run_points(argument["function"], [argument["point"]], workers=1,
+                      cache=worker_cache())[0]
+
+
 class LeverEvaluations:
     """Evaluations of one design with a lever moved, each answered from ``store`` when it
-    holds it and otherwise evaluated (``evaluate``, through ``run_tasks``) and appended to
-    the store at once (a one-dimensional search is sequential: a killed run loses at most
-    the evaluation in flight).  ``evaluated`` and ``reused`` count them."""
+    holds it and otherwise evaluated (``evaluate``, through ``run_tasks``, the run's
+    executor) and appended to the store as soon as it finishes (a killed run loses only the
+    evaluations in flight).  :meth:`prefetch` evaluates many at once (the scans of every
+    lever, on the run's workers); :meth:`row` one.  ``evaluated`` counts the evaluations
+    made, ``reused`` those answered from the store."""
 
     def __init__(self, evaluate: Callable, system, design: dict, settings, problem,
                  store=None, run_tasks=None):
@@ -344,30 +363,55 @@ class LeverEvaluations:
             frame = store.read()
             frame = frame.astype(object).where(frame.notna(), None)
             self.known = {str(r["point"]): r for r in frame.to_dict(orient="records")}
+        self.from_store = set(self.known)
         self.evaluated = self.reused = 0
         self.rows: list = []
         self.seconds = math.nan          # wall time of the searches (set by the caller)
 
-    def row(self, lever: Lever, value: float, onset_only: bool = True) -> dict:
-        from .optimiser import evaluate_points
+    def prefetch(self, asked: list) -> None:
+        """Evaluate the (lever, value, onset_only) triples not yet known, at once."""
+        from ..runtime import InfrastructureError
+        from .optimiser import executor, lost_designs
 
-        key = point_key(lever, value, onset_only)
-        if key in self.known:
-            self.reused += 1
-            row = self.known[key]
-        else:
-            point = lever_point(lever, value, self.system, self.design, self.settings)
-            result = evaluate_points(self.evaluate, [{**point, "onset_only": onset_only}],
-                                     self.run_tasks)[0]
-            row = {k: result.get(k) for k in STORE_SCHEMA if k in result}
-            row.update(point=key, lever=lever.name, lever_value=float(value),
-                       onset_only=onset_only, success=bool(result.get("success", False)))
+        todo, keys = [], set()
+        for lever, value, onset_only in asked:
+            key = point_key(lever, value, onset_only)
+            if key in self.from_store:
+                self.from_store.discard(key)            # counted once
+                self.reused += 1
+            if key not in self.known and key not in keys:
+                keys.add(key)
+                todo.append((key, lever, float(value), onset_only))
+        if not todo:
+            return
+        arguments = [{"function": self.evaluate, "point": {**lever_point(
+            lever, value, self.system, self.design, self.settings), "onset_only": only}}
+            for _, lever, value, only in todo]
+        lost = []
+        for k, result in (self.run_tasks or executor(1))(_lever_task, arguments):
+            if k is None:
+                continue
+            if isinstance(result, BaseException):
+                lost.append(result)
+                continue
+            key, lever, value, onset_only = todo[k]
+            row = {c: result.get(c) for c in STORE_SCHEMA if c in result}
+            row.update(point=key, lever=lever.name, lever_value=value, onset_only=onset_only,
+                       success=bool(result.get("success", False)))
             row["feasible"] = (None if onset_only else         # limits not evaluated
                                bool(row["success"]) and self.problem.feasible(result))
             if self.store is not None:
                 self.store.append([row])
             self.known[key] = row
             self.evaluated += 1
+        if lost:
+            raise InfrastructureError(lost_designs(lost, len(todo), "lever evaluations"))
+
+    def row(self, lever: Lever, value: float, onset_only: bool = True) -> dict:
+        """The evaluation of the design with ``lever`` at ``value`` (made if not known)."""
+        key = point_key(lever, value, onset_only)
+        self.prefetch([(lever, value, onset_only)])
+        row = self.known[key]
         self.rows.append(row)
         return row
 
@@ -411,16 +455,22 @@ def what_it_would_take(levers: tuple, evaluations: LeverEvaluations, start_onset
                        progress: Optional[Callable[[float], None]] = None) -> list:
     """A :class:`LeverAnswer` per lever for ``evaluations``' design (its first onset
     ``start_onset`` [rpm] at the evaluation's settings), the target the settings' top
-    speed; ``progress``: the fraction of the levers done."""
+    speed; ``progress``: the fraction of the levers done.  The scans of every lever are
+    evaluated first, as one batch on the run's workers (a scan value past a crossing is
+    then evaluated too: a few evaluations more when a lever crosses early, in return for
+    the parallel batch), then each lever's refinement in turn."""
     ev = evaluations
     top = ev.settings.top_speed_rpm
-    out = []
-    for k, lever in enumerate(levers):
-        before = len(ev.rows)
-        start = start_value(lever, ev.system, ev.design, ev.settings)
+    starts = [start_value(lever, ev.system, ev.design, ev.settings) for lever in levers]
+    for lever, start in zip(levers, starts):
         if not math.isfinite(start):
             raise ParameterError(f"what_it_would_take.{lever.name}", lever.name,
                                  "has no value on this rotor's bearings to start from")
+    ev.prefetch([(lever, x, True) for lever, start in zip(levers, starts)   # one batch
+                 for x in scan_values(start, lever.low, lever.high)])
+    out = []
+    for k, (lever, start) in enumerate(zip(levers, starts)):
+        before = len(ev.rows)
         known = start_onset if lever.name != "side_load_n" or start == 0.0 else None
         t = threshold_search(ev.onset(lever), start, lever.low, lever.high, top, known)
         meets, film = None, math.nan

@@ -37,7 +37,8 @@ NAMING = ("name", "title", "source", "problem_file", "wall_time_s", "provenance"
 def _answer(folder: Path) -> dict:
     s = json.loads((folder / "summary.json").read_text())
     s = {k: v for k, v in s.items() if k not in NAMING}
-    s["notes"] = [n for n in s["notes"] if not n.startswith("Search:")]   # its rates
+    s["notes"] = [n for n in s["notes"]                 # their rates and wall times
+                  if not n.startswith(("Search:", "What it would take"))]
     return s
 
 
