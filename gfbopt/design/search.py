@@ -77,7 +77,7 @@ class SearchSettings:
     gp_restarts: int = 5
     generations: int = 3
     first_step: float = 0.125
-    step_tolerance: float = 1.0 / 128.0
+    step_tolerance: float = 1.0 / 64.0
     improvement: float = 1e-3
 
     def __post_init__(self) -> None:

@@ -9,6 +9,7 @@ limits active), 6.5e-6 (pinched bowl); NSGA-II alone with the same 24 first desi
 every one of them by more than 1e-3 or has no feasible design (checked below), so the tests discriminate.
 """
 import math
+from pathlib import Path
 
 import pytest
 
@@ -131,3 +132,48 @@ def test_the_pattern_step_is_what_the_docstring_says():
         assert sorted(moved)[0] == 0.0
         assert math.isclose(max(moved), 0.125, abs_tol=1e-12) or \
             min(row["x"], row["y"]) in (0.0, 1.0)
+
+
+# ------------------------------------------------------------------ the shipped main job
+REFERENCE = (Path(__file__).resolve().parents[2] / "results"
+             / "rotor_bearing_design_reference" / "reference.json")
+
+
+def _main_job_best(seed: int) -> tuple:
+    """The main job's converged search (its plan, its search settings but the seed) on 2
+    workers: (best feasible first onset [rpm], the result)."""
+    import dataclasses
+
+    from gfbopt.design.optimiser import executor
+    from gfbopt.design.rotor_objectives import evaluate_rotor_design
+    from gfbopt.parallel import WorkerPool
+    from gfbopt.studies import load_study
+
+    plan = load_study(Path(__file__).resolve().parents[2] / "problems"
+                      / "rotor_bearing_design.toml").plan
+    with WorkerPool(2):
+        r = optimise(plan.problem, evaluate_rotor_design,
+                     dataclasses.replace(plan.search, seed=seed),
+                     fixed={"system": plan.system, "settings": plan.settings},
+                     run_tasks=executor(2))
+    feasible = r.table[r.table["feasible"]]
+    return float(feasible["first_onset_speed_rpm"].max()), r
+
+
+@pytest.mark.slow
+def test_the_main_job_reaches_the_dense_reference_and_two_seeds_agree():
+    """The shipped main job's answer against the dense reference search of the same space
+    stored beside the study (benchmarks/rotor_design_reference.py: a 7⁴ grid, NSGA-II with
+    400 evaluations from four seeds, the converged search run far past its stopping rule
+    from six seeds): within 1 % of the reference's best feasible first onset, and the
+    study's seed and another within 1 % of each other.  ~2 × 100 evaluations at 36x10
+    (~2 × 60 s on 2 cores)."""
+    import json
+
+    reference = json.loads(REFERENCE.read_text())["best_first_onset_rpm"]
+    first, r1 = _main_job_best(1)
+    second, r2 = _main_job_best(2)
+    assert r1.converged and r2.converged, (r1.convergence, r2.convergence)
+    for best in (first, second):
+        assert best >= 0.99 * reference, (best, reference)
+    assert abs(first - second) <= 0.01 * max(first, second), (first, second)
