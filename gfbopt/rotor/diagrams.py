@@ -18,7 +18,7 @@ answer.
   structure (:mod:`.structure`: Q̂ = Σ S(z)ᵀ(1, −i) U ω² e^{iφ}, station motion S(z) q̂; Ω = ω, γ = 1: the
   bearings' impedance at the running speed, which is right for a synchronous forcing) at each
   bearing and named station: major semi-axis of the orbit [µm] (``amplitude_um``, the
-  forward plus the backward radius: :func:`gfbopt.transient.spectra.ellipse_radii`, the
+  forward plus the backward radius: :func:`gfbopt.rotor.modes.ellipse_radii`, the
   rotor transient's ``sync_amplitude_um`` by the same function), x and y amplitudes [µm]
   and phases [deg] (x = Re(X̂ e^{iωt})), forward and backward radii; the peak (critical
   speed) of each station refined by a bounded scalar search.
@@ -38,8 +38,8 @@ from ..errors import ParameterError
 from ..inputs.conversions import rpm_to_rad_per_s
 from ..progress import progress
 from ..threads import single_threaded
-from ..transient.spectra import ellipse_radii
 from .campbell import system_modes
+from .modes import ellipse_radii
 from .tracking import assign, guesses, name_tracks
 from .onset import onset_speed
 from .rigid import dynamic_stiffness, imbalance_forces, station_matrix

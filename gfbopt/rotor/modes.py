@@ -48,6 +48,15 @@ SHAPE_STATIONS = 21
 NODE_FLOOR = 1e-3
 
 
+def ellipse_radii(x_hat, y_hat) -> tuple:
+    """(forward radius, backward radius, major semi-axis) of the orbit x = Re(X̂ e^{iϑ}),
+    y = Re(Ŷ e^{iϑ}) (complex amplitudes, arrays or scalars): |X̂ + iŶ|/2, |X̂ − iŶ|/2 and
+    their sum (the module docstring's forward and backward circles)."""
+    forward = np.abs(x_hat + 1j * y_hat) / 2
+    backward = np.abs(x_hat - 1j * y_hat) / 2
+    return forward, backward, forward + backward
+
+
 def mode_label(direction: str, kind: str, order: int = 0) -> str:
     """The one label of a mode: "forward conical", "backward bending 2", … (``order``: the
     bending mode's number, module docstring)."""
