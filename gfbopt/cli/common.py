@@ -154,12 +154,15 @@ def _refuse_ignored_options(args) -> None:
 
 def operating_point(args) -> OperatingPoint:
     """The model and target (eccentricity or load) from the parsed options."""
-    fill_model_options(args)      # the bearing file's [model] table and the defaults
+    resolved = fill_model_options(args)   # the bearing file's [model] table and the defaults
     _refuse_ignored_options(args)
     common = dict(film=args.film, deflection_law=args.deflection_law,
                   subambient=args.subambient, compression_only=args.compression_only,
                   seam_angle_deg=args.seam_angle,
                   loss_factor=args.loss_factor)
+    for key in ("friction_coefficient", "friction_stiffness_ratio"):   # the bumps' friction
+        if getattr(resolved, key) is not None and args.bearing is not None:
+            common[key] = getattr(resolved, key)
     grid = grid_of(args)
     extra: dict = {}
     if args.bearing is not None:

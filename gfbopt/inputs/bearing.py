@@ -167,6 +167,8 @@ class BearingGeometry:
         ``foil='rigid'`` sets S = 0; other keyword arguments go to BearingModel.
         """
         compliance = 0.0 if foil == "rigid" else self.compliance
+        if "hardening_limit_m" in kwargs:         # the hardening bump's limit δ_lim [m] → δ_lim/c
+            kwargs["hardening_limit"] = kwargs.pop("hardening_limit_m") / self.radial_clearance
         if self.build is not None and "as_built" not in kwargs:
             built = self.build.nondimensional(self)
             if foil == "rigid" and (built.zones or built.pads):

@@ -27,6 +27,8 @@ table        periodic linear interpolation of (angle, Δc) points
 """
 from __future__ import annotations
 
+from typing import Optional
+
 import math
 from dataclasses import dataclass, field
 
@@ -198,11 +200,13 @@ class Pad:
 @dataclass(frozen=True)
 class Zone:
     """A bump zone: from ``start`` to ``end`` [rad] (in the direction of rotation; it may
-    wrap through 0), with compliance coefficient S = p_a α/c [-] (> 0)."""
+    wrap through 0), with compliance coefficient S = p_a α/c [-] (> 0) and the Coulomb
+    friction coefficient of its bumps (None: the model's ``friction_coefficient``)."""
 
     start: float
     end: float
     compliance: float
+    friction_coefficient: Optional[float] = None
 
     @property
     def span(self) -> float:
@@ -264,7 +268,7 @@ def check_zones(zones: tuple) -> tuple:
         if end - start > TWO_PI + ANGLE_TOLERANCE:
             raise ParameterError(f"zones[{k}].end_deg", math.degrees(end), "a zone spans at "
                                  "most 360°")
-        out.append(Zone(start, end, s))
+        out.append(Zone(start, end, s, z.friction_coefficient))
     out.sort(key=lambda z: float(_wrap(z.start)))
     total = sum(z.end - z.start for z in out)
     for k, z in enumerate(out):
@@ -305,8 +309,8 @@ class AsBuilt:
 
     @property
     def uniform_foundation(self) -> bool:
-        """True when every zone has the same S (or there are none)."""
-        return len({z.compliance for z in self.zones}) <= 1
+        """True when every zone has the same S and friction (or there are none)."""
+        return len({(z.compliance, z.friction_coefficient) for z in self.zones}) <= 1
 
     @property
     def single_pad(self) -> bool:
@@ -344,6 +348,17 @@ class AsBuilt:
             out = np.where(inside & np.isnan(out), z.compliance, out)
         return out
 
+    def friction_rows(self, theta, coefficient: float) -> np.ndarray:
+        """μ_f at the θ rows [-]: the coefficient of the zone containing each angle, or the
+        model's ``coefficient`` where the zone states none (and without zones)."""
+        theta = _wrap(np.asarray(theta, float))
+        out = np.full(theta.shape, np.nan)
+        for z in self.zones:
+            inside = _wrap(theta - z.start + ANGLE_TOLERANCE) < z.span
+            mu = coefficient if z.friction_coefficient is None else z.friction_coefficient
+            out = np.where(inside & np.isnan(out), mu, out)
+        return np.where(np.isnan(out), float(coefficient), out)
+
     def fixed_rows(self, seam_angle: float, n_theta: int) -> tuple:
         """θ rows (0..n_theta, from the grid origin ``seam_angle`` [rad]) held at ambient
         pressure besides the seam rows 0 and n_theta: the other pads' leading ends and the
@@ -371,6 +386,8 @@ class AsBuilt:
         out["zones_deg"] = ([[_deg(z.start), _deg(z.end)] for z in self.zones]
                             or None)
         out["zones_compliance"] = [z.compliance for z in self.zones] or None
+        if any(z.friction_coefficient is not None for z in self.zones):
+            out["zones_friction_coefficient"] = [z.friction_coefficient for z in self.zones]
         return out
 
 
@@ -409,6 +426,12 @@ def check_as_built(model) -> None:
         if model.is_rigid:
             raise ParameterError("zones", len(ab.zones), "need a bump foundation (foil "
                                  "'simple' or 'beam' with S > 0)")
+        for k, z in enumerate(ab.zones):
+            if z.friction_coefficient is not None:
+                mu = check_finite(f"zones[{k}].friction_coefficient", z.friction_coefficient)
+                if not 0.0 <= mu <= 2.0:
+                    raise ParameterError(f"zones[{k}].friction_coefficient", mu, "must lie in "
+                                         "[0, 2] (dry metal contacts lie near 0.1–1)")
         mean = ab.mean_compliance()
         if not math.isclose(model.compliance, mean, rel_tol=1e-12):
             raise ParameterError("compliance", model.compliance, "with foundation zones S is "

@@ -96,6 +96,7 @@ class ZoneSpec:
     bump_pitch: Optional[float] = None
     bump_half_length: Optional[float] = None
     bump_thickness: Optional[float] = None
+    friction_coefficient: Optional[float] = None
 
 
 @dataclass(frozen=True)
@@ -127,7 +128,8 @@ class BearingBuild:
             s = compliance_coefficient(alpha, geometry.ambient_pressure,
                                        geometry.radial_clearance)
             zones.append(Zone(math.radians(check_finite(f"zones[{k}].start_deg", z.start_deg)),
-                              math.radians(check_finite(f"zones[{k}].end_deg", z.end_deg)), s))
+                              math.radians(check_finite(f"zones[{k}].end_deg", z.end_deg)), s,
+                              z.friction_coefficient))
         pads = tuple(Pad(math.radians(check_finite(f"pads[{k}].leading_end_deg",
                                                    p.leading_end_deg)),
                          math.radians(check_finite(f"pads[{k}].arc_deg", p.arc_deg)))
@@ -147,7 +149,8 @@ class BearingBuild:
 _BORE_KEYS = ("kind", "count", "preload_depth", "preload_ratio", "width_deg", "offset_deg",
               "angle_deg", "clearance_change")
 _PAD_KEYS = ("leading_end_deg", "arc_deg")
-_ZONE_KEYS = ("start_deg", "end_deg", "bump_pitch", "bump_half_length", "bump_thickness")
+_ZONE_KEYS = ("start_deg", "end_deg", "bump_pitch", "bump_half_length", "bump_thickness",
+              "friction_coefficient")
 
 
 def _table(table, keys, where, required=()) -> dict:

@@ -319,8 +319,7 @@ MODEL = Table("model", "the formulation the bearing is analysed with by every ro
     "'rigid' or S = 0: no bumps to rub; and with foil 'beam': its foundation has no "
     "per-unit friction element yet)",
     "hardening_limit <= bump_height (the bump height is the hard limit); hardening_exponent "
-    "> 0 needs bump_height, and is refused until the static engine carries the hardening "
-    "bump",
+    "> 0 needs bump_height, foil 'simple' and deflection_law 'mean' (the 'hardened' law)",
 ))
 
 #: the bearing as built (helper "bore", :mod:`gfbopt.inputs.bore_si`, which builds them and
@@ -362,7 +361,9 @@ ZONES = Table("zones", "bump zones with their own bump geometry, covering 360° 
     Field("end_deg", "number", "deg", "end of the zone (> start; above 360 through 0°)",
           low=END_RANGE_DEG[0], high=END_RANGE_DEG[1]),
     *(replace(BEARING.field(key), doc=f"{BEARING.field(key).doc} (default: [bearing]'s)",
-              default=None) for key in ("bump_pitch", "bump_half_length", "bump_thickness"))),
+              default=None) for key in ("bump_pitch", "bump_half_length", "bump_thickness")),
+    replace(BUMP_FIELDS[0], doc="Coulomb friction coefficient μ_f of this zone's bumps "
+            "(default: [model]'s)")),
     rules=(f"at most {MAX_ZONES} zones; each zone's bumps obey [bearing]'s rules (2 l0 <= s, "
            "t_b < l0, s <= π R, S <= 1000); zones need a bump foil (not foil 'rigid')",))
 

@@ -140,14 +140,12 @@ class ModelOptions:
             raise ParameterError("options", self, "are not complete: apply "
                                  "resolve_model_options first")
         seam = None if self.seam_angle_deg in (None, MAX_FILM) else self.seam_angle_deg
-        if (self.hardening_exponent or 0.0) > 0.0:
-            raise ParameterError("hardening_exponent", self.hardening_exponent,
-                                 "the hardening bump (gfbopt.physics.hardening) is checked but "
-                                 "not yet carried by the static engine, whose equilibrium "
-                                 "would ignore it; use 0 (off)")
         friction = {key: getattr(self, key) for key in ("friction_coefficient",
                                                         "friction_stiffness_ratio")
                     if getattr(self, key) is not None}
+        if (self.hardening_exponent or 0.0) > 0.0:      # SI limit: BearingGeometry.model
+            friction.update(hardening_exponent=self.hardening_exponent,
+                            hardening_limit_m=self.hardening_limit or self.bump_height)
         return dict(foil=self.foil, film=self.film, seam_angle_deg=seam,
                     deflection_law=self.deflection_law, loss_factor=self.loss_factor,
                     **friction)

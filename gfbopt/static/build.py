@@ -192,7 +192,8 @@ class StaticSolver:
                                 float(follows), float(model.compression_only),
                                 float(model.subambient == "gumbel"),
                                 float(attitude is not None),
-                                0.0 if attitude is None else float(attitude)], bore, s_rows])
+                                0.0 if attitude is None else float(attitude),
+                                *hardening_values(model)], bore, s_rows])
 
     @property
     def n_parameters(self) -> int:
@@ -286,6 +287,14 @@ def fixed_origin(model: BearingModel) -> Optional[float]:
     if model.as_built is not None and model.as_built.housing_fixed:
         return 0.0
     return None
+
+
+def hardening_values(model: BearingModel) -> tuple:
+    """(n, W_lim) of the hardening bump, or (1, 1) when it is off (unused by the other
+    structures; finite, so the parameter vector stays finite)."""
+    if getattr(model, "hardening_exponent", 0.0) > 0.0:
+        return float(model.hardening_exponent), float(model.hardening_limit)
+    return 1.0, 1.0
 
 
 def row_values(model: BearingModel, st: disc.Stencil, origin: Optional[float]) -> tuple:

@@ -43,7 +43,7 @@ from ..physics.foil_laws import FoilLaw, FoilParameters
 #: built, :mod:`gfbopt.inputs.bore`), so a preload or a zone change needs no rebuild.
 PARAMETERS = ("bearing_number", "compliance", "top_foil_coefficient", "length_ratio",
               "load_mode", "target", "seam_angle", "seam_follows", "compression_only", "gumbel",
-              "position_mode", "attitude_target")
+              "position_mode", "attitude_target", "hardening_exponent", "hardening_limit")
 #: Names of the per-θ-row parameter vectors, in order after :data:`PARAMETERS`.
 ROW_PARAMETERS = ("bore", "row_compliance")
 
@@ -121,7 +121,7 @@ def _lifted_equations(st: disc.Stencil, law: FoilLaw, law_data) -> _Lifted:
     par = ca.SX.sym("p", n_parameters(st))
     n_scalar = len(PARAMETERS)
     (_, s, c, ld, mode, target, seam_angle, follows, comp, gumbel,
-     position, attitude_target) = ca.vertsplit(par[:n_scalar])   # Λ enters Reynolds only
+     position, attitude_target, hard_n, hard_lim) = ca.vertsplit(par[:n_scalar])  # Λ: Reynolds
     bore = par[n_scalar:n_scalar + m]                  # B_i = Δc/c per θ row
     s_rows = par[n_scalar + m:n_scalar + 2 * m]        # S_i per θ row
     pu = ca.SX.sym("P", st.n_unknown)
@@ -150,7 +150,7 @@ def _lifted_equations(st: disc.Stencil, law: FoilLaw, law_data) -> _Lifted:
     theta = theta_seam + ca.DM(st.psi)
     h_rigid = rigid_film_polar(ecc, phi, theta) + bore
     mean_gauge = q / (2 * ld)
-    foil = FoilParameters(s if law.name == "beam" else s_rows, c, comp)
+    foil = FoilParameters(s if law.name == "beam" else s_rows, c, comp, (hard_n, hard_lim))
     h_nodes, film_eq, foil_eq = law.static_film(
         h_rigid, hr, mean_gauge, p_full, u, foil, st, law_data)
     force_p = 1 + force_gauge(p_full - 1, gumbel)

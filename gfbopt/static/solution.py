@@ -168,4 +168,7 @@ def foil_parameters(model: BearingModel, row_compliance=None) -> FoilParameters:
     """The foil groups of ``model`` as numbers (the numpy side of the foil law); with
     ``row_compliance`` (S per θ row) the simple and local laws see the foundation zones."""
     s = model.compliance if row_compliance is None or model.foil == "beam" else row_compliance
-    return FoilParameters(s, model.top_foil_coefficient, float(model.compression_only))
+    hardening = ((model.hardening_exponent, model.hardening_limit)
+                 if getattr(model, "hardening_exponent", 0.0) > 0.0 else None)
+    return FoilParameters(s, model.top_foil_coefficient, float(model.compression_only),
+                          hardening)

@@ -34,8 +34,8 @@ def _file(tmp_path, model: str) -> Path:
     ("bump_height = 500e-6\nhardening_limit = 600e-6",
      "rub.toml: model.hardening_limit = 0.0006: must be <= the bump height"),
     ("hardening_limit = 400e-6", "rub.toml: model.hardening_limit = 0.0004: needs bump_height"),
-    ("bump_height = 500e-6\nhardening_exponent = 2.0",
-     "rub.toml: model.hardening_exponent = 2.0: the hardening bump"),
+    ('deflection_law = "local"\nbump_height = 500e-6\nhardening_exponent = 2.0',
+     "rub.toml: model.hardening_exponent = 2.0: the hardening bump needs a bump foundation"),
     ("friction_coeficient = 0.2", "did you mean 'friction_coefficient'?"),
 ])
 def test_refused_in_one_line_naming_file_key_rule(tmp_path, model, message):

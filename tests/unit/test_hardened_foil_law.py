@@ -1,23 +1,17 @@
 """The hardening bump as a foil law ('hardened', issue 29): statics use the hardened stiffness,
 the linear analysis its tangent at the static deflection.
 
-The static build passes the law's (n, W_lim) once gfbopt.static.model's PARAMETERS carry them
-(the patch results/bumps_that_rub/static_hardening.diff, not this helper's files, with its
-tests results/bumps_that_rub/test_hardened_statics.py); until then the build refuses the law
-in one line before any solve, and this file checks that refusal."""
+The statics and the linear analysis of the law: tests/unit/test_hardened_statics.py."""
 from pathlib import Path
 
 import pytest
 
 from gfbopt.errors import ParameterError
 from gfbopt.inputs import load_bearing
-from gfbopt.inputs.grid import Grid
 from gfbopt.inputs.model import BearingModel
 from gfbopt.inputs.options import resolve_model_options
-from gfbopt.static import solve_static
 
 ROOT = Path(__file__).resolve().parents[2]
-GRID = Grid(36, 10)
 
 
 def _case(**changes):
@@ -39,8 +33,3 @@ def test_hardened_model_and_its_refusals():
         with pytest.raises(ParameterError, match=rule):
             BearingModel(2.0, 1.0, **kw)
 
-
-def test_static_build_without_the_parameters_refuses_the_law():
-    model, load = _case(hardening_exponent=2.0, hardening_limit=2.0)
-    with pytest.raises(ParameterError, match="static build does not pass the hardening"):
-        solve_static(model, load=load, grid=GRID)
