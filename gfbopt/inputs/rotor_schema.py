@@ -1,7 +1,7 @@
 """The rotor file's tables, declared once in :mod:`gfbopt.inputs.file_schema`'s language
 (:class:`~gfbopt.inputs.file_schema.Field`, :class:`~gfbopt.inputs.file_schema.Table`,
 :class:`~gfbopt.inputs.file_schema.FileFormat`), the same as the bearing file's: the validator
-(:func:`gfbopt.inputs.rotor_system.check_rotor_file`, with file_schema's checkers) and the user
+(:func:`gfbopt.inputs.rotor_system.rotor_from_dict`, with file_schema's checkers) and the user
 documentation (``docs/formats/rotor_file.md``, :data:`ROTOR_FILE` rendered as every file
 format is) read the same declarations.
 

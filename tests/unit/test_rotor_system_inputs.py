@@ -128,4 +128,5 @@ def test_schema_documents_every_key_and_docs_page_is_current():
         for f in table.fields:
             assert f"| `{f.name}` |" in section, (table.name, f.name)
     stored = (ROOT / "docs" / "formats" / "rotor_file.md").read_text()
-    assert stored == page, "docs/formats/rotor_file.md is stale: run python -m gfbopt.file_formats"
+    assert stored == page, ("docs/formats/rotor_file.md is stale: run python -m "
+                            "gfbopt.file_formats")
