@@ -20,6 +20,7 @@ from __future__ import annotations
 import csv
 import json
 import re
+import statistics
 from dataclasses import dataclass
 from functools import lru_cache
 from pathlib import Path
@@ -340,6 +341,21 @@ QUOTED: dict[str, Quoted] = {
         c["value"] for c in key("results/nonlinear_vs_linear/summary.json", "checks")), "{:.3f}"),
     "ausman_pct": _comparison("ausman_concentric_impedance", "impedance against Ausman", 100,
                               "{:.2f}"),
+    # the clearance at speed (docs/thermal.md)
+    "thermal_onset_heat_cpu_s": Quoted(f"{BENCH}/thermal.json", lambda: statistics.median(
+        key(f"{BENCH}/thermal.json", "onset.heat_cpu_s")), "{:.2f}"),
+    "thermal_onset_isothermal_cpu_s": Quoted(f"{BENCH}/thermal.json", lambda: statistics.median(
+        key(f"{BENCH}/thermal.json", "onset.isothermal_cpu_s")), "{:.2f}"),
+    "thermal_onset_ratio": Quoted(f"{BENCH}/thermal.json", lambda: key(
+        f"{BENCH}/thermal.json", "onset.onset_ratio"), "{:.2f}"),
+    "thermal_heat_onset_rpm": Quoted(f"{BENCH}/thermal.json", lambda: key(
+        f"{BENCH}/thermal.json", "onset.heat_onset_rpm"), "{:,.1f}"),
+    "thermal_isothermal_onset_rpm": Quoted(f"{BENCH}/thermal.json", lambda: key(
+        f"{BENCH}/thermal.json", "onset.isothermal_onset_rpm"), "{:,.1f}"),
+    "thermal_frozen_onset_rpm": Quoted(f"{BENCH}/thermal.json", lambda: key(
+        f"{BENCH}/thermal.json", "onset.heat_frozen_onset_rpm"), "{:,.1f}"),
+    "thermal_frozen_at_rpm": Quoted(f"{BENCH}/thermal.json", lambda: key(
+        f"{BENCH}/thermal.json", "onset.heat_frozen_at_rpm"), "{:,.0f}"),
     # timings and counts of the benchmarks
     "critical_mass_rkc_s": Quoted(f"{BENCH}/critical_mass.json",
                                   lambda: _critical_mass("rkc")["wall_s"], "{:.1f}"),
