@@ -17,6 +17,12 @@ from ..plotting.design_front import variable_label
 from .base import StudyResult
 from .rotor_decision import answers_frame, margin_of, margin_text, run_levers
 
+#: the search methods (gfbopt.design.search.METHODS) in words
+SEARCH_WORDS = {"nsga2": "pymoo NSGA-II",
+                "nsga2_refine": "pymoo NSGA-II, then a constrained pattern search of its "
+                                "best design (gfbopt.design.refine)",
+                "bayes": "GP Bayesian optimisation, bayesian-optimization"}
+
 #: largest relative difference between a design's stored objectives and the same design
 #: evaluated again from scratch (a fresh solver cache): the evaluation is deterministic, so
 #: only round-off may differ
@@ -196,8 +202,7 @@ def report(study, plan, search, run_tasks, stages, started: float, store,
     if margin is not None:
         notes.append(margin_text(margin, s.search_high_rpm))
     mean = search.evaluation_time_s / search.evaluated if search.evaluated else math.nan
-    method = ("pymoo NSGA-II" if plan.search.method == "nsga2" else
-              "GP Bayesian optimisation, bayesian-optimization")
+    method = SEARCH_WORDS.get(plan.search.method, plan.search.method)
     notes.append(
         f"Search: {plan.search.method} ({method}), budget {plan.search.budget}, seed "
         f"{plan.search.seed}, on the {s.grid} grid: {search.evaluated} designs evaluated, "
