@@ -208,9 +208,11 @@ def report(study, plan, search, run_tasks, stages, started: float, store,
         f"{plan.search.seed}, on the {s.grid} grid: {search.evaluated} designs evaluated, "
         f"{search.reused} answered from the store (resume), {search.repeated} repeats; "
         f"{len(feasible_rows(table, problem))} feasible, {len(front)} on the Pareto front; "
-        f"{search.evaluated / search.wall_time_s:.3g} evaluations per second of wall time "
-        f"(one evaluation {mean:.1f} s of its worker); the optimiser's own time "
-        f"{search.driver_time_per_design_s * 1e3:.0f} ms per design (imports included).")
+        + (f"{search.evaluated / search.wall_time_s:.3g} evaluations per second of wall "
+           f"time (one evaluation {mean:.1f} s of its worker)" if search.evaluated else
+           "no evaluation in this run")
+        + f"; the optimiser's own time {search.driver_time_per_design_s * 1e3:.0f} ms per "
+        "design (imports included).")
     if chosen is not None and len(default):
         rel = default["first_onset_speed_rpm_relative_change"].abs()
         notes.append(f"Grid honesty: {len(default)} designs re-evaluated on the default "
