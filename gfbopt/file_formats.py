@@ -10,7 +10,7 @@ page                       schema
 ``study_file.md``          :data:`gfbopt.studies.spec.COMMON` and the schema of every study
                            kind (:data:`gfbopt.studies.spec.SCHEMAS`, with the families
                            :mod:`gfbopt.studies.runner` registers)
-``rotor_file.md``          :data:`gfbopt.inputs.rotor_schema.SCHEMA` (its own renderer)
+``rotor_file.md``          :data:`gfbopt.inputs.rotor_schema.ROTOR_FILE`
 =========================  ============================================================
 
 Regenerate with ``python -m gfbopt.file_formats`` (``--check`` exits 1 when a page is stale;
@@ -176,10 +176,11 @@ def render_study_file() -> str:
 
 
 def render_rotor_file() -> str:
-    """The rotor file's page, from its own schema (:mod:`gfbopt.inputs.rotor_schema`)."""
-    from .inputs.rotor_schema import schema_markdown
+    """The rotor file's page: :data:`gfbopt.inputs.rotor_schema.ROTOR_FILE` (file_schema's
+    language, as the bearing file) rendered as every file format is."""
+    from .inputs.rotor_schema import ROTOR_FILE
 
-    return schema_markdown()
+    return render_format(ROTOR_FILE)
 
 
 def _bearing_file() -> FileFormat:

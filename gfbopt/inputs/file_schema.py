@@ -32,8 +32,10 @@ from .model import DEFLECTION_LAWS, FILM_MODELS, FOIL_MODELS
 #: default of a required field
 REQUIRED = object()
 #: field kinds: a finite number, a string, a string out of ``choices``, an angle in
-#: degrees [0, 360) or "max_film", a list of strings
-KINDS = ("number", "integer", "numbers", "string", "choice", "seam_angle", "strings", "text")
+#: degrees [0, 360) or "max_film", a list of strings, a sub-table (checked against the
+#: field's ``table``, e.g. ``[bearings.model]`` under a ``[[bearings]]`` row)
+KINDS = ("number", "integer", "numbers", "string", "choice", "seam_angle", "strings", "text",
+         "table")
 
 
 @dataclass(frozen=True)
@@ -43,7 +45,8 @@ class Field:
     name, kind (:data:`KINDS`), unit ("m", "Pa", "deg", "-", "text"), doc (meaning);
     default (:data:`REQUIRED`: must be given; None: not stated); choices (kind "choice");
     low / high: inclusive bounds of a number, or ``positive`` for > 0; why: the reason of the
-    bounds (shown in refusals and docs).
+    bounds (shown in refusals and docs); table: the :class:`Table` a field of kind "table"
+    is checked against.
     """
 
     name: str
@@ -56,6 +59,7 @@ class Field:
     high: Optional[float] = None
     positive: bool = False
     why: str = ""
+    table: Any = None
 
     @property
     def required(self) -> bool:
@@ -73,6 +77,8 @@ class Field:
             return "a string or a list of strings"
         if self.kind == "numbers":
             return "a list of finite numbers"
+        if self.kind == "table":
+            return f"a table of [{self.table.name}]'s keys"
         parts = []
         if self.positive:
             parts.append("> 0")
@@ -140,6 +146,8 @@ def check_value(f: Field, value, where: str):
         if not isinstance(value, str) or value not in f.choices:
             raise refuse(f"must be {f.rule()}" + did_you_mean(value, f.choices))
         return value
+    if f.kind == "table":
+        return check_table(value, f.table, where)
     if f.kind == "seam_angle" and value == "max_film":
         return value
     if f.kind == "numbers":
@@ -197,10 +205,11 @@ def check_table(data, table: Table, where: str) -> dict:
     return check_fields(data, table.fields, where, f"[{table.name}]")
 
 
-def check_file(data: dict, fmt: FileFormat, where: str) -> dict:
+def check_file(data: dict, fmt: FileFormat, where: str, first_row: int = 0) -> dict:
     """A parsed file checked against ``fmt``: top-level keys and tables (unknown ones refused
     with did-you-mean), each table key by key.  Returns {name: checked value}, a list of
-    checked tables for ``array`` tables."""
+    checked tables for ``array`` tables (rows named ``name[k]`` from ``first_row``: the
+    rotor file counts from 1)."""
     top = {f.name: f for f in fmt.top}
     tables = {t.name: t for t in fmt.tables}
     known = [*top, *tables]
@@ -213,7 +222,7 @@ def check_file(data: dict, fmt: FileFormat, where: str) -> dict:
                     raise ParameterError(f"{where}: {name}", value,
                                          f"must be a list of tables ([[{name}]])")
                 out[name] = [check_table(v, t, f"{where}: {name}[{k}]")
-                             for k, v in enumerate(value)]
+                             for k, v in enumerate(value, first_row)]
             else:
                 out[name] = check_table(value, t, f"{where}: {name}")
         elif name in top:

@@ -69,11 +69,11 @@ from .bearing import BearingGeometry
 from .bearing_file import load_bearing_file, read_toml
 from .checks import check_angle_deg, check_finite, check_nonnegative, check_positive
 from .conversions import STANDARD_GRAVITY
-from .file_schema import Field, Table, check_fields, check_file, check_table
+from .file_schema import REQUIRED, Table, check_file
 from .options import ModelOptions
 from .rotor_limits import check_rotor_limits
-from .rotor_schema import BEARING_MODEL, BEARINGS, ROTOR_FILE, SHAFT_ROTOR
-from .shaft_file import ShaftModel, shaft_from_file
+from .rotor_schema import IMBALANCE, ROTOR, ROTOR_FILE, SHAFT_ROTOR, SIDE_LOADS
+from .shaft_file import ShaftModel, shaft_from_file, shaft_refuses_rigid_keys
 
 #: the number of bearings a rotor file must give (the rigid-rotor model has two supports)
 BEARING_COUNT = 2
@@ -303,40 +303,35 @@ def rotor_from_dict(data: dict, directory: Union[str, Path] = ".",
     directory = Path(directory)
     if not isinstance(data, dict):
         raise ParameterError(where, data, "must be a table")
-    check_file({k: v for k, v in data.items() if k not in _TABLES}, _TOP_LEVEL, where)
-    shaft = shaft_from_file(data, _rows(data, "shaft", where), _rows(data, "disks", where),
-                            _row, _build, where)
-    if shaft is None and "rotor" not in data:
+    rows = {k: [v] if k in _ARRAYS and isinstance(v, dict) else v for k, v in data.items()}
+    flexible = bool(rows.get("shaft"))
+    if flexible:                   # the rigid-only keys named as such, not as unknown keys
+        shaft_refuses_rigid_keys(data, where)
+    elif rows.get("disks"):
+        shaft_from_file([], rows["disks"], where)          # refused: disks need a shaft
+    file = check_file(rows, _SHAFT_FILE if flexible else _RIGID_FILE, where, first_row=1)
+    shaft = shaft_from_file(file.get("shaft", []), file.get("disks", []), where)
+    if shaft is None and "rotor" not in file:
         raise ParameterError(f"{where}: [rotor]", None, "table is required but missing (a "
                              "rigid rotor's mass and inertia; or give [[shaft]] elements)")
+    rotor = _filled(file.get("rotor", {}), ROTOR if shaft is None else SHAFT_ROTOR)
     if shaft is None:
-        rotor = _row(data["rotor"], "rotor", f"{where}: rotor")
         body = _build(RotorBody, f"{where}: rotor", mass=rotor["mass"],
                       transverse_inertia=rotor["transverse_inertia"],
                       polar_inertia=rotor["polar_inertia"], name=rotor["name"])
     else:
-        rotor = _filled(check_table(data.get("rotor", {}), SHAFT_ROTOR, f"{where}: rotor"),
-                        SHAFT_ROTOR)
         body = shaft_body(shaft, rotor["name"])
-    bearing_rows = _rows(data, "bearings", where)
+    bearing_rows = file.get("bearings", [])
     if len(bearing_rows) != BEARING_COUNT:
         raise ParameterError(f"{where}: bearings", f"{len(bearing_rows)} [[bearings]] table(s)",
                              "exactly two bearings are supported (a rigid rotor on two "
                              "supports)")
     bearings = [_bearing(row, k, directory, where) for k, row in enumerate(bearing_rows, 1)]
-    load_rows = _rows(data, "side_loads", where)
-    if shaft is not None:
-        for k, row in enumerate(load_rows, 1):
-            if isinstance(row, dict) and "position" not in row:
-                raise ParameterError(f"{where}: side_loads[{k}].position", None, "is required "
-                                     "with a [[shaft]] (m from the shaft's first end)")
-    loads = [_build(SideLoad, f"{where}: side_loads[{k}]",
-                    **_row(row, "side_loads", f"{where}: side_loads[{k}]"))
-             for k, row in enumerate(load_rows, 1)]
-    planes = [_plane(row, k, where) for k, row in enumerate(_rows(data, "imbalance", where), 1)]
-    stations = [_build(Station, f"{where}: stations[{k}]",
-                       **_row(row, "stations", f"{where}: stations[{k}]"))
-                for k, row in enumerate(_rows(data, "stations", where), 1)]
+    loads = [_build(SideLoad, f"{where}: side_loads[{k}]", **_filled(row, SIDE_LOADS))
+             for k, row in enumerate(file.get("side_loads", []), 1)]
+    planes = [_plane(row, k, where) for k, row in enumerate(file.get("imbalance", []), 1)]
+    stations = [_build(Station, f"{where}: stations[{k}]", **row)
+                for k, row in enumerate(file.get("stations", []), 1)]
     return RotorSystem(body, tuple(bearings), tuple(loads), tuple(planes), tuple(stations),
                        gravity=rotor["gravity"],
                        gravity_direction_deg=rotor["gravity_direction_deg"], source=where,
@@ -366,18 +361,17 @@ def _shaft_body(shaft, body, where: str) -> RotorBody:
 
 
 # ------------------------------------------------------------------ checking, with file_schema
-#: the rotor file's tables by name (``[bearings.model]`` is checked with its bearing)
-_TABLE = {t.name: t for t in ROTOR_FILE.tables if "." not in t.name}
-_TABLES = tuple(_TABLE)
-#: the top level of a rotor file for :func:`~gfbopt.inputs.file_schema.check_file`: its
-#: top-level keys, and its tables named (for "did you mean") but checked row by row here
-_TOP_LEVEL = replace(ROTOR_FILE, tables=tuple(replace(t, required=False)
-                                              for t in _TABLE.values()))
-#: a [[bearings]] row's keys with ``model`` (its [bearings.model] table, checked by
-#: :meth:`ModelOptions.from_table` against file_schema's MODEL): named for "did you mean"
-#: and the list of known keys; the sub-table itself is taken out before the row is checked
-_BEARING_KEYS = (*BEARINGS.fields, Field("model", "text", "-", BEARING_MODEL.doc,
-                                         default=None))
+#: the rotor file as checked: the rules "[rotor] required without a [[shaft]]" and "two
+#: [[bearings]]" are the builder's (with their own messages), and with a [[shaft]] the
+#: [rotor] table has no mass or inertia and a side load's position is required
+_RIGID_FILE = replace(ROTOR_FILE, tables=tuple(replace(t, required=False)
+                                               for t in ROTOR_FILE.tables if "." not in t.name))
+_SHAFT_FILE = replace(_RIGID_FILE, tables=tuple(
+    replace(SHAFT_ROTOR, required=False) if t.name == "rotor" else
+    replace(t, fields=tuple(replace(f, default=REQUIRED) if f.name == "position" else f
+                            for f in t.fields)) if t.name == "side_loads" else t
+    for t in _RIGID_FILE.tables))
+_ARRAYS = tuple(t.name for t in ROTOR_FILE.tables if t.array)
 
 
 def _filled(checked: dict, table: Table) -> dict:
@@ -389,22 +383,6 @@ def _filled(checked: dict, table: Table) -> dict:
     return out
 
 
-def _row(row, name: str, where: str) -> dict:
-    """One table (``[rotor]``) or row (``[[shaft]]`` …) checked against the schema's table
-    ``name`` by :func:`~gfbopt.inputs.file_schema.check_table`, defaults filled."""
-    return _filled(check_table(row, _TABLE[name], where), _TABLE[name])
-
-
-def _rows(data: dict, name: str, where: str) -> list:
-    """The rows of array table ``name`` (a single ``[name]`` table is one row)."""
-    rows = data.get(name, [])
-    if isinstance(rows, dict):
-        rows = [rows]
-    if not isinstance(rows, list):
-        raise ParameterError(f"{where}: {name}", rows, f"must be a list of tables ([[{name}]])")
-    return rows
-
-
 def _build(cls, where: str, *args, **kwargs):
     """cls(...) with a ParameterError renamed to ``where.key``."""
     try:
@@ -413,26 +391,23 @@ def _build(cls, where: str, *args, **kwargs):
         raise ParameterError(f"{where}.{exc.name}", exc.value, exc.rule) from None
 
 
-def _bearing(row, k: int, directory: Path, where: str) -> BearingSupport:
+def _bearing(table: dict, k: int, directory: Path, where: str) -> BearingSupport:
     here = f"{where}: bearings[{k}]"
-    model = row.get("model") if isinstance(row, dict) else None
-    rest = {key: v for key, v in row.items() if key != "model"} if isinstance(row, dict) else row
-    table = check_fields(rest, _BEARING_KEYS, here, f"[{BEARINGS.name}]")
     file = directory / table["file"]
     if not file.is_file():
         raise ParameterError(f"{here}.file", table["file"],
                              f"must name an existing bearing file (looked for {file})")
     geometry, options = load_bearing_file(file)
-    if model is not None:
-        options = ModelOptions.from_table(model, where=f"{here}.model").over(options)
+    if "model" in table:
+        options = ModelOptions(**table["model"]).over(options)
     return _build(BearingSupport, here, name=table.get("name", "AB"[k - 1]),
                   position=table["position"], geometry=geometry, options=options,
                   file=str(file))
 
 
-def _plane(row, k: int, where: str) -> ImbalancePlane:
+def _plane(table: dict, k: int, where: str) -> ImbalancePlane:
     here = f"{where}: imbalance[{k}]"
-    table = _row(row, "imbalance", here)
+    table = _filled(table, IMBALANCE)
     stated = [key for key in ("amount_kg_m", "amount_g_mm") if key in table]
     if not stated:
         raise ParameterError(f"{here}.amount_kg_m", None, "is required: give the imbalance "

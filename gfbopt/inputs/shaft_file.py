@@ -25,7 +25,7 @@ from dataclasses import dataclass
 
 from ..errors import ParameterError
 from .checks import check_finite, check_nonnegative, check_positive
-from .rotor_schema import RIGID_ONLY
+from .rotor_schema import DISKS, RIGID_ONLY, SHAFT
 
 #: default Poisson ratio of a shaft element (steel) [-]
 DEFAULT_POISSON = 0.3
@@ -179,15 +179,13 @@ def check_on_shaft(model: ShaftModel, key: str, position: float) -> float:
     return position
 
 
-def shaft_from_rows(shaft_rows: list, disk_rows: list, table, build, where: str) -> ShaftModel:
-    """The :class:`ShaftModel` of a rotor file's ``[[shaft]]`` and ``[[disks]]`` rows;
-    ``table(row, name, here)`` checks a row against the schema's table ``name`` (key by key,
-    defaults filled), ``build(cls, here, **kw)`` builds with the key named (both from
-    :mod:`.rotor_system`); the rules between keys are the built objects' own."""
-    elements = []
-    for k, row in enumerate(shaft_rows, 1):
-        here = f"{where}: shaft[{k}]"
-        elements.append(build(ShaftElement, here, **table(row, "shaft", here)))
+def shaft_from_rows(shaft_rows: list, disk_rows: list, where: str) -> ShaftModel:
+    """The :class:`ShaftModel` of a rotor file's ``[[shaft]]`` and ``[[disks]]`` rows, each
+    already checked key by key against :data:`~.rotor_schema.SHAFT` / :data:`~.rotor_schema.
+    DISKS`; the rules between keys are the built objects' own (ParameterError naming the row
+    and key)."""
+    elements = [_named(ShaftElement, f"{where}: shaft[{k}]", _filled(row, SHAFT))
+                for k, row in enumerate(shaft_rows, 1)]
     if not elements:
         raise ParameterError(f"{where}: shaft", "0 elements", "needs at least one [[shaft]] "
                              "element")
@@ -195,31 +193,47 @@ def shaft_from_rows(shaft_rows: list, disk_rows: list, table, build, where: str)
     disks = []
     for k, row in enumerate(disk_rows, 1):
         here = f"{where}: disks[{k}]"
-        t = table(row, "disks", here)
-        t.setdefault("name", f"disk {k}")
-        disk = build(Disk, here, **t)
+        disk = _named(Disk, here, {"name": f"disk {k}", **_filled(row, DISKS)})
         check_on_shaft(bare, f"{here}.position", disk.position)
         disks.append(disk)
     return ShaftModel(tuple(elements), tuple(disks))
 
 
-def shaft_from_file(data: dict, shaft_rows: list, disk_rows: list, table, build,
-                    where: str):
-    """The rotor file's :class:`ShaftModel` (None without ``[[shaft]]``; ``[[disks]]`` need
-    one, and a shaft's ``[rotor]`` table gives no mass or inertia)."""
+def shaft_from_file(shaft_rows: list, disk_rows: list, where: str):
+    """The rotor file's :class:`ShaftModel` from its checked rows (None without
+    ``[[shaft]]``; ``[[disks]]`` need one)."""
     if not shaft_rows:
         if disk_rows:
             raise ParameterError(f"{where}: disks", f"{len(disk_rows)} [[disks]] table(s)",
                                  "need a [[shaft]] to sit on (a rigid rotor's inertia is its "
                                  "[rotor] table)")
         return None
+    return shaft_from_rows(shaft_rows, disk_rows, where)
+
+
+def shaft_refuses_rigid_keys(data: dict, where: str) -> None:
+    """A shaft's ``[rotor]`` table gives no mass or inertia (refused naming the key)."""
     if isinstance(data.get("rotor"), dict):
         for key in RIGID_ONLY:
             if key in data["rotor"]:
                 raise ParameterError(f"{where}: rotor.{key}", data["rotor"][key],
                                      "is refused with a [[shaft]]: the rotor's mass and "
                                      "inertia come from its [[shaft]] elements and [[disks]]")
-    return shaft_from_rows(shaft_rows, disk_rows, table, build, where)
+
+
+def _filled(row: dict, table) -> dict:
+    out = dict(row)
+    for f in table.fields:
+        if f.name not in out and not f.required and f.default is not None:
+            out[f.name] = f.default
+    return out
+
+
+def _named(cls, where: str, kwargs: dict):
+    try:
+        return cls(**kwargs)
+    except ParameterError as exc:
+        raise ParameterError(f"{where}.{exc.name}", exc.value, exc.rule) from None
 
 
 def check_positions_on_shaft(model: ShaftModel, groups, prefix: str = "") -> None:

@@ -9,7 +9,7 @@ import pytest
 
 from gfbopt.errors import ParameterError
 from gfbopt.file_formats import PAGES, render_format
-from gfbopt.inputs.rotor_schema import ROTOR_FILE, schema_markdown
+from gfbopt.inputs.rotor_schema import ROTOR_FILE
 from gfbopt.inputs.rotor_system import load_rotor, rotor_from_dict
 from gfbopt.rotor.rigid import (bearing_loads, gyroscopic_matrix, mass_matrix, seam_from_load,
                                 transformation)
@@ -118,7 +118,7 @@ def test_schema_documents_every_key_and_docs_page_is_current():
     """The page is ROTOR_FILE rendered as every file format is (file_formats.render_format),
     names every key of every table, and is what docs/formats/rotor_file.md holds."""
     page = render_format(ROTOR_FILE)
-    assert schema_markdown() == page == PAGES["rotor_file.md"]()
+    assert page == PAGES["rotor_file.md"]()
     tables = {t.name: t for t in ROTOR_FILE.tables}
     assert set(tables) == {"rotor", "bearings", "bearings.model", "side_loads", "imbalance",
                            "stations", "shaft", "disks"}
