@@ -70,6 +70,10 @@ SHAFT_SCALE_LIMIT = 1e3
 #: a branch's continuation between two scan points is sure when the MAC of its shapes is at
 #: least this; else the interval is halved [-]
 SURE_MAC = 0.5
+#: ... and decisive, however far the values move, when its MAC is at least DECISIVE_MAC and
+#: its MAC with every other root of the next point at most RUNNER_UP_MAC [-]
+DECISIVE_MAC = 0.9
+RUNNER_UP_MAC = 0.5
 
 
 @dataclass(frozen=True)
@@ -175,7 +179,14 @@ def _assignments(mass: np.ndarray, vectors: np.ndarray) -> tuple[np.ndarray, np.
     distinct = np.sort(perm, axis=1) == np.arange(n)
     for k in np.flatnonzero(~distinct.all(axis=1)):
         perm[k] = linear_sum_assignment(1.0 - mac[k])[1]
-    return perm, np.take_along_axis(mac, perm[:, :, None], axis=2)[:, :, 0]
+    chosen = np.take_along_axis(mac, perm[:, :, None], axis=2)[:, :, 0]
+    others = mac.copy()
+    np.put_along_axis(others, perm[:, :, None], -1.0, axis=2)
+    runner_up = others.max(axis=2) if n > 1 else np.zeros_like(chosen)
+    # a root's continuation is decisive when its shape matches one root of the next point
+    # and no other: then the shapes settle it however far the values move
+    decisive = (chosen >= DECISIVE_MAC) & (runner_up <= RUNNER_UP_MAC)
+    return perm, np.where(decisive, 1.0 + chosen, chosen)
 
 
 def _ambiguous(values: np.ndarray, perm: np.ndarray, macs: np.ndarray) -> np.ndarray:
@@ -186,8 +197,8 @@ def _ambiguous(values: np.ndarray, perm: np.ndarray, macs: np.ndarray) -> np.nda
     b = np.take_along_axis(values[1:], perm, axis=1)
     sep = np.abs(a[:, :, None] - a[:, None, :])
     sep[:, np.arange(a.shape[1]), np.arange(a.shape[1])] = np.inf
-    return (np.any(np.abs(b - a) > FOLLOW_FRACTION * sep.min(axis=2), axis=1)
-            | np.any(macs < SURE_MAC, axis=1))
+    moved = np.abs(b - a) > FOLLOW_FRACTION * sep.min(axis=2)
+    return np.any(moved & (macs <= 1.0), axis=1) | np.any(macs < SURE_MAC, axis=1)
 
 
 def _branches(values: np.ndarray, perm: np.ndarray) -> np.ndarray:
