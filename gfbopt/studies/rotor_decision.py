@@ -68,7 +68,7 @@ def lever_store(out, plan, chosen: dict, levers: tuple, resume: bool):
     """The what-it-would-take store in ``out``/:data:`LEVER_STORE`: resumed when it holds
     the same search (study hash), design and levers, else started afresh (an older store is
     kept aside, :class:`gfbopt.doe.ResultStore`)."""
-    from ..design.what_it_takes import STORE_SCHEMA
+    from ..design.lever_runs import STORE_SCHEMA
     from ..doe.store import ResultStore
     from ..errors import ParameterError
 
@@ -91,7 +91,8 @@ def run_levers(study, plan, chosen: dict, store, run_tasks, resume: bool, step):
     """(answers, evaluations) of the study's levers on the chosen design (empty, None
     when the study names none)."""
     from ..design import rotor_objectives
-    from ..design.what_it_takes import LeverEvaluations, parse_levers, what_it_would_take
+    from ..design.lever_runs import LeverEvaluations, what_it_would_take
+    from ..design.what_it_takes import parse_levers
 
     levers = parse_levers(study.spec.get("what_it_would_take") or None, study.file,
                           tuple(b.name for b in plan.system.bearings), tuple(plan.problem.names))

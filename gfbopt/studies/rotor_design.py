@@ -196,7 +196,8 @@ def plan(study: Study):
     """Validate the study before any solve
     (:func:`gfbopt.design.rotor_spec.plan_rotor_design`, and the levers of
     ``[what_it_would_take]``, :func:`gfbopt.design.what_it_takes.parse_levers`)."""
-    from ..design.what_it_takes import check_starts, parse_levers
+    from ..design.lever_runs import check_starts
+    from ..design.what_it_takes import parse_levers
 
     p = plan_rotor_design(study, design_hash(study))
     levers = parse_levers(study.spec.get("what_it_would_take") or None, study.file,

@@ -12,7 +12,7 @@ import pandas as pd
 
 from ..design.decision import binding_limits, failed_count, limits_frame, limits_text
 from ..design.pareto import feasible_rows
-from ..design.what_it_takes import STORE_SCHEMA, answers_text
+from ..design.lever_runs import STORE_SCHEMA, answers_text
 from ..plotting.design_front import variable_label
 from .base import StudyResult
 from .rotor_decision import answers_frame, margin_of, margin_text, run_levers

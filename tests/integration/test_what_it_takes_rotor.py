@@ -11,7 +11,8 @@ from pathlib import Path
 import pytest
 
 from gfbopt.design.rotor_objectives import evaluate_rotor_design
-from gfbopt.design.what_it_takes import lever_point, parse_levers
+from gfbopt.design.lever_runs import lever_point
+from gfbopt.design.what_it_takes import parse_levers
 from gfbopt.inputs import read_toml
 from gfbopt.studies import study_from_dict
 from gfbopt.studies.rotor_design import run_design
