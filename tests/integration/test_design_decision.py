@@ -180,21 +180,30 @@ def test_a_run_killed_in_its_lever_searches_resumes_with_each_evaluation_once(
 
 
 def test_a_stable_design_reports_its_margin(study, tmp_path, monkeypatch):
-    """Every design stable (the onset raised by 40,000 rpm): the verdict says so, the
-    margin is the chosen design's onset over the top speed and its worst case under the
-    tolerances, and nothing is searched for what it would take."""
+    """Every design stable (the onset raised by 40,000 rpm): the console's last line, the
+    README's first line and summary.json say so alike, the margin is the chosen design's
+    onset over the top speed and its worst case under the tolerances, and nothing is
+    searched for what it would take."""
     monkeypatch.setenv("GFBOPT_TEST_ONSET_OFFSET", "40000")
-    result = run_design(load_study(study), tmp_path / "r")
-    a = result.answer
+    out = run_cli("run", study, "--results", tmp_path / "r", "--workers", "1")
+    assert out.returncode == 0, out.stderr
+    folder = tmp_path / "r" / "rd_decision"
+    a = json.loads((folder / "summary.json").read_text())
+    readme = (folder / "README.md").read_text().splitlines()
+    assert out.stdout.strip().splitlines()[-1] == f"rd_decision: {a['verdict']}"
+    assert readme[0] == a["verdict"]
     assert a["stable_to_top_speed"] is True and a["verdict"].startswith("Stable to 45,000 rpm")
     assert a["what_it_would_take"] is None
+    assert not (folder / "what_it_would_take.csv").exists()
     m = a["margin"]
     onset = a["chosen_design"]["first_onset_speed_rpm"]
     assert m["first_onset_rpm"] == onset and m["margin_rpm"] == pytest.approx(onset - TOP)
-    robust = result.tables["robustness.csv"].iloc[0]
-    assert m["worst_onset_under_tolerances_rpm"] == robust["worst_onset_speed_rpm"]
+    robust = pd.read_csv(folder / "robustness.csv").iloc[0]
+    assert m["worst_onset_under_tolerances_rpm"] == pytest.approx(
+        robust["worst_onset_speed_rpm"], rel=1e-6)             # the CSV holds 7 digits
     assert m["worst_onset_under_tolerances_rpm"] <= onset
-    assert any(n.startswith("Margin: the chosen design's first onset") for n in result.notes)
+    assert any(n.startswith("Margin: the chosen design's first onset") for n in a["notes"])
+    assert "- Margin: the chosen design's first onset" in "\n".join(readme)
 
 
 @pytest.mark.parametrize("table, rule", [
