@@ -23,9 +23,7 @@ the rotor's shape (mass, inertias and the gyroscopic term alike), so the rotor i
 Search (as :mod:`gfbopt.linear.crossings` does for one bearing, with n roots instead of
 two): ν(γ) on the scan (24 whirl ratios on (0.02, 1.2) by default, the one-bearing scan,
 with midpoints added wherever a root moves by more than 0.3 of its distance to the next root
-between two points and its shape does not settle its continuation (decisive: MAC at least
-:data:`DECISIVE_MAC` with one root of the next point and at most :data:`RUNNER_UP_MAC` with
-every other), or wherever its continuation is unsure (MAC below :data:`SURE_MAC`) — near
+between two points, or its continuation is unsure (MAC below :data:`SURE_MAC`) — near
 γ = 1/2 two forward modes can cross the axis 2e-4 apart in γ), the n branches followed by
 continuity of their shapes: the eigenvectors of neighbouring whirl ratios are matched by the
 optimal assignment (:func:`scipy.optimize.linear_sum_assignment`) on 1 − MAC, MAC =
@@ -72,10 +70,6 @@ SHAFT_SCALE_LIMIT = 1e3
 #: a branch's continuation between two scan points is sure when the MAC of its shapes is at
 #: least this; else the interval is halved [-]
 SURE_MAC = 0.5
-#: ... and decisive, however far the values move, when its MAC is at least DECISIVE_MAC and
-#: its MAC with every other root of the next point at most RUNNER_UP_MAC [-]
-DECISIVE_MAC = 0.9
-RUNNER_UP_MAC = 0.5
 
 
 @dataclass(frozen=True)
@@ -181,14 +175,7 @@ def _assignments(mass: np.ndarray, vectors: np.ndarray) -> tuple[np.ndarray, np.
     distinct = np.sort(perm, axis=1) == np.arange(n)
     for k in np.flatnonzero(~distinct.all(axis=1)):
         perm[k] = linear_sum_assignment(1.0 - mac[k])[1]
-    chosen = np.take_along_axis(mac, perm[:, :, None], axis=2)[:, :, 0]
-    others = mac.copy()
-    np.put_along_axis(others, perm[:, :, None], -1.0, axis=2)
-    runner_up = others.max(axis=2) if n > 1 else np.zeros_like(chosen)
-    # a root's continuation is decisive when its shape matches one root of the next point
-    # and no other: then the shapes settle it however far the values move
-    decisive = (chosen >= DECISIVE_MAC) & (runner_up <= RUNNER_UP_MAC)
-    return perm, np.where(decisive, 1.0 + chosen, chosen)
+    return perm, np.take_along_axis(mac, perm[:, :, None], axis=2)[:, :, 0]
 
 
 def _ambiguous(values: np.ndarray, perm: np.ndarray, macs: np.ndarray) -> np.ndarray:
@@ -199,8 +186,8 @@ def _ambiguous(values: np.ndarray, perm: np.ndarray, macs: np.ndarray) -> np.nda
     b = np.take_along_axis(values[1:], perm, axis=1)
     sep = np.abs(a[:, :, None] - a[:, None, :])
     sep[:, np.arange(a.shape[1]), np.arange(a.shape[1])] = np.inf
-    moved = np.abs(b - a) > FOLLOW_FRACTION * sep.min(axis=2)
-    return np.any(moved & (macs <= 1.0), axis=1) | np.any(macs < SURE_MAC, axis=1)
+    return (np.any(np.abs(b - a) > FOLLOW_FRACTION * sep.min(axis=2), axis=1)
+            | np.any(macs < SURE_MAC, axis=1))
 
 
 def _branches(values: np.ndarray, perm: np.ndarray) -> np.ndarray:

@@ -3,7 +3,7 @@
 * the blower rotor's answers (onsets of every mode, crossings, Campbell rows, imbalance
   response) are those of the 4 × 4 rigid-body code before the contract, to 1e-9
   (tests/verification/rotor_structure_reference.json, made by rotor_structure_reference.py
-  from commit 0c7535c);
+  from commit 0c7535c; the crossings at 32,000 and 48,000 rpm hold two forward modes 1e-4 apart in γ, which a coarser scan misses);
 * the same rigid body written as a generic structure in other coordinates (the axis's
   displacement at the two bearings, n = 4, not RigidStructure, so through the n-DOF
   arithmetic: stations, mass-weighted MAC, station-read labels) gives the same answers to
