@@ -69,7 +69,9 @@ class SimpleLaw(FoilLaw):
     engines = ("static", "linear", "rk4", "rkc", "bdf")
     loss_factor_engines = ("linear", "rk4", "rkc", "bdf")
     damped_state = "rows"
-    friction_engines = ("static", "linear")
+    #: rk4: the one-bearing transient with the sliders as a state beside it
+    #: (:func:`gfbopt.transient.friction_orbit.integrate_friction_orbits`)
+    friction_engines = ("static", "linear", "rk4")
 
     def static_film(self, h_rigid, lifted, mean_gauge, p_full, u, foil, st, data):
         w_rows = simple_deflection(mean_gauge, foil.compliance, foil.compression_only)
@@ -353,9 +355,10 @@ def foil_law(model, engine: Optional[str] = None) -> FoilLaw:
         raise ParameterError("friction_coefficient", mu, "Coulomb friction of the bumps is "
                              f"modelled for the {law.name} foil law by "
                              f"{', '.join(law.friction_engines) or 'no engine'} only, not by "
-                             f"{who} (the slider's state law for transients, "
-                             "gfbopt.physics.friction_state, is not yet in their integrated "
-                             "state); use friction_coefficient = 0")
+                             f"{who} (the one-bearing rk4 transient carries the sliders: "
+                             "transient_model(..., friction=True) with gfbopt.transient."
+                             "friction_orbit.integrate_friction_orbits); use "
+                             "friction_coefficient = 0")
     eta = getattr(model, "loss_factor", 0.0)
     if eta <= 0.0:
         return law

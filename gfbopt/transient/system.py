@@ -43,6 +43,7 @@ from ..static import StaticSolution
 from ..static.build import row_values, solution_stencil
 from ..threads import single_threaded
 from .foil_state import KelvinVoigtFoil, foil_bound, kelvin_voigt_foil
+from .friction_foil import FrictionFoil, friction_foil, recover_with_slider
 
 
 
@@ -72,6 +73,7 @@ class TransientModel:
     ambient: Optional[np.ndarray] = None     # (m,) rows at ambient pressure (seams, pad ends)
     bore: Optional[np.ndarray] = None        # (m,) the bore's clearance change Δc/c
     compliance_rows: Optional[np.ndarray] = None   # (m,) S per θ row (bump zones)
+    friction: Optional[FrictionFoil] = None  # the bumps' sliders (μ_f > 0), or None
 
     @property
     def foil(self) -> str:
@@ -85,7 +87,7 @@ class TransientModel:
 
 @single_threaded
 def transient_model(solution: StaticSolution, reference_whirl_ratio: Optional[float] = None,
-                    solver=None, threshold=None) -> TransientModel:
+                    solver=None, threshold=None, *, friction: bool = False) -> TransientModel:
     """The transient model around a converged static equilibrium ``solution``.
 
     A seam on the maximum-film line is frozen where the static solution put it (the top foil
@@ -95,6 +97,11 @@ def transient_model(solution: StaticSolution, reference_whirl_ratio: Optional[fl
     from ``threshold`` (the :class:`gfbopt.linear.LinearThreshold` of ``solution``, when the
     caller has it) or computed (one linearisation, reusing ``solver``); it is refused
     without damping.
+
+    ``friction``: a model with Coulomb friction in the bumps (μ_f > 0) is built with its
+    slider state (:mod:`.friction_foil`; axial-mean law, no loss factor), integrated by
+    :func:`gfbopt.transient.friction_orbit.integrate_friction_orbits` only (the other drivers
+    refuse such a model: they carry no slider).  Without friction it is today's model.
     """
     if not solution.success:
         raise ParameterError("solution", f"status {solution.status}",
@@ -109,7 +116,12 @@ def transient_model(solution: StaticSolution, reference_whirl_ratio: Optional[fl
     dz = 2 * model.length_ratio / solution.grid.n_z
     tw = dtheta * (np.ones(m) if periodic else trapezoid_weights(m))
     zw = dz * trapezoid_weights(nzn)
-    law = foil_law(model, engine="transient")
+    rubbing = friction and model.has_friction
+    if rubbing and model.loss_factor > 0.0:
+        raise ParameterError("loss_factor", model.loss_factor, "the friction transient does "
+                             "not combine a loss factor with the bumps' friction (no "
+                             "Kelvin–Voigt state beside the sliders); use loss_factor = 0")
+    law = foil_law(model, engine="rk4" if rubbing else "transient")
     foil_data = law.transient_data(model, solution.grid, periodic, dtheta)
     cos, sin = np.cos(solution.theta), np.sin(solution.theta)
     x0 = solution.eccentricity * math.cos(solution.attitude_angle_rad)
@@ -118,13 +130,19 @@ def transient_model(solution: StaticSolution, reference_whirl_ratio: Optional[fl
     bore, s_rows = row_values(model, st, solution.seam_angle_rad)   # the bearing as built
     foil_state = kelvin_voigt_foil(solution, law, 1.0 + bore - x0 * cos - y0 * sin,
                                    reference_whirl_ratio, solver, threshold)
+    sliders = None
+    if rubbing:
+        from ..linear.friction_units import friction_rows
+
+        sliders = friction_foil(solution, 1.0 + bore - x0 * cos - y0 * sin,
+                                friction_rows(model, st, solution.seam_angle_rad))
     return TransientModel(
         static=solution, bearing_number=model.bearing_number, compliance=model.compliance,
         load=solution.load, periodic=periodic, cos=cos, sin=sin, theta_weight=tw,
         z_weight=zw, dtheta=dtheta, dz=dz, law=law,
         compression_only=bool(model.compression_only), gumbel=model.subambient == "gumbel",
         foil_data=foil_data, foil_state=foil_state, ambient=st.ambient_rows, bore=bore,
-        compliance_rows=s_rows)
+        compliance_rows=s_rows, friction=sliders)
 
 
 # ----------------------------------------------------------------------- kernel
@@ -199,7 +217,8 @@ def rigid_film(x: np.ndarray, y: np.ndarray, tm: TransientModel) -> np.ndarray:
 
 def pressure_and_film(phi: np.ndarray, x: np.ndarray, y: np.ndarray, tm: TransientModel,
                       guess: Optional[np.ndarray] = None, cache: Optional[dict] = None,
-                      deflection: Optional[np.ndarray] = None) -> tuple[np.ndarray, np.ndarray]:
+                      deflection: Optional[np.ndarray] = None,
+                      slider: Optional[np.ndarray] = None) -> tuple[np.ndarray, np.ndarray]:
     """Recover P (B, m, n_z + 1) and H from Φ = P H and the journal position.
 
     The foil law does it (:meth:`gfbopt.physics.foil_laws.FoilLaw.recover`).  H has shape
@@ -207,7 +226,15 @@ def pressure_and_film(phi: np.ndarray, x: np.ndarray, y: np.ndarray, tm: Transie
     Boundary nodes carry P = 1.  ``guess`` (B, m) is a starting film for the beam's Newton.
     A damped model (``tm.foil_state``) needs the foil state W, ``deflection``: then
     H = H_r + W and P = Φ/H (:meth:`~gfbopt.physics.foil_laws.FoilLaw.recover_deflected`).
+    A model with friction (``tm.friction``) needs the slider positions Z (B, m), ``slider``
+    (:func:`.friction_foil.recover_with_slider`).
     """
+    if tm.friction is not None:
+        if slider is None:
+            raise ParameterError("slider", None, "the transient model with bump friction "
+                                 "needs the slider positions Z: integrate it with "
+                                 "gfbopt.transient.friction_orbit.integrate_friction_orbits")
+        return recover_with_slider(phi, rigid_film(x, y, tm), slider, tm)
     if tm.foil_state is not None:
         if deflection is None:
             raise ParameterError("deflection", None, "the damped transient model (η > 0) "
@@ -268,13 +295,16 @@ class RightHandSide:
         self.guess = None
         self._cache: dict = {}
         self.evaluations = 0
+        #: the sliders Z (B, m) every stage of the current step sees (friction model only)
+        self.slider = None
         #: smallest film H seen per rotor since the last reset (contact detection) [-]
         self.min_film = np.full(self.mass_load.size, np.inf)
 
     def __call__(self, s: State) -> State:
         tm = self.tm
         self.evaluations += 1
-        p, h = pressure_and_film(s.phi, s.x, s.y, tm, self.guess, self._cache, s.w)
+        p, h = pressure_and_film(s.phi, s.x, s.y, tm, self.guess, self._cache, s.w,
+                                 self.slider)
         np.minimum(self.min_film, h.min(axis=(1, 2)), out=self.min_film)
         if tm.law.name == "beam":
             self.guess = h[..., 0]
@@ -300,15 +330,15 @@ def equilibrium_state(tm: TransientModel, batch: int) -> State:
 
 
 # -------------------------------------------------------------- stability bound
-def stiffness_bound(s: State, tm: TransientModel) -> float:
+def stiffness_bound(s: State, tm: TransientModel, slider: Optional[np.ndarray] = None) -> float:
     """Gershgorin bound on |λ| of ∂(dΦ/dτ)/∂Φ at state ``s`` [1/rad of shaft rotation].
 
     With P = Φ/H (foil coupling neglected: it is non-local and non-stiff), row sums of
     |∂R/∂P_k|/H_k over the five-point stencil, over 2Λ.  RK4 is stable for Δτ·λ ≤ 2.78.
     A damped model's foil rows (:func:`.foil_state.foil_bound`) are included: the bound is
-    the larger of the two.
+    the larger of the two.  ``slider``: the sliders Z of a friction model.
     """
-    p, h = pressure_and_film(s.phi, s.x, s.y, tm, deflection=s.w)
+    p, h = pressure_and_film(s.phi, s.x, s.y, tm, deflection=s.w, slider=slider)
     lam, dth, dz = tm.bearing_number, tm.dtheta, tm.dz
     h3 = h ** 3
     roll = (lambda a, k: np.roll(a, k, axis=-2)) if tm.periodic else _shift

@@ -1,0 +1,218 @@
+"""One-bearing orbits with the bumps' Coulomb friction: RK4 with the sliders split off.
+
+The slider positions Z (B, m) of :mod:`.friction_foil` are not an ODE state (they have no
+rate): they are carried beside the integrated state (Φ, X, Y, U, V) and updated once after
+every accepted step by the play operator (operator splitting, :mod:`.friction_foil`'s
+docstring says why it is consistent).  Every stage of a step recovers P and H with the step's
+starting Z.  This driver is the one-bearing RK4 loop of :mod:`.rk4` with that update between
+steps (rk4's own loop has no post-step hook); with ``tm.friction`` None it is that loop.
+
+:func:`friction_outcome` states how a run ended: "settled limit cycle" (the orbit's
+semi-major axis steady over the last whirl periods), "contact" (the film closed), or "end of
+run" (still growing or decaying), with the amplitude and the whirl ratio.
+"""
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass
+from typing import Optional
+
+import numpy as np
+
+from ..errors import ParameterError
+from ..threads import single_threaded
+from .friction_foil import slider_after_step, stuck_share
+from .result import OrbitBatch, check_masses, check_positive, finish_orbits
+from .rk4 import RK4_STABILITY_RADIUS, STEP_SAFETY, rk4_step
+from .system import (RightHandSide, State, TransientModel, equilibrium_state,
+                     pressure_and_film, rigid_film, stiffness_bound)
+
+
+@dataclass(frozen=True, eq=False)
+class FrictionRun:
+    """An orbit batch with the sliders: ``orbit`` (:class:`~.result.OrbitBatch`), the final
+    state and sliders Z (B, m), and the share of loaded rows stuck at each sample (B, n)."""
+
+    orbit: OrbitBatch
+    state: State
+    slider: Optional[np.ndarray]
+    stuck: Optional[np.ndarray]
+
+
+@single_threaded
+def integrate_friction_orbits(tm: TransientModel, mass, revolutions: float = 10.0, *,
+                              kick: float = 1e-3, initial: Optional[State] = None,
+                              slider: Optional[np.ndarray] = None,
+                              sample_every: float = 0.2, contact_film: float = 0.02,
+                              settle: float = 2.0, time_step: Optional[float] = None,
+                              check_every: int = 50) -> FrictionRun:
+    """Advance a batch of rotors on one bearing whose bumps rub (RK4, sliders split off).
+
+    Arguments as :func:`gfbopt.transient.orbit.integrate_orbits` with method 'rk4';
+    ``slider`` : the sliders Z (B, m) to start from (default: relaxed at the equilibrium,
+    Z = W0; with ``initial`` it must be given for a friction model).  A model without
+    friction runs the rk4 loop exactly (its answers equal :func:`integrate_orbits`').
+    """
+    t0 = time.perf_counter()
+    if tm.foil_state is not None:
+        raise ParameterError("loss_factor", tm.foil_state.loss_factor, "this driver does not "
+                             "carry the Kelvin–Voigt foil state; use integrate_orbits")
+    tm.law.check_engine("rk4")
+    mass = check_masses(mass)
+    revolutions = check_positive("revolutions", revolutions)
+    batch = mass.size
+    state = initial if initial is not None else equilibrium_state(tm, batch)
+    if initial is None:
+        state.u[:] = kick / math.sqrt(2)
+        state.v[:] = kick / math.sqrt(2)
+    z = None
+    if tm.friction is not None:
+        if slider is None:
+            if initial is not None:
+                raise ParameterError("slider", None, "must be given with ``initial`` for a "
+                                     "model with bump friction")
+            slider = np.broadcast_to(tm.friction.equilibrium, (batch, tm.shape[0]))
+        z = np.array(slider, dtype=float)
+    limit = RK4_STABILITY_RADIUS / stiffness_bound(state, tm, z)
+    if time_step is None:
+        dt = STEP_SAFETY * limit
+    else:
+        dt = check_positive("time_step", time_step)
+        if dt > limit:
+            raise ParameterError("time_step", time_step, f"exceeds the RK4 stability limit "
+                                 f"{limit:.4g} of the discretised system (Gershgorin bound)")
+    t_end = 2 * math.pi * revolutions
+    per_sample = max(1, int(round(sample_every / dt)))
+    n_steps = int(math.ceil(t_end / dt - 1e-9))
+    rhs = RightHandSide(tm, mass)
+    active = np.ones(batch, dtype=bool)
+    contact_tau = np.full(batch, np.nan)
+    contact_min = np.full(batch, np.nan)
+    taus, xs, ys, hs, stuck = [], [], [], [], []
+    tau = 0.0
+
+    def record(s):
+        h = pressure_and_film(s.phi, s.x, s.y, tm, rhs.guess, deflection=s.w, slider=z)[1]
+        taus.append(tau)
+        xs.append(s.x.copy())
+        ys.append(s.y.copy())
+        hs.append(h.min(axis=(1, 2)))
+        if z is not None:
+            stuck.append(stuck_share(s.phi, rigid_film(s.x, s.y, tm), z, tm))
+
+    record(state)
+    failure = ""
+    for step in range(1, n_steps + 1):
+        rhs.min_film[:] = np.inf
+        rhs.slider = z                       # every stage: the step's starting sliders
+        state = rk4_step(rhs, state, dt, active.astype(float))
+        tau += dt
+        if not np.all(np.isfinite(state.x[active])):
+            failure = (f"the integration blew up (non-finite state) at τ = {tau:.4g} with "
+                       f"Δτ = {dt:.4g}; the step is above the stability limit")
+            break
+        if z is not None:                    # the play operator after the accepted step
+            moved = slider_after_step(state.phi, rigid_film(state.x, state.y, tm), z, tm)
+            z = np.where(active[:, None], moved, z)
+        touching = active & (rhs.min_film <= contact_film)
+        if touching.any():
+            contact_tau[touching] = tau
+            contact_min[touching] = rhs.min_film[touching]
+            active &= ~touching
+        if step % per_sample == 0 or step == n_steps or not active.any():
+            record(state)
+            if not active.any():
+                break
+        if step % check_every == 0:
+            keep = np.flatnonzero(active)
+            new_limit = RK4_STABILITY_RADIUS / stiffness_bound(
+                state.take(keep), tm, None if z is None else z[keep])
+            if dt > new_limit:
+                if time_step is not None:
+                    raise ParameterError("time_step", time_step, f"exceeds the RK4 stability "
+                                         f"limit {new_limit:.4g} reached at τ = {tau:.3g}")
+                dt = STEP_SAFETY * new_limit
+                per_sample = max(1, int(round(sample_every / dt)))
+                n_steps = step + int(math.ceil((t_end - tau) / dt - 1e-9))
+    tau_arr = np.array(taus)
+    x, y, hmin = np.array(xs).T, np.array(ys).T, np.array(hs).T
+    for b in np.flatnonzero(np.isfinite(contact_tau)):
+        after = tau_arr > contact_tau[b] + 1e-12
+        x[b, after] = y[b, after] = hmin[b, after] = np.nan
+        last = np.flatnonzero(~after)[-1]
+        hmin[b, last] = min(hmin[b, last], contact_min[b])
+    orbit = finish_orbits(tm, tau_arr, x, y, hmin, ~active, contact_tau, mass, settle=settle,
+                          kick=kick, time_step=dt, evaluations=rhs.evaluations, started=t0,
+                          revolutions=tau / (2 * math.pi), method="rk4",
+                          success=not failure, message=failure)
+    return FrictionRun(orbit, state, z, np.array(stuck).T if stuck else None)
+
+
+@dataclass(frozen=True)
+class FrictionOutcome:
+    """How one rotor's run ended (non-dimensional).
+
+    kind : 'settled limit cycle', 'contact' or 'end of run'; amplitude : the orbit's
+    semi-major axis over the last window [clearances]; previous : the same over the window
+    before it; whirl_ratio γ over the last window [-]; min_film [-]; contact_tau [rad];
+    verdict : one line.
+    """
+
+    kind: str
+    amplitude: float
+    previous: float
+    whirl_ratio: float
+    min_film: float
+    contact_tau: float
+    verdict: str
+
+
+def orbit_axes(tau: np.ndarray, dx: np.ndarray, dy: np.ndarray) -> tuple:
+    """(semi-major axis, whirl ratio) of an orbit segment spanning whole whirl periods.
+
+    The segment is cut to the whole periods between the first and the last upward zero
+    crossing of X − mean; for an ellipse sampled evenly in phase the covariance of (X, Y)
+    has eigenvalues a²/2, b²/2, so a = √(2 λ_max) [clearances]; γ = 2π/(mean period).
+    """
+    ex = dx - dx.mean()
+    up = np.flatnonzero((ex[:-1] < 0) & (ex[1:] >= 0))
+    if up.size < 2:
+        return math.nan, math.nan
+    t_up = tau[up] - ex[up] * (tau[up + 1] - tau[up]) / (ex[up + 1] - ex[up])
+    cut = slice(up[0] + 1, up[-1] + 1)
+    pts = np.vstack([dx[cut], dy[cut]])
+    cov = np.cov(pts, bias=True)
+    a = math.sqrt(2.0 * float(np.linalg.eigvalsh(cov)[-1]))
+    period = (t_up[-1] - t_up[0]) / (up.size - 1)
+    return a, 2 * math.pi / period
+
+
+def friction_outcome(orbit: OrbitBatch, rotor: int = 0, periods: int = 6,
+                     tolerance: float = 0.01) -> FrictionOutcome:
+    """The end of one rotor's run: contact, a settled limit cycle (the semi-major axis over
+    the last ``periods`` whirl periods within ``tolerance`` relative of the window before),
+    or the end of the run."""
+    x0, y0 = orbit.equilibrium
+    ok = np.isfinite(orbit.x[rotor])
+    tau, dx, dy = orbit.tau[ok], orbit.x[rotor][ok] - x0, orbit.y[rotor][ok] - y0
+    hmin = float(np.nanmin(orbit.min_film[rotor]))
+    whirl = float(orbit.whirl_ratio[rotor])
+    span = 2 * math.pi / whirl * periods if math.isfinite(whirl) and whirl > 0 else math.nan
+    amp = prev = gamma = math.nan
+    if math.isfinite(span) and tau[-1] - tau[0] >= 2 * span:
+        last = tau >= tau[-1] - span
+        before = (tau >= tau[-1] - 2 * span) & ~last
+        amp, gamma = orbit_axes(tau[last], dx[last], dy[last])
+        prev = orbit_axes(tau[before], dx[before], dy[before])[0]
+    if orbit.contact[rotor]:
+        t = float(orbit.contact_tau[rotor])
+        return FrictionOutcome("contact", amp, prev, gamma, hmin, t,
+                               f"contact (H ≤ contact film) at τ = {t:.4g} rad")
+    if math.isfinite(amp) and abs(amp / prev - 1.0) <= tolerance:
+        return FrictionOutcome("settled limit cycle", amp, prev, gamma, hmin, math.nan,
+                               f"settled limit cycle: semi-major axis {amp:.4g} c at γ = "
+                               f"{gamma:.4f}, minimum film {hmin:.4g} c")
+    return FrictionOutcome("end of run", amp, prev, gamma, hmin, math.nan,
+                           f"end of run: semi-major axis {amp:.4g} c (was {prev:.4g} c "
+                           f"{periods} whirl periods before) at γ = {gamma:.4f}")
