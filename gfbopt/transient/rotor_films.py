@@ -97,6 +97,7 @@ class FusedFilms:
         self.pz_fill = (self.zw_sum * ends) * self.live + self.zw_sum * self.ambient
         self.ambient_fill = (1.0 - ends) * self.ambient                       # (m,)
         self.s_ends, self.s4 = self.s * (ends - 1.0), 4.0 * self.s             # (N, m)
+        self.s4_live, self.s4_fill = self.s4 * self.live, self.s4 * self.ambient_fill
         rows = -np.transpose(trig, (0, 2, 1)) * tm.theta_weight[:, None]      # (K, m, 2)
         self.force_rows = rows[0] if self.same_angles else np.tile(rows, (size, 1, 1))
         self.force_ends = self.zw_sum * self.force_rows.sum(axis=-2)           # Σ w (cos, sin)
@@ -114,6 +115,11 @@ class FusedFilms:
         self._bufs = [np.zeros(big * rows * w) for _ in range(5)]
         self._edge_index = None
         self._mean, self._pz = np.empty((big, m)), np.empty((big, m))
+        self._rows = np.empty((3, big, m))            # the axial-mean law's row buffers
+        # the force from Φ̄ directly: f = [Σw(cos, sin) − fill @ rows] − (Φ̄/a) @ (gain rows)
+        if self.same_angles:
+            self.force_gain_rows = self.pz_gain[:, None] * self.force_rows    # (m, 2)
+            self.force_const = self.force_ends - self.pz_fill @ self.force_rows
         self._interior = np.ones(self.shape)          # 1 at a film's interior nodes, else 0
         self._interior[:, [0, -1]] = 0.0
         self._interior[self.ambient, :] = 0.0
@@ -148,8 +154,10 @@ class FusedFilms:
         ae = np.concatenate([a[:, -1:], a, a[:, :1]], axis=1) if self.periodic else a
         rows = ae.shape[1]
         coef, scale, spread = self._coef, self._scale, self._spread
-        scale[3, :, 0] = self.advect if isinstance(speed, float) and speed == 1.0 else (
-            self.advect * (speed if isinstance(speed, float) else np.repeat(speed, k)))
+        if isinstance(speed, float):
+            np.multiply(self.advect, speed, out=scale[3, :, 0])
+        else:
+            scale[3, :, 0] = self.advect * np.repeat(speed, k)
         np.divide(1.0, ae, out=coef[0])
         np.multiply(ae, ae, out=coef[1])
         coef[1] *= ae
@@ -165,15 +173,22 @@ class FusedFilms:
         if self.periodic:
             pe[:, 0], pe[:, -1] = pe[:, m], pe[:, 1]
         # the film force and the foil's target from one axial mean Σ w P (from Φ̄ and 1/a)
-        if mean is not None:
+        if mean is not None and self.same_angles and not self.damped:
+            pz = None                                # the force needs no Σ w P of its own
+        elif mean is not None:
             pz = np.multiply(mean, coef[0, :, off:off + m], out=self._pz)
             pz *= self.pz_gain
             pz += self.pz_fill
         else:
             pz = np.dot(pe.reshape(-1, w), self.zw).reshape(big, rows)[:, off:off + m]
-        forces = (np.dot(pz, self.force_rows) if self.same_angles
-                  else np.einsum("nm,nmi->ni", pz, self.force_rows))
-        np.subtract(self.force_ends, forces, out=forces)
+        if pz is None:
+            forces = np.dot(np.multiply(mean, coef[0, :, off:off + m], out=self._pz),
+                            self.force_gain_rows)
+            np.subtract(self.force_const, forces, out=forces)
+        else:
+            forces = (np.dot(pz, self.force_rows) if self.same_angles
+                      else np.einsum("nm,nmi->ni", pz, self.force_rows))
+            np.subtract(self.force_ends, forces, out=forces)
         outflat = out.reshape(big, -1)
         if self.damped:
             slot = outflat[:, n:n + m]
@@ -230,12 +245,14 @@ class FusedFilms:
             return hr + flat[:, self.n:self.n + m]
         if self.law == "rigid":
             return hr
-        phit = mean * self.live                       # Φ̃ (foil_recovery.row_mean_phi)
-        phit += self.ambient_fill * hr                # rows at ambient: P̄ − 1 = 0
-        b = hr + self.s_ends
-        disc = b * b
-        disc += self.s4 * phit
-        a = np.sqrt(disc)
+        # 4 S Φ̃ = 4 S (live Φ̄ + fill H_r): Φ̃ of foil_recovery.row_mean_phi, rows at ambient
+        # P̄ − 1 = 0; every product into the evaluation's own row buffers
+        b = np.add(hr, self.s_ends, out=self._rows[0])
+        disc = np.multiply(b, b, out=self._rows[1])
+        term = np.multiply(self.s4_live, mean, out=self._rows[2])
+        disc += term
+        disc += np.multiply(self.s4_fill, hr, out=term)
+        a = np.sqrt(disc, out=disc)
         a += b
         a *= 0.5
         if self.compression_only:
