@@ -97,7 +97,7 @@ def friction_rows(phi: np.ndarray, hr: np.ndarray, slider: np.ndarray, tm) -> tu
     q_stuck = phit / a_stuck + c - 1.0
     stretch = a_stuck - hr - slider
     xs = mu * np.maximum(q_stuck, 0.0) * s / kappa
-    stuck = np.abs(stretch) <= xs
+    stuck = (np.abs(stretch) <= xs) & (xs > 0.0)     # X_s = 0 carries nothing: slipping
     sense = np.where(stretch > 0, 1.0, -1.0)
     loaded = phit / hr + c - 1.0 > 0.0
     s_slip = np.where(loaded, s * (1.0 - sense * mu), s)

@@ -197,7 +197,8 @@ def friction_outcome(orbit: OrbitBatch, rotor: int = 0, periods: int = 6,
     ok = np.isfinite(orbit.x[rotor])
     tau, dx, dy = orbit.tau[ok], orbit.x[rotor][ok] - x0, orbit.y[rotor][ok] - y0
     hmin = float(np.nanmin(orbit.min_film[rotor]))
-    whirl = float(orbit.whirl_ratio[rotor])
+    whirl = orbit_axes(tau[tau >= 0.75 * tau[-1]], dx[tau >= 0.75 * tau[-1]],
+                       dy[tau >= 0.75 * tau[-1]])[1] if tau.size > 8 else math.nan
     span = 2 * math.pi / whirl * periods if math.isfinite(whirl) and whirl > 0 else math.nan
     amp = prev = gamma = math.nan
     if math.isfinite(span) and tau[-1] - tau[0] >= 2 * span:
