@@ -10,7 +10,9 @@ number Λ, relaxation time τ_f, the time scale 2Λ ω_ref/ω_m) as per-row coef
 shares the recovery between the force, the flux and the foil:
 
 * the row film a (rigid H_r, the axial-mean law's closed form, or H_r + W of the damped
-  foil) and P = Φ/a once; the axial mean Σ w P once, for the force and the foil's target;
+  foil) and P = Φ/a once; the axial mean Σ w P once, for the force and the foil's target
+  (the axial-mean law: its recovery's row means Φ̄ = Σ_inner w Φ / Σ w give the force
+  too, Σ w P = Φ̄ Σw / a + w_0 + w_n on a live row, with no pass over P);
 * the flux R of :func:`.system.flux_residual` with its row coefficients (H³ over ΔZ²,
   the face means of H³ over Δθ², Λ/Δθ) already divided by the time scale, written into the
   output rows; the advection as the central difference of P H (the two face sums' shared
