@@ -178,16 +178,22 @@ def _assignments(mass: np.ndarray, vectors: np.ndarray) -> tuple[np.ndarray, np.
     return perm, np.take_along_axis(mac, perm[:, :, None], axis=2)[:, :, 0]
 
 
-def _ambiguous(values: np.ndarray, perm: np.ndarray, macs: np.ndarray) -> np.ndarray:
+def _ambiguous(values: np.ndarray, perm: np.ndarray, macs: np.ndarray,
+               floor: float = 0.0) -> np.ndarray:
     """For each interval: True when continuing its roots is unsafe — some root moves by more
     than :data:`FOLLOW_FRACTION` of its distance to the nearest other root, or its shape's
-    match is below :data:`SURE_MAC`."""
+    match is below :data:`SURE_MAC`.  Roots with |ν| below ``floor`` at both ends are not
+    followed (a shaft's crossings beyond μ_c = 1/floor are not reported)."""
     a = values[:-1]
     b = np.take_along_axis(values[1:], perm, axis=1)
     sep = np.abs(a[:, :, None] - a[:, None, :])
     sep[:, np.arange(a.shape[1]), np.arange(a.shape[1])] = np.inf
-    return (np.any(np.abs(b - a) > FOLLOW_FRACTION * sep.min(axis=2), axis=1)
-            | np.any(macs < SURE_MAC, axis=1))
+    moved = np.abs(b - a) > FOLLOW_FRACTION * sep.min(axis=2)
+    unsure = macs < SURE_MAC
+    if floor > 0:
+        relevant = (np.abs(a) >= floor) | (np.abs(b) >= floor)
+        moved, unsure = moved & relevant, unsure & relevant
+    return np.any(moved, axis=1) | np.any(unsure, axis=1)
 
 
 def _branches(values: np.ndarray, perm: np.ndarray) -> np.ndarray:
@@ -199,7 +205,7 @@ def _branches(values: np.ndarray, perm: np.ndarray) -> np.ndarray:
     return np.take_along_axis(values, order, axis=1)
 
 
-def _adaptive_scan(roots, mass: np.ndarray, gammas: np.ndarray
+def _adaptive_scan(roots, mass: np.ndarray, gammas: np.ndarray, floor: float = 0.0
                    ) -> tuple[np.ndarray, np.ndarray]:
     """The scan with midpoints inserted wherever following the branches is ambiguous
     (:func:`_ambiguous`), until it is not or :data:`MAX_SAMPLES` points are reached; the
@@ -224,7 +230,7 @@ def _adaptive_scan(roots, mass: np.ndarray, gammas: np.ndarray
         macs = np.array([known[pair][1] for pair in pairs])
         if len(pts) >= MAX_SAMPLES:
             break
-        wide = (np.diff(g) > MIN_SPACING) & _ambiguous(vals, perm, macs)
+        wide = (np.diff(g) > MIN_SPACING) & _ambiguous(vals, perm, macs, floor)
         split = [float(x) for x in 0.5 * (g[:-1] + g[1:])[wide]][:MAX_SAMPLES - len(pts)]
         if not split:
             break
@@ -242,9 +248,10 @@ def crossings(rotor: RotorCase, states: SpeedStates, whirl_range=WHIRL_RANGE,
     gammas = np.linspace(whirl_range[0], whirl_range[1], samples)
     for st in states.states:
         st.prepare(gammas)
+    floor = 0.0 if is_rigid(rotor.structure) else 1.0 / SHAFT_SCALE_LIMIT
     gammas, values = _adaptive_scan(
         lambda g: inertia_roots_many(rotor, states, g, vectors=True),
-        rotor.structure.mass(), gammas)
+        rotor.structure.mass(), gammas, floor)
     samples = len(gammas)
     names = rotor.names
     positions = list(rotor.positions)
