@@ -19,12 +19,13 @@ with the starting Z).  No regularisation; the stick/slip switch falls inside one
 halving the step checks it (tests/unit/test_friction_state.py: the settled amplitude of the
 self-excited oscillator moves by ~3e-6 relative when the step is halved).
 
-How :mod:`gfbopt.transient.foil_state` would call it (not done here: that module is not this
-helper's): carry Z (B, m) beside the journal state; in the recovery of P and H from Φ use
-:func:`foil_deflection` (for the axial-mean law the stuck branch is the simple law's quadratic
-with compliance S/(1 + κ) and the offset κZ/(1 + κ), the slipping branch the simple law with
-S(1 ∓ μ_f) on q > 0: both closed forms, pick the branch whose stretch is consistent); after
-each accepted step call :func:`slider_after_step` with the step's final W and q.
+How the one-bearing transient uses it: :mod:`gfbopt.transient.friction_foil` carries Z
+(B, m) beside the journal state and recovers P and H with the closed forms of
+:func:`foil_deflection` (axial-mean law: the stuck branch is the simple law's quadratic with
+compliance S/(1 + κ) and the offset κZ/(1 + κ), the slipping branch the simple law with
+S(1 ∓ μ_f) on q > 0); :mod:`gfbopt.transient.friction_orbit` applies the play operator after
+each accepted RK4 step (tests/verification/test_friction_transient.py checks the recovery
+against :func:`foil_deflection` to 1e-12).  The rotor transient does not carry Z yet.
 """
 from __future__ import annotations
 
