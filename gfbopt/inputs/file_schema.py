@@ -20,6 +20,7 @@ docs describe it.  Its builder reads the checked table from
 """
 from __future__ import annotations
 
+import copy
 import difflib
 import math
 from dataclasses import dataclass, replace
@@ -31,11 +32,19 @@ from .model import DEFLECTION_LAWS, FILM_MODELS, FOIL_MODELS
 
 #: default of a required field
 REQUIRED = object()
+#: default of a field that is not stated and not filled in, even in a table that fills in
+#: defaults (``Table.fill``; a study's model keys, inherited from ``[model]``)
+UNSET = object()
 #: field kinds: a finite number, a string, a string out of ``choices``, an angle in
-#: degrees [0, 360) or "max_film", a list of strings, a sub-table (checked against the
-#: field's ``table``, e.g. ``[bearings.model]`` under a ``[[bearings]]`` row)
+#: degrees [0, 360) or "max_film", a string or a list of strings, a sub-table (checked
+#: against the field's ``table``, e.g. ``[bearings.model]`` under a ``[[bearings]]`` row);
+#: and (study files) a whole number kept as an int ("count"), true or false ("flag"), a
+#: grid "NTHETAxNZ" and a list of them, a list of strings only ("string_list"), a list of
+#: tables ("tables", ``[[name]]``), a table of any names whose values are checked against
+#: the field's ``values`` ("mapping") and a list of [label, label] pairs ("pairs")
 KINDS = ("number", "integer", "numbers", "string", "choice", "seam_angle", "strings", "text",
-         "table")
+         "table", "count", "flag", "grid", "grids", "string_list", "tables", "mapping",
+         "pairs")
 
 
 @dataclass(frozen=True)
@@ -46,7 +55,10 @@ class Field:
     default (:data:`REQUIRED`: must be given; None: not stated); choices (kind "choice");
     low / high: inclusive bounds of a number, or ``positive`` for > 0; why: the reason of the
     bounds (shown in refusals and docs); table: the :class:`Table` a field of kind "table"
-    is checked against.
+    or "tables" is checked against; length: the exact length of a list; values: the
+    :class:`Field` every value of a "mapping" is checked against.  ``choices`` of a
+    "string" (or of the items of a list) restrict it too, and may be a callable returning
+    them (evaluated when checking).
     """
 
     name: str
@@ -60,15 +72,40 @@ class Field:
     positive: bool = False
     why: str = ""
     table: Any = None
+    length: Optional[int] = None
+    values: Any = None
 
     @property
     def required(self) -> bool:
         return self.default is REQUIRED
 
+    @property
+    def minimum(self) -> Optional[float]:
+        """``low`` (the study schemas' spelling)."""
+        return self.low
+
+    @property
+    def maximum(self) -> Optional[float]:
+        """``high`` (the study schemas' spelling)."""
+        return self.high
+
+    @property
+    def keys(self) -> Optional[dict]:
+        """{name: field} of the table of a "table" or "tables" field, else None."""
+        return None if self.table is None else {f.name: f for f in self.table.fields}
+
+    def options(self) -> tuple:
+        """The allowed values (``choices``, called if it is a callable)."""
+        return tuple(self.choices() if callable(self.choices) else self.choices)
+
     def rule(self) -> str:
         """The allowed values in words."""
-        if self.kind == "choice":
-            return "one of " + ", ".join(f'"{c}"' for c in self.choices)
+        if self.kind == "choice" or (self.kind == "string" and self.choices):
+            return "one of " + ", ".join(f'"{c}"' for c in self.options())
+        if self.kind in _STUDY_KINDS:
+            from .schema_kinds import WORDS
+
+            return WORDS[self.kind]
         if self.kind == "seam_angle":
             return 'degrees in [0, 360), or "max_film"'
         if self.kind in ("string", "text"):
@@ -86,7 +123,7 @@ class Field:
             parts.append(f">= {self.low:g}")
         if self.high is not None:
             parts.append(f"<= {self.high:g}")
-        noun = "a whole number" if self.kind == "integer" else "a finite number"
+        noun = "a whole number" if self.kind in ("integer", "count") else "a finite number"
         return noun + (f", {' and '.join(parts)}" if parts else "")
 
 
@@ -95,6 +132,11 @@ class Table:
     """A TOML table ``[name]`` (or ``[[name]]`` with ``array=True``) of a file format.
 
     rules : constraints between fields, in words (enforced by the object the table builds).
+    fill : the checked table has every field whose default is neither :data:`REQUIRED` nor
+        :data:`UNSET` (a copy of the default filled in; the study files' tables).
+    aliases : (old spelling or symbol, field name) pairs suggested for an unknown key.
+    by_path : a refusal of an unknown key names the table by its path in the file
+        (``rows[2]``, the text after the last ": " of ``where``), not by ``[name]``.
     """
 
     name: str
@@ -103,6 +145,9 @@ class Table:
     required: bool = False
     array: bool = False
     rules: tuple = ()
+    fill: bool = False
+    aliases: tuple = ()
+    by_path: bool = False
 
     def field(self, name: str) -> Field:
         return {f.name: f for f in self.fields}[name]
@@ -122,9 +167,18 @@ class FileFormat:
         return {t.name: t for t in self.tables}[name]
 
 
-def did_you_mean(name: str, known) -> str:
-    """" (did you mean 'x'?)" for a misspelt ``name``, or ""."""
-    close = difflib.get_close_matches(str(name), list(known), n=1, cutoff=0.6)
+def did_you_mean(name: str, known, aliases=()) -> str:
+    """" (did you mean 'x'?)" for a misspelt ``name``, or "".  ``aliases``: (alias, name)
+    pairs; ``name`` equal to an alias (or the alias and at most two characters more) of a
+    known name suggests that name first."""
+    known = list(known)
+    name = str(name)
+    for alias, target in aliases:
+        near = name == alias or (name.startswith(alias) and len(name) - len(alias) <= 2
+                                 and len(alias) > 2)
+        if near and target in known:
+            return f" (did you mean '{target}'?)"
+    close = difflib.get_close_matches(name, known, n=1, cutoff=0.6)
     return f" (did you mean '{close[0]}'?)" if close else ""
 
 
@@ -136,7 +190,14 @@ def check_value(f: Field, value, where: str):
     if f.kind in ("string", "text"):
         if not isinstance(value, str):
             raise refuse(f"must be a string ({f.doc})")
+        options = f.options()
+        if options and value not in options:
+            raise refuse(f"must be one of {', '.join(options)}" + did_you_mean(value, options))
         return value
+    if f.kind in _STUDY_KINDS:
+        from .schema_kinds import check_study_kind
+
+        return check_study_kind(f, value, where, check_value)
     if f.kind == "strings":
         items = [value] if isinstance(value, str) else value
         if not isinstance(items, list) or not all(isinstance(v, str) for v in items):
@@ -153,9 +214,13 @@ def check_value(f: Field, value, where: str):
     if f.kind == "numbers":
         if not isinstance(value, list):
             raise refuse(f"must be {f.rule()} ({f.doc})")
-        item = Field(f.name, "number", f.unit, f.doc)
+        if f.length is not None and len(value) != f.length:
+            raise refuse(f"must have {f.length} entries ({f.doc})")
+        item = Field(f.name, "number", f.unit, f.doc, low=f.low, high=f.high,
+                     positive=f.positive, why=f.why)
         return [check_value(item, v, f"{where}[{k}]") for k, v in enumerate(value)]
-    if f.kind == "integer" and (isinstance(value, bool) or not isinstance(value, int)):
+    if f.kind in ("integer", "count") and (isinstance(value, bool)
+                                           or not isinstance(value, int)):
         raise refuse(f"must be {f.rule()} ({f.doc})")
     if isinstance(value, bool) or not isinstance(value, (int, float)):
         raise refuse(f"must be {f.rule()} ({f.doc}" + (f" [{f.unit}])" if f.unit not in
@@ -179,30 +244,45 @@ def check_value(f: Field, value, where: str):
         raise refuse(f"must be >= {f.low:g}{unit}{why}")
     if f.high is not None and number > f.high:
         raise refuse(f"must be <= {f.high:g}{unit}{why}")
-    return number
+    return value if f.kind == "count" else number
 
 
-def check_fields(data: dict, fields: tuple, where: str, what: str) -> dict:
-    """The keys of ``data`` checked against ``fields``: unknown keys refused (did you mean),
-    required keys demanded; returns the stated keys, checked (defaults not filled)."""
+#: the kinds checked by :mod:`.schema_kinds` (the study files' lists, tables and flags)
+_STUDY_KINDS = ("flag", "grid", "grids", "string_list", "tables", "mapping", "pairs")
+
+
+def check_fields(data: dict, fields: tuple, where: str, what: str, *,
+                 prefix: Optional[str] = None, fill: bool = False, aliases=()) -> dict:
+    """The keys of ``data`` checked against ``fields``: unknown keys refused (did you mean,
+    with ``aliases``), required keys demanded; returns the stated keys, checked, and with
+    ``fill`` the defaults of the others (:class:`Table`'s ``fill``).  ``prefix``: what
+    precedes a key's name in a refusal (default ``where.``)."""
     if not isinstance(data, dict):
         raise ParameterError(where, data, f"must be a table ({what})")
     schema = {f.name: f for f in fields}
-    prefix = f"{where}." if where else ""
+    if prefix is None:
+        prefix = f"{where}." if where else ""
     for name in data:
         if name not in schema:
             raise ParameterError(f"{prefix}{name}", data[name], f"is not a key of {what}"
-                                 f"{did_you_mean(name, schema)} (known: {', '.join(schema)})")
+                                 f"{did_you_mean(name, schema, aliases)} (known: "
+                                 f"{', '.join(schema)})")
     for f in fields:
         if f.required and f.name not in data:
             raise ParameterError(f"{prefix}{f.name}", None, f"is required ({f.doc})")
-    return {name: check_value(schema[name], value, f"{prefix}{name}")
-            for name, value in data.items()}
+    out = {name: check_value(schema[name], value, f"{prefix}{name}")
+           for name, value in data.items()}
+    if fill:
+        out.update((f.name, copy.deepcopy(f.default)) for f in fields if f.name not in out
+                   and f.default is not REQUIRED and f.default is not UNSET)
+    return out
 
 
-def check_table(data, table: Table, where: str) -> dict:
+def check_table(data, table: Table, where: str, prefix: Optional[str] = None) -> dict:
     """One table (a dict) checked against ``table``; see :func:`check_fields`."""
-    return check_fields(data, table.fields, where, f"[{table.name}]")
+    what = where.rsplit(": ", 1)[-1] if table.by_path else f"[{table.name}]"
+    return check_fields(data, table.fields, where, what, prefix=prefix,
+                        fill=table.fill, aliases=table.aliases)
 
 
 def check_file(data: dict, fmt: FileFormat, where: str, first_row: int = 0) -> dict:

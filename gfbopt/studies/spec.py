@@ -15,10 +15,8 @@ is a ``tolerance = {quantity = value}`` table whose values are relative, except 
 """
 from __future__ import annotations
 
-import difflib
-import math
-from dataclasses import dataclass
-from typing import Any, Optional
+from dataclasses import dataclass, replace
+from typing import Optional
 
 from ..errors import ParameterError
 from ..inputs import (
@@ -27,49 +25,76 @@ from ..inputs import (
     FILM_MODELS,
     FOIL_MODELS,
     SUBAMBIENT_TREATMENTS,
-    Grid,
 )
+from ..inputs.file_schema import (
+    REQUIRED,
+    UNSET,
+    Field,
+    Table,
+    check_fields,
+    did_you_mean,
+)
+from ..inputs.file_schema import check_value as check_field
 
-REQUIRED = object()
-#: default of a model key: when absent it is inherited (from ``[model]``, then from
-#: :class:`~gfbopt.inputs.BearingModel`'s own defaults), so it is not filled in
-UNSET = object()
+#: symbols and older spellings → the glossary name (for "did you mean …?")
+ALIASES = {"eps": "eccentricity", "epsilon": "eccentricity", "Lambda": "bearing_number",
+           "S": "compliance", "C": "top_foil_coefficient", "L_over_D": "length_ratio",
+           "attitude_deg": "attitude_angle_deg", "min_film_um": "min_film_thickness_um",
+           "tolerance_nonlinear_linear": "nonlinear_linear_tolerance",
+           "tolerance": "critical_mass_tolerance", "eps0": "eccentricity",
+           "thesis_orbits": "orbits"}
+_ALIAS_PAIRS = tuple(ALIASES.items())
+#: a study kind's spelling → file_schema's kind, where they differ (a study's integer stays
+#: an int; its list of strings is a list, not a bare string)
+_KINDS = {"integer": "count", "strings": "string_list"}
 
 
-@dataclass(frozen=True)
-class Key:
-    """One key of a study file.
+def _key(kind: str, doc: str, default, *, choices=(), keys: Optional[dict] = None,
+         values: Optional[Field] = None, minimum: Optional[float] = None,
+         positive: bool = False, length: Optional[int] = None,
+         maximum: Optional[float] = None) -> Field:
+    """One key of a study file as a :class:`~gfbopt.inputs.file_schema.Field` (named when
+    it is placed in a table: :func:`_fields`).
 
     kind : number, integer, string, flag, grid, seam_angle, numbers, strings, grids, pairs,
         table (``keys`` is its schema), tables (a list of such tables) or mapping (any
         names, each value checked against ``values``)
     doc : meaning and unit (shown in errors)
-    default : :data:`REQUIRED` for a required key
+    default : :data:`REQUIRED` for a required key; :data:`UNSET`: not filled in
     choices : allowed values (a callable returning them is evaluated when checking)
     minimum : smallest allowed number; ``positive`` → must be > 0; maximum : largest
     length : exact length of a list
     """
-
-    kind: str
-    doc: str
-    default: Any = REQUIRED
-    choices: Any = ()
-    keys: Optional[dict] = None
-    values: Optional["Key"] = None
-    minimum: Optional[float] = None
-    positive: bool = False
-    length: Optional[int] = None
-    maximum: Optional[float] = None
+    return Field("", _KINDS.get(kind, kind), "-", doc, default=default, choices=choices,
+                 low=minimum, high=maximum, positive=positive, why=doc, length=length,
+                 values=values, table=None if keys is None else _table("", doc, keys))
 
 
-def req(kind: str, doc: str, **kw) -> Key:
-    """A required key."""
-    return Key(kind, doc, **kw)
+def req(kind: str, doc: str, **kw) -> Field:
+    """A required key (:func:`_key`)."""
+    return _key(kind, doc, REQUIRED, **kw)
 
 
-def opt(kind: str, default, doc: str, **kw) -> Key:
-    """An optional key and its default."""
-    return Key(kind, doc, default=default, **kw)
+def opt(kind: str, default, doc: str, **kw) -> Field:
+    """An optional key and its default (:func:`_key`)."""
+    return _key(kind, doc, default, **kw)
+
+
+def _named(name: str, key: Field) -> Field:
+    """``key`` placed under ``name`` (its table and a mapping's values named after it)."""
+    return replace(key, name=name,
+                   table=None if key.table is None else replace(key.table, name=name),
+                   values=None if key.values is None else _named(f"{name}.NAME", key.values))
+
+
+def _fields(schema: dict) -> tuple:
+    """The named fields of a schema {name: key}."""
+    return tuple(_named(name, key) for name, key in schema.items())
+
+
+def _table(name: str, doc: str, schema: dict) -> Table:
+    """A study table: defaults filled in, the glossary's aliases suggested."""
+    return Table(name, doc, _fields(schema), fill=True, aliases=_ALIAS_PAIRS, by_path=True)
 
 
 # ----------------------------------------------------------------- shared key groups
@@ -134,8 +159,7 @@ def _point(required=("eccentricity", "bearing_number"), **extra) -> dict:
     keys = {**MODEL, "eccentricity": opt("number", UNSET, "eccentricity ratio ε [-]",
                                          minimum=0.0), **extra}
     for name in required:
-        keys[name] = Key(keys[name].kind, keys[name].doc, REQUIRED, keys[name].choices,
-                         minimum=keys[name].minimum, positive=keys[name].positive)
+        keys[name] = replace(keys[name], default=REQUIRED)
     return keys
 
 
@@ -311,138 +335,21 @@ class Where:
         return ParameterError(f"{self.file}: {self.path}", value, rule)
 
 
-def _is_number(v) -> bool:
-    return isinstance(v, (int, float)) and not isinstance(v, bool)
+def _at(where: Where) -> str:
+    return f"{where.file}: {where.path}"
 
 
-def _check_scalar(key: Key, value, where: Where):
-    kind = key.kind
-    if kind in ("number", "integer"):
-        if kind == "integer" and not (isinstance(value, int) and not isinstance(value, bool)):
-            raise where.error(value, f"must be an integer ({key.doc})")
-        if not _is_number(value):
-            raise where.error(value, f"must be a number ({key.doc})")
-        try:
-            value = float(value) if kind == "number" else value
-            finite = kind == "integer" or math.isfinite(value)
-        except OverflowError:
-            finite = False
-        if not finite:
-            raise where.error(value, "must be finite")
-        if key.positive and value <= 0:
-            raise where.error(value, f"must be > 0 ({key.doc})")
-        if key.minimum is not None and value < key.minimum:
-            raise where.error(value, f"must be >= {key.minimum:g} ({key.doc})")
-        if key.maximum is not None and value > key.maximum:
-            raise where.error(value, f"must be <= {key.maximum:g} ({key.doc})")
-        return value
-    if kind == "flag":
-        if not isinstance(value, bool):
-            raise where.error(value, "must be true or false")
-        return value
-    if kind == "string":
-        if not isinstance(value, str):
-            raise where.error(value, f"must be a string ({key.doc})")
-        choices = key.choices() if callable(key.choices) else key.choices
-        if choices and value not in choices:
-            raise where.error(value, f"must be one of {', '.join(choices)}" + _hint(value,
-                                                                                  choices))
-        return value
-    if kind == "grid":
-        if not isinstance(value, str):
-            raise where.error(value, "must be a grid written NTHETAxNZ, e.g. \"72x20\"")
-        try:
-            Grid.parse(value)
-        except ParameterError as exc:
-            raise where.error(value, exc.rule) from None
-        return value
-    if kind == "seam_angle":
-        if value == "max_film":
-            return value
-        if not _is_number(value) or not 0.0 <= value < 360.0:
-            raise where.error(value, "must be an angle in [0, 360) degrees or \"max_film\"")
-        return float(value)
-    raise AssertionError(kind)
-
-
-#: symbols and older spellings → the glossary name (for "did you mean …?")
-ALIASES = {"eps": "eccentricity", "epsilon": "eccentricity", "Lambda": "bearing_number",
-           "S": "compliance", "C": "top_foil_coefficient", "L_over_D": "length_ratio",
-           "attitude_deg": "attitude_angle_deg", "min_film_um": "min_film_thickness_um",
-           "tolerance_nonlinear_linear": "nonlinear_linear_tolerance",
-           "tolerance": "critical_mass_tolerance", "eps0": "eccentricity",
-           "thesis_orbits": "orbits"}
-
-
-def _hint(name: str, known) -> str:
-    """" (did you mean 'x'?)" for a misspelt or old-vocabulary ``name``, or ""."""
-    known = list(known)
-    name = str(name)
-    for alias, target in ALIASES.items():
-        near = name == alias or (name.startswith(alias) and len(name) - len(alias) <= 2
-                                 and len(alias) > 2)
-        if near and target in known:
-            return f" (did you mean '{target}'?)"
-    close = difflib.get_close_matches(name, known, n=1, cutoff=0.6)
-    return f" (did you mean '{close[0]}'?)" if close else ""
-
-
-def check_value(key: Key, value, where: Where):
-    """``value`` checked against ``key`` (a new, normalised value) or ParameterError."""
-    kind = key.kind
-    if kind in ("numbers", "strings", "grids", "pairs"):
-        if not isinstance(value, list):
-            raise where.error(value, f"must be a list ({key.doc})")
-        if key.length is not None and len(value) != key.length:
-            raise where.error(value, f"must have {key.length} entries ({key.doc})")
-        if kind == "pairs":
-            for k, pair in enumerate(value):
-                if (not isinstance(pair, list) or len(pair) != 2
-                        or not all(isinstance(p, str) for p in pair)):
-                    raise (where / k).error(pair, "must be a pair of variant labels")
-            return [list(p) for p in value]
-        item = Key({"numbers": "number", "strings": "string", "grids": "grid"}[kind], key.doc,
-                   choices=key.choices, minimum=key.minimum, positive=key.positive)
-        return [_check_scalar(item, v, where / k) for k, v in enumerate(value)]
-    if kind == "table":
-        if not isinstance(value, dict):
-            raise where.error(value, f"must be a table ({key.doc})")
-        return check_table(value, key.keys, where)
-    if kind == "tables":
-        if not isinstance(value, list) or not all(isinstance(v, dict) for v in value):
-            raise where.error(value, f"must be a list of tables ([[...]]) ({key.doc})")
-        return [check_table(v, key.keys, where / k) for k, v in enumerate(value)]
-    if kind == "mapping":
-        if not isinstance(value, dict):
-            raise where.error(value, f"must be a table ({key.doc})")
-        return {name: check_value(key.values, v, where / name) for name, v in value.items()}
-    return _check_scalar(key, value, where)
+def check_value(key: Field, value, where: Where):
+    """``value`` checked against ``key`` (a new, normalised value) or ParameterError
+    (:func:`gfbopt.inputs.file_schema.check_value`, the one checker of input files)."""
+    return check_field(key, value, _at(where))
 
 
 def check_table(data: dict, schema: dict, where: Where) -> dict:
-    """A table checked key by key against ``schema``; defaults filled in."""
-    out = {}
-    for name, value in data.items():
-        if name not in schema:
-            context = where.path or "a study of this kind"
-            raise (where / name).error(value, f"is not a key of {context}{_hint(name, schema)}"
-                                       f" (known: {', '.join(schema)})")
-        out[name] = check_value(schema[name], value, where / name)
-    for name, key in schema.items():
-        if name not in out:
-            if key.default is REQUIRED:
-                raise (where / name).error(None, f"is required ({key.doc})")
-            if key.default is not UNSET:
-                out[name] = _copy(key.default)
-    return out
-
-
-def _copy(value):
-    if isinstance(value, list):
-        return [_copy(v) for v in value]
-    if isinstance(value, dict):
-        return {k: _copy(v) for k, v in value.items()}
-    return value
+    """A table checked key by key against ``schema`` {name: key}; defaults filled in."""
+    prefix = f"{_at(where)}." if where.path else f"{where.file}: "
+    return check_fields(data, _fields(schema), _at(where), where.path or "a study of this "
+                        "kind", prefix=prefix, fill=True, aliases=_ALIAS_PAIRS)
 
 
 def validate(data: dict, file: str) -> dict:
@@ -452,10 +359,10 @@ def validate(data: dict, file: str) -> dict:
     ParameterError naming ``file`` and the key otherwise.
     """
     top = Where(file)
-    kind = data.get("kind")
-    if kind not in SCHEMAS:
+    kind = data.get("kind") if isinstance(data, dict) else None
+    if not isinstance(kind, str) or kind not in SCHEMAS:
         raise (top / "kind").error(kind, f"must be one of {', '.join(SCHEMAS)}"
-                                   + _hint(kind, tuple(SCHEMAS)))
+                                   + did_you_mean(kind, tuple(SCHEMAS), _ALIAS_PAIRS))
     out = check_table(data, {**COMMON, **SCHEMAS[kind]}, top)
     if "source" not in out:
         if shipped(file):

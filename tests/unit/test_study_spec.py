@@ -98,7 +98,7 @@ def test_the_valid_study_loads_without_building_a_solver(tmp_path, no_solver):
     ('grid = "24x8"', 'grid = 72', r"x\.toml: grid = 72: must be a grid written NTHETAxNZ"),
     ('grid = "24x8"', 'grid = "24x7"', r"x\.toml: grid = '24x7': must be even"),
     ('eccentricity = 0.2', 'eccentricity = "0.2"',
-     r"x\.toml: rows\[0\]\.eccentricity = '0\.2': must be a number"),
+     r"x\.toml: rows\[0\]\.eccentricity = '0\.2': must be a finite number"),
     ('eccentricity = 0.2\n', '', r"x\.toml: rows\[0\]\.eccentricity = None: is required"),
     ('film = "periodic"', 'film = "periodic"\ncompression_only = "yes"',
      r"x\.toml: model\.compression_only = 'yes': must be true or false"),
