@@ -141,3 +141,50 @@ def test_import_has_no_global_side_effects():
 def test_cycle_detector_finds_a_planted_cycle():
     graph = {"a": {"b"}, "b": {"c"}, "c": {"a"}, "d": {"a"}}
     assert _cycles(graph) == [["a", "b", "c"]]
+
+
+#: the floors of docs/ARCHITECTURE.md ("Layers point one way"), bottom first: a module may
+#: import from its own floor and the floors below, never from above.  Units are gfbopt's
+#: subpackages and top-level modules; a new one must be placed here (the test names it).
+FLOORS = (
+    ("errors", "version", "runtime", "threads", "progress", "terms", "glossary", "provenance"),
+    ("inputs", "physics", "plotting", "sparse_lu", "pool_stream", "cluster"),
+    ("discretisation", "guard"),
+    ("static",),
+    ("linear", "parallel"),
+    ("thermal",),
+    ("rotor",),
+    ("transient",),
+    ("analyses",),
+    ("doe",),
+    ("design",),
+    ("studies",),
+    ("file_formats", "api", "cli", "__main__"),
+)
+
+
+def _unit(module: str) -> str:
+    parts = module.split(".")
+    return parts[1] if len(parts) > 1 else "gfbopt"
+
+
+def test_every_unit_has_a_floor():
+    placed = {u for floor in FLOORS for u in floor}
+    units = {_unit(m) for m in MODULES} - {"gfbopt"}
+    assert sorted(units - placed) == [], "place these in FLOORS (and docs/ARCHITECTURE.md)"
+
+
+def test_imports_point_down_the_floors():
+    """Each import between units goes to the same floor or a lower one (the package's own
+    ``__init__`` re-exporting from the top is the one exception: it is the face, not a floor)."""
+    floor = {u: k for k, units in enumerate(FLOORS) for u in units}
+    upward = []
+    for name, path in MODULES.items():
+        src = _unit(name)
+        if src == "gfbopt":
+            continue
+        for dep in _imports(name, path):
+            dst = _unit(dep)
+            if dst != "gfbopt" and dst in floor and floor[dst] > floor.get(src, -1):
+                upward.append(f"{name} -> {dep}")
+    assert upward == []
