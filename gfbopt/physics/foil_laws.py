@@ -147,7 +147,8 @@ class LocalLaw(FoilLaw):
     engines = ("static", "linear", "rk4", "rkc")
     loss_factor_engines = ("linear", "rk4", "rkc")
     damped_state = "nodes"
-    friction_engines = ("static", "linear")
+    #: rk4: the one-bearing transient with a slider per node (gfbopt.transient.friction_foil)
+    friction_engines = ("static", "linear", "rk4")
     lifted_film_is_total = False
 
     def static_film(self, h_rigid, lifted, mean_gauge, p_full, u, foil, st, data):

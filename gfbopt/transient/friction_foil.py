@@ -1,4 +1,4 @@
-"""The bumps' Coulomb friction in the one-bearing transient: the slider state of each θ row.
+"""The bumps' Coulomb friction in the one-bearing transient: the slider state of each foil unit.
 
 Each foil unit (θ row of the axial-mean law) carries a spring–slider (Jenkins) element beside
 its bump (:mod:`gfbopt.physics.friction`, docs/PHYSICS.md §7a), non-dimensional: bump reaction
@@ -15,6 +15,9 @@ forms, each the simple law's quadratic a² − b a − S_e Φ̃ = 0, b = H_r + W
 * slipping in:     S_e = S (1 + μ_f), W_off = 0           (W − Z < −X_s, r = −μ_f q);
 * unloaded rows (q ≤ 0, the sign of q is that of Φ̃/H_r + c − 1 for every S_e): W = S q, or
   0 for compression-only bumps.
+
+The local law (one unit per node, q = P − 1) has the same branches on its per-node quadratic
+S_e P² + (H_r + W_off − S_e) P − Φ = 0 (:func:`friction_nodes`); boundary nodes carry none.
 
 The balance F(W) = W/S + clip((κ/S)(W − Z), ±μ_f q⁺(W)) − q(W) rises monotonically in W (q
 falls as W rises; μ_f < 1 keeps the slipping branches rising), so the root is unique, and
@@ -50,13 +53,15 @@ class FrictionFoil:
     """The friction elements of a transient model's θ rows [-].
 
     coefficient : μ_f per θ row (m,) (bump zones may differ); stiffness_ratio : κ = k_f/k_b;
-    equilibrium : the slider positions of the static equilibrium, Z = W0 per row (m,)
-    (friction holds no static deflection: the element is relaxed there).
+    equilibrium : the slider positions of the static equilibrium, Z = W0 per row (m,) or per
+    node (m, n_z + 1) (friction holds no static deflection: the element is relaxed there);
+    layout : 'rows' (axial-mean law) or 'nodes' (local law).
     """
 
     coefficient: np.ndarray
     stiffness_ratio: float
     equilibrium: np.ndarray
+    layout: str = "rows"
 
     def describe(self) -> dict:
         """μ_f (largest over the rows) and κ, for results."""
@@ -66,18 +71,21 @@ class FrictionFoil:
                                   "after each accepted step"}
 
 
-def friction_foil(solution, rigid_film: np.ndarray, mu_rows: np.ndarray) -> FrictionFoil:
-    """The friction state of a transient model about ``solution`` (axial-mean law only).
+def friction_foil(solution, rigid_film: np.ndarray, mu_rows: np.ndarray,
+                  layout: str = "rows") -> FrictionFoil:
+    """The friction state of a transient model about ``solution``.
 
-    rigid_film : H_r (m,) at the equilibrium; mu_rows : μ_f per θ row.
+    rigid_film : H_r (m,) at the equilibrium; mu_rows : μ_f per θ row; layout : 'rows'
+    (axial-mean law) or 'nodes' (local law).
     """
     model = solution.model
     mu = np.asarray(mu_rows, dtype=float)
     if np.any(mu >= 1.0):
         raise ParameterError("friction_coefficient", float(mu.max()), "must be < 1 in the "
                              "transient (the slipping foil's balance W = S(1 − μ_f) q needs it)")
-    w0 = (solution.film - rigid_film[:, None])[:, 0].copy()
-    return FrictionFoil(mu, float(model.friction_stiffness_ratio), w0)
+    w0 = solution.film - rigid_film[:, None]
+    w0 = w0[:, 0].copy() if layout == "rows" else w0.copy()
+    return FrictionFoil(mu, float(model.friction_stiffness_ratio), w0, layout)
 
 
 def _root(hr, off, s_e, phit, c):
@@ -107,25 +115,69 @@ def friction_rows(phi: np.ndarray, hr: np.ndarray, slider: np.ndarray, tm) -> tu
     return a, phit / a + c - 1.0, stuck
 
 
+def friction_nodes(phi: np.ndarray, hr: np.ndarray, slider: np.ndarray, tm) -> tuple:
+    """(P, H, q, stuck) of the local law (B, m, n_z + 1) from Φ, H_r (B, m) and the sliders
+    Z (B, m, n_z + 1): per node S_e P² + (H_r + W_off − S_e) P − Φ = 0 with the branches of
+    the module docstring (q = P − 1; a node is loaded when Φ > H_r; boundary nodes, P = 1,
+    carry no friction)."""
+    fr = tm.friction
+    s = tm.compliance_rows[:, None]
+    mu, kappa = fr.coefficient[:, None], fr.stiffness_ratio
+    hr3 = hr[:, :, None]
+    s_st = s / (1.0 + kappa)
+    h_st = hr3 + kappa * slider / (1.0 + kappa)
+    p_st = (-(h_st - s_st) + np.sqrt((h_st - s_st) ** 2 + 4 * s_st * phi)) / (2 * s_st)
+    q_st = p_st - 1.0
+    stretch = h_st + s_st * q_st - hr3 - slider
+    xs = mu * np.maximum(q_st, 0.0) * s / kappa
+    stuck = (np.abs(stretch) <= xs) & (xs > 0.0)
+    stuck[..., :, 0] = stuck[..., :, -1] = False
+    stuck[..., tm.ambient, :] = False
+    sense = np.where(stretch > 0, 1.0, -1.0)
+    s_sl = np.where(phi > hr3, s * (1.0 - sense * mu), s)
+    p_sl = (-(hr3 - s_sl) + np.sqrt((hr3 - s_sl) ** 2 + 4 * s_sl * phi)) / (2 * s_sl)
+    if tm.compression_only:   # W = S max(P − 1, 0): where P < 1 the film is rigid
+        p_sl = np.where(p_sl < 1.0, phi / hr3, p_sl)
+    p = set_boundary(np.where(stuck, p_st, p_sl), tm)
+    q = p - 1.0
+    w_sl = s_sl * (q if not tm.compression_only else np.maximum(q, 0.0))
+    h = hr3 + np.where(stuck, h_st - hr3 + s_st * q, w_sl)
+    return p, h, q, stuck
+
+
 def recover_with_slider(phi: np.ndarray, hr: np.ndarray, slider: np.ndarray, tm) -> tuple:
-    """(P (B, m, n_z + 1), H (B, m, 1)) of the friction model from Φ, H_r and Z."""
+    """(P (B, m, n_z + 1), H (B, m, 1) rows or (B, m, n_z + 1) nodes) of the friction model
+    from Φ, H_r and Z."""
+    if tm.friction.layout == "nodes":
+        return friction_nodes(phi, hr, slider, tm)[:2]
     a = friction_rows(phi, hr, slider, tm)[0]
     return set_boundary(phi / a[:, :, None], tm), a[:, :, None]
 
 
+def _deflection(phi, hr, slider, tm) -> tuple:
+    """(W, q, stuck) in the layout of the sliders."""
+    if tm.friction.layout == "nodes":
+        p, h, q, stuck = friction_nodes(phi, hr, slider, tm)
+        return h - hr[:, :, None], q, stuck
+    a, q, stuck = friction_rows(phi, hr, slider, tm)
+    return a - hr, q, stuck
+
+
 def slider_after_step(phi: np.ndarray, hr: np.ndarray, slider: np.ndarray, tm) -> np.ndarray:
     """Z after an accepted step ending at Φ, H_r, from the step's starting Z: the play
-    operator clip(Z, W − X_s, W + X_s) at the step's final W and q (B, m)."""
-    a, q, _ = friction_rows(phi, hr, slider, tm)
+    operator clip(Z, W − X_s, W + X_s) at the step's final W and q (in the sliders' layout)."""
+    w, q, _ = _deflection(phi, hr, slider, tm)
     fr = tm.friction
-    xs = fr.coefficient * np.maximum(q, 0.0) * tm.compliance_rows / fr.stiffness_ratio
-    w = a - hr
+    s = tm.compliance_rows if fr.layout == "rows" else tm.compliance_rows[:, None]
+    mu = fr.coefficient if fr.layout == "rows" else fr.coefficient[:, None]
+    xs = mu * np.maximum(q, 0.0) * s / fr.stiffness_ratio
     return np.minimum(np.maximum(slider, w - xs), w + xs)
 
 
 def stuck_share(phi: np.ndarray, hr: np.ndarray, slider: np.ndarray, tm) -> np.ndarray:
-    """Share of the loaded rows whose slider is stuck, per rotor (B,) [-]."""
-    a, q, stuck = friction_rows(phi, hr, slider, tm)
-    loaded = q > 0
+    """Share of the loaded units (rows or nodes) whose slider is stuck, per rotor (B,) [-]."""
+    _, q, stuck = _deflection(phi, hr, slider, tm)
+    loaded = (q > 0).reshape(q.shape[0], -1)
     count = loaded.sum(axis=1)
-    return np.where(count > 0, (stuck & loaded).sum(axis=1) / np.maximum(count, 1), 0.0)
+    both = (stuck.reshape(q.shape[0], -1) & loaded).sum(axis=1)
+    return np.where(count > 0, both / np.maximum(count, 1), 0.0)

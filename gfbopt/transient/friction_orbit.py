@@ -50,7 +50,7 @@ def integrate_friction_orbits(tm: TransientModel, mass, revolutions: float = 10.
     """Advance a batch of rotors on one bearing whose bumps rub (RK4, sliders split off).
 
     Arguments as :func:`gfbopt.transient.orbit.integrate_orbits` with method 'rk4';
-    ``slider`` : the sliders Z (B, m) to start from (default: relaxed at the equilibrium,
+    ``slider`` : the sliders Z (B, m) or (B, m, n_z + 1) to start from (default: relaxed at the equilibrium,
     Z = W0; with ``initial`` it must be given for a friction model).  A model without
     friction runs the rk4 loop exactly (its answers equal :func:`integrate_orbits`').
     """
@@ -72,7 +72,8 @@ def integrate_friction_orbits(tm: TransientModel, mass, revolutions: float = 10.
             if initial is not None:
                 raise ParameterError("slider", None, "must be given with ``initial`` for a "
                                      "model with bump friction")
-            slider = np.broadcast_to(tm.friction.equilibrium, (batch, tm.shape[0]))
+            slider = np.broadcast_to(tm.friction.equilibrium,
+                                     (batch,) + tm.friction.equilibrium.shape)
         z = np.array(slider, dtype=float)
     limit = RK4_STABILITY_RADIUS / stiffness_bound(state, tm, z)
     if time_step is None:
@@ -114,7 +115,7 @@ def integrate_friction_orbits(tm: TransientModel, mass, revolutions: float = 10.
             break
         if z is not None:                    # the play operator after the accepted step
             moved = slider_after_step(state.phi, rigid_film(state.x, state.y, tm), z, tm)
-            z = np.where(active[:, None], moved, z)
+            z = np.where(active.reshape((-1,) + (1,) * (z.ndim - 1)), moved, z)
         touching = active & (rhs.min_film <= contact_film)
         if touching.any():
             contact_tau[touching] = tau

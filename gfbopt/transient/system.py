@@ -103,7 +103,7 @@ def transient_model(solution: StaticSolution, reference_whirl_ratio: Optional[fl
     without damping.
 
     ``friction``: a model with Coulomb friction in the bumps (μ_f > 0) is built with its
-    slider state (:mod:`.friction_foil`; axial-mean law, no loss factor), integrated by
+    slider state (:mod:`.friction_foil`; axial-mean or local law, no loss factor), integrated by
     :func:`gfbopt.transient.friction_orbit.integrate_friction_orbits` only (the other drivers
     refuse such a model: they carry no slider).  Without friction it is today's model.
     """
@@ -139,7 +139,8 @@ def transient_model(solution: StaticSolution, reference_whirl_ratio: Optional[fl
         from ..linear.friction_units import friction_rows
 
         sliders = friction_foil(solution, 1.0 + bore - x0 * cos - y0 * sin,
-                                friction_rows(model, st, solution.seam_angle_rad))
+                                friction_rows(model, st, solution.seam_angle_rad),
+                                "nodes" if law.name == "local" else "rows")
     return TransientModel(
         static=solution, bearing_number=model.bearing_number, compliance=model.compliance,
         load=solution.load, periodic=periodic, cos=cos, sin=sin, theta_weight=tw,
