@@ -25,6 +25,12 @@ with the foundation stiffness (beam): B gains τ_f (A − a) in those rows and t
 gains τ_f ξ' (= τ_f C̃ ũ).  The local law's compliance also enters the squeeze term, which
 would make the system quadratic in s: refused with that reason.
 
+Coulomb friction in the bumps (``friction_coefficient`` > 0).  A Campbell diagram is the
+small-motion analysis, so each loaded bump's spring–slider element is stuck and adds its
+spring κ K_b to the bump (:func:`stuck_system`): the stiffness the matched-whirl onset sees for
+small orbits, so that a mode's Campbell zero crossing is that onset.  The amplitude-dependent
+answer above it is :mod:`.friction_onset`'s.
+
 Eigenvalues: shift-invert Arnoldi (scipy ARPACK) on the sparse pencil, one LU of J − σE per
 shift.  The shifts come from the rotor's own estimate: the n-DOF quadratic eigenproblem with
 each bearing's K and C frozen at the whirl ratio of the estimate (two fixed-point passes from
@@ -178,6 +184,8 @@ def _kelvin_voigt(lin, c_in: np.ndarray, reference_whirl: Optional[float], nq: i
     n = lin.size
     rate = np.zeros((n, nq))
     eta, terms = lin.loss_factor, lin.compliance
+    if lin.friction is not None:
+        return (*stuck_system(lin), rate)
     if eta == 0.0 or terms is None:
         return lin.a, lin.b, rate
     if reference_whirl is None or not (math.isfinite(reference_whirl) and reference_whirl > 0):
@@ -200,6 +208,22 @@ def _kelvin_voigt(lin, c_in: np.ndarray, reference_whirl: Optional[float], nq: i
     b_new = b + tau * (mask @ (a - terms.a.tocsr()))
     rate[rows] = -tau * c_in[rows]              # J row: −τ C̃ on ũ (τ C̃ ũ moved right)
     return lin.a, b_new.tocsc(), rate
+
+
+def stuck_system(lin) -> tuple:
+    """(A, B) of a bearing whose bumps rub, for small motion: every loaded unit's friction
+    element stuck, so its spring κ K_b stands beside the bump (k_u = 1 + κ where loaded, 1
+    where not; :mod:`gfbopt.linear.friction_units`) — real and independent of s, the
+    foundation the matched-whirl threshold sees for small orbits.  Friction together with a
+    loss factor η > 0 is refused: the Kelvin–Voigt bump beside a stuck spring is not built
+    here."""
+    if lin.loss_factor > 0:
+        raise ParameterError("loss_factor", lin.loss_factor, "must be 0 in the Campbell "
+                             "diagram when the bumps rub (friction_coefficient > 0): the "
+                             "Kelvin-Voigt bump beside the stuck friction spring is not built")
+    k = 1.0 + lin.friction.factor(None, 1.0).real
+    a, b = lin.compliance.apply(lin.a, lin.b, k)
+    return sp.csc_matrix(a.real), sp.csc_matrix(b.real)
 
 
 def rotor_estimates(rotor: RotorCase, states: SpeedStates, inertia_scale: float = 1.0,

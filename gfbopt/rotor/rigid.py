@@ -45,7 +45,7 @@ housing, whose reference is the gravity direction: a seam stated at θ_s from gr
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Sequence
 
 import numpy as np
@@ -173,8 +173,7 @@ def seam_from_load(options: ModelOptions, away_from_gravity_deg: float) -> Model
         return options
     shifted = (angle - away_from_gravity_deg) % 360.0
     shifted = 0.0 if shifted >= 360.0 else shifted
-    return ModelOptions(film=options.film, seam_angle_deg=shifted, foil=options.foil,
-                        deflection_law=options.deflection_law, loss_factor=options.loss_factor)
+    return replace(options, seam_angle_deg=shifted)      # every other option kept (friction)
 
 
 def transformations(system: RotorSystem, loads: Sequence[BearingLoad], structure=None

@@ -1,0 +1,102 @@
+"""The two-bearing rotor's linear analyses when the bearing files state Coulomb friction in the
+bumps (issue 29): the seam re-measured from each bearing's load keeps the bump options, the
+Campbell diagram's full system carries the stuck friction springs (the small-motion foundation
+the matched-whirl onset sees), and friction 0 is today's system exactly.  Coarse grid 36 × 10:
+every comparison is between two routes on the same discrete bearing."""
+import math
+from dataclasses import replace
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from gfbopt.errors import ParameterError
+from gfbopt.inputs import Grid
+from gfbopt.inputs.options import ModelOptions
+from gfbopt.inputs.rotor_system import load_rotor
+from gfbopt.rotor.campbell import FullSystem
+from gfbopt.rotor.matched_whirl import crossings
+from gfbopt.rotor.rigid import seam_from_load
+from gfbopt.rotor.supports import resolve_rotor, support_states
+
+ROOT = Path(__file__).resolve().parents[2]
+GRID = Grid(36, 10)
+SPEED = 15000.0
+
+
+def _blower(**bump):
+    system = load_rotor(ROOT / "problems" / "rotors" / "blower.toml")
+    if not bump:
+        return system
+    bearings = tuple(replace(b, options=replace(b.options, **bump)) for b in system.bearings)
+    return replace(system, bearings=bearings)
+
+
+def test_seam_from_load_keeps_the_bump_options():
+    """The seam re-measured from a bearing's own load changes the seam only: friction and
+    hardening stated in the bearing file reach the rotor's bearings."""
+    opts = ModelOptions(film="seam", seam_angle_deg=180.0, foil="simple", deflection_law="mean",
+                        loss_factor=0.0, friction_coefficient=0.3,
+                        friction_stiffness_ratio=2.0)
+    out = seam_from_load(opts, 30.0)
+    assert out.seam_angle_deg == pytest.approx(150.0, abs=1e-12)
+    assert (out.friction_coefficient, out.friction_stiffness_ratio) == (0.3, 2.0)
+    assert replace(out, seam_angle_deg=180.0) == opts
+
+
+def test_rotor_cases_carry_the_bearing_files_friction():
+    rotor = resolve_rotor(_blower(friction_coefficient=0.5), GRID)
+    assert [c.options.friction_coefficient for c in rotor.cases] == [0.5, 0.5]
+    states = support_states(rotor, SPEED)
+    assert all(st.linearisation.friction is not None for st in states.states)
+
+
+def _eigs(system, shift):
+    rotor = resolve_rotor(system, GRID)
+    states = support_states(rotor, SPEED)
+    full = FullSystem(rotor, states)
+    ev, _ = full.eigen(shift, count=4)
+    return np.sort_complex(ev), full
+
+
+def test_friction_zero_is_todays_full_system_exactly():
+    """μ_f = 0 stated: the pencil and its eigenvalues equal the file without friction to 1e-12
+    (the same matrices: the model has no friction elements)."""
+    shift = 0.3j
+    today, f0 = _eigs(_blower(), shift)
+    zero, f1 = _eigs(_blower(friction_coefficient=0.0), shift)
+    assert abs(f0.j - f1.j).max() <= 1e-12 * abs(f0.j).max()
+    assert abs(f0.e - f1.e).max() <= 1e-12 * abs(f0.e).max()
+    assert np.max(np.abs(today - zero)) <= 1e-12 * np.max(np.abs(today))
+
+
+def test_full_system_with_stuck_friction_sits_on_the_axis_at_the_matched_whirl_threshold():
+    """With μ_f = 0.5 in both bearing files, each of the first two modes' matched-whirl
+    thresholds (stuck friction springs for small orbits) puts a full-system eigenvalue on the
+    imaginary axis to the tolerance of the frictionless agreement
+    (test_rotor_two_bearings: growth per revolution 2π Re s ≤ 1e-6, Im s = γ_c to 1e-4); the
+    bare bump's full system (the pre-issue-29 Campbell) does not."""
+    system = _blower(friction_coefficient=0.5)
+    rotor = resolve_rotor(system, GRID)
+    states = support_states(rotor, SPEED)
+    found = crossings(rotor, states)
+    assert {c.label for c in found} >= {"forward conical", "forward cylindrical"}
+    for c in found[:2]:
+        full = FullSystem(rotor, states, c.inertia_scale)
+        ev, _ = full.eigen(1j * c.whirl_ratio * (1 + 1e-7), count=4)
+        s = ev[np.argmin(np.abs(ev - 1j * c.whirl_ratio))]
+        assert abs(2 * math.pi * s.real) <= 1e-6
+        assert s.imag == pytest.approx(c.whirl_ratio, rel=1e-4)
+    c = found[0]
+    for st in states.states:                   # the bare bump: friction dropped
+        st.linearisation = replace(st.linearisation, friction=None)
+    ev, _ = FullSystem(rotor, states, c.inertia_scale).eigen(1j * c.whirl_ratio, count=4)
+    s = ev[np.argmin(np.abs(ev - 1j * c.whirl_ratio))]
+    assert abs(2 * math.pi * s.real) > 1e-3
+
+
+def test_campbell_refuses_friction_with_a_loss_factor():
+    rotor = resolve_rotor(_blower(friction_coefficient=0.5, loss_factor=0.1), GRID)
+    states = support_states(rotor, SPEED)
+    with pytest.raises(ParameterError, match="loss_factor"):
+        FullSystem(rotor, states, 1.0, reference_whirl=0.4)
