@@ -12,8 +12,10 @@ whirl frequencies of its lower modes, by the basis
 a unit displacement of one bearing's station, the other held), and Φ (n × k) the lowest k
 modes of the shaft with both bearing stations held (S_b Φ = 0; K Φ = M Φ Ω², ignoring the
 gyroscopic and damping terms, which the reduced matrices keep: M_r = Tᵀ M T, G_r = Tᵀ G T,
-K_r = Tᵀ K T, C_r = Tᵀ C T, S_r(z) = S(z) T with T = [Ψ Φ]).  :data:`MODES` = 8 held
-modes (four per plane) by default; each mode is scaled so that its largest translation is
+K_r = Tᵀ K T, C_r = Tᵀ C T, S_r(z) = S(z) T with T = [Ψ Φ]).  :data:`MODES` = 16 held
+modes (eight per plane) by default: on problems/rotors/flexible_rotor.toml on 2 MN/m supports
+the first three bending pairs (812, 2,089, 3,245 Hz) are within 3.3e-4 of the full shaft's
+(8 modes: 4.9e-3; 24: 7.4e-5; tests/verification/test_rotor_condensed.py); each mode is scaled so that its largest translation is
 1 m, so that η is in metres like u.  The bearing stations are exact (S_r(z_k) = [I 0]);
 another station (an imbalance plane, a probe) sees the shaft through the basis.
 
@@ -29,7 +31,7 @@ import scipy.linalg as sla
 from ..errors import ParameterError
 
 #: modes of the shaft with both bearing stations held that the basis keeps
-MODES = 8
+MODES = 16
 
 
 @dataclass(frozen=True, eq=False)

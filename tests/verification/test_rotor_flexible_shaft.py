@@ -15,7 +15,7 @@ import pytest
 from gfbopt.inputs.bearing_file import read_toml
 from gfbopt.inputs.grid import Grid
 from gfbopt.inputs.rotor_system import rotor_from_dict
-from gfbopt.rotor.condensed import CondensedStructure
+from gfbopt.rotor.condensed import MODES, CondensedStructure
 from gfbopt.rotor.diagrams import campbell_diagram, imbalance_response
 from gfbopt.rotor.supports import resolve_rotor
 from gfbopt.rotor.system import SpeedLine, rotor_onsets
@@ -83,7 +83,7 @@ def test_the_flexible_rotor_runs_end_to_end():
     shaft; its bending modes (near 800–900 Hz at 20,000 rpm) carry bending labels."""
     system = _system()
     rotor, line, result = _onsets(system)
-    assert rotor.structure.size == 12
+    assert rotor.structure.size == 4 + MODES          # both bearing stations + held modes
     assert math.isfinite(result.onset_speed_rpm) and result.first_mode
     # the shaft's first bending mode has a threshold of its own (μ_c 8–43 from 17,000 to
     # 40,000 rpm: stable, it would whirl at half speed on a rotor 8 times heavier)
