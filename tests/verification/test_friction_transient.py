@@ -155,7 +155,7 @@ def test_settled_limit_cycle_against_the_describing_function():
     predicted = settled_amplitude(linearise(sol), 8.0, samples=12, smallest=1e-2, xtol=1e-4)
     assert predicted.bounded
     tm = transient_model(sol, friction=True)
-    run = integrate_friction_orbits(tm, [8.0], 60.0, kick=0.03)
+    run = integrate_friction_orbits(tm, [8.0], 80.0, kick=0.03)
     out = friction_outcome(run.orbit)
     assert out.kind == "settled limit cycle", out.verdict
     assert out.amplitude == pytest.approx(predicted.amplitude, rel=0.05)
@@ -169,8 +169,8 @@ def test_halving_the_step_keeps_the_settled_orbit():
     # (measured 6e-4: 0.053001 c at Δτ = 0.0269, 0.053031 c at 0.0135)
     sol = _bounded_case()
     tm = transient_model(sol, friction=True)
-    full = integrate_friction_orbits(tm, [8.0], 60.0, kick=0.03)
-    half = integrate_friction_orbits(tm, [8.0], 60.0, kick=0.03,
+    full = integrate_friction_orbits(tm, [8.0], 80.0, kick=0.03)
+    half = integrate_friction_orbits(tm, [8.0], 80.0, kick=0.03,
                                      time_step=0.5 * full.orbit.time_step)
     a_full = friction_outcome(full.orbit)
     a_half = friction_outcome(half.orbit)
