@@ -36,12 +36,10 @@ REQUIRED = object()
 #: defaults (``Table.fill``; a study's model keys, inherited from ``[model]``)
 UNSET = object()
 #: field kinds: a finite number, a string, a string out of ``choices``, an angle in
-#: degrees [0, 360) or "max_film", a string or a list of strings, a sub-table (checked
-#: against the field's ``table``, e.g. ``[bearings.model]`` under a ``[[bearings]]`` row);
-#: and (study files) a whole number kept as an int ("count"), true or false ("flag"), a
-#: grid "NTHETAxNZ" and a list of them, a list of strings only ("string_list"), a list of
-#: tables ("tables", ``[[name]]``), a table of any names whose values are checked against
-#: the field's ``values`` ("mapping") and a list of [label, label] pairs ("pairs")
+#: degrees [0, 360) or "max_film", a string or a list of strings, a sub-table (the field's
+#: ``table``, e.g. ``[bearings.model]``); and the study files' (:mod:`.schema_kinds`): an
+#: int kept int ("count"), true or false, a grid and grids, a list of strings only, a list
+#: of tables, a table of any names (each value checked against ``values``), label pairs
 KINDS = ("number", "integer", "numbers", "string", "choice", "seam_angle", "strings", "text",
          "table", "count", "flag", "grid", "grids", "string_list", "tables", "mapping",
          "pairs")

@@ -6,8 +6,17 @@ A study file is a TOML table.  Its keys are the Python names of :mod:`gfbopt.glo
 checks the whole file against the schema of its ``kind``: an unknown or missing key, a value
 of the wrong type or an unknown value raises one :class:`~gfbopt.errors.ParameterError`
 naming the file, the key's path and what was expected, e.g.
-``problems/x.toml: rows[2].epss = 0.3: is not a key of rows (did you mean 'eccentricity'?…)``.
-The result is a new dict with every optional key present (its default filled in).
+``problems/x.toml: rows[2].epss = 0.3: is not a key of rows[2] (did you mean
+'eccentricity'?…)``.  The result is a new dict with every optional key present (its default
+filled in).
+
+The schemas are written in the language of every input file, :mod:`gfbopt.inputs.file_schema`:
+:func:`req` and :func:`opt` build its :class:`~gfbopt.inputs.file_schema.Field` s (a
+``table``/``tables`` key's ``keys`` a :class:`~gfbopt.inputs.file_schema.Table` that fills in
+defaults and suggests the glossary's :data:`ALIASES`), and :func:`validate`,
+:func:`check_table` and :func:`check_value` are file_schema's checker
+(:func:`~gfbopt.inputs.file_schema.check_fields`), so the study, bearing and rotor files are
+refused in the same words and ``docs/formats/`` is generated from the same objects.
 
 Tolerances are spelt ``<what>_tolerance`` everywhere; a comparison with a published value
 is a ``tolerance = {quantity = value}`` table whose values are relative, except for angles
