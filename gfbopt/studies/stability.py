@@ -215,7 +215,7 @@ def plan_onset_conventions(study: Study) -> dict:
             raise study.where("seam_angles_deg", k).error(angle, "must lie in [0, 360) degrees")
     # the study's [model], then the bearing file's, then the defaults (the one resolution of
     # gfbopt.inputs.options.merge_options; film and seam are swept, so not taken from the file)
-    from ..inputs.options import ModelOptions, merge_options
+    from ..inputs.options import BUMP_OPTION_NAMES, ModelOptions, merge_options
 
     file_options = bearing.options
     resolved = merge_options(ModelOptions(foil=spec["model"].get("foil"),
@@ -223,9 +223,15 @@ def plan_onset_conventions(study: Study) -> dict:
                                           loss_factor=spec["model"].get("loss_factor")),
                              ModelOptions(foil=file_options.foil,
                                           deflection_law=file_options.deflection_law,
-                                          loss_factor=file_options.loss_factor))
+                                          loss_factor=file_options.loss_factor,
+                                          **{key: getattr(file_options, key)
+                                             for key in BUMP_OPTION_NAMES}))
     model = {"foil": resolved.foil, "deflection_law": resolved.deflection_law,
              "loss_factor": resolved.loss_factor}
+    # the bearing file's bumps (friction, hardening): each onset point resolves them from
+    # bearing.options too; stated here so that the outputs name them
+    bump = {key: getattr(resolved, key) for key in BUMP_OPTION_NAMES
+            if getattr(resolved, key) is not None}
     if model["foil"] == "beam" and model["loss_factor"] > 0:
         raise study.where("model", "loss_factor").error(model["loss_factor"],
                                                         "is not supported with the beam foil")
@@ -245,7 +251,7 @@ def plan_onset_conventions(study: Study) -> dict:
               for f, s in conventions]
     tags = [{"convention": _convention_label(f, s), "film": f,
              "seam_angle_deg": s if s is not None else "none"} for f, s in conventions]
-    return {"points": points, "tags": tags, "bearing": bearing}
+    return {"points": points, "tags": tags, "bearing": bearing, "bump": bump}
 
 
 _CONVENTION_TITLES = {"periodic": "periodic film (no seam)",
@@ -283,7 +289,8 @@ def run_onset_conventions(study: Study, plan: dict, ctx: RunContext) -> StudyRes
     model = plan["points"][0]
     options = {"variants": {"all": {"foil": model["foil"],
                                     "deflection_law": model["deflection_law"],
-                                    "loss_factor": model["loss_factor"]}},
+                                    "loss_factor": model["loss_factor"],
+                                    **plan.get("bump", {})}},
                "grid": str(study.grid), "rotor_mass_kg": spec["rotor_mass_kg"],
                "load_newton": spec["load_newton"], "speed_range_rpm": [low, high]}
     return StudyResult(study, tables={"onset.csv": table},

@@ -100,3 +100,30 @@ def test_campbell_refuses_friction_with_a_loss_factor():
     states = support_states(rotor, SPEED)
     with pytest.raises(ParameterError, match="loss_factor"):
         FullSystem(rotor, states, 1.0, reference_whirl=0.4)
+
+
+def test_onset_conventions_study_states_and_uses_the_bearing_files_friction():
+    """gfbopt.studies.stability merges the bearing file's bump options (not only foil,
+    deflection law and loss factor): the plan states them, and the onset point of the study
+    with friction is the stuck onset (above the bare bump's); without friction the plan's bump
+    options are empty (today's outputs)."""
+    from gfbopt.studies import study_from_dict
+    from gfbopt.studies.stability import onset_point
+
+    def plan(bearing):
+        study = study_from_dict({
+            "kind": "onset_conventions", "title": "t", "source": "a test", "grid": "24x8",
+            "bearing": bearing, "rotor_mass_kg": 2.0, "load_newton": 20.0,
+            "speed_range_rpm": [8000.0, 30000.0], "seam_angles_deg": [180.0]},
+            name="tiny", file="tiny.toml", directory=ROOT / "problems")
+        return study.plan
+
+    bare, rubbing = plan("bearings/ruscitto.toml"), plan("bearings/ruscitto_friction.toml")
+    assert bare["bump"] == {}
+    assert rubbing["bump"] == {"friction_coefficient": 0.5, "friction_stiffness_ratio": 2.0}
+    point = {k: v for k, v in rubbing["points"][2].items()}        # seam at 180°
+    assert point["seam_angle_deg"] == 180.0
+    stuck = onset_point(**point)
+    plain = onset_point(**{**bare["points"][2]})
+    assert stuck["onset_status"] == plain["onset_status"] == "onset"
+    assert stuck["onset_speed_rpm"] > 1.02 * plain["onset_speed_rpm"]
