@@ -19,6 +19,7 @@ from dataclasses import dataclass
 from typing import Callable, Optional
 
 from ..errors import ParameterError
+from ..rotor.mode_search import UNSTABLE_LOW
 from .what_it_takes import Lever, scan_values, threshold_search
 
 def start_value(lever: Lever, system, design: dict, settings) -> float:
@@ -69,7 +70,10 @@ def lever_point(lever: Lever, value: float, system, design: dict, settings) -> d
         if value > 0.0:
             direction = (system.gravity_direction_deg if lever.direction_deg is None
                          else lever.direction_deg)
-            loads = loads + (SideLoad(value, direction, lever.position),)
+            # the lever's position is from the centre of gravity (study_file.md); the
+            # system's positions are from its own origin (the shaft's first end on a shaft)
+            loads = loads + (SideLoad(value, direction,
+                                      system.centre_of_gravity + lever.position),)
         return {"system": dataclasses.replace(system, side_loads=loads),
                 "settings": settings, **design}
     return {"system": system, "settings": settings, **{**design, lever.name: value}}
@@ -228,6 +232,12 @@ def what_it_would_take(levers: tuple, evaluations: LeverEvaluations, start_onset
         known = start_onset if lever.name != "side_load_n" or start == 0.0 else None
         t = threshold_search(ev.onset(lever), start, lever.low, lever.high, top, known)
         meets, film = None, math.nan
+        if not t.found and math.isfinite(t.limit_value):
+            limit = ev.known.get(point_key(lever, t.limit_value, True)) or {}
+            if limit.get("onset_status") == UNSTABLE_LOW:
+                t = dataclasses.replace(t, message=(
+                    f"at {_number(t.limit_value, lever.unit)} it is still {UNSTABLE_LOW} "
+                    f"({_number(t.limit_onset_rpm, 'rpm')})"))
         if t.found:
             full = ev.row(lever, t.value, onset_only=False)
             meets = bool(full.get("feasible"))
@@ -264,7 +274,8 @@ def answers_text(answers: list, top: float, onset: float, evaluated: int = 0,
         else:
             reached = (f"at {_number(a.limit_value, a.unit)} the first onset is "
                        f"{_number(a.limit_onset_rpm, 'rpm')}"
-                       if math.isfinite(a.limit_onset_rpm) else a.message)
+                       if math.isfinite(a.limit_onset_rpm) and UNSTABLE_LOW not in a.message
+                       else a.message)
             parts.append(f"{a.words}: none within physical limits "
                          f"[{a.low:g}, {a.high:g}] ({reached})")
     return (f"What it would take to be stable to {_number(top, 'rpm')} (the chosen design, "
