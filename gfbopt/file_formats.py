@@ -121,7 +121,8 @@ def _key_rule(key) -> str:
             "table": "a table", "tables": "a list of tables [[…]]",
             "mapping": "a table of name = value", "pairs": "a list of [label, label] pairs",
             "numbers": "a list of numbers", "strings": "a list of strings",
-            "grids": "a list of grids", "integer": "an integer"}.get(key.kind, f"a {key.kind}")
+            "grids": "a list of grids", "integer": "an integer", "count": "an integer",
+            "string_list": "a list of strings"}.get(key.kind, f"a {key.kind}")
     return kind + (f" ({', '.join(parts)})" if parts else "")
 
 
