@@ -66,7 +66,8 @@ from typing import Optional, Union
 
 from ..errors import ParameterError
 from .bearing import BearingGeometry
-from .bearing_file import load_bearing_file, read_toml
+from .bearing_file import load_bearing, load_bearing_file, read_bearing_file, read_toml
+from .thermal_tables import RUNNING_TABLES
 from .checks import check_angle_deg, check_finite, check_nonnegative, check_positive
 from .conversions import STANDARD_GRAVITY
 from .file_schema import REQUIRED, Table, check_file
@@ -118,6 +119,10 @@ class BearingSupport:
     :func:`~gfbopt.inputs.options.resolve_model_options`); file : the bearing file used
     (None when built in Python).  A stated seam angle is measured from the direction of
     gravity, i.e. fixed in the housing (:mod:`gfbopt.rotor.rigid`).
+    running_tables : the bearing file's checked ``[journal]`` and ``[thermal]`` tables
+    (((table, ((key, value), ...)), ...); () when it states neither: the isothermal,
+    cold-clearance bearing), read only by ``load_rotor(path, running=True)`` (the linear
+    rotor analyses, :mod:`gfbopt.rotor.running`); :meth:`tables` gives them as dicts.
     """
 
     name: str
@@ -125,6 +130,11 @@ class BearingSupport:
     geometry: BearingGeometry
     options: ModelOptions = field(default_factory=ModelOptions)
     file: Optional[str] = None
+    running_tables: tuple = ()
+
+    def tables(self) -> dict:
+        """{"journal": {...}, "thermal": {...}} of the tables stated (empty: neither)."""
+        return {name: dict(items) for name, items in self.running_tables}
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "position", check_finite("position", self.position))
@@ -283,15 +293,23 @@ class RotorSystem:
 
 
 # ------------------------------------------------------------------ the file
-def load_rotor(path: Union[str, Path]) -> RotorSystem:
+def load_rotor(path: Union[str, Path], running: bool = False) -> RotorSystem:
     """The rotor described in the rotor file ``path``, validated before anything is solved
-    (every bearing file read and checked too).  ParameterError names the file and key."""
+    (every bearing file read and checked too).  ParameterError names the file and key.
+
+    ``running``: read each bearing file's ``[journal]`` and ``[thermal]`` tables (kept on
+    :attr:`BearingSupport.running_tables`) — the linear rotor analyses (``gfbopt rotor``'s
+    onsets, Campbell, imbalance response) run each bearing at its running clearance; every
+    other route (False) refuses a bearing file stating them, as
+    :func:`~gfbopt.inputs.bearing_file.load_bearing` does, rather than answer with the cold
+    clearance."""
     path = Path(path)
-    return rotor_from_dict(read_toml(path), directory=path.parent, where=str(path))
+    return rotor_from_dict(read_toml(path), directory=path.parent, where=str(path),
+                           running=running)
 
 
 def rotor_from_dict(data: dict, directory: Union[str, Path] = ".",
-                    where: str = "<rotor>") -> RotorSystem:
+                    where: str = "<rotor>", running: bool = False) -> RotorSystem:
     """A :class:`RotorSystem` from the tables of a rotor file (``directory``: where bearing
     files are looked up; ``where`` names the source in errors).
 
@@ -326,7 +344,8 @@ def rotor_from_dict(data: dict, directory: Union[str, Path] = ".",
         raise ParameterError(f"{where}: bearings", f"{len(bearing_rows)} [[bearings]] table(s)",
                              "exactly two bearings are supported (a rigid rotor on two "
                              "supports)")
-    bearings = [_bearing(row, k, directory, where) for k, row in enumerate(bearing_rows, 1)]
+    bearings = [_bearing(row, k, directory, where, running)
+                for k, row in enumerate(bearing_rows, 1)]
     loads = [_build(SideLoad, f"{where}: side_loads[{k}]", **_filled(row, SIDE_LOADS))
              for k, row in enumerate(file.get("side_loads", []), 1)]
     planes = [_plane(row, k, where) for k, row in enumerate(file.get("imbalance", []), 1)]
@@ -391,18 +410,27 @@ def _build(cls, where: str, *args, **kwargs):
         raise ParameterError(f"{where}.{exc.name}", exc.value, exc.rule) from None
 
 
-def _bearing(table: dict, k: int, directory: Path, where: str) -> BearingSupport:
+def _bearing(table: dict, k: int, directory: Path, where: str,
+             running: bool = False) -> BearingSupport:
     here = f"{where}: bearings[{k}]"
     file = directory / table["file"]
     if not file.is_file():
         raise ParameterError(f"{here}.file", table["file"],
                              f"must name an existing bearing file (looked for {file})")
-    geometry, options = load_bearing_file(file)
+    tables: tuple = ()
+    if running:
+        geometry = load_bearing(file, running=True)
+        options = geometry.options
+        checked = read_bearing_file(file)
+        tables = tuple((t.name, tuple(sorted(checked[t.name].items())))
+                       for t in RUNNING_TABLES if t.name in checked)
+    else:
+        geometry, options = load_bearing_file(file)
     if "model" in table:
         options = ModelOptions(**table["model"]).over(options)
     return _build(BearingSupport, here, name=table.get("name", "AB"[k - 1]),
                   position=table["position"], geometry=geometry, options=options,
-                  file=str(file))
+                  file=str(file), running_tables=tables)
 
 
 def _plane(table: dict, k: int, where: str) -> ImbalancePlane:

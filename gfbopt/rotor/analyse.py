@@ -32,6 +32,7 @@ from .campbell import system_modes
 from .diagrams import (CampbellDiagram, ImbalanceResponse, campbell_diagram, half_mass_onsets,
                        imbalance_response, reference_whirl)
 from .onset import check_speed_range
+from .running import ISOTHERMAL, running_summary
 from .supports import resolve_rotor
 from .mode_search import UNSTABLE_LOW
 from .system import RotorOnsets, SpeedLine, rotor_onsets
@@ -53,12 +54,30 @@ class RotorAnalysis:
     imbalance: Optional[ImbalanceResponse]
     half_mass: Optional[list]
     warnings: tuple = ()
+    running: Optional[dict] = None
+
+    def running_fields(self) -> dict:
+        """Which model each bearing was analysed with (``thermal_models``) and, with a
+        bearing at its running condition (issue 28), ``running_at_onset`` (bearing → its
+        running clearance, growths, film temperature and viscosity at the first onset),
+        ``thermal_limits`` ("thermal runaway at bearing A from N rpm") and
+        ``running_cost``."""
+        if self.running is None:
+            names = [l.name for l in self.onsets.bearing_loads]
+            return {"thermal_models": {n: ISOTHERMAL for n in names}}
+        r = self.running
+        return {"thermal_models": r["thermal_models"], "running_at_onset": r["at_onset"],
+                "thermal_limits": r["thermal_limits"],
+                "running_cost": {k: r[k] for k in ("fixed_points", "static_solves",
+                                                   "static_solves_per_point",
+                                                   "max_static_solves")}}
 
     def to_dict(self) -> dict:
         out = self.onsets.to_dict()
         out["at_speed"] = self.at_speed
         out["warnings"] = list(self.warnings)
         out["bearing_notes"] = load_notes(self.onsets)
+        out.update(self.running_fields())
         if self.campbell is not None:
             table = self.campbell.table
             out["campbell"] = {"speeds": int(table["speed_rpm"].nunique()) if len(table)
@@ -95,6 +114,8 @@ class RotorAnalysis:
             out["imbalance_response"] = self.imbalance.table
         if self.half_mass is not None:
             out["half_mass"] = pd.DataFrame(self.half_mass)
+        if self.running is not None:
+            out["running"] = pd.DataFrame(self.running["table"])
         return out
 
 
@@ -200,11 +221,15 @@ def clearance_warnings(system: RotorSystem, response: Optional[ImbalanceResponse
         table = table[table["speed_rpm"] < onset]
     out = []
     for support in system.bearings:
-        clearance_um = support.geometry.radial_clearance * 1e6
+        running = f"running_clearance_um_{support.name}"
+        clearance_um = (table[running] if running in table       # at each speed's running
+                        else support.geometry.radial_clearance * 1e6)      # condition
         rows = table[(table["station"] == support.name) & (table["amplitude_um"] > clearance_um)]
         if not len(rows):
             continue
         worst = rows.loc[rows["amplitude_um"].idxmax()]
+        if running in rows:
+            clearance_um = worst[running]
         out.append(f"the linear imbalance response reaches {worst['amplitude_um']:.4g} µm at "
                    f"bearing {support.name} at {worst['speed_rpm']:,.0f} rpm, above the radial "
                    f"clearance of {clearance_um:.4g} µm: the linear model does not hold there; "
@@ -265,5 +290,8 @@ def analyse_rotor(system: RotorSystem, speed_range, *, speed_rpm: Optional[float
                              show_progress, unstable_from_rpm=unstable_from(onsets, low))
           if imbalance else None)
     hm = half_mass_onsets(line, (low, high)) if half_mass else None
+    run = running_summary(line, onsets.onset_speed_rpm)
+    limits = tuple(x["message"] for x in run["thermal_limits"]) if run else ()
     return RotorAnalysis(onsets, at, cd, ir, hm,
-                         plausibility_warnings(line) + clearance_warnings(system, ir))
+                         limits + plausibility_warnings(line) + clearance_warnings(system, ir),
+                         run)

@@ -42,6 +42,7 @@ from .campbell import system_modes
 from .modes import ellipse_radii
 from .tracking import assign, guesses, name_tracks
 from .onset import onset_speed
+from .running import speed_columns
 from .rigid import dynamic_stiffness, imbalance_forces, station_matrix
 from .structure import is_rigid
 from .system import SpeedLine
@@ -116,7 +117,8 @@ def campbell_diagram(line: SpeedLine, speeds, show_progress: bool = True,
                          "whirl_ratio": m.whirl_ratio, "log_decrement": m.log_decrement,
                          "damping_ratio": m.damping_ratio,
                          "growth_rate_per_s": m.growth_rate_per_s,
-                         "reference_whirl_ratio": refs[speed]})
+                         "reference_whirl_ratio": refs[speed],
+                         **speed_columns(line.states(speed))})
     table = pd.DataFrame(rows)
     if not table.empty:
         table = table.sort_values(["mode", "speed_rpm"]).reset_index(drop=True)
@@ -198,7 +200,8 @@ def imbalance_response(line: SpeedLine, speeds, show_progress: bool = True,
             if resp is None:
                 skipped.append(line.states(speed).failure)
                 continue
-            rows += [_row(speed, n, positions[n], xy) for n, xy in resp.items()]
+            extra = speed_columns(line.states(speed))
+            rows += [{**_row(speed, n, positions[n], xy), **extra} for n, xy in resp.items()]
     table = pd.DataFrame(rows)
     peaks = {}
     for name in positions:

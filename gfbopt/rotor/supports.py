@@ -47,6 +47,7 @@ from .condensed import condensed
 from .rigid import BearingLoad, bearing_loads, seam_from_load, transformations
 from .structure import is_rigid, structure_of
 from .speed_line import transferred_start
+from .running import ISOTHERMAL, running_case, running_columns, running_line
 
 #: the grid of a fine grid's first (cold) equilibrium, interpolated as its start, and the
 #: cell ratio from which it is used [-]
@@ -66,7 +67,10 @@ class RotorCase:
     the rigid body, or a shaft condensed onto its bearings and a few modes
     (:func:`~gfbopt.rotor.condensed.condensed`); default: :func:`analysis_structure`.
     mass_share_kg : each bearing's share of the rotor mass in the per-bearing (half-mass)
-    approximation, m |W_k|/(|W_A| + |W_B|) [kg]."""
+    approximation, m |W_k|/(|W_A| + |W_B|) [kg].
+    running : the bearings' running condition (:class:`gfbopt.rotor.running.RunningLine`)
+    when a bearing file states ``[journal]``/``[thermal]``; None: every bearing isothermal
+    at its cold clearance (today's analyses, bit for bit)."""
 
     system: RotorSystem
     loads: tuple
@@ -75,6 +79,7 @@ class RotorCase:
     grid: Grid
     cache: SolverCache = field(repr=False, compare=False)
     structure: object = field(default=None, repr=False, compare=False)
+    running: object = field(default=None, repr=False, compare=False)
 
     def __post_init__(self) -> None:
         if self.structure is None:
@@ -97,12 +102,15 @@ class RotorCase:
     def conventions(self) -> dict:
         """The options each bearing is analysed with, its load and frame, as outputs state."""
         frame = FRAME if is_rigid(self.structure) else SHAFT_FRAME
+        models = (self.running.models() if self.running is not None
+                  else {n: ISOTHERMAL for n in self.names})
         return {"frame": frame, "grid": str(self.grid),
                 "bearings": {n: {
                     **c.conventions(), "load_newton": l.magnitude,
                     "load_direction_deg": l.direction_deg,
                     "load_from_gravity_deg": l.away_from_gravity_deg,
-                    "position_m": l.position, "bearing_file": s.file}
+                    "position_m": l.position, "bearing_file": s.file,
+                    "thermal_model": models[n]}
                     for n, c, l, s in zip(self.names, self.cases, self.loads,
                                           self.system.bearings)},
                 "gravity_m_per_s2": self.system.gravity,
@@ -156,15 +164,17 @@ def resolve_rotor(system: RotorSystem, grid: Grid = DEFAULT_GRID,
             raise ParameterError(f"bearing {support.name}: {exc.name}", exc.value,
                                  exc.rule) from None
     return RotorCase(system, loads, tuple(cases), transformations(system, loads, structure),
-                     grid, cache, structure)
+                     grid, cache, structure, running_line(system))
 
 
 class BearingState:
     """One bearing at one speed: equilibrium, linearisation and Z(iγ) [N/m] on demand."""
 
     def __init__(self, case: Case, load: BearingLoad, speed_rpm: float,
-                 solution: StaticSolution, whirl_range=WHIRL_RANGE):
+                 solution: StaticSolution, whirl_range=WHIRL_RANGE, running=None):
         self.case, self.load, self.speed_rpm, self.solution = case, load, speed_rpm, solution
+        #: the RunningPoint the case's bearing is at (None: the bearing as given)
+        self.running = running
         self.omega = rpm_to_rad_per_s(speed_rpm)
         g = case.bearing
         self.scale = stiffness_scale(g.ambient_pressure, g.radius, g.radial_clearance)
@@ -265,7 +275,8 @@ class BearingState:
                 "load_newton": self.load.magnitude, "eccentricity": sol.eccentricity,
                 "attitude_angle_deg": sol.attitude_angle_deg,
                 "min_film_thickness_um": sol.min_film * self.case.bearing.radial_clearance * 1e6,
-                "bearing_number": sol.model.bearing_number, "load_exceeds_capacity": False}
+                "bearing_number": sol.model.bearing_number, "load_exceeds_capacity": False,
+                **running_columns(self.running)}
 
 
 @dataclass(frozen=True)
@@ -299,6 +310,14 @@ def support_states(rotor: RotorCase, speed_rpm: float, initial: Optional[tuple] 
     for k, (case, load) in enumerate(zip(rotor.cases, rotor.loads)):
         guess = initial[k].solution if initial and initial[k] is not None else None
         guess = guesses[k] if guesses and guesses[k] is not None else guess
+        point = None
+        if rotor.running is not None:      # the bearing at its running condition here
+            case, guess, point, failed = running_case(rotor.running, k, case, load,
+                                                      speed_rpm, guess)
+            if failed is not None:
+                states.append(None)
+                failure = failure or failed
+                continue
         try:
             sol = _equilibrium(case, speed_rpm, guess)
         except LoadCapacityError as exc:
@@ -306,7 +325,7 @@ def support_states(rotor: RotorCase, speed_rpm: float, initial: Optional[tuple] 
             failure = failure or {"bearing": load.name, "speed_rpm": speed_rpm,
                                   "load_newton": load.magnitude, "message": exc.rule}
             continue
-        states.append(BearingState(case, load, speed_rpm, sol, whirl_range))
+        states.append(BearingState(case, load, speed_rpm, sol, whirl_range, point))
     return SpeedStates(speed_rpm, tuple(states), failure)
 
 
