@@ -4,9 +4,10 @@
 :func:`on_user_rotor` returns the study's table with the study's ``rotor`` replaced by the
 user's file (its absolute path, as the command line named it from the current folder) and
 the top of ``speed_range_rpm`` by the top speed; the name gets the rotor file's stem (the
-result folder ``RESULTS/<name>_on_<rotor>/``) and the title says it is the user's rotor, so
-the run answers exactly what an edited copy of the study file with those four keys changed
-answers.  The source, when the study cites one, is kept with a note that the rotor is the
+result folder ``RESULTS/<name>_on_<rotor>/``), the title is rewritten from the user's rotor
+and top speed and the shipped notes, which describe the shipped rotor and top speed, are
+replaced by one note saying so (:func:`_retitled`), so the run answers exactly what an
+edited copy of the study file with those keys changed answers.  The source, when the study cites one, is kept with a note that the rotor is the
 user's.  Each option is checked before any solve: the rotor file exists and is a valid
 rotor file (:func:`gfbopt.inputs.rotor_system.load_rotor`), the top speed is a finite
 number above the study's lowest speed; a mistake is one
@@ -94,9 +95,53 @@ def on_user_rotor(data: dict, file: str, schema: dict, rotor: Optional[str],
         suffix = (f"_on_{_stem(mine)}" if mine is not None else "") + \
             (f"_to_{top_speed:.0f}rpm" if top_speed is not None else "")
         out["name"] = f"{name}{suffix}"[:100]
-        title = str(data.get("title", name))
-        out["title"] = f"{title} — {' '.join(said)}"
+        out["title"], out["notes"] = _retitled(data, name, kind, mine, top_speed, said)
         if isinstance(data.get("source"), str):
             out["source"] = (f"{data['source']} (the study {file} run "
                              f"{' '.join(said)}: the rotor and top speed are the user's)")
     return out
+
+
+def _top_speed_texts(speed) -> tuple:
+    """How a note may write the shipped top speed [rpm]: 45,000 / 45000 / 45 krpm."""
+    if not isinstance(speed, (int, float)) or not math.isfinite(speed):
+        return ()
+    return (f"{speed:,.0f}", f"{speed:.0f}", f"{speed / 1000:g} krpm")
+
+
+def _retitled(data: dict, name: str, kind, mine: Optional[Path], top_speed,
+              said: list) -> tuple:
+    """(title, notes) of the study run on the user's rotor and/or top speed.  The shipped
+    title and notes describe the shipped rotor and top speed (its mass, its measured
+    optimum, "drag at 45,000 rpm"), so the title is rewritten from the user's rotor and
+    top speed, and the notes are dropped -- all of them with ``--rotor`` (a measured fact
+    of the shipped rotor may sit in any note), those naming the shipped top speed with
+    ``--top-speed`` alone -- and one note says what was replaced."""
+    from ..inputs.rotor_system import load_rotor
+
+    speeds = data.get("speed_range_rpm")
+    shipped_top = speeds[1] if isinstance(speeds, list) and len(speeds) == 2 else None
+    notes = [n for n in data.get("notes") or [] if isinstance(n, str)]
+    described = []
+    if mine is not None:
+        system = load_rotor(mine)
+        described.append(f"the rotor is {mine} ({system.body.name}, "
+                         f"{system.total_mass:.4g} kg)")
+        dropped, kept = notes, []
+    else:
+        texts = _top_speed_texts(shipped_top)
+        dropped = [n for n in notes if any(t in n for t in texts)]
+        kept = [n for n in notes if n not in dropped]
+    if top_speed is not None:
+        described.append(f"the speeds run from {speeds[0]:,.0f} to {top_speed:,.0f} rpm")
+    title = f"The study {name} ({kind}) {' '.join(said)}"
+    if mine is not None:
+        title += f": {system.body.name}, {system.total_mass:.4g} kg"
+    shipped = (f"the shipped rotor {data.get('rotor')}" if mine is not None else "")
+    if top_speed is not None and shipped_top is not None:
+        shipped += (" and " if shipped else "") + f"the top speed {shipped_top:,.0f} rpm"
+    what = (f"title and {len(dropped)} of its notes, which described {shipped}, were"
+            if dropped else f"title, which described {shipped}, was")
+    note = (f"Run {' '.join(said)}: {'; '.join(described)}. The shipped study's {what} "
+            "replaced (see the study file).")
+    return title, [note] + kept

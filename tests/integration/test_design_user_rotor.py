@@ -37,8 +37,9 @@ NAMING = ("name", "title", "source", "problem_file", "wall_time_s", "provenance"
 def _answer(folder: Path) -> dict:
     s = json.loads((folder / "summary.json").read_text())
     s = {k: v for k, v in s.items() if k not in NAMING}
-    s["notes"] = [n for n in s["notes"]                 # their rates and wall times
-                  if not n.startswith(("Search:", "What it would take"))]
+    s["notes"] = [n for n in s["notes"]                 # their rates and wall times, and
+                  if not n.startswith(("Search:", "What it would take",   # what --rotor
+                                       "Run on the user's rotor"))]       # replaced
     return s
 
 
@@ -52,6 +53,9 @@ def test_the_override_answers_as_an_edited_copy(study, tmp_path):  # noqa: F811
     folder = results / "rd_decision_on_my_rotor_to_60000rpm"
     summary = json.loads((folder / "summary.json").read_text())
     assert "on the user's rotor my_rotor.toml to 60,000 rpm" in summary["title"]
+    assert "5 kg" in summary["title"]
+    assert ("- Run on the user's rotor my_rotor.toml to 60,000 rpm: the rotor is "
+            in (folder / "README.md").read_text())
     assert summary["verdict"].startswith("No design in this space is stable to 60,000 rpm")
     # the copy: rotor (relative to the copy), top speed, name and title edited, no source
     copy = tmp_path / "elsewhere" / "my_study.toml"
