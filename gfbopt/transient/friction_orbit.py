@@ -1,11 +1,12 @@
-"""One-bearing orbits with the bumps' Coulomb friction: RK4 with the sliders split off.
+"""One-bearing orbits with the bumps' Coulomb friction: RK4 or RKC with the sliders split off.
 
 The slider positions Z (B, m) of :mod:`.friction_foil` are not an ODE state (they have no
 rate): they are carried beside the integrated state (Φ, X, Y, U, V) and updated once after
 every accepted step by the play operator (operator splitting, :mod:`.friction_foil`'s
 docstring says why it is consistent).  Every stage of a step recovers P and H with the step's
-starting Z.  This driver is the one-bearing RK4 loop of :mod:`.rk4` with that update between
-steps (rk4's own loop has no post-step hook); with ``tm.friction`` None it is that loop.
+starting Z.  This driver is the one-bearing loop of :mod:`.rk4` with that update between
+steps (the integrators' own loops have no post-step hook), stepping with RK4 or RKC
+(:mod:`.friction_steps`); with ``tm.friction`` None and rk4 it is rk4's loop exactly.
 
 :func:`friction_outcome` states how a run ended: "settled limit cycle" (the orbit's
 semi-major axis steady over the last whirl periods), "contact" (the film closed), or "end of
@@ -24,9 +25,9 @@ from ..errors import ParameterError
 from ..threads import single_threaded
 from .friction_foil import slider_after_step, stuck_share
 from .result import OrbitBatch, check_masses, check_positive, finish_orbits
-from .rk4 import RK4_STABILITY_RADIUS, STEP_SAFETY, rk4_step
+from .friction_steps import check_friction_method, first_step, recheck, take_step
 from .system import (RightHandSide, State, TransientModel, equilibrium_state,
-                     pressure_and_film, rigid_film, stiffness_bound)
+                     pressure_and_film, rigid_film)
 
 
 @dataclass(frozen=True, eq=False)
@@ -46,10 +47,13 @@ def integrate_friction_orbits(tm: TransientModel, mass, revolutions: float = 10.
                               slider: Optional[np.ndarray] = None,
                               sample_every: float = 0.2, contact_film: float = 0.02,
                               settle: float = 2.0, time_step: Optional[float] = None,
-                              check_every: int = 50) -> FrictionRun:
+                              check_every: Optional[int] = None,
+                              method: str = "rk4") -> FrictionRun:
     """Advance a batch of rotors on one bearing whose bumps rub (RK4, sliders split off).
 
-    Arguments as :func:`gfbopt.transient.orbit.integrate_orbits` with method 'rk4';
+    Arguments as :func:`gfbopt.transient.orbit.integrate_orbits`; ``method`` 'rk4' (the
+    reference, Δτ from the stability bound) or 'rkc' (Δτ for accuracy, stages from the bound;
+    ≈ 2.5× fewer evaluations at 24 × 8, ≈ 9× at 72 × 20), :mod:`.friction_steps`;
     ``slider`` : the sliders Z (B, m) or (B, m, n_z + 1) to start from (default: relaxed at the equilibrium,
     Z = W0; with ``initial`` it must be given for a friction model).  A model without
     friction runs the rk4 loop exactly (its answers equal :func:`integrate_orbits`').
@@ -58,7 +62,9 @@ def integrate_friction_orbits(tm: TransientModel, mass, revolutions: float = 10.
     if tm.foil_state is not None:
         raise ParameterError("loss_factor", tm.foil_state.loss_factor, "this driver does not "
                              "carry the Kelvin–Voigt foil state; use integrate_orbits")
-    tm.law.check_engine("rk4")
+    default_check = check_friction_method(method)
+    check_every = default_check if check_every is None else int(check_every)
+    tm.law.check_engine(method)
     mass = check_masses(mass)
     revolutions = check_positive("revolutions", revolutions)
     batch = mass.size
@@ -75,14 +81,7 @@ def integrate_friction_orbits(tm: TransientModel, mass, revolutions: float = 10.
             slider = np.broadcast_to(tm.friction.equilibrium,
                                      (batch,) + tm.friction.equilibrium.shape)
         z = np.array(slider, dtype=float)
-    limit = RK4_STABILITY_RADIUS / stiffness_bound(state, tm, z)
-    if time_step is None:
-        dt = STEP_SAFETY * limit
-    else:
-        dt = check_positive("time_step", time_step)
-        if dt > limit:
-            raise ParameterError("time_step", time_step, f"exceeds the RK4 stability limit "
-                                 f"{limit:.4g} of the discretised system (Gershgorin bound)")
+    dt, stages = first_step(method, tm, state, z, mass, time_step)
     t_end = 2 * math.pi * revolutions
     per_sample = max(1, int(round(sample_every / dt)))
     n_steps = int(math.ceil(t_end / dt - 1e-9))
@@ -104,10 +103,12 @@ def integrate_friction_orbits(tm: TransientModel, mass, revolutions: float = 10.
 
     record(state)
     failure = ""
-    for step in range(1, n_steps + 1):
+    step = 0
+    while step < n_steps:                    # n_steps grows when the step shrinks
+        step += 1
         rhs.min_film[:] = np.inf
         rhs.slider = z                       # every stage: the step's starting sliders
-        state = rk4_step(rhs, state, dt, active.astype(float))
+        state = take_step(method, rhs, state, dt, stages, active)
         tau += dt
         if not np.all(np.isfinite(state.x[active])):
             failure = (f"the integration blew up (non-finite state) at τ = {tau:.4g} with "
@@ -126,14 +127,9 @@ def integrate_friction_orbits(tm: TransientModel, mass, revolutions: float = 10.
             if not active.any():
                 break
         if step % check_every == 0:
-            keep = np.flatnonzero(active)
-            new_limit = RK4_STABILITY_RADIUS / stiffness_bound(
-                state.take(keep), tm, None if z is None else z[keep])
-            if dt > new_limit:
-                if time_step is not None:
-                    raise ParameterError("time_step", time_step, f"exceeds the RK4 stability "
-                                         f"limit {new_limit:.4g} reached at τ = {tau:.3g}")
-                dt = STEP_SAFETY * new_limit
+            dt, stages, changed = recheck(method, tm, state, z, active, dt, stages,
+                                          time_step is not None)
+            if changed:
                 per_sample = max(1, int(round(sample_every / dt)))
                 n_steps = step + int(math.ceil((t_end - tau) / dt - 1e-9))
     tau_arr = np.array(taus)
@@ -145,7 +141,7 @@ def integrate_friction_orbits(tm: TransientModel, mass, revolutions: float = 10.
         hmin[b, last] = min(hmin[b, last], contact_min[b])
     orbit = finish_orbits(tm, tau_arr, x, y, hmin, ~active, contact_tau, mass, settle=settle,
                           kick=kick, time_step=dt, evaluations=rhs.evaluations, started=t0,
-                          revolutions=tau / (2 * math.pi), method="rk4",
+                          revolutions=tau / (2 * math.pi), method=method,
                           success=not failure, message=failure)
     return FrictionRun(orbit, state, z, np.array(stuck).T if stuck else None)
 
@@ -170,23 +166,24 @@ class FrictionOutcome:
 
 
 def orbit_axes(tau: np.ndarray, dx: np.ndarray, dy: np.ndarray) -> tuple:
-    """(semi-major axis, whirl ratio) of an orbit segment spanning whole whirl periods.
+    """(semi-major axis, whirl ratio) of the first harmonic of an orbit segment.
 
-    The segment is cut to the whole periods between the first and the last upward zero
-    crossing of X − mean; for an ellipse sampled evenly in phase the covariance of (X, Y)
-    has eigenvalues a²/2, b²/2, so a = √(2 λ_max) [clearances]; γ = 2π/(mean period).
+    γ = 2π/(mean period) between the first and last upward zero crossings of X − mean
+    (linearly interpolated); then the least-squares fit X, Y = c + a cos γτ + b sin γτ over
+    the segment, and the semi-major axis of that ellipse, the larger singular value of
+    [[a_X, b_X], [a_Y, b_Y]] [clearances] — the describing function's orbit amplitude
+    (the semi-major axis of Re(ξ e^{iγτ}), :mod:`gfbopt.linear.friction_onset`).
     """
     ex = dx - dx.mean()
     up = np.flatnonzero((ex[:-1] < 0) & (ex[1:] >= 0))
     if up.size < 2:
         return math.nan, math.nan
     t_up = tau[up] - ex[up] * (tau[up + 1] - tau[up]) / (ex[up + 1] - ex[up])
-    cut = slice(up[0] + 1, up[-1] + 1)
-    pts = np.vstack([dx[cut], dy[cut]])
-    cov = np.cov(pts, bias=True)
-    a = math.sqrt(2.0 * float(np.linalg.eigvalsh(cov)[-1]))
-    period = (t_up[-1] - t_up[0]) / (up.size - 1)
-    return a, 2 * math.pi / period
+    gamma = 2 * math.pi * (up.size - 1) / (t_up[-1] - t_up[0])
+    basis = np.column_stack([np.ones_like(tau), np.cos(gamma * tau), np.sin(gamma * tau)])
+    coef = np.linalg.lstsq(basis, np.column_stack([dx, dy]), rcond=None)[0]
+    a = float(np.linalg.svd(coef[1:].T, compute_uv=False)[0])
+    return a, gamma
 
 
 def friction_outcome(orbit: OrbitBatch, rotor: int = 0, periods: int = 6,
