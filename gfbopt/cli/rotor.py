@@ -99,7 +99,7 @@ def run(args) -> int:
         return rotor_time.handle(args)
     _check(args)
     grid = Grid.parse(args.grid)
-    system = load_rotor(args.rotor_file)
+    system = load_rotor(args.rotor_file, running=True)    # [journal]/[thermal] read
     check_speed_span(args.speed_range, system, name="--speed-range")
     if args.speed_rpm is not None:
         check_rotor_speeds(system, [*args.speed_range, args.speed_rpm], name="--speed-rpm")
@@ -176,7 +176,8 @@ def _report(out: dict) -> str:
     lines += [f"  {note}" for note in out["bearing_notes"]]
     for name, conv in out["conventions"]["bearings"].items():
         lines.append(f"  bearing {name}: {conv['film_convention']}; {conv['foil']} foil, "
-                     f"{conv['deflection_law']} law, loss factor {conv['loss_factor']:g}")
+                     f"{conv['deflection_law']} law, loss factor {conv['loss_factor']:g}; "
+                     f"{out['thermal_models'][name]}")
     if _finite(out["onset_speed_rpm"]):
         lines.append(f"  first to whirl: {out['first_mode']} from "
                      f"{out['onset_speed_rpm']:,.0f} rpm at {out['onset_whirl_frequency_hz']:.4g}"
@@ -194,7 +195,11 @@ def _report(out: dict) -> str:
                      f" Hz, B/A phase {m['shape']['phase_b_from_a_deg']:+.0f}°")
         if m.get("note"):
             lines.append(f"      {m['note']}")
+    lines += _running_lines(out)
     for c in out["load_capacity_exceeded"]:
+        if c.get("kind"):          # thermal runaway or closure at that speed
+            lines.append(f"  {c['message']}")
+            continue
         lines.append(f"  bearing {c['bearing']} over capacity at {c['speed_rpm']:,.0f} rpm: "
                      f"{c['message']}")
     if "half_mass_approximation" in out:
@@ -219,6 +224,22 @@ def _report(out: dict) -> str:
         if key in out:
             lines.append(f"  {key}: {', '.join(out[key])}")
     return "\n".join(lines)
+
+
+def _running_lines(out: dict) -> list:
+    """Each heated bearing's running clearance, growths, film temperature and viscosity at
+    the first onset."""
+    lines = []
+    for name, p in out.get("running_at_onset", {}).items():
+        if not _finite(p.get("running_clearance_um")):
+            continue
+        temp = (f", film {p['film_temperature_c']:.4g} °C" if _finite(p.get(
+            "film_temperature_c")) else "")
+        lines.append(f"  bearing {name} at {p['speed_rpm']:,.0f} rpm: running clearance "
+                     f"{p['running_clearance_um']:.4g} µm (cold {p['cold_clearance_um']:.4g}; "
+                     f"centrifugal {p['centrifugal_growth_um']:.3g}, thermal "
+                     f"{p['thermal_growth_um']:.3g} µm){temp}, μ {p['viscosity_pa_s']:.4g} Pa s")
+    return lines
 
 
 def _finite(value) -> bool:

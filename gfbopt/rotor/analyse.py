@@ -99,7 +99,10 @@ class RotorAnalysis:
                                            if math.isfinite(self.onsets.onset_speed_rpm)
                                            else math.nan),
                 "note": "each bearing alone with its share of the mass and of the load, "
-                        "cylindrical whirl (gfbopt stability --onset)"}
+                        "cylindrical whirl (gfbopt stability --onset)" + (
+                            "; at the cold clearance and stated viscosity (the "
+                            "approximation does not use the running condition)"
+                            if self.running is not None else "")}
         return out
 
     def tables(self) -> dict:

@@ -153,8 +153,11 @@ def _failure(line, k, load, speed_rpm, point, why) -> dict:
     text = (f"the journal reaches the foil at bearing {name} at {speed_rpm:.6g} rpm"
             if kind == CLOSURE else f"thermal runaway at bearing {name} at "
             f"{speed_rpm:.6g} rpm")
+    reason = why
+    if why == point.message and why.endswith(")") and " (" in why:
+        reason = why.partition(" (")[2][:-1]         # the point's own "… at N rpm (why)"
     return {"bearing": load.name, "speed_rpm": speed_rpm, "load_newton": load.magnitude,
-            "kind": kind, "message": f"{text} ({why})", "running": point.to_dict()}
+            "kind": kind, "message": f"{text} ({reason})", "running": point.to_dict()}
 
 
 #: the running condition's columns of each bearing's equilibrium row (gfbopt/terms/thermal.py)

@@ -43,7 +43,7 @@ def plan_rotor(study: Study) -> dict:
 
     path = study.directory / study.spec["rotor"]
     try:
-        system = load_rotor(path)
+        system = load_rotor(path, running=True)    # [journal]/[thermal]: running clearance
     except ParameterError as exc:
         raise study.where("rotor").error(str(study.spec["rotor"]),
                                          f"{exc.name}: {exc.rule}") from None
