@@ -53,8 +53,9 @@ class RotorFrictionOrbit:
     stable for small orbits); bearings : the bearings' names; amplitude_um : semi-major axis
     of the journal orbit at each bearing [µm] (zeros when stable, nan when unbounded);
     whirl_frequency_hz [Hz]; whirl_ratio [-]; min_film_um : min over the bearings of the
-    static minimum film less the orbit [µm]; small_motion_inertia_scale μ_c(0) [-] (stuck
-    bumps); inertia_scale μ_c at the settled orbit [-]; film_share r [-]; label : the mode;
+    static minimum film less the orbit [µm] (nan when unbounded); small_motion_inertia_scale
+    μ_c(0) [-] (stuck bumps); inertia_scale μ_c at the settled orbit (unbounded: at the
+    orbit that fills the film, r = 1) [-]; film_share r [-]; label : the mode;
     verdict : one line; model : which model gave it; converged : bool."""
 
     speed_rpm: float
@@ -175,10 +176,10 @@ def settled_whirl(rotor: RotorCase, speed_rpm: float, samples: int = 10,
     stuck = found[0]
     omega_hz = stuck.whirl_frequency_hz / stuck.whirl_ratio
 
-    def orbit(bounded, at: Optional[_AtSize], size, verdict, converged=True):
-        if at is None:
+    def orbit(bounded, at: Optional[_AtSize], size, verdict, converged=True, last=None):
+        if at is None:                  # stable, or unbounded (μ_c of the largest orbit)
             amp = (0.0 if bounded else math.nan,) * len(names)
-            c = stuck
+            c = stuck if last is None else last
             film = h_um if bounded else math.nan
         else:
             c = at.crossing
@@ -203,7 +204,8 @@ def settled_whirl(rotor: RotorCase, speed_rpm: float, samples: int = 10,
             break
         low = float(r)
     else:
-        return orbit(False, None, 1.0, "no bounded orbit inside the film")
+        return orbit(False, None, 1.0, "no bounded orbit inside the film",
+                     last=here.crossing)
     low = high * 1e-3 if low is None else low
     while high / low - 1.0 > xtol:
         mid = math.sqrt(low * high)

@@ -97,3 +97,23 @@ def test_refuses_a_rotor_without_friction():
     rotor, states = _rotor(4.145, PLAIN)
     with pytest.raises(ParameterError, match="friction_coefficient"):
         settled_whirl(rotor, SPEED, states=states)
+
+
+def test_blower_with_rubbing_bumps_at_its_top_speed():
+    """problems/rotors/blower_friction.toml at 60,000 rpm: far above its stuck onset
+    (forward conical μ_c = 0.0473 at 36 × 10) and the friction's damping does not restore
+    it inside the film (μ_c falls to 0.0458 with the orbit filling the film): no bounded
+    orbit."""
+    from gfbopt.inputs.rotor_system import load_rotor
+    from gfbopt.rotor.matched_whirl import crossings
+
+    rotor = resolve_rotor(load_rotor(ROOT / "problems" / "rotors" / "blower_friction.toml"),
+                          GRID)
+    states = support_states(rotor, 60000.0)
+    first = crossings(rotor, states)[0]
+    out = settled_whirl(rotor, 60000.0, states=states, samples=4)
+    assert out.small_motion_inertia_scale == first.inertia_scale
+    assert out.label == first.label == "forward conical"
+    assert out.small_motion_inertia_scale == pytest.approx(0.0473, abs=5e-4)
+    assert not out.bounded and out.verdict == "no bounded orbit inside the film"
+    assert out.inertia_scale < 1.0
