@@ -98,16 +98,20 @@ def running_line(system, tolerance_k: float = TOLERANCE_K) -> Optional[RunningLi
     return RunningLine(tuple(specs), tuple(b.name for b in system.bearings), tolerance_k)
 
 
-def running_case(line: RunningLine, k: int, case, load, speed_rpm: float, guess):
+def running_case(line: RunningLine, k: int, case, load, speed_rpm: float, guess,
+                 cold_grid=None, cold_factor: int = 4):
     """(the case at the running condition, the equilibrium's start, the RunningPoint,
-    failure dict or None) of bearing ``k`` at ``speed_rpm`` (module docstring)."""
+    failure dict or None) of bearing ``k`` at ``speed_rpm`` (module docstring).  Without a
+    ``guess``, on a grid of at least ``cold_factor`` × ``cold_grid``'s cells, the first
+    static solve starts from the equilibrium on ``cold_grid`` interpolated (as
+    :func:`gfbopt.rotor.supports._equilibrium` does)."""
     from .analysis import resolve_case
 
     spec = line.specs[k]
     if spec is None:
         return case, guess, None, None
     film = FilmCase(case.bearing, case.options, case.grid, case.cache, case.load_newton)
-    drag = FilmDrag(film, start=_start(case, guess))
+    drag = FilmDrag(film, start=_start(case, guess, cold_grid, cold_factor))
     point = running_point(spec, speed_rpm, drag, prior=line.prior(case.grid, k, speed_rpm),
                           tolerance_k=line.tolerance_k)
     line.drag_solves += drag.solves
@@ -127,22 +131,19 @@ def running_case(line: RunningLine, k: int, case, load, speed_rpm: float, guess)
     return warm_case, (drag.last if drag.last is not None else guess), point, None
 
 
-def _start(case, guess):
-    """The first drag solve's start: the support's guess at this speed; without one, on a
-    grid of at least COLD_FACTOR × COLD_GRID's cells, the equilibrium on COLD_GRID
-    interpolated onto this grid (as :func:`gfbopt.rotor.supports._equilibrium` does); else
-    None (a cold solve)."""
+def _start(case, guess, cold_grid, cold_factor: int):
+    """The first drag solve's start (:func:`running_case`); None: a cold solve."""
     from ..static import solve_static
     from .speed_line import transferred_start
-    from .supports import COLD_FACTOR, COLD_GRID
 
     if guess is not None:
         return lambda model, solver, load: guess
-    if case.grid.n_theta * case.grid.n_z < COLD_FACTOR * COLD_GRID.n_theta * COLD_GRID.n_z:
+    if cold_grid is None or (case.grid.n_theta * case.grid.n_z
+                             < cold_factor * cold_grid.n_theta * cold_grid.n_z):
         return None
 
     def start(model, solver, load):
-        sol = solve_static(model, load=load, solver=case.cache(model, COLD_GRID))
+        sol = solve_static(model, load=load, solver=case.cache(model, cold_grid))
         return transferred_start(sol, solver, model) if sol.success else None
     return start
 

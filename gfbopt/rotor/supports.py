@@ -313,7 +313,8 @@ def support_states(rotor: RotorCase, speed_rpm: float, initial: Optional[tuple] 
         point = None
         if rotor.running is not None:      # the bearing at its running condition here
             case, guess, point, failed = running_case(rotor.running, k, case, load,
-                                                      speed_rpm, guess)
+                                                      speed_rpm, guess, COLD_GRID,
+                                                      COLD_FACTOR)
             if failed is not None:
                 states.append(None)
                 failure = failure or failed
