@@ -13,6 +13,13 @@ interleaved ``--repeats`` times and the medians taken (CPU time of this process;
 is shared, so the load average before and after is recorded).  Where the time goes: the
 rotor's CPU split by stage and grid (statics, full crossings, local crossings).
 
+Where the grid has no coarse guide by default (72 × 20: fewer than GUIDE_FACTOR = 8 times
+36 × 10's cells), the rotor is also timed with the 36 × 10 guide (``rotor_guided``: a different
+secant path, so its onsets differ from the default's by up to the secant's own error).
+``--roots``: each onset also found by Brent's method on the reference line's full crossings to
+a relative 1e-10 around the answer (the root the secants approach; slow: ~30 full crossings a
+mode), and the distance of each variant's onset from it.
+
 ``--baseline DIR``: the same measurement of the code in DIR (a ``git worktree`` of an older
 commit), a process of this script with PYTHONPATH=DIR after each repeat here (A B A B …);
 the JSON then has its medians, the ratio of the rotor's CPU new/old and the largest relative
@@ -20,7 +27,7 @@ difference of the onsets and whirl ratios from the old code's.
 
     OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1 PYTHONPATH=. python \\
         benchmarks/bench_rotor_onset_ratio.py [--out results/benchmarks/rotor_onset_ratio.json]
-        [--repeats 3] [--grids 144x36,72x20]
+        [--repeats 3] [--grids 144x36,72x20] [--roots]
 """
 from __future__ import annotations
 
@@ -31,6 +38,7 @@ import os
 import statistics
 import subprocess
 import sys
+import math
 import time
 from collections import defaultdict
 from pathlib import Path
@@ -42,6 +50,9 @@ from gfbopt.inputs import Rotor
 from gfbopt.inputs.rotor_system import load_rotor
 from gfbopt.rotor import onset_speed
 from gfbopt.rotor import system as system_module
+from scipy.optimize import brentq
+
+from gfbopt.rotor.onset import check_coarse_grid
 from gfbopt.rotor.supports import resolve_rotor
 from gfbopt.rotor.system import SpeedLine, rotor_onsets
 
@@ -128,14 +139,50 @@ def _compare(run: dict, old: list) -> dict:
             "max_relative_whirl_difference_vs_old": diff["whirl_ratio"]}
 
 
-def bench(system, grid: Grid, repeats: int, after_repeat=None) -> dict:
+GUIDE = "36x10"
+
+
+def _differences(result, other) -> dict:
+    """Largest relative differences of ``result``'s onsets and whirl ratios from ``other``'s."""
+    modes = [m for m in result.modes if m.status == "onset"]
+    return {"onset": max((abs(m.onset_speed_rpm / other.mode(m.label).onset_speed_rpm - 1)
+                          for m in modes), default=0.0),
+            "whirl": max((abs(m.whirl_ratio / other.mode(m.label).whirl_ratio - 1)
+                          for m in modes), default=0.0)}
+
+
+def _roots(system, grid: Grid, cache, answers: dict) -> dict:
+    """Each onset of the default search as Brent's root of ln μ_c on the reference line (every
+    crossing at every speed) to a relative 1e-10, bracketed by ±1e-5 around the answer
+    (widened tenfold until the sign changes), and each variant's relative distance from it."""
+    line = SpeedLine(resolve_rotor(system, grid, cache), local=False)
+    out = {}
+    for m in answers["rotor"].modes:
+        if m.status != "onset":
+            continue
+
+        def g(speed, label=m.label, whirl=m.whirl_ratio):
+            return math.log(line.follow(speed, label, whirl).inertia_scale)
+        width = 1e-5
+        while g(m.onset_speed_rpm * (1 - width)) <= 0 or g(m.onset_speed_rpm * (1 + width)) > 0:
+            width *= 10
+        root = brentq(g, m.onset_speed_rpm * (1 - width), m.onset_speed_rpm * (1 + width),
+                      xtol=1e-10 * m.onset_speed_rpm, rtol=1e-12)
+        out[m.label] = {"root_rpm": root} | {
+            f"{name}_relative_error": answers[name].mode(m.label).onset_speed_rpm / root - 1
+            for name in answers if name.startswith("rotor")}
+    return out
+
+
+def bench(system, grid: Grid, repeats: int, after_repeat=None, roots: bool = False) -> dict:
     cache = SolverCache(grid)
     rotor = resolve_rotor(system, grid, cache)
 
-    def run_rotor(local=True):
+    def run_rotor(local=True, coarse_grid="auto"):
         line = SpeedLine(resolve_rotor(system, grid, cache), **({"local": local} if LOCAL
                                                                  else {}))
-        return rotor_onsets(system, SPAN, line=line, show_progress=False)
+        return rotor_onsets(system, SPAN, line=line, show_progress=False,
+                            coarse_grid=coarse_grid)
 
     def run_bearing(k):
         case, load = rotor.cases[k], rotor.loads[k]
@@ -146,6 +193,9 @@ def bench(system, grid: Grid, repeats: int, after_repeat=None) -> dict:
                 "bearing_B": lambda: run_bearing(1)}
     if LOCAL:
         variants["rotor_reference_line"] = lambda: run_rotor(False)
+    guided = check_coarse_grid("auto", grid) is None
+    if guided:
+        variants["rotor_guided"] = lambda: run_rotor(coarse_grid=GUIDE)
     for f in variants.values():                        # builds
         f()
     cpus, answers = defaultdict(list), {}
@@ -181,6 +231,17 @@ def bench(system, grid: Grid, repeats: int, after_repeat=None) -> dict:
         out["max_relative_whirl_difference_vs_reference_line"] = max(
             (abs(m.whirl_ratio / ref.mode(m.label).whirl_ratio - 1)
              for m in rotor_res.modes if m.status == "onset"), default=0.0)
+    if guided:
+        diff = _differences(answers["rotor_guided"], rotor_res)
+        out["rotor_guided"] = {
+            "coarse_grid": GUIDE, "ratio_over_two_bearings": med["rotor_guided"] / bearings,
+            "max_relative_onset_difference_vs_default": diff["onset"],
+            "max_relative_whirl_difference_vs_default": diff["whirl"],
+            "rotor_modes": {m.label: {"onset_speed_rpm": m.onset_speed_rpm,
+                                      "whirl_ratio": m.whirl_ratio, "status": m.status}
+                            for m in answers["rotor_guided"].modes}}
+    if roots:
+        out["roots"] = _roots(system, grid, cache, answers)
     out["rotor_breakdown"] = _breakdown(system, grid, cache)
     return out
 
@@ -192,6 +253,8 @@ def main(argv=None) -> dict:
     parser.add_argument("--repeats", type=int, default=3)
     parser.add_argument("--grids", default="144x36,72x20")
     parser.add_argument("--baseline", default=None, help="source tree of the old code")
+    parser.add_argument("--roots", action="store_true",
+                        help="also each onset's root by Brent's method (slow)")
     args = parser.parse_args(argv)
     system = load_rotor(ROOT / "problems" / "rotors" / "blower.toml")
     load_before, source = os.getloadavg(), _source()      # the code as it starts
@@ -200,7 +263,7 @@ def main(argv=None) -> dict:
         old = []
         run = bench(system, Grid.parse(g), args.repeats,
                     after_repeat=(lambda gg=g, o=old: o.append(_baseline(args.baseline, gg)))
-                    if args.baseline else None)
+                    if args.baseline else None, roots=args.roots)
         if old:
             run["baseline"] = _compare(run, old)
         runs.append(run)
@@ -214,6 +277,14 @@ def main(argv=None) -> dict:
               f"(target {TARGET}, {'met' if r['met'] else 'NOT met'})"
               + (f"; reference line {m['rotor_reference_line']:.2f} s, onsets differ by "
                  f"{r['max_relative_onset_difference_vs_reference_line']:.1e}" if LOCAL else ""))
+        if "rotor_guided" in r:
+            v = r["rotor_guided"]
+            print(f"  guided by {v['coarse_grid']}: rotor {m['rotor_guided']:.2f} s, ratio "
+                  f"{v['ratio_over_two_bearings']:.2f}; onsets differ from the default's by "
+                  f"{v['max_relative_onset_difference_vs_default']:.1e}")
+        for label, v in r.get("roots", {}).items():
+            print(f"  {label}: root {v['root_rpm']:.10g} rpm; relative errors "
+                  + ", ".join(f"{k} {e:+.1e}" for k, e in v.items() if k != "root_rpm"))
         for k, v in r["rotor_breakdown"].items():
             print(f"    {k}: {v}")
         if "baseline" in r:
