@@ -4,10 +4,11 @@ The system is :class:`.rotor_system.RotorRightHandSide`; the steps are those of 
 one-bearing engine (:func:`.rkc.rkc_step`, :func:`.rk4.rk4_step`), with the same rules:
 
 * rkc — Δτ from accuracy, min(0.1 rad of shaft rotation at the run's top speed, T_rotor/30,
-  T_film/4), T_rotor the shortest period of the rotor on the films' instantaneous stiffness
-  with its gyroscopic coupling and the structure's own stiffness (a shaft's highest kept
-  mode: :func:`.rotor_steps.rotor_frequency`, :func:`rotor_period`), T_film the slowest film relaxation
-  (:func:`.rkc.film_time`); stages the fewest with Δτ·ρ ≤ 0.9 β(s), ρ the Gershgorin bound
+  T_film/4, and for a flexible structure the growth cap of its undamped modes,
+  :func:`.rotor_steps.growth_step`), T_rotor the shortest period of the rotor on the films'
+  instantaneous stiffness with its gyroscopic coupling and the structure's own stiffness (a
+  shaft's highest kept mode: :func:`.rotor_steps.rotor_frequency`, :func:`rotor_period`),
+  T_film the slowest film relaxation (:func:`.rkc.film_time`); stages the fewest with Δτ·ρ ≤ 0.9 β(s), ρ the Gershgorin bound
   of every bearing's film and foil state at its current speed, re-checked every
   ``check_every`` steps (stages raised when it grew);
 * rkc on a ramp (a run-up or coast-down, no step given) — the step follows the speed:
@@ -168,11 +169,12 @@ def integrate_rotor(model: RotorTransientModel, batch: Runs, duration: float,
     follow = method == "rkc" and not fixed and bool(np.any(batch.ramp != 0.0))
     if follow:
         stages, rho_top = _check_stages(stages), rho
-        step_of = _SpeedStep(rhs, z, max_step)
+        step_of = _SpeedStep(rhs, z, max_step, duration)
         dt = step_of(0.0, batch)
         dt, stages = _stages_at(dt, rho_top, stages, fixed_stages)
     else:
-        dt, stages = _first_step(rhs, z, rho, top, method, time_step, stages, max_step)
+        dt, stages = _first_step(rhs, z, rho, top, method, time_step, stages, max_step,
+                                 duration)
     n_steps = int(math.ceil(duration / dt - 1e-9))
     per_sample = max(1, int(round(sample_every / dt)))
     nb, k = batch.size, len(model.bearings)

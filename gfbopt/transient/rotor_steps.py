@@ -16,6 +16,8 @@ from .rkc import (MAX_STAGES, MAX_STEP, STAGE_SAFETY, STEPS_PER_FILM_TIME,
 from .rotor_batch import Runs
 from .rotor_system import RotorRightHandSide
 
+#: the most an undamped structural mode may grow by RKC's own amplification over a run
+GROWTH = 1.1
 #: a ramp re-measures T_rotor every this many stage checks (8 evaluations each: ≈ 1 % of
 #: the run's at 72 × 20)
 PERIOD_CHECKS = 10
@@ -65,14 +67,29 @@ def rotor_period(rhs: RotorRightHandSide, z: np.ndarray, h: float = 1e-6) -> flo
     return 2 * math.pi / max(rotor_frequency(rhs, z, h), float(np.max(rate)))
 
 
+def growth_step(rhs: RotorRightHandSide, duration: float) -> float:
+    """The longest RKC step Δτ [rad of τ] over which an undamped mode of the structure at its
+    highest natural frequency ω_s (:attr:`~.rotor_system.RotorRightHandSide.structure_rate`)
+    grows by at most :data:`GROWTH` over a run of ``duration`` rad: a second-order RKC step
+    multiplies an undamped oscillation by 1 + (ω_s Δτ)⁴/8 at 2 stages (less with more; the
+    held modes of a condensed shaft touch no film, so nothing damps them), so
+    (duration/Δτ)(ω_s Δτ)⁴/8 ≤ ln GROWTH.  Infinite for the rigid body (its modes ride on
+    the films).  RK4 needs no such cap: it damps the imaginary axis up to 2.83/Δτ."""
+    rate = float(getattr(rhs, "structure_rate", 0.0))
+    if not rate > 0 or not duration > 0:
+        return math.inf
+    return (8.0 * math.log(GROWTH) / (duration * rate ** 4)) ** (1.0 / 3.0)
+
+
 def accuracy_step(rhs: RotorRightHandSide, z: np.ndarray, top_speed: float,
-                  max_step: float = MAX_STEP) -> float:
+                  max_step: float = MAX_STEP, duration: float = 0.0) -> float:
     """The default RKC step Δτ (module docstring); ``top_speed`` = max ω/ω_ref of the run;
-    ``max_step`` [rad of shaft rotation at the top speed]."""
+    ``max_step`` [rad of shaft rotation at the top speed]; ``duration`` [rad of τ], for the
+    structure's growth cap (:func:`growth_step`)."""
     films = min(film_time(b.tm) * rhs.model.reference_speed / b.model_speed
                 for b in rhs.model.bearings)
     return min(max_step / top_speed, rotor_period(rhs, z) / STEPS_PER_ROTOR_PERIOD,
-               films / STEPS_PER_FILM_TIME)
+               films / STEPS_PER_FILM_TIME, growth_step(rhs, duration))
 
 
 class _SpeedStep:
@@ -83,10 +100,12 @@ class _SpeedStep:
     a run-up, so the start's period would hold the cap ≈ 20 % shorter than the rotor needs
     for the rest of the ramp (blower rotor on its preloaded bearings, 72 × 20)."""
 
-    def __init__(self, rhs: RotorRightHandSide, z: np.ndarray, max_step: float):
+    def __init__(self, rhs: RotorRightHandSide, z: np.ndarray, max_step: float,
+                 duration: float = 0.0):
         self.max_step = max_step
-        self.film_cap = min(film_time(b.tm) * rhs.model.reference_speed / b.model_speed
-                            for b in rhs.model.bearings) / STEPS_PER_FILM_TIME
+        self.film_cap = min(min(film_time(b.tm) * rhs.model.reference_speed / b.model_speed
+                                for b in rhs.model.bearings) / STEPS_PER_FILM_TIME,
+                            growth_step(rhs, duration))
         self.refresh(rhs, z)
 
     def refresh(self, rhs: RotorRightHandSide, z: np.ndarray) -> None:
@@ -135,7 +154,7 @@ def _check_stages(stages):
 
 
 def _first_step(rhs: RotorRightHandSide, z: np.ndarray, rho: float, top: float, method: str,
-                time_step, stages, max_step: float = MAX_STEP) -> tuple:
+                time_step, stages, max_step: float = MAX_STEP, duration: float = 0.0) -> tuple:
     """(Δτ, stages) at the start; a given step or stage count outside the stability region
     is refused with the bound it violates."""
     if method == "rk4":
@@ -149,7 +168,7 @@ def _first_step(rhs: RotorRightHandSide, z: np.ndarray, rho: float, top: float, 
         return dt, None
     stages = _check_stages(stages)
     dt = (check_positive("time_step", time_step) if time_step is not None
-          else accuracy_step(rhs, z, top, max_step))
+          else accuracy_step(rhs, z, top, max_step, duration))
     if stages is None:
         stages = stages_for(dt * rho)
         if stages > MAX_STAGES:

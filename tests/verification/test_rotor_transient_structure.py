@@ -88,7 +88,7 @@ def flexible():
 
 def test_a_flexible_shaft_rests_at_its_static_equilibrium(flexible):
     rotor, model = flexible
-    assert rotor.structure.size == 12 and not model.rigid
+    assert rotor.structure.size == 4 + rotor.structure.modes_kept and not model.rigid
     z = equilibrium_states(model, 1)
     rhs = RotorRightHandSide(model, runs(1))
     n = model.dofs
@@ -105,10 +105,14 @@ def test_a_kicked_flexible_rotor_runs_in_its_film_at_the_structures_step(flexibl
                                [[1e-3, 1e-3], [1e-3, 1e-3]])
     run = integrate_rotor(model, runs(1), 2 * math.pi * 3, z)
     assert run.success and not run.contact.any()
-    assert run.q.shape[2] == 12 and np.all(np.isfinite(run.q))
+    assert run.q.shape[2] == model.dofs and np.all(np.isfinite(run.q))
     highest = math.sqrt(np.linalg.eigvals(np.linalg.solve(model.mass_matrix,
                                                           model.stiffness)).real.max())
-    assert run.time_step * highest / model.reference_speed <= 2 * math.pi / 30
+    rate = highest / model.reference_speed
+    assert run.time_step * rate <= 2 * math.pi / 30
+    # RKC's own growth of an undamped held mode over the run: at most 10 %
+    steps = 2 * math.pi * 3 / run.time_step
+    assert steps * (rate * run.time_step) ** 4 / 8 <= math.log(1.1) * (1 + 1e-9)
     for k in range(2):
         x, y = run.journal(0, k)
         c = model.bearings[k].clearance
@@ -121,7 +125,9 @@ def test_a_flexible_rotors_imbalance_response_is_the_linear_synchronous_response
     overhung impeller, 16 revolutions from the static equilibrium: the 1× fit over the last
     8 at both bearings against the rotor analyses' linear response on the same condensed
     shaft (gfbopt.rotor.diagrams.synchronous_response, each bearing's synchronous
-    impedance, 36 × 10).  Tolerance 2 % of the complex amplitude, the rigid rotor's test's:
+    impedance, 36 × 10).  RK4: it damps the undamped held modes' imaginary axis (RKC would
+    need its growth cap's short step, rotor_steps.growth_step, over 16 revolutions).
+    Tolerance 2 % of the complex amplitude, the rigid rotor's test's:
     bearing B's response is ≈ 10 % of its clearance (the film's nonlinearity ~1 %);
     measured 0.07–0.09 % at A, 0.3–0.94 % at B."""
     from gfbopt.rotor.diagrams import synchronous_response
@@ -134,7 +140,8 @@ def test_a_flexible_rotors_imbalance_response_is_the_linear_synchronous_response
     cache = SolverCache(GRID)
     model, _ = build_model(rotor_input(system), speed, GRID, cache=cache)
     linear = synchronous_response(SpeedLine(resolve_rotor(system, GRID, cache)), speed)
-    run = integrate_rotor(model, runs(1), 2 * math.pi * revs, equilibrium_states(model, 1))
+    run = integrate_rotor(model, runs(1), 2 * math.pi * revs, equilibrium_states(model, 1),
+                          method="rk4")
     assert run.success and not run.contact[0]
     last = run.tau >= 2 * math.pi * (revs - 8)
     t, angle = run.time_s[last], run.shaft_angle(0)[last]
@@ -146,3 +153,27 @@ def test_a_flexible_rotors_imbalance_response_is_the_linear_synchronous_response
         assert abs(expected[0]) < 0.15 * b.clearance          # the near-linear regime
         error = np.abs(measured - expected) / np.abs(expected)
         assert np.all(error <= 0.02), (b.label, measured, expected, error)
+
+
+def test_the_growth_cap_keeps_rkcs_amplification_of_an_undamped_mode_within_10_percent():
+    """rotor_steps.growth_step on an undamped oscillator of 40 rad per rad of τ over 50 rad:
+    RKC with 2 stages (its largest amplification) grows it by at most 10 %, and by more than
+    5 % (the cap is not needlessly short); at the T/30 step instead it grows ≈ 10-fold."""
+    from types import SimpleNamespace
+
+    from gfbopt.transient.rkc import rkc_step
+    from gfbopt.transient.rotor_steps import GROWTH, growth_step
+
+    rate, duration = 40.0, 50.0
+    rotation = np.array([[0.0, rate], [-rate, 0.0]])
+
+    def grown(dt):
+        z = np.array([[1.0, 0.0]])
+        for _ in range(int(round(duration / dt))):
+            z = rkc_step(lambda y: y @ rotation.T, z, dt, 2)
+        return float(np.linalg.norm(z))
+
+    dt = growth_step(SimpleNamespace(structure_rate=rate), duration)
+    assert GROWTH == 1.1 and 1.05 < grown(dt) <= 1.1 * (1 + 1e-6)
+    assert grown(2 * math.pi / rate / 30) > 5
+    assert growth_step(SimpleNamespace(structure_rate=0.0), duration) == math.inf
