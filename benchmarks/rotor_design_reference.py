@@ -73,6 +73,12 @@ def main(argv=None) -> int:
     print(f"{len(designs)} designs, {len(done)} done, {len(todo)} to do", flush=True)
     t0, cpu0 = time.perf_counter(), time.process_time()
     fixed = {"system": plan.system, "settings": plan.settings}
+    from gfbopt.design.rotor_objectives import design_outputs
+
+    # one column order for every chunk (a failed row has fewer columns than a solved one)
+    columns = (list(pd.read_csv(table, nrows=0).columns) if table.is_file() else
+               [*design_outputs(plan.settings), "success", "message", "wall_time_s",
+                *problem.names, "point", "feasible"])
     for k in range(0, len(todo), args.chunk):
         part = todo[k:k + args.chunk]
         rows = run_points(evaluate_rotor_design, [{**fixed, **d} for d in part],
@@ -84,7 +90,7 @@ def main(argv=None) -> int:
             r["point"] = problem.key(d)
             r["feasible"] = problem.feasible(r)
             out.append(r)
-        frame = pd.DataFrame.from_records(out)
+        frame = pd.DataFrame.from_records(out).reindex(columns=columns)
         frame.to_csv(table, mode="a", header=not table.is_file(), index=False)
         print(f"{k + len(part)}/{len(todo)} {time.perf_counter() - t0:.0f} s", flush=True)
     return _summary(plan, command)
