@@ -62,17 +62,32 @@ class RunningLine:
                 for n, s in zip(self.names, self.specs)}
 
     def prior(self, grid, k: int, speed: float):
-        """The DragSample of the nearest speed solved for bearing ``k`` (this grid first)."""
-        def nearest(points):
-            good = [s for s, p in points.items() if p.converged and p.sample is not None]
-            s = min(good, key=lambda s: abs(math.log(s / speed)), default=None)
-            return None if s is None else points[s].sample
-        own = nearest(self.points.get((str(grid), k), {}))
-        if own is not None:
-            return own
-        others = {s: p for (g, j), pts in self.points.items() if j == k
-                  for s, p in pts.items()}
-        return nearest(others)
+        """The prior of bearing ``k``'s fixed point at ``speed``: the DragSample of the
+        nearest speed solved (this grid first, else any grid's), its torque ratio τ and
+        outflow q̄ extrapolated (or interpolated) linearly in ln N through the next nearest
+        speed's (as the equilibria's starts are, :func:`gfbopt.rotor.supports.
+        predicted_starts`) — the first static solve is then close to the fixed point."""
+        def good(points):
+            return {s: p.sample for s, p in points.items()
+                    if p.converged and p.sample is not None}
+        samples = good(self.points.get((str(grid), k), {}))
+        if not samples:
+            samples = good({s: p for (g, j), pts in self.points.items() if j == k
+                            for s, p in pts.items()})
+        near = sorted(samples, key=lambda s: abs(math.log(s / speed)))[:2]
+        if not near:
+            return None
+        first = samples[near[0]]
+        if len(near) < 2 or near[0] == near[1]:
+            return first
+        second = samples[near[1]]
+        step = math.log(speed / near[0]) / math.log(near[0] / near[1])
+        step = max(-1.0, min(1.0, step))        # no farther than the two points apart
+        tau = first.torque_ratio + step * (first.torque_ratio - second.torque_ratio)
+        outflow = first.outflow + step * (first.outflow - second.outflow)
+        if not (tau > 0 and outflow >= 0):
+            return first
+        return replace(first, torque_ratio=tau, outflow=outflow)
 
     def store(self, grid, k: int, point: RunningPoint) -> None:
         self.points.setdefault((str(grid), k), {})[point.speed_rpm] = point
