@@ -9,9 +9,9 @@ State of each rotor (a batch of B rotors advances together, one array per quanti
 * with structural damping (loss factor η > 0) the foil deflection W, one per θ row or per
   node, relaxing as τ_f W' + W = S q (:mod:`.foil_state`); then H = H_r + W and P = Φ/H.
 * with Coulomb friction in the bumps (``transient_model(..., friction=True)``) the sliders Z
-  per θ row, not integrated but carried beside the state and moved by the play operator after
-  each accepted step (:mod:`.friction_foil`, :mod:`.friction_orbit`); every stage sees the
-  step's starting Z (``RightHandSide.slider``).
+  per θ row (or node), not integrated but carried beside the state and moved by the play
+  operator after each accepted step (:mod:`.friction_foil`, :mod:`.friction_orbit`); every
+  stage sees the step's starting Z (``RightHandSide.slider``).
 
 Without damping the foil is massless and follows the pressure at every instant (as in the
 static model), so P and H are recovered from Φ and (X, Y) algebraically:
