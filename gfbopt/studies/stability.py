@@ -235,6 +235,11 @@ def plan_onset_conventions(study: Study) -> dict:
     if model["foil"] == "beam" and model["loss_factor"] > 0:
         raise study.where("model", "loss_factor").error(model["loss_factor"],
                                                         "is not supported with the beam foil")
+    try:                # the bumps' options with this foil (e.g. friction with the beam)
+        bearing.model(1000.0, **resolved.model_kwargs())
+    except ParameterError as exc:
+        raise study.where("bearing").error(spec["bearing"], f"{exc.name} = {exc.value}: "
+                                           f"{exc.rule}") from None
     conventions = [("periodic", None), ("seam", "max_film")] + [
         ("seam", float(a)) for a in spec["seam_angles_deg"]]
     known = {_convention_label(f, s) for f, s in conventions}

@@ -176,3 +176,18 @@ def test_campbell_with_friction_crosses_zero_at_the_stuck_onsets():
         # sharper: measured 5 and 15 rpm; a tenth of the interval, while the bare bumps'
         # onsets (12,147 and 12,970 rpm) lie 788 and 1,034 rpm away from these
         assert abs(zero - m.onset_speed_rpm) <= 0.1 * 7000.0 / 6
+
+
+def test_onset_conventions_refuses_friction_with_the_beam_foil_before_any_solve():
+    from gfbopt.studies import study_from_dict
+
+    with pytest.raises(ParameterError) as info:
+        study_from_dict({
+            "kind": "onset_conventions", "title": "t", "source": "a test", "grid": "24x8",
+            "bearing": "bearings/ruscitto_friction.toml", "rotor_mass_kg": 2.0,
+            "load_newton": 20.0, "speed_range_rpm": [8000.0, 30000.0],
+            "seam_angles_deg": [180.0], "model": {"foil": "beam"}},
+            name="tiny", file="tiny.toml", directory=ROOT / "problems")
+    text = str(info.value)
+    assert "tiny.toml" in text and "friction_coefficient = 0.5" in text and "beam" in text
+    assert "\n" not in text
