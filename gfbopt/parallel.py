@@ -59,6 +59,7 @@ from __future__ import annotations
 import contextlib
 import contextvars
 import inspect
+import os
 import multiprocessing
 import re
 import signal
@@ -140,8 +141,9 @@ def limit_blas_threads() -> None:
     pin_threads(keep_user_choice=False)
 
 
-def _start_worker() -> None:
-    """Initialiser of a pool worker: BLAS pinned, signals left to the parent, empty cache."""
+def _start_worker(driver: Optional[int] = None) -> None:
+    """Initialiser of a pool worker: BLAS pinned, signals left to the parent, empty cache;
+    ``driver`` the pid of the process that made the pool (watched with the parent)."""
     global _WORKER_CACHE
     import os
 
@@ -157,21 +159,37 @@ def _start_worker() -> None:
     _WORKER_CACHE = SolverCache()
     _ACTIVE_POOL.set(None)          # a forked worker forgets the driver's pool and signals
     forget_signals()
-    _exit_with_parent()
+    _exit_with_parent(driver=driver)
 
 
-def _exit_with_parent(period: float = 1.0) -> None:
+def _alive(pid: int) -> bool:
+    import os
+
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except PermissionError:
+        return True
+    return True
+
+
+def _exit_with_parent(period: float = 1.0, driver: Optional[int] = None) -> None:
     """End this worker within ``period`` seconds of its parent's death (``kill -9`` of the
     driver): a daemon thread polls the parent pid (the worker is re-parented when the
-    driver dies), so no orphaned worker keeps computing points nobody will store."""
+    driver dies), so no orphaned worker keeps computing points nobody will store.  A
+    forkserver's worker has the forkserver as its parent, which outlived a killed driver
+    (a test's SIGKILL left the forkserver and both workers running): it also watches
+    ``driver``, the pid of the process that made the pool."""
     import os
 
     parent = os.getppid()
+    driver = None if driver in (None, parent) else int(driver)
 
     def watch() -> None:
         while True:
             time.sleep(period)
-            if os.getppid() != parent:
+            if os.getppid() != parent or (driver is not None and not _alive(driver)):
                 os._exit(1)
 
     threading.Thread(target=watch, name="gfbopt-parent-watch", daemon=True).start()
@@ -221,7 +239,8 @@ class WorkerPool:
             self._size = wanted if method == "fork" else self.workers
             self.method = method
             self._executor = ProcessPoolExecutor(max_workers=self._size, mp_context=context,
-                                                 initializer=_start_worker)
+                                                 initializer=_start_worker,
+                                                 initargs=(os.getpid(),))
         return self._executor
 
     def _processes(self) -> list:
