@@ -33,9 +33,9 @@ from dataclasses import replace
 from typing import Optional
 
 from ..errors import ParameterError
-from ..thermal.bearing import FilmCase, FilmDrag, limit_on_line, warm_bearing
+from ..thermal.bearing import FilmCase, FilmDrag, warm_bearing
 from ..thermal.files import running_spec
-from ..thermal.running import ISOTHERMAL, RunningPoint, RunningSpec, running_point
+from ..thermal.running import ISOTHERMAL, RunningPoint, running_point, speed_line
 
 #: the kinds of a speed's failure at the running condition (SpeedStates.failure["kind"])
 RUNAWAY, CLOSURE = "thermal runaway", "closure"
@@ -207,10 +207,12 @@ def speed_columns(states) -> dict:
     return out
 
 
-def runaway_limits(rotor, speeds_solved, states_at) -> list:
+def runaway_limits(rotor, speeds_solved, states_at, bracket: float = 0.01) -> list:
     """For each bearing whose running condition fails at a speed solved: the speed it fails
-    from, bracketed to 0.5 % between the highest speed below where it ran and the lowest
-    where it failed (:func:`gfbopt.thermal.bearing.limit_on_line`), with the sentence
+    from, bracketed between the highest speed below where it ran and the lowest
+    where it failed (bisection in speed, :func:`gfbopt.thermal.running.speed_line`, its first
+    static solve from the equilibrium at the speed below: ``bracket`` relative, 1 %), with
+    the sentence
     "thermal runaway at bearing A from N rpm" (or "the journal reaches the foil at bearing
     A from N rpm").  ``states_at``: speed → SpeedStates."""
     line = rotor.running
@@ -226,8 +228,15 @@ def runaway_limits(rotor, speeds_solved, states_at) -> list:
         fail = bad[0]
         good = [s for s, p in points.items() if p.converged and s < fail]
         low = max(good, default=0.0)
-        found = limit_on_line(spec, FilmCase(case.bearing, case.options, case.grid,
-                                             case.cache, case.load_newton), low, fail)
+        below = states_at(low).states[k] if good else None
+        drag = FilmDrag(FilmCase(case.bearing, case.options, case.grid, case.cache,
+                                 case.load_newton),
+                        start=_start(case, below.solution if below else None, None, 0))
+        found = speed_line(spec, [low, fail] if low else [fail], drag, bracket=bracket,
+                           tolerance_k=line.tolerance_k)
+        limit = found.limit_rpm if math.isfinite(found.limit_rpm) else fail
+        found = {"thermal_limit_kind": found.limit_kind or "runaway",
+                 "thermal_limit_rpm": limit, "limit_static_solves": drag.solves}
         kind = CLOSURE if found["thermal_limit_kind"] == "closure" else RUNAWAY
         limit = found["thermal_limit_rpm"]
         text = (f"the journal reaches the foil at bearing {name} from {limit:,.0f} rpm"

@@ -12,7 +12,7 @@ TERMS: dict[str, tuple[str, str]] = {
                          "temperatures, viscosity, heat flows) at the rotor's first onset "
                          "speed"),
     "thermal_limits": ("-", "per bearing whose running condition fails at a speed solved: "
-                       "the speed it fails from, bracketed to 0.5 %"),
+                       "the speed it fails from, bracketed to 1 %"),
     "running_cost": ("-", "the fixed points' cost over the analysis: fixed_points, "
                      "static_solves, static_solves_per_point, max_static_solves"),
     "fixed_points": ("count", "running conditions solved (one per bearing and speed, all "
