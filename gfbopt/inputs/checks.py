@@ -114,7 +114,8 @@ def refuse_radian_seam_angle(cls):
 
 
 def seam_angle_migration(value) -> str:
-    """The rule shown for the old radian keyword ``seam_angle``."""
+    """The rule shown for the old radian keyword ``seam_angle``.  Kept until gfbopt 0.4.0
+    (CHANGELOG, Deprecated); from then the keyword is refused as unknown."""
     text = ("is no longer accepted: the welded-end angle is given in degrees as "
             "seam_angle_deg (from the load line in the direction of rotation, [0, 360), or "
             "'max_film'), as on the command line and in files")

@@ -50,7 +50,8 @@ def renamed_radian_attribute(owner: str, name: str) -> AttributeError:
 
 def radian_keyword_migration(name: str, value) -> str:
     """The rule shown for an old unit-less radian keyword ``name`` (e.g. ``attitude_angle`` of
-    :func:`gfbopt.static.solve_static`): the degree keyword and the conversion."""
+    :func:`gfbopt.static.solve_static`): the degree keyword and the conversion.  Kept until
+    gfbopt 0.4.0 (CHANGELOG, Deprecated); from then the keyword is refused as unknown."""
     text = (f"is no longer accepted: angles are given in degrees at every public edge, as "
             f"{name}_deg (from the load line in the direction of rotation)")
     if isinstance(value, (int, float)) and not isinstance(value, bool) and math.isfinite(value):
