@@ -167,7 +167,9 @@ def bearing_loads(system: RotorSystem) -> tuple[BearingLoad, BearingLoad]:
 
 def seam_from_load(options: ModelOptions, away_from_gravity_deg: float) -> ModelOptions:
     """The options with a stated seam angle re-measured from the bearing's own load: the seam
-    is fixed in the housing, stated from gravity; the load is α − α_g from gravity."""
+    is fixed in the housing, stated from gravity; the load is α − α_g from gravity.  Every
+    other option (film, foil, deflection law, loss factor, the bumps' friction and
+    hardening) is kept as stated."""
     angle = options.seam_angle_deg
     if angle is None or angle == MAX_FILM or away_from_gravity_deg == 0.0:
         return options

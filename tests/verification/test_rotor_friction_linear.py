@@ -191,3 +191,20 @@ def test_onset_conventions_refuses_friction_with_the_beam_foil_before_any_solve(
     text = str(info.value)
     assert "tiny.toml" in text and "friction_coefficient = 0.5" in text and "beam" in text
     assert "\n" not in text
+
+
+def test_rotor_onsets_with_friction_zero_are_todays():
+    """μ_f = 0 stated in both bearing files: the rotor's matched-whirl onsets equal the file
+    without friction to 1e-12; μ_f = 0.5 (κ = 1) raises both (stuck bumps: forward conical
+    12,147 -> 12,723 rpm, +4.7 %, at 36 × 10)."""
+    from gfbopt.rotor.system import rotor_onsets
+
+    span = (9000.0, 16000.0)
+    runs = [rotor_onsets(s, span, grid=GRID, show_progress=False)
+            for s in (_blower(), _blower(friction_coefficient=0.0),
+                      _blower(friction_coefficient=0.5))]
+    for label in ("forward conical", "forward cylindrical"):
+        today, zero, rub = (r.mode(label) for r in runs)
+        assert zero.onset_speed_rpm == pytest.approx(today.onset_speed_rpm, rel=1e-12)
+        assert zero.whirl_ratio == pytest.approx(today.whirl_ratio, rel=1e-12)
+        assert rub.onset_speed_rpm > 1.03 * today.onset_speed_rpm
