@@ -392,8 +392,8 @@ QUOTED: dict[str, Quoted] = {
     "rt_study_subsync_rpm": _rt("run_up_study.subsync_appearance_rpm", "{:,.0f}"),
     "rt_study_cpu_s": _rt("run_up_study.cpu_time_s", "{:.1f}"),
     "rt_study_cpu_loaded_s": _rt("run_up_study.cpu_time_s", "{:.1f}", loaded=True),
-    "rt_study_cpu_before_s": _rt("run_up_study.before_speed_following_step.cpu_time_s", "{:.1f}",
-                                 loaded=True),
+    "rt_rhs_undamped_ratio": _rt("rhs_evaluation.study.ratio", "{:.2f}"),
+    "rt_rhs_damped_ratio": _rt("rhs_evaluation.preloaded.ratio", "{:.2f}"),
 }
 
 
