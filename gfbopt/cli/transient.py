@@ -172,7 +172,9 @@ def _check_damping(args, op) -> None:
                              "damping: add --loss-factor η > 0")
     if ref is not None and not ref > 0:
         raise ParameterError("--reference-whirl-ratio", ref, "must be > 0")
-    foil_law(op.model, engine="transient").check_engine(args.method, damped=eta > 0.0)
+    rubbing = op.model.has_friction and getattr(args, "command", None) == "orbit"
+    foil_law(op.model, engine=args.method if rubbing else "transient").check_engine(
+        args.method, damped=eta > 0.0)
 
 
 def _operating_point(args):
@@ -250,7 +252,8 @@ def run_orbit(args) -> int:
     op = _operating_point(args)
     solver, sol = _solve(op)
     mass = _orbit_mass(args, op, sol)
-    tm = transient_model(sol, args.reference_whirl_ratio, solver)
+    tm = transient_model(sol, args.reference_whirl_ratio, solver,
+                         friction=op.model.has_friction)
     options = {"time_step": args.time_step,
                "stages": None if args.stages is None else int(args.stages)}
     with FractionProgress("orbit") as bar:

@@ -71,7 +71,7 @@ class SimpleLaw(FoilLaw):
     damped_state = "rows"
     #: rk4: the one-bearing transient with the sliders as a state beside it
     #: (:func:`gfbopt.transient.friction_orbit.integrate_friction_orbits`)
-    friction_engines = ("static", "linear", "rk4")
+    friction_engines = ("static", "linear", "rk4", "rkc")
 
     def static_film(self, h_rigid, lifted, mean_gauge, p_full, u, foil, st, data):
         w_rows = simple_deflection(mean_gauge, foil.compliance, foil.compression_only)
@@ -148,7 +148,7 @@ class LocalLaw(FoilLaw):
     loss_factor_engines = ("linear", "rk4", "rkc")
     damped_state = "nodes"
     #: rk4: the one-bearing transient with a slider per node (gfbopt.transient.friction_foil)
-    friction_engines = ("static", "linear", "rk4")
+    friction_engines = ("static", "linear", "rk4", "rkc")
     lifted_film_is_total = False
 
     def static_film(self, h_rigid, lifted, mean_gauge, p_full, u, foil, st, data):
@@ -356,9 +356,9 @@ def foil_law(model, engine: Optional[str] = None) -> FoilLaw:
         raise ParameterError("friction_coefficient", mu, "Coulomb friction of the bumps is "
                              f"modelled for the {law.name} foil law by "
                              f"{', '.join(law.friction_engines) or 'no engine'} only, not by "
-                             f"{who} (the one-bearing rk4 transient carries the sliders: "
-                             "transient_model(..., friction=True) with gfbopt.transient."
-                             "friction_orbit.integrate_friction_orbits); use "
+                             f"{who} (the one-bearing transient carries the sliders with rk4 "
+                             "or rkc: gfbopt orbit, or transient_model(..., friction=True) "
+                             "with gfbopt.transient.integrate_orbits); use "
                              "friction_coefficient = 0")
     eta = getattr(model, "loss_factor", 0.0)
     if eta <= 0.0:

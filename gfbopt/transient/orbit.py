@@ -111,6 +111,17 @@ def integrate_orbits(tm: TransientModel, mass, revolutions: float = 10.0, *,
     -------
     OrbitBatch, with ``success`` False and a message when the integration failed at run time.
     """
+    if getattr(tm, "friction", None) is not None:       # bumps that rub: sliders beside the state
+        from .friction_orbit import integrate_friction_orbits
+
+        if method_options.get("stages") is not None:
+            raise ParameterError("stages", method_options["stages"], "is not an option of the "
+                                 "transient with bump friction (RKC's stages follow its bound)")
+        method_options.pop("stages", None)
+        return integrate_friction_orbits(
+            tm, mass, revolutions, kick=kick, initial=initial, sample_every=sample_every,
+            contact_film=contact_film, settle=settle, method=method,
+            **{k: v for k, v in method_options.items() if v is not None}).orbit
     integrate = check_method(method, method_options).integrate
     options = {k: v for k, v in method_options.items() if v is not None}
     tm.law.check_engine(method, damped=tm.foil_state is not None)

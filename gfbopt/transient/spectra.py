@@ -51,6 +51,8 @@ from typing import Optional
 
 import numpy as np
 
+from ..rotor.modes import ellipse_radii
+
 #: band of the subsynchronous search, |f| / f_shaft
 SUB_BAND = (0.05, 0.95)
 #: zero padding of the spectra
@@ -60,15 +62,6 @@ PADDING = 4
 NOISE_FACTOR = 5.0
 #: status of a constant-speed orbit's subsynchronous whirl
 NO_WHIRL, LIMIT_CYCLE, GROWING, DECAYING = "none", "limit cycle", "growing", "decaying"
-
-
-def ellipse_radii(x_hat, y_hat) -> tuple:
-    """(forward radius, backward radius, major semi-axis) of the 1× orbit
-    x = Re(X̂ e^{iϑ}), y = Re(Ŷ e^{iϑ}) (complex amplitudes, arrays or scalars): |X̂ + iŶ|/2,
-    |X̂ − iŶ|/2 and their sum, the synchronous amplitude (module docstring)."""
-    forward = np.abs(x_hat + 1j * y_hat) / 2
-    backward = np.abs(x_hat - 1j * y_hat) / 2
-    return forward, backward, forward + backward
 
 
 def synchronous_fit(t: np.ndarray, signal: np.ndarray, angle: np.ndarray,

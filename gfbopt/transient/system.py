@@ -104,8 +104,9 @@ def transient_model(solution: StaticSolution, reference_whirl_ratio: Optional[fl
 
     ``friction``: a model with Coulomb friction in the bumps (μ_f > 0) is built with its
     slider state (:mod:`.friction_foil`; axial-mean or local law, no loss factor), integrated by
-    :func:`gfbopt.transient.friction_orbit.integrate_friction_orbits` only (the other drivers
-    refuse such a model: they carry no slider).  Without friction it is today's model.
+    :func:`gfbopt.transient.friction_orbit.integrate_friction_orbits` (which
+    :func:`gfbopt.transient.orbit.integrate_orbits` hands such a model to; the other drivers
+    refuse it: they carry no slider).  Without friction it is today's model.
     """
     if not solution.success:
         raise ParameterError("solution", f"status {solution.status}",

@@ -205,8 +205,11 @@ def test_drivers_without_sliders_refuse_a_model_with_friction():
                                              "transient engines"):
         transient_model(sol)
     tm = transient_model(sol, friction=True)
-    with pytest.raises(ParameterError, match="slider = None: .*integrate_friction_orbits"):
-        integrate_orbits(tm, [3.0], 1.0)
+    routed = integrate_orbits(tm, [3.0], 1.0)          # handed to the driver with sliders
+    direct = integrate_friction_orbits(tm, [3.0], 1.0).orbit
+    assert np.array_equal(routed.x, direct.x) and np.array_equal(routed.y, direct.y)
+    with pytest.raises(ParameterError, match="stages = 3: .*bump friction"):
+        integrate_orbits(tm, [3.0], 1.0, method="rkc", stages=3)
     with pytest.raises(ParameterError, match="friction_coefficient = 0.2: .*hardened foil law"):
         transient_model(_solved(friction_coefficient=0.2, hardening_exponent=3.0,
                                 hardening_limit=0.8), friction=True)
