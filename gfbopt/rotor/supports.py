@@ -304,7 +304,10 @@ def support_states(rotor: RotorCase, speed_rpm: float, initial: Optional[tuple] 
     ``guesses`` (StaticSolution per bearing, e.g. :func:`predicted_starts`) or else from
     ``initial`` (a nearby speed's BearingState per bearing).  A bearing loaded beyond its
     capacity is reported in ``failure`` (bearing, message with the largest load it carries),
-    not raised."""
+    not raised.  With ``rotor.running`` each bearing is first put at its running condition
+    at this speed (:func:`gfbopt.rotor.running.running_case`: the fixed point, then the
+    bearing at that clearance and viscosity, its equilibrium from the fixed point's last
+    film); a thermal runaway or closure is a ``failure`` with ``kind``, not raised."""
     states = []
     failure = None
     for k, (case, load) in enumerate(zip(rotor.cases, rotor.loads)):
