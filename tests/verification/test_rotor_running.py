@@ -125,7 +125,8 @@ def test_heated_blower_reports_per_bearing_and_runaway():
     running columns, and the runaway at 60,000 rpm reported with the speed it starts from,
     never raised."""
     result = analyse_rotor(load_rotor(ROTORS / "blower_thermal.toml", running=True), RANGE,
-                           grid=GRID, campbell=True, campbell_speeds=3, show_progress=False)
+                           grid=GRID, campbell=True, campbell_speeds=3, imbalance=True,
+                           imbalance_speeds=3, show_progress=False)
     d = result.to_dict()
     assert d["thermal_models"] == {"A": HEAT_BALANCE, "B": HEAT_BALANCE}
     for name in "AB":
@@ -146,6 +147,12 @@ def test_heated_blower_reports_per_bearing_and_runaway():
     table = result.campbell.table
     assert {"running_clearance_um_A", "film_temperature_c_B"} <= set(table.columns)
     assert len(result.tables()["running"]) >= 2 * 5
+    response = result.imbalance.table            # the same running point at each speed
+    running = result.tables()["running"].set_index(["bearing", "speed_rpm"])
+    for _, row in response.iterrows():
+        for name in "AB":
+            assert row[f"running_clearance_um_{name}"] == \
+                running.loc[(name, row["speed_rpm"]), "running_clearance_um"]
     limits = d["thermal_limits"]
     assert limits, "the heated blower runs away below 60,000 rpm at 24x8"
     for lim in limits:
