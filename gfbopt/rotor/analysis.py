@@ -21,7 +21,7 @@ from ..inputs.bearing import BearingGeometry
 from ..inputs.conversions import (film_thickness_um, growth_rate_per_second,
                                   logarithmic_decrement, mass_from_parameter, mass_parameter,
                                   rpm_to_rad_per_s, whirl_frequency_hz)
-from ..inputs.grid import DEFAULT_GRID, Grid
+from ..inputs.grid import DEFAULT_GRID, Grid, as_grid
 from ..inputs.model import BearingModel
 from ..inputs.options import ModelOptions, merge_options
 from ..inputs.rotor import OperatingPoint, Rotor
@@ -89,8 +89,7 @@ def resolve_case(bearing: BearingGeometry, rotor: Rotor, load_newton: Optional[f
         raise ParameterError("bearing", bearing, "must be a BearingGeometry (SI)")
     if not isinstance(rotor, Rotor):
         raise ParameterError("rotor", rotor, "must be a Rotor (mass per bearing in kg)")
-    if not isinstance(grid, Grid):
-        raise ParameterError("grid", grid, "must be a Grid")
+    grid = as_grid(grid)
     point = OperatingPoint(1.0, load_newton)          # validates the load
     if options is not None and not isinstance(options, ModelOptions):
         raise ParameterError("options", options, "must be ModelOptions")

@@ -30,7 +30,7 @@ from scipy.optimize import brentq
 from ..errors import ParameterError
 from ..inputs.bearing import BearingGeometry
 from ..inputs.checks import check_positive
-from ..inputs.grid import DEFAULT_GRID, Grid
+from ..inputs.grid import DEFAULT_GRID, as_grid
 from ..inputs.options import ModelOptions, merge_options
 from ..inputs.rotor_limits import MAX_SPECIFIC_LOAD_RATIO, MIN_BEARING_NUMBER
 from ..physics.torque import drag_torque_and_power
@@ -189,8 +189,7 @@ def _march(line: _Curve, start: float, factor: float, end: float) -> tuple:
 def _resolve(bearing, options, min_film_um, grid):
     if not isinstance(bearing, BearingGeometry):
         raise ParameterError("bearing", bearing, "must be a BearingGeometry (SI)")
-    if not isinstance(grid, Grid):
-        raise ParameterError("grid", grid, "must be a Grid")
+    grid = as_grid(grid)
     limit = check_positive("min_film_um", min_film_um)
     if limit < MIN_FILM_LIMIT_UM:
         raise ParameterError("min_film_um", limit, f"must be >= {MIN_FILM_LIMIT_UM:g} µm: a "

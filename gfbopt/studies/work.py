@@ -102,7 +102,7 @@ def _design(spec: dict, grid: Grid, prefix: str) -> list:
     high = spec.get("search_high_rpm") or 1.25 * top
     count = guard.scan_count(low, high) or 2
     per_design = guard.speeds("", None, count, coarse, 2).seconds
-    square = "population" if search["method"] == "nsga2" else "budget"
+    square = "population" if search["method"] in ("nsga2", "nsga2_refine") else "budget"
     n = search[square]
     parts = [guard.Work(f"{prefix}search.{square}", n, memory_bytes=guard.SORT_BYTES_PER_PAIR
                         * float(n) ** 2, how=f"a {n:,} × {n:,} matrix of designs "

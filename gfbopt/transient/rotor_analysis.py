@@ -28,7 +28,7 @@ import numpy as np
 from ..errors import ParameterError
 from ..inputs.checks import check_positive
 from ..inputs.conversions import rpm_to_rad_per_s
-from ..inputs.grid import Grid
+from ..inputs.grid import Grid, as_grid
 from ..inputs.rotor_system import RotorSystem
 from ..static import SolverCache
 from .rotor_io import rotor_input
@@ -147,8 +147,7 @@ def run_profile(rotor: Union[RotorSystem, RotorInput], profile: SpeedProfile, *,
     if perturbation not in PERTURBATIONS:
         raise ParameterError("perturbation", perturbation,
                              f"must be one of {', '.join(PERTURBATIONS)}")
-    if not isinstance(grid, Grid):
-        raise ParameterError("grid", grid, "must be a Grid")
+    grid = as_grid(grid)
     inp = _rotor(rotor)
     mu, scale = np.broadcast_arrays(_check_batch("inertia_scale", inertia_scale),
                                     _check_batch("imbalance_scale", imbalance_scale))

@@ -97,7 +97,7 @@ def _design(tmp_path, edit) -> Path:
 
 
 @pytest.mark.parametrize("old, new, key, value, raises", [
-    ("budget = 24", "budget = 1000000000", "search.budget", "1000000000", "--max-minutes"),
+    ("budget = 116", "budget = 1000000000", "search.budget", "1000000000", "--max-minutes"),
     ("population = 8", "population = 1000000", "search.population", "1000000",
      "--max-memory-gb"),
     ("samples = 6", "samples = 1000000000", "robustness.samples", "1000000000",

@@ -117,14 +117,14 @@ def test_design_run_stages_count_the_evaluations_of_the_main_job():
     plan = load_study(root / "problems" / "rotor_bearing_design.toml").plan
     stages = {s.name: s for s in run_stages(plan, 2)}
     assert [(s.tasks, s.slots) for s in stages.values()] == [
-        (24, 2), (1, 1), (2, 2), (2 * (1 + 6), 2), (1, 1)]
+        (116, 2), (1, 1), (2, 2), (2 * (1 + 6), 2), (1, 1)]
     assert stages["default-grid check"].cost == pytest.approx((144 * 36 / 360) ** 0.6)
     assert stages["whirl at top speed"].cost == pytest.approx(
         grid_cost(plan.limit_cycle_grid, plan.settings.grid) * 10.0 * 2)
     total = sum(s.work for s in stages.values())
     run = Stages(None, list(stages.values()))
     run.stage("search")(1.0)
-    assert run.fraction == pytest.approx(12 / total) and run.fraction < 0.2
+    assert run.fraction == pytest.approx(116 / 2 / total)     # 116 designs on 2 workers
 
 
 def test_a_run_fraction_reads_as_a_percentage():
