@@ -30,7 +30,7 @@ from scipy.optimize import brentq
 from ..errors import ParameterError
 from ..inputs.bearing import BearingGeometry
 from ..inputs.checks import check_positive
-from ..inputs.grid import DEFAULT_GRID, as_grid
+from ..inputs.grid import DEFAULT_GRID, Grid, as_grid
 from ..inputs.options import ModelOptions, merge_options
 from ..inputs.rotor_limits import MAX_SPECIFIC_LOAD_RATIO, MIN_BEARING_NUMBER
 from ..physics.torque import drag_torque_and_power
