@@ -107,10 +107,11 @@ class NewtonSystem:
         self.lower, self.upper = solver.bounds
         self.factorise = solver.factoriser
         self.kept: Optional[tuple] = None             # (p, LU) of the last factorisation
+        self.kept_before: Optional[tuple] = None      # the one before, other parameters
 
     def forget(self) -> None:
         """Drop the kept factorisation (the next solve starts with a fresh LU)."""
-        self.kept = None
+        self.kept = self.kept_before = None
 
     def residual(self, x: np.ndarray, p: np.ndarray) -> np.ndarray:
         """g(x, p) (a new array)."""
@@ -157,15 +158,22 @@ def solve(system: NewtonSystem, x0: np.ndarray, p: np.ndarray,
     of a converged solve is kept for the next one; a failed solve keeps none."""
     max_steps = MAX_STEPS if max_steps is None else max_steps
     kept = None
-    if reuse and system.kept is not None and system.kept[0].shape == p.shape:
-        if np.all(np.abs(system.kept[0] - p) <= REUSE_PARAMETERS * np.abs(p)):
-            kept = system.kept[1]
+    for entry in (system.kept, system.kept_before) if reuse else ():
+        if (entry is not None and entry[0].shape == p.shape
+                and np.all(np.abs(entry[0] - p) <= REUSE_PARAMETERS * np.abs(p))):
+            kept = entry[1]
+            break
     outcome, lu = _iterate(system, x0, p, max_steps, kept)
     if not outcome.converged and kept is not None:    # a stale LU: again with a fresh one
         again, lu = _iterate(system, x0, p, max_steps, None)
         outcome = replace(again, steps=again.steps + outcome.steps,
                           factorisations=again.factorisations + outcome.factorisations)
-    system.kept = (np.array(p, dtype=float), lu) if outcome.converged else None
+    if outcome.converged:
+        if system.kept is not None and system.kept[1] is not lu:
+            system.kept_before = system.kept          # e.g. the other bearing of a rotor
+        system.kept = (np.array(p, dtype=float), lu)
+    else:
+        system.kept = None
     return outcome
 
 
