@@ -476,6 +476,9 @@ _PATTERNS += (
      "from the bearing centre)"),
     (r"y_(\w+)_um", "µm", "journal centre y at bearing {0} (90° ahead of gravity)"),
     (r"min_film_(\w+)_um", "µm", "smallest film at bearing {0} since the previous sample"),
+    (r"running_clearance_um_(\w+)", "µm", "running radial clearance at bearing {0}"),
+    (r"film_temperature_c_(\w+)", "°C", "mean film temperature at bearing {0}"),
+    (r"viscosity_pa_s_(\w+)", "Pa s", "gas viscosity at the film temperature at bearing {0}"),
 )
 for _name, _entry in TERMS.items():
     if _name in GLOSSARY:

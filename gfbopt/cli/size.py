@@ -142,7 +142,7 @@ def _top_speed(args) -> None:
         from ..inputs.rotor_system import load_rotor
         from ..rotor.analyse import check_speed_span
 
-        check_speed_span(span, load_rotor(args.rotor_file), "--speed-range")
+        check_speed_span(span, load_rotor(args.rotor_file, running=True), "--speed-range")
     elif args.command == "stability" and getattr(args, "bearing", None):
         from ..inputs import load_bearing
 

@@ -60,7 +60,8 @@ BEARING_FILE_RUNNING = dataclasses.replace(
     "heat balance), used by `gfbopt stability` and `gfbopt capacity`; a file with neither "
     "keeps the isothermal, cold-clearance answers.")
 #: the commands that read [journal] and [thermal]; other routes refuse a file stating them
-RUNNING_ROUTES = "`gfbopt stability` and `gfbopt capacity` (gfbopt.thermal.files)"
+RUNNING_ROUTES = ("`gfbopt stability` and `gfbopt capacity` (gfbopt.thermal.files), and the linear "
+                  "analyses of `gfbopt rotor` (load_rotor(..., running=True))")
 
 #: largest TOML file read [bytes] (a bearing or study file is a few kB)
 MAX_FILE_BYTES = 1_000_000

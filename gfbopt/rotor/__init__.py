@@ -28,6 +28,8 @@ module                     answers
 *a rotor on two bearings*
 :mod:`.supports`           both bearings at one speed: equilibria, linearisations, impedances
 :mod:`.reduced`            a bearing's impedance from its Krylov space (Schur form)
+:mod:`.running`            each bearing at its running clearance and viscosity at each speed
+                           (the heat balance of gfbopt.thermal)
 :mod:`.matched_whirl`      the exact threshold at one speed: whirl frequencies and inertia scales
                            of every mode (n degrees of freedom, branches matched by MAC)
 :mod:`.probe`              stability below the first threshold crossing
