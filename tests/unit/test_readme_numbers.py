@@ -123,6 +123,11 @@ def _chosen(column: str, fmt: str = "{:,.0f}") -> Quoted:
     return Quoted(f"{DESIGN}/chosen.csv", lambda: cell(f"{DESIGN}/chosen.csv", column), fmt)
 
 
+def _lever(lever: str, column: str, fmt: str = "{:,.0f}") -> Quoted:
+    path = f"{DESIGN}/what_it_would_take.csv"
+    return Quoted(path, lambda: cell(path, column, lever=lever), fmt)
+
+
 def _chosen_point() -> str:
     return rows(f"{DESIGN}/chosen.csv")[0]["point"]
 
@@ -246,22 +251,45 @@ QUOTED: dict[str, Quoted] = {
     # the main job: inputs restated from its problem file, then its answer
     "design_top_speed_rpm": Quoted(DESIGN_TOML, lambda: key(DESIGN_TOML, "speed_range_rpm.1")),
     "design_lowest_speed_rpm": Quoted(DESIGN_TOML, lambda: key(DESIGN_TOML, "speed_range_rpm.0")),
-    "design_clearance_low_um": _design_variable("radial_clearance_um", "low"),
-    "design_clearance_high_um": _design_variable("radial_clearance_um", "high"),
-    "design_preload_low_um": _design_variable("preload_depth_um", "low"),
-    "design_preload_high_um": _design_variable("preload_depth_um", "high"),
+    "design_clearance_low_um": _design_variable("A:radial_clearance_um", "low"),
+    "design_clearance_high_um": _design_variable("A:radial_clearance_um", "high"),
+    "design_preload_low_um": _design_variable("A:preload_depth_um", "low"),
+    "design_preload_high_um": _design_variable("A:preload_depth_um", "high"),
+    "design_clearance_b_low_um": _design_variable("B:radial_clearance_um", "low"),
+    "design_clearance_b_high_um": _design_variable("B:radial_clearance_um", "high"),
+    "design_preload_b_low_um": _design_variable("B:preload_depth_um", "low"),
+    "design_preload_b_high_um": _design_variable("B:preload_depth_um", "high"),
     "design_min_film_limit_um": Quoted(DESIGN_TOML, lambda: key(DESIGN_TOML, "min_film_um"), "{:g}"),
     "design_first_onset_rpm": _chosen("first_onset_speed_rpm"),
     "design_first_mode": _chosen("first_mode"),
-    "design_clearance_um": _chosen("radial_clearance_um", "{:.1f}"),
-    "design_preload_um": _chosen("preload_depth_um", "{:.2f}"),
+    "design_clearance_a_um": _chosen("A:radial_clearance_um", "{:.1f}"),
+    "design_clearance_b_um": _chosen("B:radial_clearance_um", "{:.1f}"),
+    "design_preload_a_um": _chosen("A:preload_depth_um", "{:.2f}"),
+    "design_preload_b_um": _chosen("B:preload_depth_um", "{:.2f}"),
+    "design_min_film_default_grid_um": _default_grid("min_film_lowest_speed_um_default_grid",
+                                                     "{:.2f}"),
+    "design_evaluations": Quoted(f"{DESIGN}/evaluations.csv", lambda: len(
+        _rows(f"{DESIGN}/evaluations.csv")), "{:,.0f}"),
+    "design_wiwt_loss_factor_rpm": _lever("loss_factor", "at_bound_onset_speed_rpm"),
+    "design_wiwt_loss_factor_bound": _lever("loss_factor", "lever_high", "{:g}"),
+    "design_wiwt_side_load_rpm": _lever("side_load_n", "at_bound_onset_speed_rpm"),
+    "design_wiwt_side_load_n": _lever("side_load_n", "lever_high", "{:g}"),
+    "design_wiwt_preload_a_rpm": _lever("A:preload_depth_um", "at_bound_onset_speed_rpm"),
+    "design_wiwt_preload_a_um": _lever("A:preload_depth_um", "at_bound_value", "{:.1f}"),
     "design_min_film_um": _chosen("min_film_lowest_speed_um", "{:.2f}"),
     "design_first_onset_default_grid_rpm": _default_grid("first_onset_speed_rpm_default_grid"),
     "design_power_loss_default_grid_w": _default_grid("total_power_loss_w_default_grid"),
-    "main_job_wall_2_workers_s": Quoted(f"{BENCH}/rotor_design_main_job.json", lambda: key(
-        f"{BENCH}/rotor_design_main_job.json", "main_job.workers_2.wall_s")),
-    "main_job_wall_1_worker_s": Quoted(f"{BENCH}/rotor_design_main_job.json", lambda: key(
-        f"{BENCH}/rotor_design_main_job.json", "main_job.workers_1.wall_s")),
+    "main_job_wall_fast_s": Quoted(f"{BENCH}/main_job.json", lambda: min(
+        r["wall_s"] for r in key(f"{BENCH}/main_job.json", "runs"))),
+    "main_job_wall_slow_s": Quoted(f"{BENCH}/main_job.json", lambda: max(
+        r["wall_s"] for r in key(f"{BENCH}/main_job.json", "runs"))),
+    "main_job_load_low": Quoted(f"{BENCH}/main_job.json", lambda: min(
+        r["load_before"][0] for r in key(f"{BENCH}/main_job.json", "runs")), "{:.1f}"),
+    "main_job_load_high": Quoted(f"{BENCH}/main_job.json", lambda: max(
+        r["load_before"][0] for r in key(f"{BENCH}/main_job.json", "runs")), "{:.1f}"),
+    "main_job_wiwt_share_pct": Quoted(f"{BENCH}/main_job.json", lambda: 100 * max(
+        r["stage_shares_of_wall"]["what it would take"]
+        for r in key(f"{BENCH}/main_job.json", "runs"))),
     "all_studies_minutes": Quoted("results/*/summary.json", lambda: sum(
         json.loads(f.read_text(encoding="utf-8")).get("wall_time_s") or 0.0
         for f in (ROOT / "results").glob("*/summary.json")) / 60.0, "{:.0f}"),
