@@ -256,10 +256,17 @@ def crossings(rotor: RotorCase, states: SpeedStates, whirl_range=WHIRL_RANGE,
     names = rotor.names
     positions = list(rotor.positions)
     found = []
+    # a shaft's branch whose roots stay below a tenth of 1/SHAFT_SCALE_LIMIT at both ends of an
+    # interval cannot cross there with μ_c ≤ SHAFT_SCALE_LIMIT (the scan keeps neighbouring
+    # roots within FOLLOW_FRACTION of each other): not refined, as it would not be reported
+    faint = 0.0 if is_rigid(rotor.structure) else 0.1 / SHAFT_SCALE_LIMIT
     for branch in range(values.shape[1]):
         im = values[:, branch].imag
+        size = np.abs(values[:, branch])
         for k in range(samples - 1):
             if not (im[k] == 0 or im[k] * im[k + 1] < 0):
+                continue
+            if max(size[k], size[k + 1]) < faint:
                 continue
             crossing = _refine(rotor, states, gammas[k], gammas[k + 1], values[k, branch],
                                values[k + 1, branch], positions, names)
