@@ -75,7 +75,7 @@ from ..errors import ParameterError
 from ..inputs.bearing import BearingGeometry
 from ..inputs.checks import check_positive
 from ..inputs.conversions import rpm_to_rad_per_s, whirl_frequency_hz
-from ..inputs.grid import DEFAULT_GRID, Grid
+from ..inputs.grid import DEFAULT_GRID, Grid, as_grid
 from ..inputs.options import ModelOptions
 from ..inputs.rotor import Rotor
 from ..progress import progress as progress_bar
@@ -248,8 +248,7 @@ def onset_speed(bearing: BearingGeometry, rotor: Rotor, load_newton: Optional[fl
     low, high = check_speed_range(speed_range)
     if method not in METHODS:
         raise ParameterError("method", method, f"must be one of: {', '.join(METHODS)}")
-    if not isinstance(grid, Grid):
-        raise ParameterError("grid", grid, "must be a Grid")
+    grid = as_grid(grid)
     guide_grid = check_coarse_grid(coarse_grid, grid)
     if method == "scan" and coarse_grid not in (None, "auto", "none"):
         raise ParameterError("coarse_grid", coarse_grid, "is used by method 'secant' only")

@@ -33,7 +33,7 @@ import numpy as np
 
 from ..errors import ParameterError
 from ..inputs.conversions import STANDARD_GRAVITY, rpm_to_rad_per_s, stiffness_scale
-from ..inputs.grid import DEFAULT_GRID, Grid
+from ..inputs.grid import DEFAULT_GRID, Grid, as_grid
 from ..inputs.options import ModelOptions, merge_options
 from ..inputs.rotor import Rotor
 from ..inputs.rotor_system import RotorSystem
@@ -146,8 +146,7 @@ def resolve_rotor(system: RotorSystem, grid: Grid = DEFAULT_GRID,
     if not isinstance(system, RotorSystem):
         raise ParameterError("system", system, "must be a RotorSystem (gfbopt.inputs."
                              "rotor_system.load_rotor)")
-    if not isinstance(grid, Grid):
-        raise ParameterError("grid", grid, "must be a Grid")
+    grid = as_grid(grid)
     cache = cache if cache is not None else SolverCache(grid)
     loads = bearing_loads(system)
     structure = analysis_structure(system)

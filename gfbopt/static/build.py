@@ -19,7 +19,7 @@ import scipy.sparse as sp
 from .. import discretisation as disc
 from ..errors import ParameterError
 from ..inputs.bore import check_grid_resolves
-from ..inputs.grid import DEFAULT_GRID, Grid
+from ..inputs.grid import DEFAULT_GRID, Grid, as_grid
 from ..inputs.model import FILM_MODELS, BearingModel
 from ..physics.foil_laws import FOIL_LAWS, static_structure
 from ..sparse_lu import Factoriser
@@ -98,8 +98,7 @@ class StaticSolver:
                  foil_law: str = "simple", ipopt_options: Optional[dict] = None,
                  fixed_rows: tuple = ()):
         t0 = time.perf_counter()
-        if not isinstance(grid, Grid):
-            raise ParameterError("grid", grid, "must be a gfbopt Grid")
+        grid = as_grid(grid)
         if film not in FILM_MODELS:
             raise ParameterError("film", film, f"must be one of {', '.join(FILM_MODELS)}")
         structures = sorted({law.static_structure for law in FOIL_LAWS.values()})
