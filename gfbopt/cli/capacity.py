@@ -128,7 +128,7 @@ def _report(out: dict) -> str:
     if conv.get("bore") or conv.get("pads_leading_end_deg") or conv.get("zones"):
         lines.append(f"  as built: bore {conv.get('bore')}, pads "
                      f"{conv.get('pads_leading_end_deg')}, zones {conv.get('zones')}")
-    if out["success"]:
+    if out["success"] and out["curve"]:
         answered = math.isfinite(out.get("load_capacity_newton", out.get("lift_off_speed_rpm")))
         lines.append(f"  {'at the answer' if answered else 'at the load ceiling'}: h_min = {out['min_film_thickness_um']:.6g} µm "
                      f"({len(out['curve'])} equilibria solved, {out['wall_time_s']:.2f} s)")

@@ -28,7 +28,7 @@ from ..errors import ParameterError
 from ..inputs.grid import DEFAULT_GRID, Grid
 from ..inputs.rotor import OperatingPoint, Rotor
 from ..thermal.bearing import FilmCase, FilmDrag, limit_on_line, warm_bearing
-from ..thermal.running import (HEAT_BALANCE, ISOTHERMAL, RunningPoint, RunningSpec,
+from ..thermal.running import (CENTRIFUGAL, HEAT_BALANCE, ISOTHERMAL, RunningPoint, RunningSpec,
                                running_point, without_heat)
 
 #: the clearance at speed's top-level fields of every answer
@@ -54,11 +54,15 @@ def running_stability(bearing, spec: RunningSpec, rotor: Rotor,
     if spec.model_name == ISOTHERMAL:
         return (stability(bearing, rotor, operating_point, options=options, grid=grid,
                           cache=cache), without_heat(spec, operating_point.speed_rpm), bearing)
+    cold = without_heat(spec, operating_point.speed_rpm)
+    if spec.model_name == CENTRIFUGAL and not cold.converged:    # closed form, no solve
+        return None, cold, bearing
     case, film = _case(bearing, rotor, operating_point.load_newton, options, grid, cache)
     drag = FilmDrag(film, start=coarse_start(case.grid, case.cache))
     point = running_point(spec, operating_point.speed_rpm, drag)
-    if not point.converged:
-        return None, point, bearing
+    if not point.converged:            # where it happens: bracketed from rest
+        found = limit_on_line(spec, film, 0.0, operating_point.speed_rpm)
+        return None, dataclasses.replace(point, message=found["message"]), bearing
     try:
         warm = warm_bearing(bearing, point)
     except ParameterError as exc:
@@ -245,10 +249,18 @@ def _answer(result, point: RunningPoint, iterations: int, solves: int) -> dict:
             "thermal_static_solves": solves, **{k: d[k] for k in RUNNING_KEYS}}
 
 
-def _failed(result, point, iterations, solves, key) -> dict:
+def _failed(result, point, iterations, solves, key, limit_rpm=None) -> dict:
+    """No running state at the answer (runaway, closure): the answer says so, and every
+    figure of the search (its value, its load or speed, its film and curve) is null -- a
+    search on another clearance (cold, or the previous iteration's) is not this answer."""
     out = _answer(result, point, iterations, solves)
-    out.update({key: math.nan, "success": True, "answer": point.message,
-                "message": point.message})
+    message = point.message
+    answer = (f"no load capacity at {result.speed_rpm:,.0f} rpm: {message}"
+              if key == "load_capacity_newton" else f"no lift-off found: {message}")
+    searched = ("load_newton",) if key == "load_capacity_newton" else ("speed_rpm",)
+    out.update({key: math.nan, "min_film_thickness_um": math.nan, "curve": [],
+                **dict.fromkeys(searched, math.nan), "success": True, "answer": answer,
+                "message": message})
     return out
 
 
@@ -272,19 +284,20 @@ def running_load_capacity(bearing, spec: RunningSpec, speed_rpm, min_film_um, *,
     cache = cache or SolverCache(grid)
     kw = dict(options=options, grid=grid, cache=cache)
     point = without_heat(spec, speed_rpm)                  # the centrifugal growth only
-    if not point.converged:
-        return _failed(load_capacity(bearing, speed_rpm, min_film_um, **kw), point, 0, 0,
-                       "load_capacity_newton")
+    if not point.converged:                                # closed form: no search at all
+        return _failed(_no_search(bearing, speed_rpm, min_film_um, options, grid), point,
+                       0, 0, "load_capacity_newton")
     result = load_capacity(warm_bearing(bearing, point), speed_rpm, min_film_um, **kw)
     iterations, solves = 1, 0
     if spec.model_name != HEAT_BALANCE or not math.isfinite(result.value):
         return _answer(result, point, iterations, solves)
     for _ in range(max_steps):
-        drag = FilmDrag(_film(bearing, options, grid, cache, result.value),
-                        start=coarse_start(grid, cache))
+        film = _film(bearing, options, grid, cache, result.value)
+        drag = FilmDrag(film, start=coarse_start(grid, cache))
         point = running_point(spec, speed_rpm, drag)
         solves += drag.solves
         if not point.converged:
+            point = _under_load(point, result.value)
             return _failed(result, point, iterations, solves, "load_capacity_newton")
         previous = result.value
         result = load_capacity(warm_bearing(bearing, point), speed_rpm, min_film_um, **kw)
@@ -293,6 +306,26 @@ def running_load_capacity(bearing, spec: RunningSpec, speed_rpm, min_film_um, *,
                 abs(result.value - previous) <= tolerance * previous:
             break
     return _answer(result, point, iterations, solves)
+
+
+def _under_load(point, load_newton):
+    """The failing point's message with the load it failed under: the heat balance's
+    runaway depends on the load (the drag does), so it is stated at the speed and load of
+    the search, not bracketed in speed (a bracket under a search's heavy load costs
+    minutes of failing static solves)."""
+    return dataclasses.replace(point, message=f"{point.message} under {load_newton:.4g} N "
+                               "(the load of the search's previous answer; not bracketed "
+                               "in speed)")
+
+
+def _no_search(bearing, speed_rpm, min_film_um, options, grid):
+    """The CurveResult of a load-capacity search that is not run (no running state at
+    the speed): NaN figures, an empty curve, the conventions the search would use."""
+    from ..rotor.capacity import CurveResult, _conventions, _resolve
+
+    limit, resolved = _resolve(bearing, options, min_film_um, grid)
+    return CurveResult("capacity", math.nan, speed_rpm, math.nan, limit, math.nan, [],
+                       conventions=_conventions(resolved, bearing, grid))
 
 
 def running_lift_off(bearing, spec: RunningSpec, load_newton, min_film_um, *,
@@ -320,6 +353,7 @@ def running_lift_off(bearing, spec: RunningSpec, load_newton, min_film_um, *,
         point = running_point(spec, previous, drag)
         solves += drag.solves
         if not point.converged:
+            point = _under_load(point, load_newton)
             return _failed(result, point, iterations, solves, "lift_off_speed_rpm")
         result = lift_off_speed(warm_bearing(bearing, point), load_newton, min_film_um, **kw)
         iterations += 1

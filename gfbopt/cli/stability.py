@@ -256,11 +256,18 @@ def running_lines(d: dict) -> list:
     """The text lines of a running point's dict (RunningPoint.to_dict)."""
     import math
 
+    def finite(key):
+        return d.get(key) is not None and math.isfinite(d[key])
+
+    if not finite("running_clearance_um"):          # runaway or closure: no state to show
+        return [f"  clearance model: {d['thermal_model']}; no running state at "
+                f"{d['speed_rpm']:,.0f} rpm ({d['thermal_status']}; cold clearance "
+                f"{d['cold_clearance_um']:.4g} µm)", f"  {d['thermal_message']}"]
     lines = [f"  clearance model: {d['thermal_model']}; running clearance "
              f"{d['running_clearance_um']:.4g} µm (cold {d['cold_clearance_um']:.4g}, "
              f"centrifugal growth {d['centrifugal_growth_um']:.3g}, thermal growth "
              f"{d['thermal_growth_um']:.3g} µm)"]
-    if math.isfinite(d["film_temperature_c"]):
+    if finite("film_temperature_c"):
         lines.append(f"  heat balance: film {d['film_temperature_c']:.1f} °C, journal "
                      f"{d['journal_temperature_c']:.1f} °C, sleeve "
                      f"{d['sleeve_temperature_c']:.1f} °C; drag {d['heat_generated_w']:.3g} W; "
@@ -303,5 +310,6 @@ def _report(out, result, onset, table, csv) -> str:
                          f"({len(table.table)} rows; frame: {table.frame})")
     if onset is not None:
         lines.append(f"  onset: {onset.answer}")
-    lines += [f"  WARNING: {w}" for w in out["warnings"]]
+    shown = (out.get("running") or {}).get("thermal_message")    # printed above already
+    lines += [f"  WARNING: {w}" for w in out["warnings"] if w != shown]
     return "\n".join(lines)

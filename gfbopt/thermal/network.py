@@ -53,6 +53,13 @@ AIR_SPECIFIC_HEAT = 1007.0
 AIR_GAS_CONSTANT = 287.05
 #: 20 °C [K]
 DEFAULT_AMBIENT_K = 293.15
+#: the highest film temperature analysed [K] by default: the top of the range over which
+#: Sutherland's law gives the viscosity of air within ±2 % (170–1900 K; White, F. M.,
+#: *Viscous Fluid Flow*, 3rd ed., 2006, Table 1-2).  A film hotter than the limit has no
+#: valid state in this model: the heat balance reports thermal runaway instead.  The foil's
+#: own material limit (its coating, the top and bump foil alloy) is lower in practice and is
+#: stated with ``max_film_temperature``.
+SUTHERLAND_AIR_MAX_K = 1900.0
 #: the lumped network's nodes, in the order of :func:`solve_network`
 NODES = ("film", "journal", "foil", "sleeve")
 SIDE_LEAKAGE_MODELS = ("film", "none")
@@ -113,6 +120,7 @@ class ThermalNetwork:
     gas_constant: float = AIR_GAS_CONSTANT
     sutherland_constant: float = 110.4
     side_leakage: str = "film"
+    max_film_temperature: Optional[float] = None     # [K]; default SUTHERLAND_AIR_MAX_K
 
     def check(self, where: str = "thermal") -> None:
         """Temperatures > 0 K, conductances and flows >= 0, a path from the film to ambient."""
@@ -136,9 +144,29 @@ class ThermalNetwork:
         for name in ("gas_conductivity", "gas_specific_heat", "gas_constant"):
             if not getattr(self, name) > 0:
                 raise ParameterError(f"{where}.{name}", getattr(self, name), "must be > 0")
+        limit = self.max_film_temperature
+        if limit is not None and not (math.isfinite(limit) and limit > self.ambient_temperature
+                                      and limit > self.inlet_k):
+            raise ParameterError(f"{where}.max_film_temperature", limit, "must be a finite "
+                                 "temperature [K] above the ambient and cooling inlet "
+                                 "temperatures")
         if self.side_leakage not in SIDE_LEAKAGE_MODELS:
             raise ParameterError(f"{where}.side_leakage", self.side_leakage,
                                  f"must be one of {', '.join(SIDE_LEAKAGE_MODELS)}")
+
+    @property
+    def film_limit_k(self) -> float:
+        """The highest film temperature with a valid state [K] (``max_film_temperature``,
+        default :data:`SUTHERLAND_AIR_MAX_K`)."""
+        return SUTHERLAND_AIR_MAX_K if self.max_film_temperature is None \
+            else self.max_film_temperature
+
+    @property
+    def film_limit_source(self) -> str:
+        """Where :attr:`film_limit_k` comes from, in words."""
+        return ("the top of Sutherland's law's range for air, White 2006 Table 1-2"
+                if self.max_film_temperature is None else
+                "[thermal].max_film_temperature")
 
     @property
     def reference_k(self) -> float:

@@ -176,6 +176,7 @@ class RunningPoint:
     side_leakage_flow: float = 0.0
     static_solves: int = 0
     sample: Optional[DragSample] = field(default=None, repr=False, compare=False)
+    reason: str = ""                   # why there is no running state (status not "running")
 
     @property
     def converged(self) -> bool:
@@ -187,8 +188,12 @@ class RunningPoint:
         return self.journal_thermal_growth - self.sleeve_thermal_growth
 
     def to_dict(self) -> dict:
-        """The columns every output reports (gfbopt/terms/thermal.py)."""
-        n = self.network
+        """The columns every output reports (gfbopt/terms/thermal.py).  Without a running
+        state (runaway, closure) the clearance, the thermal growths, temperatures and heat
+        flows are NaN (null in JSON; ``thermal_message`` says why); the centrifugal growth,
+        a function of the speed alone, is kept."""
+        n = self.network if self.converged else None
+        state = 1.0 if self.converged else math.nan
 
         def c(kelvin):
             return kelvin - KELVIN if n is not None else math.nan
@@ -198,12 +203,12 @@ class RunningPoint:
             "thermal_model": self.model, "thermal_status": self.status,
             "thermal_message": self.message,
             "cold_clearance_um": self.cold_clearance * 1e6,
-            "running_clearance_um": self.running_clearance * 1e6,
+            "running_clearance_um": self.running_clearance * 1e6 * state,
             "centrifugal_growth_um": self.centrifugal_growth * 1e6,
-            "thermal_growth_um": self.thermal_growth * 1e6,
-            "journal_thermal_growth_um": self.journal_thermal_growth * 1e6,
-            "sleeve_thermal_growth_um": self.sleeve_thermal_growth * 1e6,
-            "viscosity_pa_s": self.viscosity,
+            "thermal_growth_um": self.thermal_growth * 1e6 * state,
+            "journal_thermal_growth_um": self.journal_thermal_growth * 1e6 * state,
+            "sleeve_thermal_growth_um": self.sleeve_thermal_growth * 1e6 * state,
+            "viscosity_pa_s": self.viscosity * state,
             "film_temperature_c": c(n.film_k) if n else math.nan,
             "journal_temperature_c": c(n.journal_k) if n else math.nan,
             "foil_temperature_c": c(n.foil_k) if n else math.nan,
@@ -232,10 +237,29 @@ def without_heat(spec: RunningSpec, speed_rpm: float) -> RunningPoint:
     status, message = "running", ""
     if c <= MIN_RUNNING_CLEARANCE:
         status = "closure"
-        message = (f"the journal reaches the foil at {speed_rpm:.6g} rpm (centrifugal growth "
-                   f"{uc * 1e6:.3g} µm of a {spec.cold_clearance * 1e6:.3g} µm clearance)")
+        close, full = closure_speeds(spec, speed_rpm, uc)
+        message = (f"the journal reaches the foil from {close:,.0f} rpm: its centrifugal "
+                   f"growth leaves the {MIN_RUNNING_CLEARANCE * 1e6:g} µm floor of the "
+                   f"running clearance there and equals the whole "
+                   f"{spec.cold_clearance * 1e6:.4g} µm clearance at {full:,.0f} rpm "
+                   f"(centrifugal growth {uc * 1e6:.3g} µm of a "
+                   f"{spec.cold_clearance * 1e6:.3g} µm clearance at {speed_rpm:,.0f} rpm)")
+        return RunningPoint(speed_rpm, spec.model_name, status, message, spec.cold_clearance,
+                            math.nan, uc, viscosity=spec.viscosity, reason=message)
     return RunningPoint(speed_rpm, spec.model_name, status, message, spec.cold_clearance, c,
                         uc, viscosity=spec.viscosity)
+
+
+def closure_speeds(spec: RunningSpec, speed_rpm: float, growth: float) -> tuple:
+    """(the speed where the running clearance c₀ − u_c falls to
+    :data:`MIN_RUNNING_CLEARANCE`, the speed where u_c = c₀) [rpm], from the centrifugal
+    growth ``growth`` [m] at ``speed_rpm``: u_c ∝ ω² (a linear-elastic spinning cylinder,
+    :func:`gfbopt.thermal.growth.centrifugal_growth`), so each is speed·√(gap/u_c)."""
+    if not growth > 0:
+        return math.inf, math.inf
+    c0 = spec.cold_clearance
+    return (speed_rpm * math.sqrt(max(c0 - MIN_RUNNING_CLEARANCE, 0.0) / growth),
+            speed_rpm * math.sqrt(c0 / growth))
 
 
 class _Balance:
@@ -275,12 +299,28 @@ class _Balance:
             return None
         return max((c0 - MIN_RUNNING_CLEARANCE) / -slope, 0.0)
 
+    def film_ceiling(self) -> float:
+        """The power at which the film reaches the network's film limit
+        (:attr:`~gfbopt.thermal.network.ThermalNetwork.film_limit_k`) [W]: above it the
+        model has no valid state (the film temperature rises with P)."""
+        rate = self.rate["film_k"]
+        room = self.spec.thermal.film_limit_k - self.base.film_k
+        return max(room / rate, 0.0) if rate > 0 else math.inf
+
+    def top(self) -> tuple[float, str]:
+        """(the highest power with a valid state [W] or inf, what sets it: "closure",
+        "film" or "")."""
+        closes, hot = self.ceiling(), self.film_ceiling()
+        if closes is not None and closes <= hot:
+            return closes, "closure"
+        return (hot, "film") if math.isfinite(hot) else (math.inf, "")
+
     def lowest_root(self) -> tuple[Optional[float], float]:
         """(the lowest P > 0 with F(P) = 0, or None; the P where F comes closest to 0)."""
-        if self.clearance(0.0)[0] <= MIN_RUNNING_CLEARANCE:
+        if self.clearance(0.0)[0] <= MIN_RUNNING_CLEARANCE or self.film_ceiling() <= 0.0:
             return None, 0.0
-        top = self.ceiling()
-        if top is None:                      # the clearance never closes: F → +∞
+        top, _ = self.top()
+        if not math.isfinite(top):           # the clearance never closes: F → +∞
             top = max(self.tau(self.base.film_k) * self.spec.petroff_power(
                 self.omega, self.spec.viscosity, self.spec.cold_clearance), 1e-12)
             for _ in range(200):
@@ -384,12 +424,22 @@ def _state(spec: RunningSpec, speed_rpm: float, balance: _Balance, power: float,
 def _runaway(base: RunningPoint, balance: _Balance, closest: float, solves: int,
              sample: DragSample, why: str = "") -> RunningPoint:
     c = balance.clearance(closest)[0]
-    reason = why or ("the clearance closes" if c <= MIN_RUNNING_CLEARANCE * (1 + 1e-6)
-                     else "no fixed point: the drag power grows faster with temperature "
-                     "than the network carries it away")
-    return replace(base, status="runaway", running_clearance=max(c, 0.0),
+    top, kind = balance.top()
+    t = balance.spec.thermal
+    film = (f"film above {t.film_limit_k - KELVIN:.0f} °C: no fixed point below it, "
+            f"{t.film_limit_source}")
+    if why:
+        reason = why
+    elif kind == "film" and c > MIN_RUNNING_CLEARANCE * (1 + 1e-6):
+        reason = film
+    elif c <= MIN_RUNNING_CLEARANCE * (1 + 1e-6):
+        reason = "the clearance closes"
+    else:
+        reason = ("no fixed point: the drag power grows faster with temperature than the "
+                  "network carries it away")
+    return replace(base, status="runaway", running_clearance=math.nan,
                    message=f"thermal runaway at {base.speed_rpm:.6g} rpm ({reason})",
-                   static_solves=solves, sample=sample)
+                   reason=reason, static_solves=solves, sample=sample)
 
 
 @dataclass(frozen=True)
@@ -400,20 +450,27 @@ class SpeedLine:
     limit_rpm: float = math.nan           # first failing speed (NaN: none in the range)
     limit_low_rpm: float = math.nan       # the last good speed below it
     limit_kind: str = ""                  # "runaway" or "closure"
+    limit_reason: str = ""                # the failing point's reason
 
     @property
     def message(self) -> str:
         if not math.isfinite(self.limit_rpm):
             return ""
-        if self.limit_kind == "closure":
-            return f"the journal reaches the foil at {self.limit_rpm:.6g} rpm"
-        return f"thermal runaway from {self.limit_rpm:.6g} rpm"
+        bracket = (f"bracketed in [{self.limit_low_rpm:,.0f}, {self.limit_rpm:,.0f}] rpm")
+        if self.limit_kind == "closure":     # closed form (closure_speeds): exact
+            return self.limit_reason or f"the journal reaches the foil from " \
+                f"{self.limit_rpm:,.0f} rpm ({bracket})"
+        return (f"thermal runaway from {self.limit_rpm:,.0f} rpm ({bracket}"
+                + (f"; {self.limit_reason}" if self.limit_reason else "") + ")")
 
 
 def speed_line(spec: RunningSpec, speeds_rpm, drag: DragFunction, *,
                bracket: float = 0.005, **kwargs) -> SpeedLine:
     """Running points at increasing ``speeds_rpm``, each seeded by the one below; at the
-    first failure, the limit speed is bracketed by bisection to ``bracket`` (relative)."""
+    first failure, the limit speed is bracketed by bisection to ``bracket`` (relative); a
+    closure by the centrifugal growth alone is found in closed form
+    (:func:`closure_speeds`), a closure or runaway of the heat balance by bisection.  The
+    last point is the first failing one's (at the speed asked)."""
     points, prior = [], None
     speeds = sorted(float(s) for s in speeds_rpm)
     for k, speed in enumerate(speeds):
@@ -421,14 +478,21 @@ def speed_line(spec: RunningSpec, speeds_rpm, drag: DragFunction, *,
         points.append(point)
         if not point.converged:
             low = speeds[k - 1] if k else 0.0
-            high = speed
+            high, failing = speed, point
+            low = low if without_heat(spec, low).converged else 0.0
+            cold = without_heat(spec, speed)
+            if cold.status == "closure":    # closed form; the heat balance may fail below
+                close = closure_speeds(spec, speed, cold.centrifugal_growth)[0]
+                high = min(speed, max(close * (1 + 1e-12), low))
+                failing = without_heat(spec, high)
             while high - low > bracket * high:
                 mid = 0.5 * (low + high)
                 trial = running_point(spec, mid, drag, prior=prior, **kwargs)
                 if trial.converged:
                     low, prior = mid, trial.sample or prior
                 else:
-                    high = mid
-            return SpeedLine(tuple(points), high, low, point.status)
+                    high, failing = mid, trial
+            return SpeedLine(tuple(points), high, low, failing.status,
+                             failing.reason)
         prior = point.sample or prior
     return SpeedLine(tuple(points))
