@@ -11,6 +11,7 @@ main job (``gfbopt run problems/rotor_bearing_design.toml``) and of the blower r
 """
 import json
 import os
+import tomllib
 from pathlib import Path
 
 import matplotlib.pyplot as plt
@@ -38,9 +39,12 @@ print(f"{len(evaluations)} designs evaluated, {int(evaluations['feasible'].sum()
 for column in ("first_onset_speed_rpm", "total_power_loss_w", "min_film_lowest_speed_um"):
     unit, meaning = describe(column)
     print(f"{column} [{unit}]: {meaning}")
-print(f"chosen: c = {chosen['radial_clearance_um']:.3g} µm, shims "
-      f"{chosen['preload_depth_um']:.3g} µm, first onset {chosen['first_onset_speed_rpm']:,.0f} "
-      f"rpm ({chosen['first_mode']}), {chosen['total_power_loss_w']:.0f} W at the top speed")
+# the design variables are the study file's, columns of the tables (per bearing: "A:...")
+study = tomllib.loads((ROOT / summary["problem_file"]).read_text())
+variables = [v["name"] for v in study["variables"]]
+design = ", ".join(f"{name} {chosen[name]:.3g}" for name in variables)
+print(f"chosen: {design}; first onset {chosen['first_onset_speed_rpm']:,.0f} rpm "
+      f"({chosen['first_mode']}), {chosen['total_power_loss_w']:.0f} W at the top speed")
 
 # %%
 # The trade-off: first onset against drag

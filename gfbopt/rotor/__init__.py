@@ -41,6 +41,7 @@ module                     answers
 :mod:`.campbell`           full-system eigenvalues at one speed
 :mod:`.tracking`           Campbell modes tracked over speed and named as the onsets
 :mod:`.diagrams`           Campbell diagram, imbalance response, per-bearing approximation
+:mod:`.friction_onset`     the settled whirl of a rotor whose bumps rub (describing function)
 :mod:`.analyse`            :func:`~.analyse.analyse_rotor` — everything ``gfbopt rotor`` answers
 :mod:`.ross_bridge`        each bearing's K and C in the form ROSS's ``BearingElement`` takes
 =========================  ==================================================================
