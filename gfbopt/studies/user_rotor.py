@@ -98,7 +98,8 @@ def on_user_rotor(data: dict, file: str, schema: dict, rotor: Optional[str],
         out["title"], out["notes"] = _retitled(data, name, kind, mine, top_speed, said)
         if isinstance(data.get("source"), str):
             out["source"] = (f"{data['source']} (the study {file} run "
-                             f"{' '.join(said)}: the rotor and top speed are the user's)")
+                             f"{' '.join(said)}: the rotor and top speed are the user's; a "
+                             "rotor or speed the citation names is the shipped study's)")
     return out
 
 
