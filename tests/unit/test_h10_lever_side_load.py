@@ -44,3 +44,28 @@ def test_lever_unstable_at_the_lowest_speed_says_so():
     text = answers_text([a], 30000.0, 4000.0)
     assert "unstable at the lowest speed" in text
     assert "the first onset is 4,000 rpm" not in text
+
+
+def test_what_it_would_take_names_a_lever_stuck_unstable_at_the_lowest_speed():
+    """Every evaluation is unstable at the lowest speed (its 'first onset' is the lowest
+    speed, 4,000 rpm): the answer says that, not 'the first onset is 4,000 rpm'."""
+    from types import SimpleNamespace
+
+    from gfbopt.design.lever_runs import LeverEvaluations, what_it_would_take
+
+    system = load_rotor(ROOT / "problems" / "rotors" / "blower.toml")
+    settings = SimpleNamespace(top_speed_rpm=30000.0, loss_factor=0.0)
+    problem = SimpleNamespace(feasible=lambda result: True)
+
+    def run_tasks(function, arguments):          # no workers: a planted evaluation
+        return [(k, {"first_onset_speed_rpm": 4000.0, "success": True,
+                     "onset_status": "unstable at the lowest speed"})
+                for k, _ in enumerate(arguments)]
+
+    ev = LeverEvaluations(None, system, {}, settings, problem, run_tasks=run_tasks)
+    lever = Lever("side_load_n", "N", "a side load", 0.0, 200.0)
+    (answer,) = what_it_would_take((lever,), ev, 4000.0)
+    assert not answer.found and answer.limit_onset_rpm == 4000.0
+    assert "still unstable at the lowest speed (4,000 rpm)" in answer.message
+    text = answers_text([answer], 30000.0, 4000.0)
+    assert "unstable at the lowest speed" in text and "the first onset is" not in text
