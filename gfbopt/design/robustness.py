@@ -179,6 +179,8 @@ def whirl_at_top_speed(system, design: dict, settings, revolutions: float,
         ModelOptions(loss_factor=settings.loss_factor), b.options))
         for b in designed.bearings)
     designed = dataclasses.replace(designed, bearings=supports)
+    if any((b.options.friction_coefficient or 0.0) > 0 for b in designed.bearings):
+        return friction_whirl_at_top_speed(designed, settings)   # the bumps rub (issue 29)
     from ..progress import Fraction
 
     reporter = (Fraction(max(1, math.ceil(revolutions)), progress) if progress is not None
@@ -200,4 +202,31 @@ def whirl_at_top_speed(system, design: dict, settings, revolutions: float,
             "limit_cycle_um": number(b.get("limit_cycle_amplitude_um")),
             "settled": bool(b.get("limit_cycle_settled")),
             "whirl_frequency_hz": number(b.get("limit_cycle_frequency_hz"))})
+    return out
+
+
+def friction_whirl_at_top_speed(designed, settings) -> dict:
+    """The top-speed whirl of a rotor whose bearing files state the bumps' Coulomb friction
+    (the rotor transient carries no sliders): the describing function's settled orbit
+    (:func:`gfbopt.rotor.friction_onset.settled_whirl`, search grid), in the keys of
+    :func:`whirl_at_top_speed` plus ``model`` and ``verdict``."""
+    from ..errors import ParameterError
+    from ..rotor.friction_onset import MODEL, settled_whirl
+    from ..rotor.supports import resolve_rotor
+
+    out = {"revolutions": 0.0, "grid": str(settings.grid), "success": True, "message": "",
+           "contact": False, "contact_bearing": None, "contact_time_s": math.nan,
+           "model": MODEL, "bearings": []}
+    try:
+        orbit = settled_whirl(resolve_rotor(designed, settings.grid), settings.top_speed_rpm)
+    except ParameterError as exc:
+        return {**out, "success": False, "message": str(exc), "verdict": str(exc)}
+    out.update(success=orbit.converged, verdict=orbit.verdict,
+               message="" if orbit.converged else orbit.verdict)
+    for name, amp in zip(orbit.bearings, orbit.amplitude_um):
+        out["bearings"].append({
+            "bearing": name, "min_film_um": orbit.min_film_um,
+            "status": "describing function" if orbit.bounded else "unbounded",
+            "limit_cycle_um": amp, "settled": bool(orbit.bounded),
+            "whirl_frequency_hz": orbit.whirl_frequency_hz})
     return out

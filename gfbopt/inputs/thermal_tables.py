@@ -75,6 +75,10 @@ THERMAL = Table("thermal", "the lumped thermal network of the bearing (film, jou
     Field("side_leakage", "choice", "text", "film: the gas leaving the film's ends carries "
           "c_p (T_f − T_a) per kg (flow from the film's pressure); none: left out",
           default="film", choices=("film", "none")),
+    Field("max_film_temperature", "number", "K", "highest film temperature with a valid "
+          "state, e.g. the foil's material limit (not stated: 1900 K, the top of Sutherland's "
+          "range for air, White 2006 Table 1-2); above it the answer is thermal runaway",
+          default=None, positive=True),
 ), rules=("needs a [journal] table with expansion_coefficient",
           "every node (film, journal, foil, sleeve) has a path of conductances > 0 to the "
           "ambient"))

@@ -205,27 +205,7 @@ def plan(study: Study):
     check_starts(tuple(v for v in levers if v.name not in p.problem.names
                        and v.name.split(":")[-1] not in p.problem.names),
                  p.system, p.settings, study.file)
-    check_top_speed_transient(p, study)
     return p
-
-
-def check_top_speed_transient(p, study: Study) -> None:
-    """The top-speed orbit (``limit_cycle_revolutions`` > 0) runs the rotor transient, which
-    does not carry the bumps' Coulomb sliders: a bearing with friction_coefficient > 0 is
-    refused here, before the search (one ParameterError naming the study file, the rotor's
-    bearing and its file, the key and the rule), not after it."""
-    if not p.limit_cycle_revolutions > 0.0:
-        return
-    for b in p.system.bearings:
-        mu = b.options.friction_coefficient or 0.0
-        if mu > 0.0:
-            raise ParameterError(
-                f"{study.file}: rotor {study.spec.get('rotor')}: bearing {b.name} "
-                f"({b.file}) friction_coefficient", mu,
-                "the top-speed orbit (limit_cycle_revolutions = "
-                f"{p.limit_cycle_revolutions:g}) runs the rotor transient, which does not "
-                "model the bumps' Coulomb friction; use friction_coefficient = 0 or "
-                "limit_cycle_revolutions = 0")
 
 
 #: cost of an evaluation against one on a grid with ``cells`` times the nodes: measured on

@@ -103,6 +103,9 @@ def whirl_text(whirl, top: float) -> str:
     """The whirl at the top speed in words (the rotor transient's orbit)."""
     if whirl is None:
         return f"the whirl at {top:,.0f} rpm was not computed (limit_cycle_revolutions = 0)"
+    if whirl.get("model"):          # the bumps rub: the describing function's answer
+        return (f"at {top:,.0f} rpm {whirl['verdict']} (by the {whirl['model']}, "
+                f"{whirl['grid']} grid)")
     if whirl["contact"]:
         return (f"at {top:,.0f} rpm the whirl grows until the film closes at bearing "
                 f"{whirl['contact_bearing']} after {whirl['contact_time_s'] * 1e3:.0f} ms "
@@ -165,8 +168,9 @@ def report(study, plan, search, run_tasks, stages, started: float, store,
                               if r["point"] != chosen["point"]]
     whirl = None            # first: its length (it ends at contact) is the least known
     step = stages.stage("whirl at top speed")
+    rubbing = any((b.options.friction_coefficient or 0.0) > 0 for b in plan.system.bearings)
     if (chosen is not None and chosen["first_onset_speed_rpm"] < s.top_speed_rpm
-            and plan.limit_cycle_revolutions > 0):
+            and (plan.limit_cycle_revolutions > 0 or rubbing)):
         from ..design.robustness import whirl_at_top_speed
 
         whirl = whirl_at_top_speed(plan.system, {n: float(chosen[n]) for n in problem.names},

@@ -13,18 +13,18 @@ TERMS: dict[str, tuple[str, str]] = {
     "cold_clearance_um": ("µm", "radial clearance as stated, at the reference temperature "
                           "and at rest"),
     "running_clearance_um": ("µm", "radial clearance at speed and temperature: cold − "
-                             "centrifugal growth − thermal growth"),
+                             "centrifugal growth − thermal growth; null when there is no running state (thermal runaway or closure)"),
     "centrifugal_growth_um": ("µm", "the journal's radial growth at speed (Lamé, plane "
                               "stress, free surfaces)"),
     "thermal_growth_um": ("µm", "net thermal closing of the clearance: journal growth − "
-                          "sleeve bore growth (α r ΔT each)"),
+                          "sleeve bore growth (α r ΔT each); null when there is no running state (thermal runaway or closure)"),
     "journal_thermal_growth_um": ("µm", "the journal's thermal growth α_j R (T_j − T_ref)"),
     "sleeve_thermal_growth_um": ("µm", "the sleeve bore's thermal growth α_s (R + c)(T_s − "
                                  "T_ref)"),
     "viscosity_pa_s": ("Pa s", "gas viscosity at the mean film temperature (Sutherland; the "
-                       "stated one without [thermal])"),
+                       "stated one without [thermal]); null when there is no running state (thermal runaway or closure)"),
     "film_temperature_c": ("°C", "mean film temperature of the lumped heat balance (empty "
-                           "without [thermal])"),
+                           "without [thermal]); null when there is no running state (thermal runaway or closure)"),
     "journal_temperature_c": ("°C", "journal temperature of the lumped heat balance"),
     "foil_temperature_c": ("°C", "top foil and bump temperature of the lumped heat balance"),
     "sleeve_temperature_c": ("°C", "sleeve (bearing housing bore) temperature of the lumped "
