@@ -133,7 +133,8 @@ def test_solver_key_matches_the_build():
 
 
 @pytest.mark.parametrize("kwargs, name", [
-    ({"grid": "72x20"}, "grid"),
+    ({"grid": (72, 20)}, "grid"),           # a Grid or "72x20" is a grid; a tuple is not
+    ({"grid": "72x"}, "grid"),
     ({"film": "open"}, "film"),
     ({"foil_law": "rigid"}, "foil_law"),
     ({"ipopt_options": ["ipopt.max_iter", 3]}, "ipopt_options"),
