@@ -301,7 +301,7 @@ def plan_rotor_design(study, study_hash: str = "") -> RotorDesignPlan:
 
     s = study.spec
     try:
-        system = load_rotor(study.directory / s["rotor"])
+        system = load_rotor(study.directory / s["rotor"], running=True)   # clearance at speed
     except ParameterError as exc:
         raise study.where("rotor").error(str(s["rotor"]), f"{exc.name}: {exc.rule}") from None
     low, top = s["speed_range_rpm"]

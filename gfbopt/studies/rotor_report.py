@@ -88,6 +88,11 @@ def verdict(chosen, why: str, plan, check, whirl=None) -> str:
                        "search grid is too coarse for this limit")
     film = (f"minimum film {chosen['min_film_lowest_speed_um']:.2f} µm at {s.speed_low_rpm:,.0f} rpm under "
             f"{s.heaviest_load_factor:g}× the static load")
+    heated = [b.name for b in plan.system.bearings if getattr(b, "running_tables", ())]
+    if heated:          # the clearance at speed: say which model the answer comes from
+        honest = (f", with bearing{'s' if len(heated) > 1 else ''} {' and '.join(heated)} at "
+                  "the running clearance of its heat balance and growth at every speed"
+                  + honest)
     if chosen["first_onset_speed_rpm"] >= top:
         return (f"Stable to {top:,.0f} rpm with {describe(chosen, names)}: first onset "
                 f"{_onset_text(chosen, s.search_high_rpm)}, {chosen['total_power_loss_w']:.0f} W "
@@ -103,13 +108,17 @@ def whirl_text(whirl, top: float) -> str:
     """The whirl at the top speed in words (the rotor transient's orbit)."""
     if whirl is None:
         return f"the whirl at {top:,.0f} rpm was not computed (limit_cycle_revolutions = 0)"
+    if whirl.get("running") and whirl["running"].get("failure"):
+        return f"the orbit at {top:,.0f} rpm was not run: {whirl['running']['failure']}"
     if whirl.get("model"):          # the bumps rub: the describing function's answer
         return (f"at {top:,.0f} rpm {whirl['verdict']} (by the {whirl['model']}, "
                 f"{whirl['grid']} grid)")
+    frozen = (" (each bearing held at its running clearance and viscosity at that speed)"
+              if whirl.get("running") else "")
     if whirl["contact"]:
         return (f"at {top:,.0f} rpm the whirl grows until the film closes at bearing "
                 f"{whirl['contact_bearing']} after {whirl['contact_time_s'] * 1e3:.0f} ms "
-                "(no limit cycle within the film)")
+                f"(no limit cycle within the film){frozen}")
     if not whirl["success"]:
         return (f"the orbit at {top:,.0f} rpm on the {whirl['grid']} grid failed "
                 f"({whirl['message']}): no limit cycle to report")

@@ -34,7 +34,7 @@ def check_rotor_option(value: str) -> Path:
             "no such rotor file (a path from the current folder)"
         raise ParameterError("--rotor", value, rule)
     try:
-        load_rotor(path)
+        load_rotor(path, running=True)
     except ParameterError as exc:
         raise ParameterError("--rotor", value, f"is not a valid rotor file ({exc.name} = "
                              f"{exc.value!r}: {exc.rule})") from None
@@ -125,7 +125,7 @@ def _retitled(data: dict, name: str, kind, mine: Optional[Path], top_speed,
     notes = [n for n in data.get("notes") or [] if isinstance(n, str)]
     described = []
     if mine is not None:
-        system = load_rotor(mine)
+        system = load_rotor(mine, running=True)
         described.append(f"the rotor is {mine} ({system.body.name}, "
                          f"{system.total_mass:.4g} kg)")
         dropped, kept = notes, []

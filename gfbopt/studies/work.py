@@ -178,7 +178,7 @@ def check_file_names(spec: dict, directory, where: str) -> None:
     path = Path(directory) / spec["rotor"]
     if not path.is_file():                  # the plan names the key (rotor = ...) and the file
         return
-    system = load_rotor(path)
+    system = load_rotor(path, running=True)      # names and speeds only: any rotor file
     span = spec.get("speed_range_rpm")
     if isinstance(span, (list, tuple)) and len(span) == 2:
         check_rotor_speeds(system, span, f"{where}: speed_range_rpm")

@@ -148,6 +148,7 @@ def run_profile(rotor: Union[RotorSystem, RotorInput], profile: SpeedProfile, *,
         raise ParameterError("perturbation", perturbation,
                              f"must be one of {', '.join(PERTURBATIONS)}")
     grid = as_grid(grid)
+    _refuse_running_tables(rotor)
     inp = _rotor(rotor)
     mu, scale = np.broadcast_arrays(_check_batch("inertia_scale", inertia_scale),
                                     _check_batch("imbalance_scale", imbalance_scale))
@@ -188,6 +189,19 @@ def run_profile(rotor: Union[RotorSystem, RotorInput], profile: SpeedProfile, *,
                 "max_step_rad": RAMP_MAX_STEP if profile.kind != "orbit" else 0.1}
     return summarise(run, profile, inp, solutions, settings, system=system,
                      linear_onset=linear_onset, **post)
+
+
+def _refuse_running_tables(rotor) -> None:
+    """The rotor transient runs each bearing at one clearance and viscosity: a bearing read
+    with its [journal]/[thermal] tables (load_rotor(..., running=True)) is refused rather than
+    run at its cold clearance; freeze it at a speed's running condition first
+    (:func:`gfbopt.design.robustness.frozen_at_running_condition`)."""
+    for b in getattr(rotor, "bearings", ()):
+        if getattr(b, "running_tables", ()):
+            raise ParameterError(f"bearing {b.name} ({b.file})", "[journal]/[thermal]",
+                                 "the rotor transient does not carry the heat balance: "
+                                 "freeze the bearings at a speed's running condition, or load "
+                                 "the rotor without running=True (cold clearance)")
 
 
 def rotor_orbit(rotor, speed_rpm: float, revolutions: float, *, grid: Grid,
