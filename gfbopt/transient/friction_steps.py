@@ -22,7 +22,7 @@ import numpy as np
 
 from ..errors import ParameterError
 from .result import check_positive
-from .rk4 import RK4_STABILITY_RADIUS, STEP_SAFETY, rk4_step
+from .rk4 import RK4_STABILITY_RADIUS, STEP_SAFETY, rk4_first_step, rk4_step
 from .rkc import (MAX_STAGES, STAGE_SAFETY, accuracy_step, rkc_stability_interval, rkc_step,
                   stages_for)
 from .system import State, TransientModel, stiffness_bound
@@ -54,14 +54,7 @@ def first_step(method: str, tm: TransientModel, state: State, slider, mass: np.n
     """(Δτ, stages) at the start of a run (stages None for rk4)."""
     rho = stiffness_bound(state, tm, slider)
     if method == "rk4":
-        limit = RK4_STABILITY_RADIUS / rho
-        if time_step is None:
-            return STEP_SAFETY * limit, None
-        dt = check_positive("time_step", time_step)
-        if dt > limit:
-            raise ParameterError("time_step", time_step, f"exceeds the RK4 stability limit "
-                                 f"{limit:.4g} of the discretised system (Gershgorin bound)")
-        return dt, None
+        return rk4_first_step(rho, time_step), None
     dt = (check_positive("time_step", time_step) if time_step is not None
           else accuracy_step(_stuck_model(tm), state, mass))
     stages = stages_for(dt * rho)

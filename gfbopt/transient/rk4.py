@@ -93,6 +93,21 @@ def stable_time_step(tm: TransientModel, state: State, safety: float = STEP_SAFE
 
 
 @single_threaded
+def rk4_first_step(rho: float, time_step=None) -> float:
+    """Δτ of an RK4 run whose right-hand side has the stiffness bound ``rho``: STEP_SAFETY
+    times the stability limit RK4_STABILITY_RADIUS/ρ, or the ``time_step`` given — refused in
+    one line above that limit (every RK4 driver: one bearing, its friction, the rotor)."""
+    limit = RK4_STABILITY_RADIUS / rho
+    if time_step is None:
+        return STEP_SAFETY * limit
+    dt = check_positive("time_step", time_step)
+    if dt > limit:
+        raise ParameterError("time_step", time_step, f"exceeds the RK4 stability limit "
+                             f"{limit:.4g} of the discretised system (Gershgorin bound); use "
+                             "a smaller step")
+    return dt
+
+
 def integrate_rk4(tm: TransientModel, mass: np.ndarray, revolutions: float, *,
                   kick: float, initial: Optional[State], sample_every: float,
                   contact_film: float, settle: float, time_step: Optional[float] = None,
@@ -105,15 +120,7 @@ def integrate_rk4(tm: TransientModel, mass: np.ndarray, revolutions: float, *,
     if initial is None:
         state.u[:] = kick / math.sqrt(2)
         state.v[:] = kick / math.sqrt(2)
-    limit = RK4_STABILITY_RADIUS / stiffness_bound(state, tm)
-    if time_step is None:
-        dt = STEP_SAFETY * limit
-    else:
-        dt = check_positive("time_step", time_step)
-        if dt > limit:
-            raise ParameterError("time_step", time_step,
-                                 f"exceeds the RK4 stability limit {limit:.4g} of the "
-                                 "discretised system (Gershgorin bound); use a smaller step")
+    dt = rk4_first_step(stiffness_bound(state, tm), time_step)
     t_end = 2 * math.pi * revolutions
     per_sample = max(1, int(round(sample_every / dt)))
     n_steps = int(math.ceil(t_end / dt - 1e-9))

@@ -10,7 +10,7 @@ import numpy as np
 
 from ..errors import ParameterError
 from ..inputs.checks import check_positive
-from .rk4 import RK4_STABILITY_RADIUS, STEP_SAFETY
+from .rk4 import rk4_first_step
 from .rkc import (MAX_STAGES, MAX_STEP, STAGE_SAFETY, STEPS_PER_FILM_TIME,
                   STEPS_PER_ROTOR_PERIOD, film_time, rkc_stability_interval, stages_for)
 from .rotor_batch import Runs
@@ -158,14 +158,7 @@ def _first_step(rhs: RotorRightHandSide, z: np.ndarray, rho: float, top: float, 
     """(Δτ, stages) at the start; a given step or stage count outside the stability region
     is refused with the bound it violates."""
     if method == "rk4":
-        limit = RK4_STABILITY_RADIUS / rho
-        if time_step is None:
-            return STEP_SAFETY * limit, None
-        dt = check_positive("time_step", time_step)
-        if dt > limit:
-            raise ParameterError("time_step", time_step, f"exceeds the RK4 stability limit "
-                                 f"{limit:.4g} of the discretised system (Gershgorin bound)")
-        return dt, None
+        return rk4_first_step(rho, time_step), None
     stages = _check_stages(stages)
     dt = (check_positive("time_step", time_step) if time_step is not None
           else accuracy_step(rhs, z, top, max_step, duration))
