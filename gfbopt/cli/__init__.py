@@ -45,8 +45,8 @@ COMMANDS += (capacity, export_ross)
 
 
 def build_parser() -> Parser:
-    parser = Parser(prog="gfbopt", description="Analysis and design of rigid rotors on "
-                    "bump-type gas foil bearings.")
+    parser = Parser(prog="gfbopt", description="Analysis and design of rotors (rigid, or "
+                    "a flexible shaft) on bump-type gas foil bearings.")
     parser.add_argument("--version", action="version", version=f"gfbopt {__version__}")
     sub = parser.add_subparsers(dest="command", required=True, parser_class=Parser)
     for module in COMMANDS:

@@ -1,4 +1,4 @@
-"""``gfbopt rotor``: a rigid rotor on two foil bearings — which mode whirls first, from what
+"""``gfbopt rotor``: a rotor (rigid, or a flexible shaft) on two foil bearings — which mode whirls first, from what
 speed, the Campbell diagram and the imbalance response.  A thin layer over
 :func:`gfbopt.rotor.analyse.analyse_rotor`::
 
@@ -38,8 +38,9 @@ from .common import emit, number
 
 
 def register(subparsers) -> None:
-    sub = subparsers.add_parser("rotor", help="a rigid rotor on two foil bearings: onset of "
-                                "each mode, Campbell diagram, imbalance response (SI)")
+    sub = subparsers.add_parser("rotor", help="a rotor (rigid, or a flexible shaft) on two foil "
+                                "bearings: onset of each mode, Campbell diagram, imbalance "
+                                "response (SI)")
     sub.add_argument("rotor_file", metavar="ROTOR.toml", help="rotor file (SI; "
                      "docs/formats/rotor_file.md)")
     sub.add_argument("--speed-range", type=number("speed-range"), nargs=2, default=None,

@@ -6,7 +6,7 @@
     gfbopt rotor rotor.toml --run-up 5000 60000 --rate 20000 --imbalance-grade 2.5 --plot out/
     gfbopt rotor rotor.toml --coast-down 60000 5000 --rate 20000 --json --csv out/
 
-One transient of the whole rigid rotor on the films of both bearings
+One transient of the whole rotor (rigid, or a condensed shaft) on the films of both bearings
 (:mod:`gfbopt.transient.rotor_analysis`): orbits at both journals [µm], the limit cycle at a
 constant speed, or the waterfall, 1× and subsynchronous components of a run-up/coast-down
 with the speed where the subsynchronous line appears beside the linear onset; the smallest
@@ -95,7 +95,8 @@ def add_arguments(parser) -> None:
     g.add_argument("--imbalance-plane", nargs=3, action="append", type=number("imbalance-plane"),
                    metavar=("G_MM", "PHASE_DEG", "POSITION_M"), default=None,
                    help="an imbalance plane: amount [g mm], phase [deg], axial position [m] "
-                   "from the CG (repeat; replaces the file's imbalance; also for "
+                   "as in the rotor file (from the CG of a rigid rotor, from the shaft's first "
+                   "end with [[shaft]]) (repeat; replaces the file's imbalance; also for "
                    "--imbalance-response)")
     g.add_argument("--reference-whirl-ratio", type=number("reference-whirl-ratio"),
                    default=None, help="ν_ref of a damped foil (η > 0; default each bearing's "
