@@ -286,7 +286,7 @@ def handle(args) -> int:
     if args.stages is not None and method != "rkc":
         raise ParameterError("--stages", args.stages, "applies to --method rkc only")
     grid = Grid.parse(args.grid)
-    system = load_rotor(_rotor_path(args))
+    system = load_rotor(_rotor_path(args), running=True)   # an orbit holds its speed's condition
     planes = imbalance_planes(args, system, profile.top_rpm)
     if planes is not None:
         system = replace(system, imbalance=planes)

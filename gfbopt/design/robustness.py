@@ -183,6 +183,8 @@ def whirl_at_top_speed(system, design: dict, settings, revolutions: float,
         return friction_whirl_at_top_speed(designed, settings)   # the bumps rub (issue 29)
     running = None
     if any(b.running_tables for b in designed.bearings):     # the clearance at speed (issue 28)
+        from ..rotor.supports import frozen_at_running_condition
+
         designed, running = frozen_at_running_condition(designed, settings.top_speed_rpm,
                                                         settings.grid)
         if running.get("failure"):
@@ -242,27 +244,3 @@ def friction_whirl_at_top_speed(designed, settings) -> dict:
             "whirl_frequency_hz": orbit.whirl_frequency_hz})
     return out
 
-
-def frozen_at_running_condition(system, speed_rpm: float, grid) -> tuple:
-    """(the rotor with each bearing frozen at its running condition at ``speed_rpm``: the
-    running clearance and the film viscosity of its heat balance there, no tables left, so the
-    rotor transient can run it; a summary: the model, each bearing's running point, or
-    ``failure`` — a thermal runaway or closure at that speed, in words).  The transient then
-    holds the clearance and viscosity of that speed for its whole run (a constant-speed orbit:
-    the temperatures are taken as settled)."""
-    from ..rotor.running import running_columns
-    from ..rotor.supports import resolve_rotor, support_states
-
-    states = support_states(resolve_rotor(system, grid), speed_rpm)
-    if states.failure:
-        f = states.failure
-        return system, {"model": "heat balance + growth", "speed_rpm": speed_rpm,
-                        "failure": f"{f.get('kind', 'failure')} at bearing {f.get('bearing')} "
-                                   f"at {speed_rpm:,.0f} rpm: {f.get('message', '')}"}
-    bearings, points = [], {}
-    for b, st in zip(system.bearings, states.states):
-        bearings.append(dataclasses.replace(b, geometry=st.case.bearing, running_tables=()))
-        points[b.name] = running_columns(st.running) if st.running is not None else {}
-    frozen = dataclasses.replace(system, bearings=tuple(bearings))
-    return frozen, {"model": "heat balance + growth, frozen at the top speed's running "
-                             "condition", "speed_rpm": speed_rpm, "bearings": points}

@@ -382,3 +382,26 @@ def weight_note(system: RotorSystem) -> str:
     source = ("standard gravity" if g == STANDARD_GRAVITY else f"g = {g:g} m/s²")
     return (f"weight m g ({source}) along {system.gravity_direction_deg:g}° plus "
             f"{len(system.side_loads)} side load(s), shared by force and moment balance")
+
+
+def frozen_at_running_condition(system, speed_rpm: float, grid) -> tuple:
+    """(the rotor with each bearing frozen at its running condition at ``speed_rpm``: the
+    running clearance and the film viscosity of its heat balance there, no tables left, so the
+    rotor transient can run it; a summary: the model, each bearing's running point, or
+    ``failure`` — a thermal runaway or closure at that speed, in words).  The transient then
+    holds the clearance and viscosity of that speed for its whole run (a constant-speed orbit:
+    the temperatures are taken as settled)."""
+    states = support_states(resolve_rotor(system, grid), speed_rpm)
+    if states.failure:
+        f = states.failure
+        return system, {"model": "heat balance + growth", "speed_rpm": speed_rpm,
+                        "failure": f"{f.get('kind', 'failure')} at bearing {f.get('bearing')} "
+                                   f"at {speed_rpm:,.0f} rpm: {f.get('message', '')}"}
+    bearings, points = [], {}
+    for b, st in zip(system.bearings, states.states):
+        bearings.append(replace(b, geometry=st.case.bearing, running_tables=()))
+        points[b.name] = running_columns(st.running) if st.running is not None else {}
+    frozen = replace(system, bearings=tuple(bearings))
+    return frozen, {"model": f"heat balance + growth, frozen at the running condition of "
+                             f"{speed_rpm:,.0f} rpm", "speed_rpm": speed_rpm,
+                    "bearings": points}

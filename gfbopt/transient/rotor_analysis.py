@@ -148,7 +148,9 @@ def run_profile(rotor: Union[RotorSystem, RotorInput], profile: SpeedProfile, *,
         raise ParameterError("perturbation", perturbation,
                              f"must be one of {', '.join(PERTURBATIONS)}")
     grid = as_grid(grid)
-    _refuse_running_tables(rotor)
+    rotor, running = _at_running_condition(rotor, profile, grid)
+    if running is not None:
+        system = rotor
     inp = _rotor(rotor)
     mu, scale = np.broadcast_arrays(_check_batch("inertia_scale", inertia_scale),
                                     _check_batch("imbalance_scale", imbalance_scale))
@@ -187,21 +189,37 @@ def run_profile(rotor: Union[RotorSystem, RotorInput], profile: SpeedProfile, *,
                 "contact_film": contact_film, "foil_travel_m": foil_travel_m,
                 "sample_every_rad": sample_every,
                 "max_step_rad": RAMP_MAX_STEP if profile.kind != "orbit" else 0.1}
+    if running is not None:             # the clearance model each bearing was held at
+        settings["clearance_model"] = running["model"]
+        settings["running_condition"] = running["bearings"]
     return summarise(run, profile, inp, solutions, settings, system=system,
                      linear_onset=linear_onset, **post)
 
 
-def _refuse_running_tables(rotor) -> None:
-    """The rotor transient runs each bearing at one clearance and viscosity: a bearing read
-    with its [journal]/[thermal] tables (load_rotor(..., running=True)) is refused rather than
-    run at its cold clearance; freeze it at a speed's running condition first
-    (:func:`gfbopt.design.robustness.frozen_at_running_condition`)."""
-    for b in getattr(rotor, "bearings", ()):
-        if getattr(b, "running_tables", ()):
-            raise ParameterError(f"bearing {b.name} ({b.file})", "[journal]/[thermal]",
-                                 "the rotor transient does not carry the heat balance: "
-                                 "freeze the bearings at a speed's running condition, or load "
-                                 "the rotor without running=True (cold clearance)")
+def _at_running_condition(rotor, profile, grid) -> tuple:
+    """(the rotor to integrate, its running summary or None).  The rotor transient holds each
+    bearing at one clearance and viscosity: a rotor read with its bearings' [journal]/[thermal]
+    tables (load_rotor(..., running=True)) runs a constant-speed orbit at the running condition
+    of that speed (:func:`gfbopt.rotor.supports.frozen_at_running_condition`: the temperatures
+    taken as settled), and a run-up or coast-down — whose clearance would change with the
+    speed — is refused rather than run at the cold clearance."""
+    heated = [b for b in getattr(rotor, "bearings", ()) if getattr(b, "running_tables", ())]
+    if not heated:
+        return rotor, None
+    b = heated[0]
+    if profile.kind != "orbit":
+        raise ParameterError(f"bearing {b.name} ({b.file})", "[journal]/[thermal]",
+                             f"a {profile.kind} changes the speed and the rotor transient does "
+                             "not carry the heat balance in time: run an orbit at a constant "
+                             "speed (it holds that speed's running condition), or use bearing "
+                             "files without [journal]/[thermal] (cold clearance)")
+    from ..rotor.supports import frozen_at_running_condition
+
+    frozen, running = frozen_at_running_condition(rotor, profile.start_rpm, grid)
+    if running.get("failure"):
+        raise ParameterError(f"bearing {b.name} ({b.file})", "[journal]/[thermal]",
+                             f"has no running state to hold: {running['failure']}")
+    return frozen, running
 
 
 def rotor_orbit(rotor, speed_rpm: float, revolutions: float, *, grid: Grid,
