@@ -58,6 +58,7 @@ from .modes import family
 from .mode_search import (ONSET, SECANT_TOLERANCE, STABLE, UNSTABLE_LOW,  # noqa: F401
                           ModeOnset, guided_onset, mode_onset)
 from .onset import SCAN_RATIO, check_coarse_grid, check_speed_range
+from .running import CLOSURE, RUNAWAY
 from .speed_line import transferred_start
 from .supports import (WHIRL_RANGE, RotorCase, SpeedStates, predicted_starts, resolve_rotor,
                        support_states)
@@ -331,17 +332,22 @@ def _modes(line: SpeedLine, guide: Optional[SpeedLine], speeds: list, tol: float
                 bar.update(1)
         return out
 
-    if guide is not None and all(guide.crossings(s) is not None for s in speeds) and \
-            line.crossings(speeds[0]) is not None:
-        labels = sorted({c.label for s in speeds for c in guide.crossings(s)}
-                        | {c.label for c in line.crossings(speeds[0])})
+    below = _below_thermal_limit(guide, speeds) if guide is not None else speeds
+    if guide is not None and len(below) >= 2 and \
+            all(guide.crossings(s) is not None for s in below) and \
+            line.crossings(below[0]) is not None:
+        labels = sorted({c.label for s in below for c in guide.crossings(s)}
+                        | {c.label for c in line.crossings(below[0])})
 
         def guided(label):
-            found = guided_onset(line, guide, speeds, label, tol)
+            found = guided_onset(line, guide, below, label, tol)
             return found if found is not None else fine_alone(label)
 
         out = refined(labels, guided)
-        if not any(line.states(s).failure for s in line.speeds_solved):
+        if len(below) < len(speeds):     # the fine line's own state at the guide's limit:
+            line.states(speeds[len(below)])    # its thermal limit is bracketed from there
+        if not any(line.states(s).failure and not _thermal(line.states(s).failure)
+                   for s in line.speeds_solved):
             return out
     if guide is not None:                 # the fine grid's own scan (on line: done above)
         with progress(total=len(speeds), desc=f"rotor onset scan on {line.rotor.grid}",
@@ -352,6 +358,29 @@ def _modes(line: SpeedLine, guide: Optional[SpeedLine], speeds: list, tol: float
     valid = [s for s in speeds if line.crossings(s) is not None]
     labels = sorted({c.label for s in valid for c in line.crossings(s)})
     return refined(labels, fine_alone)
+
+
+#: a speed's failures that are a bearing's thermal limit, not its load capacity
+THERMAL_KINDS = (RUNAWAY, CLOSURE)
+
+
+def _thermal(failure: dict) -> bool:
+    """A speed's failure is a bearing's thermal runaway or closed clearance (rotor.running)."""
+    return failure.get("kind") in THERMAL_KINDS
+
+
+def _below_thermal_limit(guide: "SpeedLine", speeds: list) -> list:
+    """The scan speeds below the first one where the guide's bearings run away thermally or
+    their clearance closes (a heated rotor's top speeds): the guided search runs over them, as
+    there is no state above to guide; any other failure keeps every speed (today's rule:
+    everything on the fine line alone)."""
+    for k, s in enumerate(speeds):
+        failure = guide.states(s).failure
+        if failure:
+            return speeds[:k] if _thermal(failure) and all(
+                not guide.states(x).failure or _thermal(guide.states(x).failure)
+                for x in speeds[k:]) else speeds
+    return speeds
 
 
 def without_gyroscopics(system: RotorSystem) -> RotorSystem:
