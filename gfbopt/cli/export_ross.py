@@ -134,7 +134,8 @@ def run(args) -> int:
                   f"{args.rotor_file}, grid {grid}",
                   "ROSS 3.x BearingElement coefficient table (load: "
                   "ross.BearingElement.load(path)); SI: speed, frequency rad/s, k N/m, c N s/m",
-                  f"table span: {span}; ROSS extrapolates linearly outside it")
+                  f"table span: {span}; ROSS extrapolates linearly outside it",
+                  FRAME)
         path = write_ross_table(folder / f"bearing_{support.name}{suffix}", tables, node,
                                 support.name, support.geometry.radial_clearance, header)
         files.append({"bearing": support.name, "file": str(path), "node": node,
@@ -144,10 +145,17 @@ def run(args) -> int:
            "frequency_range_hz": list(f_range), "frequencies": len(freqs),
            "extrapolation": "ROSS extrapolates linearly outside the table's speed and "
                             "frequency span: keep its analysis inside it",
-           "few_points": min(len(speeds), len(freqs)) < ROSS_MIN_AXIS_POINTS}
+           "few_points": min(len(speeds), len(freqs)) < ROSS_MIN_AXIS_POINTS, "frame": FRAME}
     emit(out, args.json, lambda: _report(out, span), {"command": "export-ross",
                                                        "grid": str(grid)})
     return 0
+
+
+#: the coefficients' frame, stated in every file and output (a ROSS model whose x–y differ, e.g.
+#: with gravity along −y, needs the tables rotated into its own frame)
+FRAME = ("the rotor file's x–y (gravity at gravity_direction_deg from +x, 0 by default: x along "
+         "gravity), the shaft spinning from x towards y; a ROSS model with other axes (e.g. "
+         "gravity along −y) needs the tables rotated into its frame")
 
 
 def _report(out: dict, span: str) -> str:
@@ -158,7 +166,8 @@ def _report(out: dict, span: str) -> str:
               "ROSS extrapolates linearly outside this span (coefficients asked for at the "
               "running speed alone extrapolated kxx 35–48 % too high in a trial): keep "
               "run_modal(speed, matched_whirl=True) inside it.",
-              "Load in ROSS: ross.BearingElement.load(path); set its n to your rotor's node."]
+              "Load in ROSS: ross.BearingElement.load(path); set its n to your rotor's node.",
+              f"Frame: {FRAME}."]
     if out["few_points"]:
         lines.append("Note: fewer than 5 points on an axis (ROSS recommends at least 5).")
     return "\n".join(lines)
