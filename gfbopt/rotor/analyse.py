@@ -144,6 +144,8 @@ def imbalance_note(unstable_from_rpm: float) -> str:
 def _shape_columns(shape: dict) -> dict:
     out = {"node_position_m": shape["node_position_m"],
            "phase_b_from_a_deg": shape["phase_b_from_a_deg"]}
+    if "bending_share" in shape:          # a shaft's mode: how much it bends (as in the JSON)
+        out["bending_share"] = shape["bending_share"]
     for name, at in shape["at_bearings"].items():
         for key, value in at.items():
             out[f"{key}_{name}"] = value
