@@ -1,4 +1,4 @@
-"""The one-bearing analyses at the running condition (issue 28): stability at an operating
+"""The one-bearing analyses at the running condition: stability at an operating
 point, onset of whirl, load capacity and lift-off speed, with the running clearance and
 viscosity of :mod:`gfbopt.thermal` (growths, Sutherland, the lumped heat balance).
 

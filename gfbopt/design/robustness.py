@@ -180,9 +180,9 @@ def whirl_at_top_speed(system, design: dict, settings, revolutions: float,
         for b in designed.bearings)
     designed = dataclasses.replace(designed, bearings=supports)
     if any((b.options.friction_coefficient or 0.0) > 0 for b in designed.bearings):
-        return friction_whirl_at_top_speed(designed, settings)   # the bumps rub (issue 29)
+        return friction_whirl_at_top_speed(designed, settings)   # the bumps rub
     running = None
-    if any(b.running_tables for b in designed.bearings):     # the clearance at speed (issue 28)
+    if any(b.running_tables for b in designed.bearings):     # the clearance at speed
         from ..rotor.supports import frozen_at_running_condition
 
         designed, running = frozen_at_running_condition(designed, settings.top_speed_rpm,

@@ -58,7 +58,7 @@ class RotorAnalysis:
 
     def running_fields(self) -> dict:
         """Which model each bearing was analysed with (``thermal_models``) and, with a
-        bearing at its running condition (issue 28), ``running_at_onset`` (bearing → its
+        bearing at its running condition, ``running_at_onset`` (bearing → its
         running clearance, growths, film temperature and viscosity at the first onset),
         ``thermal_limits`` ("thermal runaway at bearing A from N rpm") and
         ``running_cost``."""

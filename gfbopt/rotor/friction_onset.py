@@ -1,6 +1,6 @@
 """The rotor on two bearings whose bumps rub, above its small-motion onset: the orbit it
 settles on by the describing function of the friction elements, or "no bounded orbit inside
-the film" (issue 29; the one-bearing form is :mod:`gfbopt.linear.friction_onset`).
+the film" (the one-bearing form is :mod:`gfbopt.linear.friction_onset`).
 
 For small orbits every loaded bump's spring–slider element is stuck: that is the foundation of
 the rotor's matched-whirl onset and of its Campbell diagram (:mod:`.campbell`).  Above that

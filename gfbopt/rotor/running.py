@@ -1,4 +1,4 @@
-"""The rotor's two bearings at their running condition (issue 28): each bearing at its own
+"""The rotor's two bearings at their running condition: each bearing at its own
 running clearance c(ω, T) and film viscosity μ(T_f) at each speed of the linear analyses
 (onset of every mode, Campbell diagram, imbalance response).
 

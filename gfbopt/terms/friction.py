@@ -1,4 +1,4 @@
-"""Glossary entries of the bumps' Coulomb friction and hardening (issue 29):
+"""Glossary entries of the bumps' Coulomb friction and hardening:
 :mod:`gfbopt.linear.friction_onset` and :mod:`gfbopt.physics.friction`."""
 
 TERMS = {

@@ -1,4 +1,4 @@
-"""Glossary entries of the rotor's settled whirl with the bumps' Coulomb friction (issue 29):
+"""Glossary entries of the rotor's settled whirl with the bumps' Coulomb friction:
 :mod:`gfbopt.rotor.friction_onset` (results/bumps_that_rub/rotor_settled_whirl.csv)."""
 
 TERMS = {

@@ -1,5 +1,5 @@
 """Glossary entries of the two-bearing rotor at its bearings' running condition
-(gfbopt.rotor.running, issue 28; merged into :data:`gfbopt.glossary.GLOSSARY` once listed in
+(gfbopt.rotor.running; merged into :data:`gfbopt.glossary.GLOSSARY` once listed in
 :data:`gfbopt.terms._PARTS`).  The per-bearing columns of the Campbell and imbalance tables
 (``running_clearance_um_A``, ``film_temperature_c_A``, ``viscosity_pa_s_A``) are the
 quantities of gfbopt/terms/thermal.py at the bearing named by the suffix."""

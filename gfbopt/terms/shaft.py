@@ -1,4 +1,4 @@
-"""Glossary entries of the flexible shaft and the ROSS export (issue 27): the rotor file's
+"""Glossary entries of the flexible shaft and the ROSS export: the rotor file's
 ``[[shaft]]`` and ``[[disks]]`` keys (:mod:`gfbopt.inputs.shaft_file`) and the fields of
 ``gfbopt export-ross --json`` (:mod:`gfbopt.cli.export_ross`)."""
 

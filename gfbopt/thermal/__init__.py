@@ -1,6 +1,6 @@
 """The clearance at speed: centrifugal and thermal growth of the journal and the sleeve, the
 gas viscosity against temperature (Sutherland), a lumped thermal network of each bearing and
-the fixed point that ties them to the film's drag power (issue 28).
+the fixed point that ties them to the film's drag power.
 
 - :mod:`.growth`: Lamé plane-stress discs and rings, thermal growth Δr = α r ΔT;
 - :mod:`.viscosity`: Sutherland's law;

@@ -1,4 +1,4 @@
-"""The rotor's settled whirl above its small-motion onset with rubbing bumps (issue 29,
+"""The rotor's settled whirl above its small-motion onset with rubbing bumps (bumps that rub,
 gfbopt.rotor.friction_onset.settled_whirl), 36 x 10:
 
 * the blower rotor (problems/rotors/blower_friction.toml) at speeds just above its stuck onset

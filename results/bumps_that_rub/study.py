@@ -1,5 +1,5 @@
 """Onset speed of the blower rotor's bearing A against the orbit amplitude and the friction
-coefficient (issue 29), one bearing carrying its share of the rotor (cylindrical whirl).
+coefficient, one bearing carrying its share of the rotor (cylindrical whirl).
 
 Bearing A of problems/rotors/blower.toml: the Ruscitto bearing with its file's formulation,
 static load 3.2 kg × 9.81 × 65/100 = 20.4 N, the per-bearing mass M = W/g, so the rotor's

@@ -1,4 +1,4 @@
-"""The one-bearing transient with the bumps' friction against the describing function (issue 29).
+"""The one-bearing transient with the bumps' friction against the describing function.
 
 Cases (Ruscitto bearing file, its formulation; grids as named; the same grid for the linear
 and the transient answer of each row):
