@@ -23,7 +23,9 @@ the rotor's shape (mass, inertias and the gyroscopic term alike), so the rotor i
 Search (as :mod:`gfbopt.linear.crossings` does for one bearing, with n roots instead of
 two): ν(γ) on the scan (24 whirl ratios on (0.02, 1.2) by default, the one-bearing scan,
 with midpoints added wherever a root moves by more than 0.3 of its distance to the next root
-between two points, or its continuation is unsure (MAC below :data:`SURE_MAC`) — near
+between two points — its move taken as the smaller of the plain one and the one from the
+inertia term's trend ν ∝ γ², and no move counted for a decisive shape match
+(:func:`_ambiguous`) — or its continuation is unsure (MAC below :data:`SURE_MAC`) — near
 γ = 1/2 two forward modes can cross the axis 2e-4 apart in γ), the n branches followed by
 continuity of their shapes: the eigenvectors of neighbouring whirl ratios are matched by the
 optimal assignment (:func:`scipy.optimize.linear_sum_assignment`) on 1 − MAC, MAC =
