@@ -20,7 +20,7 @@ from typing import Optional
 import numpy as np
 
 from ..provenance import jsonable
-from . import spectra
+from . import rotor_friction, spectra
 from .rotor_run import RotorRun
 
 #: default window of the waterfall [shaft revolutions at the run's mean speed]
@@ -52,6 +52,9 @@ class RotorTransientResult:
     settings: dict
     description: dict = field(default_factory=dict)
     notes: list = field(default_factory=list)
+    #: bumps that rub: per run, per bearing how an orbit ended (:func:`.rotor_friction.
+    #: bearing_outcomes`); empty without friction or for a ramp
+    friction: list = field(default_factory=list)
 
     @property
     def success(self) -> bool:
@@ -101,6 +104,9 @@ class RotorTransientResult:
                 entry.update(lc.to_dict("limit_cycle_"))
             entry.update(self._synchronous(self.waterfalls[run][k],
                                            bool(self.contacts[run]["contact"])))
+            if self.friction:
+                entry.update({f"friction_{key}": value for key, value in
+                              self.friction[run][k].items() if key != "bearing"})
             out["bearings"].append(entry)
         out.update(self.contacts[run])
         out.update(self.onset)
@@ -244,10 +250,21 @@ def summarise(run: RotorRun, profile, rotor, solutions, settings: dict, *, syste
                          f"η = {d['loss_factor']:g}, ν_ref = {d['reference_whirl_ratio']:.4g} "
                          f"({d['reference_whirl_source']}) at {profile.start_rpm:g} rpm"
                          for d in damping))
+    friction = []
+    if rotor_friction.rubbing(model):
+        settings = {**settings, "bump_friction": rotor_friction.model_words(model)}
+        notes.append("Bumps that rub: " + settings["bump_friction"] + "; " + (
+            "per bearing, how the orbit ended (friction_kind: settled limit cycle, contact or "
+            "end of run): the semi-major axis of the whirl's first harmonic over the last "
+            f"{rotor_friction.PERIODS} whirl periods against the {rotor_friction.PERIODS} "
+            f"before (settled within {rotor_friction.TOLERANCE:g}), 1× removed"
+            if profile.kind == "orbit" else "a ramp states no limit cycle"))
+        if profile.kind == "orbit":
+            friction = [rotor_friction.bearing_outcomes(run, b) for b in range(run.runs.size)]
     description = dict(rotor.description)
     description["bearing_frames_deg"] = [math.degrees(b.frame_angle) for b in model.bearings]
     return RotorTransientResult(run, profile, names, equilibria, films, contacts, falls,
-                                cycles, onset, settings, description, notes)
+                                cycles, onset, settings, description, notes, friction)
 
 
 def _loads(rotor) -> np.ndarray:

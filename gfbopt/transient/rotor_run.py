@@ -48,6 +48,8 @@ from .rkc import MAX_STAGES, MAX_STEP, STAGE_SAFETY, rkc_stability_interval, sta
 from .rotor_steps import (  # noqa: F401  (the step rules; rotor_frequency re-exported)
     PERIOD_CHECKS, _SpeedStep, _check_stages, _first_step, _hermite, _stages_at, accuracy_step,
     rotor_frequency, rotor_period)
+from .rotor_friction import check_method as check_friction_method
+from .rotor_friction import initial_sliders, last_state_words, move_sliders
 from .rotor_system import RotorRightHandSide, RotorTransientModel, Runs, layout
 
 #: film H at which a bearing is in contact (the one-bearing engine's default: the film
@@ -89,6 +91,9 @@ class RotorRun:
     success: bool = True
     message: str = ""
     options: dict = field(default_factory=dict)
+    #: per bearing the sliders Z at the end (B, ...) of a rotor whose bumps rub (rows of the
+    #: runs that reached contact: at their contact step), else None
+    sliders: Optional[tuple] = None
 
     @property
     def time_s(self) -> np.ndarray:
@@ -126,7 +131,8 @@ def integrate_rotor(model: RotorTransientModel, batch: Runs, duration: float,
                     sample_every: float = 0.2, contact_film: float = CONTACT_FILM,
                     foil_travel: Optional[float] = None, check_every: int = 5,
                     max_step: float = MAX_STEP, progress=None,
-                    progress_total: int = 100, exact_end: bool = False) -> RotorRun:
+                    progress_total: int = 100, exact_end: bool = False,
+                    sliders: Optional[tuple] = None) -> RotorRun:
     """Advance a batch of rotor runs over ``duration`` rad of τ from the packed ``initial``
     rows (:func:`.rotor_setup.equilibrium_states`).
 
@@ -142,9 +148,13 @@ def integrate_rotor(model: RotorTransientModel, batch: Runs, duration: float,
     ``progress_total`` (its total: revolutions of an orbit, milliseconds of a ramp);
     exact_end : shorten the last step to end at ``duration`` exactly (a ramp ends at its end
     speed); otherwise whole steps, the last one past the end by less than a step, as the
-    one-bearing engine does.
+    one-bearing engine does.  A bearing whose bumps rub (its model built with friction,
+    :func:`.rotor_setup.build_model`) carries its sliders Z beside the state, moved by the
+    play operator after every accepted step (:mod:`.rotor_friction`); ``sliders``: per
+    bearing the Z to start from (default: relaxed at the equilibrium, Z = W0).
     """
     t0 = time.perf_counter()
+    check_friction_method(model, method)
     advance = check_method(method, {"time_step": time_step, "stages": stages},
                            explicit=True).step          # the one METHODS table (.orbit)
     duration = check_positive("duration", duration)
@@ -161,7 +171,11 @@ def integrate_rotor(model: RotorTransientModel, batch: Runs, duration: float,
         b.tm.law.check_engine(method, damped=b.tm.foil_state is not None)
     dofs = lay.dofs
     lay.rotor_of(z)[:, 2 * dofs] = 0.0
-    rhs = RotorRightHandSide(model, batch, track_deflection=foil_travel is not None)
+    slide = initial_sliders(model, batch.size, sliders)
+    rhs = RotorRightHandSide(model, batch, track_deflection=foil_travel is not None,
+                             sliders=slide)
+    final_sliders = None if slide is None else [z_k.copy() if z_k is not None else None
+                                                 for z_k in slide]
     top = float(np.max(np.maximum(batch.speed, batch.speed_at(duration))))
     rho = rhs.stiffness(z)
     fixed, fixed_stages = time_step is not None, stages is not None
@@ -228,8 +242,14 @@ def integrate_rotor(model: RotorTransientModel, batch: Runs, duration: float,
             if not np.all(np.isfinite(lay.rotor_of(z)[:, :2 * dofs])):
                 failure = (f"the integration blew up (non-finite state) at τ = {tau:.4g} "
                            f"with Δτ = {dt:.4g}" + (f" and {stages} stages"
-                                                    if method == "rkc" else ""))
+                                                    if method == "rkc" else "")
+                           + last_state_words(rhs, before))
                 break
+            if rhs.sliders is not None:       # the play operator after the accepted step
+                rhs.sliders = move_sliders(rhs, z)
+                for j, z_k in enumerate(rhs.sliders):
+                    if z_k is not None:
+                        final_sliders[j][live] = z_k
             low = rhs.min_film
             better = low < run_min[live]
             sub_min, sub_tau = run_min[live], run_min_tau[live]
@@ -319,4 +339,5 @@ def integrate_rotor(model: RotorTransientModel, batch: Runs, duration: float,
     return RotorRun(model, batch, np.array(taus), q, hmin, run_min, run_min_tau, max_defl,
                     contact, contact_tau, contact_bearing, tuple(kinds), dt,
                     tuple(sorted(used)) if method == "rkc" else (), evaluations,
-                    time.perf_counter() - t0, method, not failure, failure, options)
+                    time.perf_counter() - t0, method, not failure, failure, options,
+                    None if final_sliders is None else tuple(final_sliders))

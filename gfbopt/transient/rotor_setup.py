@@ -159,15 +159,23 @@ def build_model(rotor: RotorInput, model_speed_rpm: float, grid: Grid, *,
     built about its equilibrium at ``model_speed_rpm``; time unit τ = ω_ref t with ω_ref
     from ``reference_speed_rpm`` (default the model speed).  ``reference_whirl_ratio``
     ν_ref of a damped foil (η > 0): default each bearing's linear threshold whirl ratio
-    (:func:`gfbopt.transient.system.transient_model`)."""
+    (:func:`gfbopt.transient.system.transient_model`).  A bearing whose file states bump
+    friction (μ_f > 0) gets its sliders (``transient_model(..., friction=True)``,
+    :mod:`.rotor_friction`); friction with a loss factor η > 0 is refused in one line."""
     cache = cache if cache is not None else SolverCache(grid)
     solutions, angles = bearing_equilibria(rotor, model_speed_rpm, grid, cache)
     omega_m = rpm_to_rad_per_s(model_speed_rpm)
     films = []
     for k, (b, sol, psi) in enumerate(zip(rotor.bearings, solutions, angles)):
         damped = sol.model.loss_factor > 0
+        rubbing = bool(getattr(sol.model, "has_friction", False))
+        if rubbing and damped:
+            raise ParameterError(f"{b.label or f'bearing {k + 1}'}.loss_factor",
+                                 sol.model.loss_factor, "the rotor transient does not combine "
+                                 "a loss factor with the bumps' friction (no Kelvin–Voigt "
+                                 "state beside the sliders); use loss_factor = 0")
         tm = transient_model(sol, reference_whirl_ratio if damped else None,
-                             cache(sol.model, grid))
+                             cache(sol.model, grid), friction=rubbing)
         films.append(BearingFilm(tm, b.geometry, float(b.position), float(psi), omega_m,
                                  b.label or f"bearing {k + 1}"))
     ref = omega_m if reference_speed_rpm is None else rpm_to_rad_per_s(reference_speed_rpm)

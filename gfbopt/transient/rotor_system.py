@@ -34,7 +34,9 @@ the direction of rotation, positions over its clearance c_k, forces over p_a R_k
 of one grid, film and axial-mean (or rigid) law are evaluated together in one fused pass
 (:mod:`.rotor_films`, equal to the one-bearing functions to round-off); others call that
 model's own functions (:func:`.system.pressure_and_film`, :func:`.system.flux_residual`,
-:func:`.system.film_force`, the foil state's ``rate``).
+:func:`.system.film_force`, the foil state's ``rate``).  A bearing whose bumps rub (μ_f > 0) keeps its
+sliders Z beside the state (``sliders``, :mod:`.rotor_friction`): its films always take the
+one-bearing functions, with ``slider=`` (the fused pass carries no slider).
 
 Time and speed
 --------------
@@ -63,6 +65,8 @@ import numpy as np
 from ..errors import ParameterError
 from .foil_state import foil_bound
 from .rotor_films import FusedFilms, AtSpeed, largest_deflection, fusable
+from .rotor_friction import rubbing, same_friction
+from .rotor_friction_films import FrictionFusedFilms, fusable_with_friction
 from .rotor_batch import Runs, runs  # noqa: F401  (re-exported: the batch of runs)
 from .rotor_model import (DOF, BearingFilm, ImbalancePlane,  # noqa: F401  (re-exported)
                           RotorTransientModel, imbalance_shapes, rigid_rotor_matrices,
@@ -82,13 +86,23 @@ class RotorRightHandSide:
     """
 
     def __init__(self, model: RotorTransientModel, batch: Runs, stack: Optional[bool] = None,
-                 track_deflection: bool = False, fuse: Optional[bool] = None):
+                 track_deflection: bool = False, fuse: Optional[bool] = None,
+                 sliders: Optional[tuple] = None):
         self.model = model
         self.runs = batch
         self.layout = layout(model)
-        self.stack = stackable(model) if stack is None else stack
+        rub = rubbing(model)
+        if rub and fuse and not fusable_with_friction(model):
+            raise ParameterError("fuse", fuse, "the fused films with bump friction need every "
+                                 "bearing fusable with its friction on θ rows (axial-mean law)")
+        if rub and sliders is None:
+            raise ParameterError("sliders", None, "a rotor with bump friction needs each "
+                                 "bearing's sliders Z (rotor_friction.initial_sliders)")
+        self.stack = (stackable(model) and same_friction(model)) if stack is None else stack
         self.track_deflection = track_deflection
-        self.fuse = fusable(model) if fuse is None else fuse   # fuse=False: one-bearing kernels
+        if fuse is None:                               # fuse=False: the one-bearing kernels
+            fuse = fusable_with_friction(model) if rub else fusable(model)
+        self.fuse = fuse
         k, n = len(model.bearings), model.dofs
         self.dofs = n
         self.to_local = np.vstack(list(model.to_local())).T.copy()        # (n, 2K)
@@ -126,8 +140,13 @@ class RotorRightHandSide:
         self.same_speed = bool(np.all(batch.speed == batch.speed[0])
                                and np.all(batch.ramp == batch.ramp[0])) if batch.size else True
         self._kernels = [AtSpeed(b.tm) for b in model.bearings]
-        self.fused = FusedFilms(model, batch.size, self.film_divisor, self.foil_factor,
-                                self.base_lambda) if self.fuse else None
+        self.fused = (FrictionFusedFilms if rub else FusedFilms)(
+            model, batch.size, self.film_divisor, self.foil_factor,
+            self.base_lambda) if self.fuse else None
+        self._sliders = None
+        #: per bearing the sliders Z (B, ...) every stage of the current step sees (None
+        #: for a bearing without friction; None for a rotor without friction)
+        self.sliders = sliders if rub else None
         self.evaluations = 0
         self._rotor_start, self._filled = self.layout.rotor, self.layout.filled
         self.min_film = np.full((batch.size, k), np.inf)
@@ -136,7 +155,29 @@ class RotorRightHandSide:
     def take(self, keep) -> "RotorRightHandSide":
         """The same system for the runs selected by ``keep`` (the counters restart)."""
         return RotorRightHandSide(self.model, self.runs.take(keep), self.stack,
-                                  self.track_deflection, self.fuse)
+                                  self.track_deflection, self.fuse, None if self.sliders is None
+                                  else tuple(None if z is None else z[keep]
+                                             for z in self.sliders))
+
+    @property
+    def sliders(self) -> Optional[tuple]:
+        return self._sliders
+
+    @sliders.setter
+    def sliders(self, value: Optional[tuple]) -> None:
+        self._sliders = None if value is None else tuple(value)
+        if self.fused is not None and value is not None:       # (B·K, m), run-major
+            self.fused.slider = self.slider(slice(None))
+
+    def slider(self, k) -> Optional[np.ndarray]:
+        """Bearing k's sliders Z (B, ...), or, with ``k`` a slice (stacked bearings), all of
+        them as one (B·K, ...) array; None without friction."""
+        if self.sliders is None:
+            return None
+        if isinstance(k, slice):
+            z = np.stack(self.sliders, axis=1)
+            return z.reshape((-1,) + z.shape[2:])
+        return self.sliders[k]
 
     def reset(self) -> None:
         self.min_film[:] = np.inf
@@ -178,7 +219,8 @@ class RotorRightHandSide:
         out = []
         for k, b in enumerate(self.model.bearings):
             p, h = pressure_and_film(self.layout.phi_of(z, k), xy[:, k, 0], xy[:, k, 1], b.tm,
-                                     deflection=self.layout.foil_of(z, k))
+                                     deflection=self.layout.foil_of(z, k),
+                                     slider=self.slider(k))
             out.append((p, h))
         return out
 
@@ -236,7 +278,7 @@ class RotorRightHandSide:
         forces = np.empty((nb, k, 2))
         for j, tm, phi, x, y, w in self._films(z, xy):
             jj = 0 if self.stack else j
-            p, h = pressure_and_film(phi, x, y, tm, deflection=w)
+            p, h = pressure_and_film(phi, x, y, tm, deflection=w, slider=self.slider(j))
             lam = self.base_lambda[jj] * speed
             if not isinstance(speed, float):
                 lam = (np.repeat(lam, k) if self.stack else lam)[:, None, None]
@@ -312,7 +354,8 @@ class RotorRightHandSide:
             lam = self.base_lambda[k] * r
             s = State(self.layout.phi_of(z, k), xy[:, k, 0], xy[:, k, 1], xy[:, k, 0] * 0,
                       xy[:, k, 0] * 0, self.layout.foil_of(z, k))
-            film = stiffness_bound(s, replace(tm, bearing_number=lam, foil_state=None))
+            film = stiffness_bound(s, replace(tm, bearing_number=lam, foil_state=None),
+                                   self.slider(k))
             rho = max(rho, film * 2.0 * lam / self.film_divisor[k])
             if tm.foil_state is not None:
                 p, h = pressure_and_film(s.phi, s.x, s.y, tm, deflection=s.w)
