@@ -14,11 +14,14 @@ for ``--imbalance-response`` too (a grade's top speed is HIGH of ``--speed-range
 The rotor file (docs/formats/rotor_file.md) is read and checked, with every bearing file,
 before anything is solved.  JSON fields: ``onset_speed_rpm`` (first onset over all modes; null
 with ``onset_reason`` when none in the range), ``first_mode``, ``onset_whirl_frequency_hz``,
-``modes`` (label, onset speed, whirl frequency, shape), ``bearing_loads_newton``,
+``modes`` (one per mode, tracked along speed, :mod:`gfbopt.rotor.mode_search`: label, onset
+speed, its own whirl frequency at the onset — null for a mode stable over the range, whose
+threshold's is ``threshold_whirl_frequency_hz`` — and shape), ``bearing_loads_newton``,
 ``bearing_notes`` (a bearing pulled upwards, in one sentence), ``warnings`` (the statics'
 plausibility flags: a film thinner than surface roughness, a load above the rule-of-thumb
 capacity, each with its bearing and speed), ``campbell.tracks`` (every tracked mode's name:
-one name per mode in the text, JSON, CSV and figures, :mod:`gfbopt.rotor.tracking`),
+one name per mode in the text, JSON, CSV and figures, :mod:`gfbopt.rotor.tracking`;
+``campbell.frequency_limit_hz``: a shaft's modes are followed up to it),
 ``imbalance_response`` (``unstable_from_rpm``; each peak's ``above_first_onset``: the linear
 response there is not physical), ``imbalance_planes``, ``conventions`` and ``provenance``.
 
@@ -119,6 +122,8 @@ def run(args) -> int:
                            show_progress=not args.json)
     out = {"rotor_file": args.rotor_file, "rotor": system.body.name, "grid": str(grid),
            **result.to_dict()}
+    if result.campbell is not None and "frequency_limit_hz" not in out["campbell"]:
+        out["campbell"]["frequency_limit_hz"] = result.campbell.frequency_limit_hz
     if args.imbalance_response:
         out["imbalance_planes"] = [
             {"name": p.name, "amount_g_mm": p.amount_kg_m * 1e6, "phase_deg": p.phase_deg,
@@ -192,8 +197,10 @@ def _report(out: dict) -> str:
     for m in out["modes"]:
         speed = (f"{m['onset_speed_rpm']:,.0f} rpm" if math.isfinite(m["onset_speed_rpm"])
                  else m["status"])
-        lines.append(f"    {m['label']:<22} {speed:>28}, whirl {m['whirl_frequency_hz']:.4g}"
-                     f" Hz, B/A phase {m['shape']['phase_b_from_a_deg']:+.0f}°")
+        whirl = (f"whirl {m['whirl_frequency_hz']:.4g} Hz" if _finite(m["whirl_frequency_hz"])
+                 else f"least μ_c {m['smallest_inertia_margin'] + 1:.3g}")   # no whirl of its own
+        lines.append(f"    {m['label']:<22} {speed:>28}, {whirl}, B/A phase "
+                     f"{m['shape']['phase_b_from_a_deg']:+.0f}°")
         if m.get("note"):
             lines.append(f"      {m['note']}")
     lines += _running_lines(out)
@@ -211,8 +218,11 @@ def _report(out: dict) -> str:
         lines += _imbalance_lines(out["imbalance_response"])
     if "campbell" in out and out["campbell"]["least_stable"]:
         ls = out["campbell"]["least_stable"]
+        limit = out["campbell"].get("frequency_limit_hz")
         lines.append(f"  Campbell: {out['campbell']['modes']} modes over "
-                     f"{out['campbell']['speeds']} speeds; least stable {ls['track_label']} at "
+                     f"{out['campbell']['speeds']} speeds"
+                     + (f" (every mode up to {limit:,.0f} Hz)" if _finite(limit) else "")
+                     + f"; least stable {ls['track_label']} at "
                      f"{ls['speed_rpm']:,.0f} rpm (log decrement {ls['log_decrement']:.3g})")
         lines.append("    tracks: " + "; ".join(
             f"{t['mode']} {t['label']}" + (f" (damping through zero at "

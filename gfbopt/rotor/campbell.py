@@ -35,7 +35,8 @@ Eigenvalues: shift-invert Arnoldi (scipy ARPACK) on the sparse pencil, one LU of
 shift.  The shifts come from the rotor's own estimate: the n-DOF quadratic eigenproblem with
 each bearing's K and C frozen at the whirl ratio of the estimate (two fixed-point passes from
 γ = 1/2), so that every rigid-body root is found whatever its ratio to the shaft speed (a
-shaft's: its four lowest and every other whirling below :data:`MAX_WHIRL` times the speed).
+shaft's: its four lowest and every other whirling below :data:`MAX_WHIRL` times the speed, or
+below a stated frequency: a Campbell diagram's one limit for all its speeds).
 Around each shift the eigenvalue whose eigenvector carries the most rotor motion is the
 rotor's mode; modes are labelled (:mod:`.modes`) and tracked over speed by continuity
 (:mod:`.tracking`).
@@ -227,13 +228,18 @@ def stuck_system(lin) -> tuple:
 
 
 def rotor_estimates(rotor: RotorCase, states: SpeedStates, inertia_scale: float = 1.0,
-                    passes: int = PASSES) -> np.ndarray:
-    """The rotor's eigenvalues s (upper half plane, per radian) from the 4-DOF quadratic
+                    passes: int = PASSES, max_frequency_hz: Optional[float] = None
+                    ) -> np.ndarray:
+    """The rotor's eigenvalues s (upper half plane, per radian) from the n-DOF quadratic
     eigenproblem with the bearings' K, C frozen at γ = 1/2, then each root refined by
-    ``passes`` fixed-point steps with K, C frozen at its own whirl ratio (nearest root)."""
+    ``passes`` fixed-point steps with K, C frozen at its own whirl ratio (nearest root).
+    A shaft's: those :func:`_lower` keeps (``max_frequency_hz`` [Hz]: every root up to this
+    frequency instead of :data:`MAX_WHIRL` times the speed)."""
     first = _frozen_roots(rotor, states, 0.5, inertia_scale)
     if not is_rigid(rotor.structure):
-        first = _lower(first)
+        limit = (None if max_frequency_hz is None
+                 else 2 * math.pi * float(max_frequency_hz) / states.omega)
+        first = _lower(first, limit)
     out = []
     for s in first:
         for _ in range(passes):
@@ -273,13 +279,15 @@ def _frozen(rotor: RotorCase, states: SpeedStates, gamma: float) -> tuple:
     return kb.real, kb.imag / gamma
 
 
-def _lower(roots: np.ndarray) -> np.ndarray:
+def _lower(roots: np.ndarray, max_whirl: Optional[float] = None) -> np.ndarray:
     """A shaft's roots worth following: its :data:`LOWEST` lowest whirl ratios (its
-    rigid-body modes on the bearings) and every other below :data:`MAX_WHIRL`."""
+    rigid-body modes on the bearings) and every other below ``max_whirl`` (default
+    :data:`MAX_WHIRL`) [-]."""
     order = roots[np.argsort(roots.imag)]
     if not order.size:
         return order
-    limit = max(MAX_WHIRL, float(order[min(LOWEST, order.size) - 1].imag))
+    limit = max(MAX_WHIRL if max_whirl is None else max_whirl,
+                float(order[min(LOWEST, order.size) - 1].imag))
     return order[order.imag <= limit]
 
 
@@ -334,7 +342,8 @@ def _secant(f, guess: complex, tol: float = 1e-11, max_iter: int = 40) -> Option
 
 @single_threaded
 def system_modes(rotor: RotorCase, states: SpeedStates, inertia_scale: float = 1.0,
-                 reference_whirl: Optional[float] = None, guesses=()) -> list:
+                 reference_whirl: Optional[float] = None, guesses=(),
+                 max_frequency_hz: Optional[float] = None) -> list:
     """The rotor's modes at one speed, lowest whirl ratio first.
 
     Each starting point — ``guesses`` first (per radian; in a Campbell diagram the previous
@@ -343,14 +352,18 @@ def system_modes(rotor: RotorCase, states: SpeedStates, inertia_scale: float = 1
     equation det D(s) = 0 (secant iteration, deflated by the roots already found so that two
     starts do not land on one root), and the root is then taken from the full sparse
     system: the eigenvalue nearest it by shift-invert Arnoldi, whose eigenvector gives the
-    shape.  ``reference_whirl``: ν_ref of the Kelvin–Voigt foil states (needed when η > 0)."""
+    shape (one mode per eigenvalue: two roots that give one eigenvalue count once).
+    ``reference_whirl``: ν_ref of the Kelvin–Voigt foil states (needed when η > 0);
+    ``max_frequency_hz``: a shaft's estimates up to this frequency [Hz] (:func:`_lower`; a
+    Campbell diagram states one limit for all its speeds)."""
     full = FullSystem(rotor, states, inertia_scale, reference_whirl)
     d = characteristic(rotor, states, full)
     names = rotor.names
     positions = list(rotor.positions)
     roots: list = []
     starts = [complex(g) for g in guesses] + sorted(
-        rotor_estimates(rotor, states, inertia_scale), key=lambda z: z.imag)
+        rotor_estimates(rotor, states, inertia_scale, max_frequency_hz=max_frequency_hz),
+        key=lambda z: z.imag)
     for est in starts:
         def deflated(s, found=tuple(roots)):
             value = d(s)
@@ -368,6 +381,8 @@ def system_modes(rotor: RotorCase, states: SpeedStates, inertia_scale: float = 1
         ev, vec = full.eigen(root + 1e-6 * abs(root), count=2)   # off the root: LU regular
         j = int(np.argmin(np.abs(ev - root)))
         s = complex(ev[j])
+        if any(abs(s - m.eigenvalue) <= 1e-8 * abs(s) for m in modes):
+            continue            # two roots of det D within its tolerance: one eigenvalue
         q = full.rotor_amplitude(vec[:, j])
         sh = shape(q, positions, names, rotor.structure)
         modes.append(SystemMode(

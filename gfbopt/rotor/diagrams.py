@@ -38,7 +38,7 @@ from ..errors import ParameterError
 from ..inputs.conversions import rpm_to_rad_per_s
 from ..progress import progress
 from ..threads import single_threaded
-from .campbell import system_modes
+from .campbell import MAX_WHIRL, system_modes
 from .modes import ellipse_radii
 from .tracking import assign, guesses, name_tracks
 from .onset import onset_speed
@@ -60,6 +60,9 @@ class CampbellDiagram:
 
     table: pd.DataFrame
     capacity: list = field(default_factory=list)
+    #: a shaft's modes are followed up to this damped natural frequency [Hz] (every mode
+    #: below it at every speed; the rigid body's four always); nan: a rigid body
+    frequency_limit_hz: float = math.nan
 
     def least_stable(self) -> pd.Series:
         """The row with the smallest log decrement."""
@@ -83,12 +86,21 @@ def reference_whirl(line: SpeedLine, speed: float) -> float:
 
 @single_threaded
 def campbell_diagram(line: SpeedLine, speeds, show_progress: bool = True,
-                     onsets=None) -> CampbellDiagram:
+                     onsets=None, max_frequency_hz=None) -> CampbellDiagram:
     """The Campbell diagram at ``speeds`` [rpm] (module docstring).  ``onsets``: the
     matched-whirl onsets (:class:`~gfbopt.rotor.mode_search.ModeOnset`) that name the tracks
-    crossing zero damping next to them (:func:`~gfbopt.rotor.tracking.name_tracks`)."""
+    crossing zero damping next to them, or of the same shape
+    (:func:`~gfbopt.rotor.tracking.name_tracks`); ``max_frequency_hz``: a shaft's modes are
+    followed up to this frequency [Hz] at every speed (default :data:`~gfbopt.rotor.
+    campbell.MAX_WHIRL` times the highest speed), bending modes included."""
     damped = any(c.options.loss_factor for c in line.rotor.cases)
     positions = list(line.rotor.positions)
+    limit = math.nan
+    if not is_rigid(line.rotor.structure):
+        limit = float(max_frequency_hz if max_frequency_hz is not None
+                      else MAX_WHIRL * max(speeds) / 60.0)
+        if not (math.isfinite(limit) and limit > 0):
+            raise ParameterError("max_frequency_hz", max_frequency_hz, "must be > 0 [Hz]")
     tracks: list = []
     active: list = []
     refs, skipped = {}, []
@@ -103,12 +115,16 @@ def campbell_diagram(line: SpeedLine, speeds, show_progress: bool = True,
             ref = reference_whirl(line, speed) if damped else math.nan
             start = guesses(tracks, active, speed, states.omega)
             modes = system_modes(line.rotor, states, reference_whirl=ref if damped else None,
-                                 guesses=start)
+                                 guesses=start, max_frequency_hz=(
+                                     None if math.isnan(limit) else limit))
+            if not math.isnan(limit):          # the stated limit, the same at every speed
+                modes = [m for m in modes if m.whirl_frequency_hz <= limit]
             active = assign(tracks, active, speed, states.omega, modes, positions, start,
                             line.rotor.structure)
             refs[speed] = ref
     rows = []
-    names = name_tracks([[(s, m) for s, m, _ in tr] for tr in tracks], onsets or ())
+    names = name_tracks([[(s, m) for s, m, _ in tr] for tr in tracks], onsets or (),
+                        line.rotor)
     for number, (tr, (name, zero)) in enumerate(zip(tracks, names), 1):
         for speed, m, _ in tr:
             rows.append({"speed_rpm": speed, "mode": number, "track_label": name,
@@ -122,7 +138,7 @@ def campbell_diagram(line: SpeedLine, speeds, show_progress: bool = True,
     table = pd.DataFrame(rows)
     if not table.empty:
         table = table.sort_values(["mode", "speed_rpm"]).reset_index(drop=True)
-    return CampbellDiagram(table, skipped)
+    return CampbellDiagram(table, skipped, limit)
 
 
 @dataclass(frozen=True)

@@ -2,9 +2,35 @@
 (:mod:`gfbopt.rotor.system` states the search; this module is its mode-by-mode part).
 
 A ``line`` is a :class:`gfbopt.rotor.system.SpeedLine` (crossings per speed, cached);
-``rows`` are one mode's (speed, crossing or None) at the scan speeds, the crossing of that
-label with the smallest μ_c (None: the mode has no crossing there, stable for every inertia
-scale).
+``rows`` are one mode's (speed, crossing or None) at the scan speeds (None: the mode has no
+crossing there, stable for every inertia scale): one track (below).
+
+Tracks: one identity per mode (:func:`crossing_tracks`).  At each scan speed after the first,
+the crossings (:class:`~gfbopt.rotor.matched_whirl.ModeCrossing`) are matched to the tracks
+that had one at the speed before by the optimal assignment on the cost
+
+    (1 − MAC) + :data:`WHIRL_WEIGHT` |γ − γ_prev|/γ_prev + :data:`SCALE_WEIGHT` |ln μ_c − ln μ_pred|,
+
+MAC the modal assurance criterion of the two crossings' shapes (:func:`gfbopt.rotor.modes.
+shape_vector`: the axis' motion at the bearings, along the shaft for a shaft), γ the whirl
+ratio, μ_pred the track's μ_c extrapolated linearly in ln N from its last two speeds (from
+one, μ_c ∝ N⁻²).  A match costing more than :data:`MAX_COST` starts a new track.  The shape
+class of a crossing is not used: an asymmetric rotor's mode drifts between mixed, conical
+and cylindrical along speed.  Each track's onset is :func:`mode_onset` on its own rows (on a
+fine grid, :func:`guided_onset` on the coarse track, the fine crossing continuing each
+coarse row by the same cost, :func:`continuing`); inside the bracket the refinement follows
+the label of the bracket's unstable crossing (:meth:`~gfbopt.rotor.system.SpeedLine.follow`).
+
+Names (:func:`named`; one per mode, used in the text, JSON, CSV and figures): a track is named
+once, by its shape class where it is reported — at its onset; at the lowest speed when
+unstable there; where its μ_c is least when stable over the range — and a name already taken
+by a mode listed before it (onsets first, lowest first) gets " (2)", " (3)", ….
+
+Whirl: a mode's ``whirl_frequency_hz`` is its own at its onset (μ_c = 1 there: the threshold
+problem is the rotor itself).  A mode stable over the range has none in the range (null); the
+frequency at which a rotor μ_c times heavier would whirl in it, at its least μ_c, is kept as
+``threshold_whirl_frequency_hz`` (a shaft's bending mode: μ_c of hundreds, near half the
+running speed; its own frequency is the Campbell diagram's).
 
 Coarse guide (:func:`guided_onset`, fine grids only).  The scan runs on a coarse grid; the fine
 grid is solved where the answer needs it:
@@ -25,11 +51,14 @@ evaluation contradicts the coarse bracket, the mode is searched on the fine grid
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field, replace
 from typing import Optional
 
-from scipy.optimize import brentq
+import numpy as np
+from scipy.optimize import brentq, linear_sum_assignment
 
+from ..progress import progress
+from .modes import mac, shape_vector
 from .speed_line import secant_root
 
 #: the secant refinement stops when the next secant step from its latest point would be at
@@ -55,8 +84,10 @@ APPEARS_UNSTABLE = "unstable where its shape first appears"
 class ModeOnset:
     """The onset of one mode along the speed line.
 
-    label ('forward conical', …); onset_speed_rpm [rpm] (nan: none in the range, see
-    status); whirl_ratio, whirl_frequency_hz [Hz] at the onset; shape at the onset
+    label ('forward conical', …; one per mode, module docstring); onset_speed_rpm [rpm]
+    (nan: none in the range, see status); whirl_ratio, whirl_frequency_hz [Hz] at the onset
+    (the mode's own: μ_c = 1 there; nan when stable over the range, see
+    threshold_whirl_frequency_hz); shape at the onset
     (:func:`gfbopt.rotor.modes.shape`); status: 'onset', 'unstable at the lowest speed',
     'stable over the range' or 'unstable where its shape first appears'
     (:data:`APPEARS_UNSTABLE`); smallest_inertia_margin: the least μ_c − 1 over the scan [-];
@@ -71,13 +102,21 @@ class ModeOnset:
     status: str
     smallest_inertia_margin: float
     note: str = ""
+    #: a mode stable over the range: the whirl frequency of the threshold at its least μ_c
+    #: (a rotor μ_c times heavier whirling in it), its own being none in the range [Hz]
+    threshold_whirl_frequency_hz: float = math.nan
+    #: where the shape was taken [rpm] and the rotor amplitude q̂ there (the crossing's
+    #: eigenvector): what a Campbell track is compared with (:mod:`.tracking`); not output
+    at_speed_rpm: float = field(default=math.nan, compare=False)
+    vector: Optional[np.ndarray] = field(default=None, repr=False, compare=False)
 
     def to_dict(self) -> dict:
         return {"label": self.label, "onset_speed_rpm": self.onset_speed_rpm,
                 "whirl_ratio": self.whirl_ratio,
                 "whirl_frequency_hz": self.whirl_frequency_hz, "status": self.status,
                 "smallest_inertia_margin": self.smallest_inertia_margin, "shape": self.shape,
-                "note": self.note}
+                "note": self.note,
+                "threshold_whirl_frequency_hz": self.threshold_whirl_frequency_hz}
 
 
 def mode_rows(line, speeds: list, label: str) -> list:
@@ -98,11 +137,18 @@ def _margin(rows: list) -> float:
     return min(present) - 1.0 if present else math.inf
 
 
+def _where(onset: ModeOnset, speed: float, crossing) -> ModeOnset:
+    """``onset`` with the speed [rpm] and the eigenvector of the crossing its shape is of."""
+    return replace(onset, at_speed_rpm=float(speed), vector=getattr(crossing, "vector", None))
+
+
 def mode_onset(line, speeds: list, label: str, tol: float, method: str = "secant",
                rows: Optional[list] = None) -> ModeOnset:
     """One mode's onset on the scanned ``speeds`` (those with both bearings solved) of one
     grid: the first interval where μ_c falls through 1, refined by the secant (or, with
-    method "scan", Brent's method to the relative tolerance ``tol``)."""
+    method "scan", Brent's method to the relative tolerance ``tol``).  ``rows``: the mode's
+    (speed, crossing or None) when given (one track, module docstring), else the
+    crossings of ``label``; ``label`` is what the refinement follows inside the bracket."""
     rows = rows if rows is not None else mode_rows(line, speeds, label)
     margin = _margin(rows)
     previous = None
@@ -111,12 +157,13 @@ def mode_onset(line, speeds: list, label: str, tol: float, method: str = "secant
             previous = (s, c)
             continue
         if previous is None:
-            return ModeOnset(label, math.nan, c.whirl_ratio, c.whirl_frequency_hz, c.shape,
-                             UNSTABLE_LOW, margin, c.note)
+            return _where(ModeOnset(label, math.nan, c.whirl_ratio, c.whirl_frequency_hz,
+                                    c.shape, UNSTABLE_LOW, margin, c.note), s, c)
         return _refined(line, label, previous, (s, c), tol, method, margin)
-    best = min((c for _, c in rows if c is not None), key=lambda c: c.inertia_scale)
-    return ModeOnset(label, math.nan, best.whirl_ratio, best.whirl_frequency_hz, best.shape,
-                     STABLE, margin)
+    s, best = min(((s, c) for s, c in rows if c is not None),
+                  key=lambda sc: sc[1].inertia_scale)
+    return _where(ModeOnset(label, math.nan, best.whirl_ratio, best.whirl_frequency_hz,
+                            best.shape, STABLE, margin), s, best)
 
 
 def _refined(line, label, stable, unstable, tol, method, margin, seed=None) -> ModeOnset:
@@ -125,11 +172,12 @@ def _refined(line, label, stable, unstable, tol, method, margin, seed=None) -> M
         # No crossing of this class at the stable end, and the mode it continues (another
         # class, :meth:`SpeedLine.follow`) is unstable there: no bracket of this mode's onset.
         c = unstable[1]
-        return ModeOnset(label, math.nan, c.whirl_ratio, c.whirl_frequency_hz, c.shape,
-                         APPEARS_UNSTABLE, margin,
-                         f"its shape first appears between {stable[0]:,.0f} and "
-                         f"{unstable[0]:,.0f} rpm, already unstable (μ_c = "
-                         f"{c.inertia_scale:.3g}): it continues a mode of another shape")
+        return _where(ModeOnset(label, math.nan, c.whirl_ratio, c.whirl_frequency_hz, c.shape,
+                                APPEARS_UNSTABLE, margin,
+                                f"its shape first appears between {stable[0]:,.0f} and "
+                                f"{unstable[0]:,.0f} rpm, already unstable (μ_c = "
+                                f"{c.inertia_scale:.3g}): it continues a mode of another "
+                                "shape"), unstable[0], c)
     root = None
     if method == "secant":
         a, b = math.log(stable[0]), math.log(unstable[0])
@@ -142,8 +190,8 @@ def _refined(line, label, stable, unstable, tol, method, margin, seed=None) -> M
         root = brentq(lambda x: line.margin(x, label, whirl), stable[0], unstable[0],
                       xtol=tol * stable[0], rtol=tol)
     at = line.follow(root, label, whirl)
-    return ModeOnset(label, root, at.whirl_ratio, at.whirl_frequency_hz, at.shape, ONSET,
-                     margin, at.note)
+    return _where(ModeOnset(label, root, at.whirl_ratio, at.whirl_frequency_hz, at.shape,
+                            ONSET, margin, at.note), root, at)
 
 
 def _log_scale(crossing) -> float:
@@ -186,27 +234,37 @@ def _follow(line, speed: float, label: str, whirl: float, near):
     return local(speed, label, whirl, near) if local else line.follow(speed, label, whirl)
 
 
-def guided_onset(fine, coarse, speeds: list, label: str, tol: float) -> Optional[ModeOnset]:
+def guided_onset(fine, coarse, speeds: list, label: str, tol: float,
+                 rows: Optional[list] = None, fine_row=None) -> Optional[ModeOnset]:
     """One mode's onset on the ``fine`` line with the scan on the ``coarse`` one (module
     docstring); None when the fine grid contradicts the coarse bracket (the caller then
-    searches the fine grid alone)."""
-    rows = mode_rows(coarse, speeds, label)
+    searches the fine grid alone).  ``rows``: the mode's coarse (speed, crossing or None)
+    (one track, module docstring) and ``fine_row(speed, coarse crossing)``: the fine
+    crossing continuing it; by default the crossings of ``label`` on both grids.  The
+    refinement follows the label of the bracket's unstable crossing."""
+    rows = rows if rows is not None else mode_rows(coarse, speeds, label)
+    if fine_row is None:
+        def fine_row(s, _c):
+            return mode_rows(fine, [s], label)[0][1]
     merged = list(rows)                       # fine where checked, else coarse
     for k, (s, c) in enumerate(rows):
         if k == 0 or (c is not None and abs(c.inertia_scale - 1.0) < COARSE_MARGIN):
-            merged[k] = mode_rows(fine, [s], label)[0]
+            merged[k] = (s, fine_row(s, c))
         if not _stable(merged[k][1]):
             break
     margin = _margin(merged)
     first_unstable = next((k for k, (_, c) in enumerate(merged) if not _stable(c)), None)
     if first_unstable is None:
-        best = min((c for _, c in merged if c is not None), key=lambda c: c.inertia_scale)
-        return ModeOnset(label, math.nan, best.whirl_ratio, best.whirl_frequency_hz,
-                         best.shape, STABLE, margin)
+        s, best = min(((s, c) for s, c in merged if c is not None),
+                      key=lambda sc: sc[1].inertia_scale)
+        return _where(ModeOnset(best.label if label is None else label, math.nan,
+                                best.whirl_ratio, best.whirl_frequency_hz, best.shape, STABLE,
+                                margin), s, best)
     s, c = merged[first_unstable]
+    label = c.label if label is None else label
     if first_unstable == 0:
-        return ModeOnset(label, math.nan, c.whirl_ratio, c.whirl_frequency_hz, c.shape,
-                         UNSTABLE_LOW, margin, c.note)
+        return _where(ModeOnset(label, math.nan, c.whirl_ratio, c.whirl_frequency_hz, c.shape,
+                                UNSTABLE_LOW, margin, c.note), s, c)
     stable, unstable = merged[first_unstable - 1], merged[first_unstable]
     coarse_stable, coarse_unstable = rows[first_unstable - 1], rows[first_unstable]
 
@@ -229,3 +287,189 @@ def guided_onset(fine, coarse, speeds: list, label: str, tol: float) -> Optional
         return _refined(fine, label, stable, unstable, tol, "secant", margin, seed=seed)
     except ValueError:                       # Brent's fallback found no fine bracket
         return None
+
+
+# ------------------------------------------------------------ tracks: one identity per mode
+#: weight of the relative change of the whirl ratio in the cost [-]
+WHIRL_WEIGHT = 2.0
+#: weight of |ln μ_c − ln μ_pred| in the cost [-]
+SCALE_WEIGHT = 0.5
+#: a match costing more than this starts a new track [-]
+MAX_COST = 1.5
+#: ln μ_c of a crossing with μ_c = 0 (unstable for every inertia scale) [-]
+_LOG_FLOOR = math.log(1e-12)
+
+
+def _log_mu(c) -> float:
+    return math.log(c.inertia_scale) if c.inertia_scale > 0 else _LOG_FLOOR
+
+
+def _predicted(points: list, speed: float) -> float:
+    """ln μ_c at ``speed`` from a track's last (speed, crossing) points (module docstring)."""
+    s1, c1 = points[-1]
+    if len(points) < 2:
+        return _log_mu(c1) + NOMINAL_SLOPE * math.log(speed / s1)
+    s0, c0 = points[-2]
+    slope = (_log_mu(c1) - _log_mu(c0)) / math.log(s1 / s0)
+    return _log_mu(c1) + slope * math.log(speed / s1)
+
+
+def cost(points: list, c, speed: float, d_last: np.ndarray, d_new: np.ndarray) -> float:
+    """The cost of continuing a track (its last (speed, crossing) points, its last shape
+    ``d_last``) by crossing ``c`` of shape ``d_new`` at ``speed`` (module docstring)."""
+    last = points[-1][1]
+    whirl = abs(c.whirl_ratio - last.whirl_ratio) / max(abs(last.whirl_ratio), 1e-12)
+    return (1.0 - mac(d_last, d_new) + WHIRL_WEIGHT * whirl
+            + SCALE_WEIGHT * abs(_log_mu(c) - _predicted(points, speed)))
+
+
+def crossing_tracks(line, speeds: list) -> list:
+    """The tracks of the crossings of ``line`` at ``speeds`` (those with both bearings
+    solved), each a list of (speed, crossing or None) over all ``speeds`` (module
+    docstring), in the order they start (then by μ_c)."""
+    rotor = line.rotor
+    tracks: list = []                       # each: list of (speed, crossing, shape)
+    active: list = []
+    for speed in speeds:
+        found = sorted(line.crossings(speed) or [], key=lambda c: c.inertia_scale)
+        shapes = [shape_vector(c.vector, rotor) for c in found]
+        matrix = np.array([[cost([(s, c) for s, c, _ in tracks[t]], c, speed,
+                                 tracks[t][-1][2], d) for c, d in zip(found, shapes)]
+                           for t in active]).reshape(len(active), len(found))
+        rows, cols = linear_sum_assignment(matrix) if matrix.size else ((), ())
+        new_active, used = [], set()
+        for i, j in zip(rows, cols):
+            if matrix[i, j] <= MAX_COST:
+                tracks[active[i]].append((speed, found[j], shapes[j]))
+                new_active.append(active[i])
+                used.add(j)
+        for j, c in enumerate(found):
+            if j not in used:
+                tracks.append([(speed, c, shapes[j])])
+                new_active.append(len(tracks) - 1)
+        active = new_active
+    out = []
+    for tr in tracks:
+        at = {s: c for s, c, _ in tr}
+        out.append([(s, at.get(s)) for s in speeds])
+    return out
+
+
+def continuing(line, speed: float, ref):
+    """The crossing of ``line`` at ``speed`` that continues the crossing ``ref`` (of another
+    grid at the same speed): the least :func:`cost` (None when there is none or it exceeds
+    :data:`MAX_COST`)."""
+    found = line.crossings(speed) or []
+    if ref is None or not found:
+        return None
+    d_ref = shape_vector(ref.vector, line.rotor)
+    costs = [cost([(speed, ref)], c, speed, d_ref, shape_vector(c.vector, line.rotor))
+             for c in found]
+    k = int(np.argmin(costs))
+    return found[k] if costs[k] <= MAX_COST else None
+
+
+def _follow_label(rows: list) -> str:
+    """The label the refinement follows: that of the first unstable crossing, else of the
+    crossing with the least μ_c."""
+    present = [c for _, c in rows if c is not None]
+    unstable = [c for c in present if c.inertia_scale <= 1.0]
+    return (unstable[0] if unstable else min(present, key=lambda c: c.inertia_scale)).label
+
+
+def track_onset(line, rows: list, tol: float, method: str) -> ModeOnset:
+    """One track's onset on its own rows (fine grid alone)."""
+    return mode_onset(line, [s for s, _ in rows], _follow_label(rows), tol, method, rows=rows)
+
+
+def named(modes: list) -> list:
+    """The modes (each one track's :class:`ModeOnset`) sorted onsets first, lowest first,
+    each named once (module docstring), with its own whirl (stable: null, the threshold's
+    kept as ``threshold_whirl_frequency_hz``)."""
+    modes = sorted(modes, key=lambda m: (math.isnan(m.onset_speed_rpm), m.onset_speed_rpm,
+                                         m.status != UNSTABLE_LOW))
+    taken, out = set(), []
+    for m in modes:
+        base = (m.shape or {}).get("label") or m.label
+        name, k = base, 1
+        while name in taken:
+            k += 1
+            name = f"{base} ({k})"
+        taken.add(name)
+        if m.status == STABLE:
+            m = replace(m, whirl_ratio=math.nan, whirl_frequency_hz=math.nan,
+                        threshold_whirl_frequency_hz=m.whirl_frequency_hz)
+        out.append(replace(m, label=name))
+    return out
+
+
+def track_onsets(line, guide, speeds: list, tol: float, method: str,
+                 show_progress: bool = False) -> list:
+    """Every mode's onset, one per track (module docstring): on ``line`` alone, or guided by
+    the coarse ``guide``'s tracks (a mode the fine grid contradicts is searched on the fine
+    grid's own tracks; a bearing over capacity on either grid: everything on ``line``
+    alone).  The drop-in for the search by label of :mod:`gfbopt.rotor.system`; the
+    refinement after the scan is a stage of its own in the progress (one step a mode)."""
+    from .system import _below_thermal_limit, _thermal
+
+    fine_tracks: list = []
+
+    def fine_alone(rows_coarse):
+        """The fine track continuing a coarse one, searched on the fine grid alone."""
+        if not fine_tracks:
+            valid = [s for s in speeds if line.crossings(s) is not None]
+            fine_tracks.extend(crossing_tracks(line, valid))
+        k = next((k for k, (_, c) in enumerate(rows_coarse) if c is not None
+                  and c.inertia_scale <= 1.0), None)
+        if k is None:
+            k = min((k for k, (_, c) in enumerate(rows_coarse) if c is not None),
+                    key=lambda k: rows_coarse[k][1].inertia_scale)
+        s, ref = rows_coarse[k]
+        best = continuing(line, s, ref)
+        track = next((tr for tr in fine_tracks if any(c is best for _, c in tr)), None)
+        return track_onset(line, track, tol, method) if track is not None else None
+
+    def refined(tracks, search) -> list:
+        out = []
+        with progress(total=len(tracks), desc=f"rotor onset refinement on {line.rotor.grid}",
+                      unit="mode", enabled=show_progress) as bar:
+            for rows in tracks:
+                found = search(rows)
+                if found is not None:
+                    out.append(found)
+                bar.update(1)
+        return named(out)
+
+    below = _below_thermal_limit(guide, speeds) if guide is not None else speeds
+    if guide is not None and len(below) >= 2 and \
+            all(guide.crossings(s) is not None for s in below) and \
+            line.crossings(below[0]) is not None:
+        coarse = crossing_tracks(guide, below)
+        firsts = [continuing(line, below[0], rows[0][1]) for rows in coarse]
+        # a fine crossing at the lowest speed that continues no coarse track: its own mode
+        extra = [[(below[0], c)] + [(s, None) for s in below[1:]]
+                 for c in line.crossings(below[0]) if not any(c is f for f in firsts)]
+
+        def guided(rows):
+            if rows[0][1] is not None and all(c is None for _, c in rows[1:]) and \
+                    any(rows is e for e in extra):
+                return track_onset(line, rows, tol, method)
+            found = guided_onset(line, guide, below, None, tol, rows=rows,
+                                 fine_row=lambda s, c: continuing(line, s, c))
+            return found if found is not None else fine_alone(rows)
+
+        out = refined(coarse + extra, guided)
+        if len(below) < len(speeds):     # the fine line's own state at the guide's limit:
+            line.states(speeds[len(below)])    # its thermal limit is bracketed from there
+        if not any(line.states(s).failure and not _thermal(line.states(s).failure)
+                   for s in line.speeds_solved):
+            return out
+    if guide is not None:                 # the fine grid's own scan (on line: done above)
+        with progress(total=len(speeds), desc=f"rotor onset scan on {line.rotor.grid}",
+                      unit="speed", enabled=show_progress) as bar:
+            for speed in speeds:
+                line.crossings(speed)
+                bar.update(1)
+    valid = [s for s in speeds if line.crossings(s) is not None]
+    return refined(crossing_tracks(line, valid),
+                   lambda rows: track_onset(line, rows, tol, method))

@@ -28,7 +28,9 @@ Labels (:func:`label`):
 
 The shape reported is the amplitude and phase at each bearing (forward/backward radii
 normalised so that the largest radius is 1, phase of the dominant component relative to
-bearing A's) and the node position (where |p(z)| is least) [m].
+bearing A's), the shape class (key ``shape_class``: cylindrical, conical, mixed or bending;
+not ``kind``, which in the outputs says why a speed was skipped) and the node position
+(where |p(z)| is least) [m].
 """
 from __future__ import annotations
 
@@ -36,6 +38,7 @@ import math
 
 import numpy as np
 
+from .rigid import station_matrix
 from .structure import is_rigid
 
 #: |arg ρ| up to this is cylindrical, from 180° minus this is conical [deg]
@@ -57,10 +60,11 @@ def ellipse_radii(x_hat, y_hat) -> tuple:
     return forward, backward, forward + backward
 
 
-def mode_label(direction: str, kind: str, order: int = 0) -> str:
+def mode_label(direction: str, shape_class: str, order: int = 0) -> str:
     """The one label of a mode: "forward conical", "backward bending 2", … (``order``: the
     bending mode's number, module docstring)."""
-    return f"{direction} {kind} {order}" if kind == "bending" else f"{direction} {kind}"
+    return (f"{direction} {shape_class} {order}" if shape_class == "bending"
+            else f"{direction} {shape_class}")
 
 
 def family(label: str) -> str:
@@ -124,11 +128,11 @@ def shape(q: np.ndarray, positions, names, structure=None) -> dict:
         phase = 180.0 if abs(pa) + abs(pb) == 0 else 90.0
     else:
         phase = math.degrees(np.angle(pb / pa))
-    kind = ("cylindrical" if abs(phase) <= PHASE_LIMIT_DEG else
+    form = ("cylindrical" if abs(phase) <= PHASE_LIMIT_DEG else
             "conical" if abs(phase) >= 180.0 - PHASE_LIMIT_DEG else "mixed")
     share, order = (0.0, 0) if rigid else bending(structure, q, positions, k)
     if share > BENDING_SHARE:
-        kind = "bending"
+        form = "bending"
     else:
         order = 0
     # p(z) = p_c + z p_ψ (dominant component; for a shaft the line through the bearings):
@@ -148,7 +152,8 @@ def shape(q: np.ndarray, positions, names, structure=None) -> dict:
         dominant = f if k == 0 else b
         at[name] = {"forward_radius": abs(f) / 2 / scale, "backward_radius": abs(b) / 2 / scale,
                     "phase_deg": _wrap(math.degrees(np.angle(dominant) - ref))}
-    out = {"label": mode_label(direction, kind, order), "direction": direction, "kind": kind,
+    out = {"label": mode_label(direction, form, order), "direction": direction,
+           "shape_class": form,
            "phase_b_from_a_deg": phase, "node_position_m": node, "at_bearings": at}
     if not rigid:
         out["bending_share"] = share
@@ -164,3 +169,19 @@ def label(q: np.ndarray, positions, structure=None) -> str:
 def _wrap(deg: float) -> float:
     w = (deg + 180.0) % 360.0 - 180.0
     return 180.0 if w == -180.0 else w
+
+
+def shape_vector(q: np.ndarray, rotor) -> np.ndarray:
+    """d [m] of a rotor amplitude q̂: (X, Y) at each bearing (rigid body) or at each shape
+    station along the shaft (module docstring)."""
+    structure, positions = rotor.structure, list(rotor.positions)
+    if structure is None or is_rigid(structure):
+        return np.concatenate([station_matrix(z) @ q for z in positions])
+    return np.concatenate([structure.station(z) @ q
+                           for z in shape_stations(structure, positions)])
+
+
+def mac(a: np.ndarray, b: np.ndarray) -> float:
+    """Modal assurance criterion |aᴴb|²/(|a|²|b|²) ∈ [0, 1]."""
+    den = np.vdot(a, a).real * np.vdot(b, b).real
+    return float(abs(np.vdot(a, b)) ** 2 / den) if den > 0 else 0.0

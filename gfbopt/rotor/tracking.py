@@ -33,10 +33,18 @@ cylindrical, mixed and conical with speed, so a row's shape is not the track's n
    :data:`SAME_FREQUENCY` of the onset's frequency.  A mode unstable at the lowest speed is
    matched to a track unstable at the diagram's first speed, by frequency alone.  A matched
    track takes the onset's label;
+1b. every onset-list mode still unmatched (stable over the range, or no track matched it by
+   rule 1) is matched one to one to the unnamed tracks by the optimal assignment on 1 − MAC
+   of its shape (the crossing's eigenvector where it is reported, :class:`~gfbopt.rotor.
+   mode_search.ModeOnset` ``vector``) and the track's at the diagram speed nearest that
+   speed (:func:`gfbopt.rotor.modes.shape_vector`: along the shaft for a shaft); a
+   pair is a candidate when that MAC is at least :data:`SAME_SHAPE`.  The track takes the
+   mode's label: a bending mode of the onset list and of the diagram are then one name;
 2. every other track is named by its shape class where its log decrement first falls
    through zero, else at its first speed when unstable there, else where it is least stable;
-3. distinct names: a name already taken — by a matched track, by the label of an onset that
-   no track matched, or by a lower-numbered track — gets the suffix " (2)", " (3)", … in the
+3. distinct names: a name already taken — by a matched track, by the label of any mode of
+   the onset list (matched or not: it names that mode alone), or by a lower-numbered track —
+   gets the suffix " (2)", " (3)", … in the
    order of the track numbers (column ``mode``).
 
 ``track_zero_rpm`` is the zero's speed by linear interpolation of the log decrement between
@@ -49,6 +57,7 @@ import numpy as np
 from scipy.optimize import linear_sum_assignment
 
 from .mode_search import ONSET, UNSTABLE_LOW
+from .modes import mac, shape_vector
 from .rigid import station_matrix
 
 #: a match of a mode to a track costing more than this starts a new track [-]
@@ -64,6 +73,9 @@ NEAR = 0.25
 #: speed is within this of the onset's whirl frequency [-] (two modes crossing zero in one
 #: diagram interval are further apart than this, and a Campbell line is smooth in Hz)
 SAME_FREQUENCY = 0.05
+#: a track and an onset-list mode are one mode (rule 1b) when the MAC of their shapes is at
+#: least this [-]
+SAME_SHAPE = 0.8
 #: statuses of a matched-whirl mode that a track losing (or without) damping carries
 _UNSTABLE = (ONSET, UNSTABLE_LOW)
 
@@ -74,12 +86,6 @@ def orbit_vector(mode, positions, structure=None) -> np.ndarray:
     if structure is None:
         return np.concatenate([station_matrix(z) @ mode.vector for z in positions])
     return np.concatenate([structure.station(z) @ mode.vector for z in positions])
-
-
-def mac(a: np.ndarray, b: np.ndarray) -> float:
-    """Modal assurance criterion |aᴴb|²/(|a|²|b|²) ∈ [0, 1]."""
-    den = np.vdot(a, a).real * np.vdot(b, b).real
-    return float(abs(np.vdot(a, b)) ** 2 / den) if den > 0 else 0.0
 
 
 def predicted(track: list, speed: float, omega: float) -> list:
@@ -196,20 +202,46 @@ def _match_cost(rows: list, onset, first_speed: float) -> float:
     return far + gap if far <= 1.0 and gap <= SAME_FREQUENCY else math.inf
 
 
-def name_tracks(tracks: list, onsets=()) -> list:
+def _same_shape(tracks: list, names: list, onsets: list, matched: set, rotor) -> None:
+    """Rule 1b of the module docstring: ``names`` filled in place."""
+    free = [t for t in range(len(tracks)) if names[t] is None and tracks[t]]
+    left = [k for k, o in enumerate(onsets) if k not in matched
+            and getattr(o, "vector", None) is not None
+            and math.isfinite(getattr(o, "at_speed_rpm", math.nan))]
+    if not (free and left and rotor is not None):
+        return
+    cost = np.ones((len(free), len(left)))
+    for i, t in enumerate(free):
+        for j, k in enumerate(left):
+            speed = onsets[k].at_speed_rpm
+            _, mode = min(tracks[t], key=lambda r: abs(r[0] - speed))
+            cost[i, j] = 1.0 - mac(shape_vector(onsets[k].vector, rotor),
+                                         shape_vector(mode.vector, rotor))
+    for i, j in zip(*linear_sum_assignment(cost)):
+        if cost[i, j] <= 1.0 - SAME_SHAPE:
+            names[free[i]] = onsets[left[j]].label
+            matched.add(left[j])
+
+
+def name_tracks(tracks: list, onsets=(), rotor=None) -> list:
     """(name, zero-damping speed [rpm] or nan) of each track (rows (speed, mode) in speed
     order), no two names alike (module docstring); ``onsets``: the matched-whirl onsets
-    (:class:`~gfbopt.rotor.mode_search.ModeOnset`)."""
+    (:class:`~gfbopt.rotor.mode_search.ModeOnset`); ``rotor``: the rotor case whose
+    structure reads the shapes (rule 1b; None: no rule 1b)."""
     base = [track_name(rows) for rows in tracks]
     names: list = [None] * len(tracks)
     onsets = list(onsets)
     first = min((rows[0][0] for rows in tracks if rows), default=math.nan)
+    matched: set = set()
     if tracks and onsets:
         cost = np.array([[_match_cost(rows, o, first) for o in onsets] for rows in tracks])
         for t, k in zip(*linear_sum_assignment(np.where(np.isfinite(cost), cost, 1e9))):
             if math.isfinite(cost[t, k]):
                 names[t] = onsets[k].label
-    taken = {n for n in names if n} | {o.label for o in onsets if o.status in _UNSTABLE}
+                matched.add(int(k))
+        _same_shape(tracks, names, onsets, matched, rotor)
+    # every onset-list mode's name is its own: a track of another mode does not take it
+    taken = {n for n in names if n} | {o.label for o in onsets}
     for t, (label, _) in enumerate(base):
         if names[t] is None:
             name, k = label, 1
