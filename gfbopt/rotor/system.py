@@ -139,7 +139,8 @@ class SpeedLine:
             ok = sorted((s for s, st in self._states.items() if st.ok),
                         key=lambda s: abs(math.log(s / speed)))
             guesses = (predicted_starts(self._states[ok[0]],
-                                        self._states[ok[1]] if len(ok) > 1 else None, speed)
+                                        self._states[ok[1]] if len(ok) > 1 else None, speed,
+                                        self._states[ok[2]] if len(ok) > 2 else None)
                        if ok else None)
             guesses = self._guide_starts(speed, ok[0] if ok else None) or guesses
             self._states[speed] = support_states(self.rotor, speed, None, self.whirl_range,
