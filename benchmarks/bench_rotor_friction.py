@@ -1,0 +1,164 @@
+"""What the bumps' Coulomb friction costs the rotor transient, and the blower's top-speed run.
+
+Run:  OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1 python benchmarks/bench_rotor_friction.py
+      [--repeats N] [--out FILE]      (default results/benchmarks/rotor_friction.json)
+
+1. ``per_revolution``: CPU time (time.process_time) per shaft revolution of the rotor
+   transient of problems/rotors/blower_friction.toml (μ_f = 0.5, κ = 2 at both bearings:
+   sliders integrated) against problems/rotors/blower.toml (the same rotor and bearings without
+   friction: the fused films of today), 72 × 20, 60,000 rpm, cylindrical kick 1e-3, imbalance
+   on, 3 revolutions (both in their films: the friction run closes B's film after 7.4).
+   Interleaved A B A B, ``--repeats`` pairs, the median and the range of the per-pair ratios.
+   Two step rules: ``fixed`` — rkc at Δτ = 0.1 with 6 stages for both (the ratio is the
+   films' and the sliders' cost per step), and ``default`` — each run's own rkc rule (the
+   step from accuracy, the stages from its stiffness bound: what a user gets), with the
+   evaluations per revolution of each.  Target ratio ≤ 2.
+2. ``blower_top_speed``: ``gfbopt.transient.rotor_orbit`` of blower_friction at 60,000 rpm
+   for 100 revolutions at 72 × 20 (statics, model and integration, CPU), how it ended at each
+   bearing, against the describing function's verdict (gfbopt.rotor.friction_onset
+   .settled_whirl, same grid).  Target ≤ 60 s CPU.
+
+The machine's load (uptime) is stated before and after each part: 2 cores shared with other
+jobs, so only CPU time and interleaved ratios are meaningful.
+"""
+from __future__ import annotations
+
+import os
+
+for _var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
+    os.environ[_var] = "1"
+
+import argparse  # noqa: E402
+import math  # noqa: E402
+import statistics  # noqa: E402
+import sys  # noqa: E402
+import time  # noqa: E402
+from pathlib import Path  # noqa: E402
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))  # noqa: E402
+from machine import machine_info, tree_label, write_report  # noqa: E402
+from gfbopt.inputs import Grid  # noqa: E402
+from gfbopt.inputs.rotor_system import load_rotor  # noqa: E402
+from gfbopt.transient.rotor_analysis import rotor_orbit  # noqa: E402
+from gfbopt.transient.rotor_io import rotor_input  # noqa: E402
+from gfbopt.transient.rotor_run import integrate_rotor  # noqa: E402
+from gfbopt.transient.rotor_setup import (build_model, equilibrium_states,  # noqa: E402
+                                          set_station_velocities)
+from gfbopt.transient.rotor_system import runs  # noqa: E402
+
+ROOT = Path(__file__).resolve().parents[1]
+ROTORS = ROOT / "problems" / "rotors"
+GRID = Grid(72, 20)
+SPEED = 60_000.0
+REVOLUTIONS = 3.0
+
+
+def load() -> str:
+    return os.popen("uptime").read().strip()
+
+
+def _setup(name: str):
+    model, _ = build_model(rotor_input(load_rotor(ROTORS / f"{name}.toml")), SPEED, GRID)
+    z = set_station_velocities(model, equilibrium_states(model, 1),
+                               [[7.07e-4, 7.07e-4], [7.07e-4, 7.07e-4]])
+    return model, z
+
+
+def per_revolution(repeats: int) -> dict:
+    cases = {"friction": _setup("blower_friction"), "bare": _setup("blower")}
+    duration = 2 * math.pi * REVOLUTIONS
+    rules = {"fixed": {"time_step": 0.1, "stages": 6}, "default": {}}
+    out = {"grid": str(GRID), "speed_rpm": SPEED, "revolutions_per_run": REVOLUTIONS,
+           "method": "rkc", "pairs": repeats, "target_ratio": 2.0,
+           "load_before": load()}
+    for rule, step in rules.items():
+        cpu = {k: [] for k in cases}
+        info = {}
+        for _ in range(repeats):                      # A B A B
+            for name, (model, z) in cases.items():
+                t = time.process_time()
+                run = integrate_rotor(model, runs(1), duration, z.copy(), method="rkc", **step)
+                cpu[name].append((time.process_time() - t) / REVOLUTIONS)
+                assert run.success and not run.contact[0], run.message
+                info[name] = {"evaluations_per_revolution": run.evaluations / REVOLUTIONS,
+                              "time_step_rad": run.time_step, "rkc_stages": list(run.stages),
+                              "sliders_integrated": run.sliders is not None}
+        ratios = [a / b for a, b in zip(cpu["friction"], cpu["bare"])]
+        out[rule] = {"step": step or "each run's own rkc rule",
+                     **{f"{k}_cpu_s_per_revolution_median": statistics.median(v)
+                        for k, v in cpu.items()},
+                     **{f"{k}_cpu_s_per_revolution_each": v for k, v in cpu.items()},
+                     "ratio_median": statistics.median(ratios),
+                     "ratio_range": [min(ratios), max(ratios)], "runs": info}
+    out["load_after"] = load()
+    return out
+
+
+def blower_top_speed() -> dict:
+    from gfbopt.rotor.friction_onset import settled_whirl
+    from gfbopt.rotor.supports import resolve_rotor
+
+    system = load_rotor(ROTORS / "blower_friction.toml")
+    before = load()
+    t0 = time.process_time()
+    result = rotor_orbit(system, SPEED, 100, grid=GRID)
+    cpu = time.process_time() - t0
+    d = result.to_dict()
+    t0 = time.process_time()
+    df = settled_whirl(resolve_rotor(system, GRID), SPEED)
+    df_cpu = time.process_time() - t0
+    return {"rotor_file": "problems/rotors/blower_friction.toml", "grid": str(GRID),
+            "speed_rpm": SPEED, "revolutions_asked": 100,
+            "revolutions_integrated": d["revolutions_integrated"],
+            "cpu_s": cpu, "target_cpu_s": 60.0, "evaluations": d["evaluations"],
+            "rkc_stages": d["rkc_stages"], "model": d["bump_friction"],
+            "contact": d["contact"], "contact_bearing": d["contact_bearing"],
+            "contact_time_s": d["contact_time_s"],
+            "bearings": [{"bearing": b["bearing"], "kind": b["friction_kind"],
+                          "verdict": b["friction_verdict"], "min_film_um": b["min_film_um"]}
+                         for b in d["bearings"]],
+            "describing_function": {"verdict": df.verdict, "bounded": df.bounded,
+                                    "small_motion_inertia_scale":
+                                        df.small_motion_inertia_scale,
+                                    "mode": df.label, "cpu_s": df_cpu},
+            "load_before": before, "load_after": load()}
+
+
+#: the code this benchmark measures (its state is recorded beside the tree's)
+MEASURED = ["gfbopt/transient", "benchmarks/bench_rotor_friction.py"]
+
+
+def measured_state() -> dict:
+    import subprocess
+
+    def git(*args):
+        return subprocess.run(["git", *args], cwd=str(ROOT), capture_output=True,
+                              text=True).stdout.strip()
+    return {"commit": git("rev-parse", "HEAD"),
+            "measured_files_dirty": bool(git("status", "--porcelain", "--", *MEASURED))}
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument("--repeats", type=int, default=5)
+    parser.add_argument("--out", default=str(ROOT / "results/benchmarks/rotor_friction.json"))
+    args = parser.parse_args()
+    out = {"machine": machine_info(), "source": tree_label(ROOT),
+           "measured_code": measured_state(),
+           "per_revolution": per_revolution(args.repeats),
+           "blower_top_speed": blower_top_speed()}
+    path = write_report(out, args.out)
+    p = out["per_revolution"]
+    for rule in ("fixed", "default"):
+        print(f"{rule:8s} friction/bare CPU per revolution: median {p[rule]['ratio_median']:.2f} "
+              f"(pairs {p[rule]['ratio_range'][0]:.2f}–{p[rule]['ratio_range'][1]:.2f}; "
+              "target ≤ 2)")
+    b = out["blower_top_speed"]
+    print(f"blower_friction 60,000 rpm 72x20: {b['cpu_s']:.1f} s CPU; "
+          + "; ".join(f"{e['bearing']}: {e['verdict']}" for e in b["bearings"])
+          + f"; describing function: {b['describing_function']['verdict']}")
+    print(f"written {path}")
+
+
+if __name__ == "__main__":
+    main()
