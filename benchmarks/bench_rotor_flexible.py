@@ -10,14 +10,24 @@ two are interleaved ``--repeats`` times and the medians taken (CPU time of this 
 machine is shared: load before and after recorded).  Also the CPU of building the
 structure (shaft assembly and condensation) alone.
 
+``--baseline DIR``: the same measurement of the code in DIR (e.g. ``git archive`` of an older
+commit), a process of this script with PYTHONPATH=DIR after each repeat here (A B A B …); the
+JSON then has its medians, the new/old CPU of each rotor and the largest relative difference
+of the onsets and whirl ratios from the old code's.  ``--source-commit``: the commit the
+measured tree is an export of (recorded as the source when the tree is not a checkout).
+
     OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1 PYTHONPATH=. python \\
         benchmarks/bench_rotor_flexible.py [--out results/benchmarks/rotor_flexible.json]
+        [--repeats 3] [--baseline DIR] [--source-commit HASH]
 """
 from __future__ import annotations
 
 import argparse
+import json
+import math
 import os
 import statistics
+import subprocess
 import sys
 import time
 from pathlib import Path
@@ -41,12 +51,45 @@ def _cpu(function):
     return time.process_time() - c, out
 
 
+def _modes(result) -> dict:
+    return {m.label: {"onset_speed_rpm": m.onset_speed_rpm, "whirl_ratio": m.whirl_ratio,
+                      "status": m.status} for m in result.modes}
+
+
+def _baseline(tree: str, grid: str) -> dict:
+    """One repeat of this benchmark on the code in ``tree`` (a process of its own)."""
+    out = Path(f"/tmp/bench_rotor_flexible_baseline_{os.getpid()}.json")
+    env = dict(os.environ, PYTHONPATH=str(Path(tree).resolve()))
+    subprocess.run([sys.executable, __file__, "--grid", grid, "--repeats", "1",
+                    "--out", str(out)], env=env, check=True, capture_output=True)
+    data = json.loads(out.read_text())
+    out.unlink()
+    return data
+
+
+def _difference(new: dict, old: dict, key: str) -> float:
+    """The largest relative difference of ``key`` over the modes both list (nan = nan)."""
+    out = 0.0
+    for label, m in new.items():
+        o = old.get(label, {}).get(key, math.nan)
+        a = m.get(key, math.nan)
+        if math.isnan(a) and math.isnan(o):
+            continue
+        out = max(out, abs(a / o - 1) if o else math.inf)
+    return out
+
+
 def main(argv=None) -> dict:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--out", default=str(ROOT / "results" / "benchmarks" /
                                              "rotor_flexible.json"))
     parser.add_argument("--repeats", type=int, default=3)
     parser.add_argument("--grid", default="72x20")
+    parser.add_argument("--baseline", default=None, help="source tree of the old code")
+    parser.add_argument("--source-commit", default=None,
+                        help="the commit the measured tree is an export of")
+    parser.add_argument("--baseline-commit", default=None,
+                        help="the commit the baseline tree is an export of")
     args = parser.parse_args(argv)
     grid = Grid.parse(args.grid)
     load_before = os.getloadavg()
@@ -62,11 +105,13 @@ def main(argv=None) -> dict:
 
     for name in systems:                   # builds
         run(name)
-    cpus, answers = {n: [] for n in systems}, {}
+    cpus, answers, old = {n: [] for n in systems}, {}, []
     for _ in range(args.repeats):
         for name in systems:
             cpu, answers[name] = _cpu(lambda: run(name))
             cpus[name].append(cpu)
+        if args.baseline:
+            old.append(_baseline(args.baseline, args.grid))
     structure_cpu = statistics.median(_cpu(lambda: analysis_structure(flexible))[0]
                                       for _ in range(5))
     med = {k: statistics.median(v) for k, v in cpus.items()}
@@ -74,13 +119,36 @@ def main(argv=None) -> dict:
            "cpu_s_median": med, "ratio_flexible_over_rigid": med["flexible"] / med["rigid"],
            "target": TARGET, "met": med["flexible"] / med["rigid"] <= TARGET,
            "structure_build_cpu_s": structure_cpu,
-           "modes": {n: {m.label: {"onset_speed_rpm": m.onset_speed_rpm, "status": m.status}
-                         for m in r.modes} for n, r in answers.items()},
+           "modes": {n: _modes(r) for n, r in answers.items()},
+           "source": {"commit": args.source_commit, "tree": "export of that commit"}
+           if args.source_commit else {},
            "machine": machine_info(load_average_before=load_before,
                                    load_average_after=os.getloadavg())}
+    if old:
+        omed = {n: statistics.median(o["cpu_s_median"][n] for o in old) for n in systems}
+        out["baseline"] = {
+            "source": {"commit": args.baseline_commit, "tree": "export of that commit"},
+            "cpu_s_median": omed,
+            "cpu_s": {n: [o["cpu_s_median"][n] for o in old] for n in systems},
+            "ratio_flexible_over_rigid": omed["flexible"] / omed["rigid"],
+            "new_over_old_cpu": {n: med[n] / omed[n] for n in systems},
+            "modes": old[-1]["modes"],
+            "max_relative_onset_difference_vs_old": {
+                n: _difference(out["modes"][n], old[-1]["modes"][n], "onset_speed_rpm")
+                for n in systems},
+            "max_relative_whirl_difference_vs_old": {
+                n: _difference(out["modes"][n], old[-1]["modes"][n], "whirl_ratio")
+                for n in systems}}
     print(f"{grid}: flexible {med['flexible']:.2f} s CPU, rigid {med['rigid']:.2f} s; ratio "
           f"{out['ratio_flexible_over_rigid']:.2f} (target {TARGET}); structure build "
           f"{structure_cpu * 1e3:.1f} ms; load {load_before} -> {os.getloadavg()}")
+    if old:
+        b = out["baseline"]
+        print(f"  old code: flexible {b['cpu_s_median']['flexible']:.2f} s, rigid "
+              f"{b['cpu_s_median']['rigid']:.2f} s, ratio {b['ratio_flexible_over_rigid']:.2f}; "
+              f"new/old {b['new_over_old_cpu']}; onsets differ by "
+              f"{b['max_relative_onset_difference_vs_old']}, whirl by "
+              f"{b['max_relative_whirl_difference_vs_old']}")
     write_report(out, args.out)
     return out
 

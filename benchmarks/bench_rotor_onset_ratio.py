@@ -16,6 +16,8 @@ rotor's CPU split by stage and grid (statics, full crossings, local crossings).
 Where the grid has no coarse guide by default (72 × 20: fewer than GUIDE_FACTOR = 8 times
 36 × 10's cells), the rotor is also timed with the 36 × 10 guide (``rotor_guided``: a different
 secant path, so its onsets differ from the default's by up to the secant's own error).
+``--source-commit`` / ``--baseline-commit``: the commits the measured and the baseline trees
+are exports of (``git archive``), recorded as their sources when the trees are not checkouts.
 ``--roots``: each onset also found by Brent's method on the reference line's full crossings to
 a relative 1e-10 around the answer (the root the secants approach; slow: ~30 full crossings a
 mode), and the distance of each variant's onset from it.
@@ -63,7 +65,11 @@ MINE = ["gfbopt/rotor", "gfbopt/linear", "benchmarks/bench_rotor_onset_ratio.py"
 LOCAL = "local" in inspect.signature(SpeedLine).parameters
 
 
-def _source() -> dict:
+def _source(commit=None) -> dict:
+    if commit:
+        return {"commit": commit, "tree": "export of that commit (git archive)",
+                "measured_files_dirty": False, "tree_dirty": False}
+
     def git(*args):
         return subprocess.run(["git", *args], cwd=Path(system_module.__file__).parents[2],
                               capture_output=True, text=True).stdout.strip()
@@ -110,12 +116,13 @@ def _breakdown(system, grid: Grid, cache) -> dict:
     return out
 
 
-def _baseline(tree: str, grid: str) -> dict:
+def _baseline(tree: str, grid: str, commit=None) -> dict:
     """One repeat of this benchmark on the code in ``tree`` (a process of its own)."""
     out = Path(f"/tmp/bench_rotor_onset_ratio_baseline_{os.getpid()}.json")
     env = dict(os.environ, PYTHONPATH=str(Path(tree).resolve()))
     subprocess.run([sys.executable, __file__, "--grids", grid, "--repeats", "1",
-                    "--out", str(out)], env=env, check=True, capture_output=True)
+                    "--out", str(out)] + (["--source-commit", commit] if commit else []),
+                   env=env, check=True, capture_output=True)
     data = json.loads(out.read_text())
     out.unlink()
     return {"source": data["source"], **data["runs"][0]}
@@ -253,16 +260,21 @@ def main(argv=None) -> dict:
     parser.add_argument("--repeats", type=int, default=3)
     parser.add_argument("--grids", default="144x36,72x20")
     parser.add_argument("--baseline", default=None, help="source tree of the old code")
+    parser.add_argument("--source-commit", default=None,
+                        help="the commit the measured tree is an export of")
+    parser.add_argument("--baseline-commit", default=None,
+                        help="the commit the baseline tree is an export of")
     parser.add_argument("--roots", action="store_true",
                         help="also each onset's root by Brent's method (slow)")
     args = parser.parse_args(argv)
     system = load_rotor(ROOT / "problems" / "rotors" / "blower.toml")
-    load_before, source = os.getloadavg(), _source()      # the code as it starts
+    load_before, source = os.getloadavg(), _source(args.source_commit)  # as it starts
     runs = []
     for g in args.grids.split(","):
         old = []
         run = bench(system, Grid.parse(g), args.repeats,
-                    after_repeat=(lambda gg=g, o=old: o.append(_baseline(args.baseline, gg)))
+                    after_repeat=(lambda gg=g, o=old: o.append(
+                        _baseline(args.baseline, gg, args.baseline_commit)))
                     if args.baseline else None, roots=args.roots)
         if old:
             run["baseline"] = _compare(run, old)
