@@ -10,7 +10,8 @@ ambient), c the axial ends' weight share, and
 
 * stuck:    a² − b a − S_e Φ̃ = 0, S_e = S/(1 + κ), b = H_r + κZ/(1 + κ) + S_e (c − 1);
 * slipping: the same with S_e = S (1 ∓ μ_f) (sense of the element's stretch) on loaded rows
-  (Φ̃/H_r + c − 1 > 0), S on the others, and no offset;
+  (Φ̃/H_r + c − 1 > 0, or H_r ≤ 0: that row's film needs W > 0), S on the others, and no
+  offset;
 
 stuck where the stuck candidate's stretch |a − H_r − Z| is within the slip displacement
 X_s = μ_f q⁺ S/κ (X_s > 0).  The sliders after an accepted step (:meth:`after_step`) are
@@ -69,7 +70,7 @@ class FrictionFusedFilms(FusedFilms):
         xs = np.maximum(q_st, 0.0)
         xs *= self.slip_gain
         stuck = (np.abs(stretch) <= xs) & (xs > 0.0)
-        loaded = phit / hr + self.ends_m1 > 0.0
+        loaded = (hr <= 0.0) | (phit / np.where(hr > 0.0, hr, 1.0) + self.ends_m1 > 0.0)
         s_slip = np.where(loaded, self.s - np.where(stretch > 0, self.mu_s, -self.mu_s),
                           self.s)
         b = s_slip * self.ends_m1
