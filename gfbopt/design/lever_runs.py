@@ -58,6 +58,25 @@ def check_starts(levers: tuple, system, settings, file: str) -> None:
                                  "from: make it a design variable of the study")
 
 
+def clearance_bound(lever: Lever, system, design: dict, settings) -> tuple:
+    """(the lever, a note): a preload-depth lever whose high bound reaches the smallest
+    radial clearance of the bearings it acts on (that of ``design``, or as built) is bounded
+    by that clearance — a shim or lobe that deep closes the film, so the evaluation there
+    fails — and the note says so; every other lever is returned as it is, with no note."""
+    bearing, var = (lever.name.split(":", 1) if ":" in lever.name else (None, lever.name))
+    if var != "preload_depth_um":
+        return lever, ""
+    names = [b.name for b in system.bearings if bearing is None or b.name == bearing]
+    clearances = {b: start_value(Lever(f"{b}:radial_clearance_um", "µm", "", 0.0, 1.0),
+                                 system, design, settings) for b in names}
+    b, c = min(clearances.items(), key=lambda item: item[1])
+    if not (math.isfinite(c) and lever.high >= c):
+        return lever, ""
+    return (dataclasses.replace(lever, high=c),
+            f"bounded by bearing {b}'s radial clearance {c:.4g} µm (the study's bound "
+            f"{lever.high:g} µm is deeper: a preload as deep as the clearance closes the film)")
+
+
 def lever_point(lever: Lever, value: float, system, design: dict, settings) -> dict:
     """The keyword arguments of an evaluation of ``design`` with the lever at ``value``."""
     if lever.name == "loss_factor":
@@ -224,6 +243,8 @@ def what_it_would_take(levers: tuple, evaluations: LeverEvaluations, start_onset
         if not math.isfinite(start):
             raise ParameterError(f"what_it_would_take.{lever.name}", lever.name,
                                  "has no value on this rotor's bearings to start from")
+    bounded = [clearance_bound(lever, ev.system, ev.design, ev.settings) for lever in levers]
+    levers = tuple(b[0] for b in bounded)
     ev.prefetch([(lever, x, True) for lever, start in zip(levers, starts)   # one batch
                  for x in scan_values(start, lever.low, lever.high)])
     out = []
@@ -238,6 +259,9 @@ def what_it_would_take(levers: tuple, evaluations: LeverEvaluations, start_onset
                 t = dataclasses.replace(t, message=(
                     f"at {_number(t.limit_value, lever.unit)} it is still {UNSTABLE_LOW} "
                     f"({_number(t.limit_onset_rpm, 'rpm')})"))
+        if bounded[k][1]:                 # the preload lever stops at the clearance
+            t = dataclasses.replace(t, message="; ".join(m for m in (bounded[k][1], t.message)
+                                                         if m))
         if t.found:
             full = ev.row(lever, t.value, onset_only=False)
             meets = bool(full.get("feasible"))
@@ -276,8 +300,10 @@ def answers_text(answers: list, top: float, onset: float, evaluated: int = 0,
                        f"{_number(a.limit_onset_rpm, 'rpm')}"
                        if math.isfinite(a.limit_onset_rpm) and UNSTABLE_LOW not in a.message
                        else a.message)
+            note = (f"; {a.message}" if a.message and a.message != reached
+                    and a.message != "none within physical limits" else "")
             parts.append(f"{a.words}: none within physical limits "
-                         f"[{a.low:g}, {a.high:g}] ({reached})")
+                         f"[{a.low:g}, {a.high:.4g}] ({reached}{note})")
     return (f"What it would take to be stable to {_number(top, 'rpm')} (the chosen design, "
             f"first onset {_number(onset, 'rpm')}), one lever at a time: "
             + "; ".join(parts) + f" ({evaluated} evaluations"
