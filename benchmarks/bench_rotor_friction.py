@@ -114,8 +114,8 @@ def blower_top_speed() -> dict:
             "rkc_stages": d["rkc_stages"], "model": d["bump_friction"],
             "contact": d["contact"], "contact_bearing": d["contact_bearing"],
             "contact_time_s": d["contact_time_s"],
-            "bearings": [{"bearing": b["bearing"], "kind": b["friction_kind"],
-                          "verdict": b["friction_verdict"], "min_film_um": b["min_film_um"]}
+            "bearings": [{"bearing": b["bearing"], "kind": b["friction_orbit_kind"],
+                          "verdict": b["friction_orbit_verdict"], "min_film_um": b["min_film_um"]}
                          for b in d["bearings"]],
             "describing_function": {"verdict": df.verdict, "bounded": df.bounded,
                                     "small_motion_inertia_scale":

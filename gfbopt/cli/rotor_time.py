@@ -392,8 +392,9 @@ def _emit(out: dict, as_json: bool, result) -> None:
     if out.get("bump_friction"):
         lines.append(f"  {out['bump_friction']}")
         for b in out["bearings"]:
-            if "friction_verdict" in b:
-                lines.append(f"  bearing {b['bearing']} with friction: {b['friction_verdict']}")
+            if "friction_orbit_verdict" in b:
+                lines.append(f"  bearing {b['bearing']} with friction: "
+                             f"{b['friction_orbit_verdict']}")
     if p.kind != "orbit":
         lines.append(f"  subsynchronous line (≥ {out['subsync_threshold_um']:.3g} µm) appears "
                      f"at {_rpm(out['subsync_appearance_rpm'])}; linear onset "

@@ -105,7 +105,7 @@ class RotorTransientResult:
             entry.update(self._synchronous(self.waterfalls[run][k],
                                            bool(self.contacts[run]["contact"])))
             if self.friction:
-                entry.update({f"friction_{key}": value for key, value in
+                entry.update({f"friction_orbit_{key}": value for key, value in
                               self.friction[run][k].items() if key != "bearing"})
             out["bearings"].append(entry)
         out.update(self.contacts[run])
@@ -254,7 +254,7 @@ def summarise(run: RotorRun, profile, rotor, solutions, settings: dict, *, syste
     if rotor_friction.rubbing(model):
         settings = {**settings, "bump_friction": rotor_friction.model_words(model)}
         notes.append("Bumps that rub: " + settings["bump_friction"] + "; " + (
-            "per bearing, how the orbit ended (friction_kind: settled limit cycle, contact or "
+            "per bearing, how the orbit ended (friction_orbit_kind: settled limit cycle, contact or "
             "end of run): the semi-major axis of the whirl's first harmonic over the last "
             f"{rotor_friction.PERIODS} whirl periods against the {rotor_friction.PERIODS} "
             f"before (settled within {rotor_friction.TOLERANCE:g}), 1× removed"

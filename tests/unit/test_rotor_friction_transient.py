@@ -227,8 +227,8 @@ def test_blower_on_rubbing_bumps_closes_the_film_at_its_top_speed(capsys):
     assert out["bump_friction"].startswith("bump friction μ_f = 0.5, κ = 2 at A; μ_f = 0.5, "
                                            "κ = 2 at B (sliders integrated")
     for b in out["bearings"]:
-        assert b["friction_kind"] == "contact"
-        assert b["friction_verdict"].startswith("contact after 7.3")
+        assert b["friction_orbit_kind"] == "contact"
+        assert b["friction_orbit_verdict"].startswith("contact after 7.3")
     assert any(n.startswith("Bumps that rub: bump friction") for n in out["notes"])
 
 
@@ -245,7 +245,7 @@ def test_command_line_states_the_model_and_the_outcome(capsys):
     assert main(args + ["--json"]) == 0
     data = json.loads(capsys.readouterr().out)
     assert data["bump_friction"].startswith("bump friction")
-    assert [b["friction_kind"] for b in data["bearings"]] == ["end of run", "end of run"]
+    assert [b["friction_orbit_kind"] for b in data["bearings"]] == ["end of run", "end of run"]
 
 
 def test_refusals():
