@@ -134,8 +134,13 @@ def _load(path: str, args):
             raise ParameterError("--grid", args.grid, f"{path}: a {data['kind']} study has "
                                  "no single grid (it names its grids itself)")
         data["grid"] = args.grid
-    if args.max_points is not None and "max_points" in schema:
-        data["max_points"] = args.max_points
+    if args.max_points is not None:
+        if "max_points" not in schema and data.get("kind") in SCHEMAS:
+            raise ParameterError("--max-points", args.max_points, f"{path}: a {data['kind']} "
+                                 "study has no points to cap (its size is set in the file, "
+                                 "e.g. a design's search budget)")
+        if "max_points" in schema:
+            data["max_points"] = args.max_points
     return study_from_dict(data, name=Path(path).stem, file=str(path),
                            directory=Path(path).parent, limits=limits(args))
 

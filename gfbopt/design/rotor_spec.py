@@ -319,6 +319,13 @@ def plan_rotor_design(study, study_hash: str = "") -> RotorDesignPlan:
     widest = max([min(b.geometry.radial_clearance for b in system.bearings) * 1e6]
                  + [x for v in s["variables"] if v["name"].endswith("radial_clearance_um")
                     for x in (v["values"] or [v["high"]]) if isinstance(x, (int, float))])
+    from ..rotor.capacity import MIN_FILM_LIMIT_UM
+
+    for key in ("min_film_um", "lift_off_film_um", "capacity_film_um"):
+        if s[key] is not None and s[key] < MIN_FILM_LIMIT_UM:
+            raise study.where(key).error(s[key], f"must be >= {MIN_FILM_LIMIT_UM:g} µm: a "
+                                         "thinner film is below any real surface's roughness "
+                                         "(is it in metres? the key is in µm)")
     if not s["min_film_um"] < widest:
         raise study.where("min_film_um").error(s["min_film_um"], f"must be below the radial "
                                                f"clearance ({widest:g} µm at the most)")
@@ -376,8 +383,13 @@ def plan_rotor_design(study, study_hash: str = "") -> RotorDesignPlan:
                                                     "max_lift_off_speed_rpm")
     if s["min_capacity_margin"] is not None and s["capacity_film_um"] is None:
         raise study.where("capacity_film_um").error(None, "is needed by min_capacity_margin")
-    settings = EvaluationSettings(grid=Grid.parse(s["search_grid"]), **common)
-    default = EvaluationSettings(grid=Grid.parse(s["grid"]), **common)
+    search_grid, default_grid = Grid.parse(s["search_grid"]), Grid.parse(s["grid"])
+    if (default_grid.n_theta < search_grid.n_theta or default_grid.n_z < search_grid.n_z):
+        raise study.where("grid").error(str(s["grid"]), f"must be at least as fine as "
+                                        f"search_grid {s['search_grid']!r} in both directions: "
+                                        "it re-evaluates the search's designs (grid honesty)")
+    settings = EvaluationSettings(grid=search_grid, **common)
+    default = EvaluationSettings(grid=default_grid, **common)
     _check_buildable(study, system, variables, settings)
     _check_levers(study, system, variables, settings)
     return RotorDesignPlan(system, problem, search, settings, default, band, s["goal"],
