@@ -8,10 +8,12 @@ with a steel journal and the illustrative heat balance
 5,000–50,000 rpm.
 
 Measures (CPU time of this process, one BLAS thread; A/B interleaved, median of
-``--repeats``): ``points``: the fixed point's static solves at 10k…50k rpm, alone (cold, no
-prior) and along a speed line (each seeded by the speed below); ``onset``: after the builds,
+``--repeats``): ``points``: the fixed point's static solves at 10k…60k rpm (60k is 1 % below
+the runaway), alone (cold, no prior) and along a speed line (each seeded by the two speeds
+below); ``root_search``: CPU of the heat balance's root search (256 samples, one vectorised
+evaluation, then Brent) against the same search as a scalar loop; ``onset``: after the builds,
 :func:`gfbopt.rotor.onset_speed` on the isothermal file and
-:func:`gfbopt.cli.running.running_onset` on the thermal one, with their answers,
+:func:`gfbopt.rotor.running_bearing.running_onset` on the thermal one, with their answers,
 evaluations and static solves, and the ratio.
 
 Usage::
@@ -29,7 +31,7 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))  # noqa: E402
 from machine import machine_info, tree_label, write_report  # noqa: E402
-from gfbopt.cli.running import running_onset
+from gfbopt.rotor.running_bearing import running_onset
 from gfbopt.inputs import Grid, OperatingPoint, Rotor
 from gfbopt.inputs.options import resolve_model_options
 from gfbopt.rotor import onset_speed, stability
@@ -40,7 +42,7 @@ from gfbopt.thermal.running import running_point, speed_line
 
 REPO = Path(__file__).resolve().parents[1]
 ROTOR, LOAD, RANGE = Rotor(2.0), 20.0, (5000.0, 50000.0)
-SPEEDS = (10e3, 20e3, 30e3, 40e3, 50e3)
+SPEEDS = (10e3, 20e3, 30e3, 40e3, 50e3, 60e3)   # runaway from 60,625 rpm
 TARGETS = {"static_solves_per_point": 3, "onset_ratio": 2.0}
 
 
@@ -65,6 +67,43 @@ def points_section(grid: Grid) -> dict:
     return {"alone": alone, "seeded": seeded, "seeded_cpu_s": cpu,
             "max_solves_alone": max(p["static_solves"] for p in alone),
             "max_solves_seeded": max(p["static_solves"] for p in seeded)}
+
+
+def root_search_section(repeats: int = 200) -> dict:
+    """CPU per root search [s]: :meth:`gfbopt.thermal.balance.Balance.lowest_root` against
+    the same samples evaluated one by one (the search before it was vectorised)."""
+    import math
+
+    import numpy as np
+    from scipy.optimize import brentq
+
+    from gfbopt.thermal.balance import N_SAMPLES, Balance
+
+    _, spec = load_running_bearing(REPO / "problems/bearings/ruscitto_thermal.toml")
+    g = spec.thermal.conductances(spec.radius, spec.length, spec.cold_clearance, 1e-6)
+    b = Balance(spec, 45e3 * math.pi / 30, lambda x: np.maximum(0.93 - 0.04 * (x - 2.5),
+                                                                1e-3), g)
+
+    def scalar():
+        top, _ = b.top()
+        grid = np.append(top * np.linspace(0.0, 1.0, N_SAMPLES + 1)[:-1], top * (1 - 1e-12))
+        values = [b.residual(float(p)) for p in grid]
+        k = next(i for i, v in enumerate(values) if v > 0)
+        return brentq(b.residual, grid[k - 1], grid[k], xtol=1e-300, rtol=1e-15,
+                      maxiter=200)
+
+    times = {"vectorised": [], "scalar_loop": []}
+    for _ in range(repeats):                 # interleaved A/B
+        t0 = time.process_time()
+        root = b.lowest_root()[0]
+        times["vectorised"].append(time.process_time() - t0)
+        t0 = time.process_time()
+        ref = scalar()
+        times["scalar_loop"].append(time.process_time() - t0)
+    vec, loop = (statistics.median(times[k]) for k in ("vectorised", "scalar_loop"))
+    return {"vectorised_cpu_s": vec, "scalar_loop_cpu_s": loop, "speedup": loop / vec,
+            "root_w": root, "root_relative_difference": abs(root - ref) / ref,
+            "repeats": repeats}
 
 
 def onset_section(grid: Grid, repeats: int) -> dict:
@@ -96,7 +135,7 @@ def onset_section(grid: Grid, repeats: int) -> dict:
                    "heat_running_at_onset": hot["running"]}
     iso_s, hot_s = statistics.median(times["isothermal"]), statistics.median(times["heat"])
     # the stability at one point, isothermal against heat balance (fixed point included)
-    from gfbopt.cli.running import running_stability
+    from gfbopt.rotor.running_bearing import running_stability
     t0 = time.process_time()
     stability(iso_bearing, ROTOR, OperatingPoint(30e3, LOAD), grid=grid,
               cache=caches["isothermal"])
@@ -125,6 +164,11 @@ def main(argv=None) -> int:
     out["points"] = points_section(grid)
     print("static solves per point, alone:", [p["static_solves"] for p in out["points"]["alone"]],
           "seeded:", [p["static_solves"] for p in out["points"]["seeded"]])
+    out["root_search"] = root_search_section()
+    r = out["root_search"]
+    print(f"root search: {r['vectorised_cpu_s'] * 1e3:.3g} ms vectorised, "
+          f"{r['scalar_loop_cpu_s'] * 1e3:.3g} ms as a scalar loop (×{r['speedup']:.1f}); "
+          f"roots differ by {r['root_relative_difference']:.1e}")
     out["onset"] = onset_section(grid, args.repeats)
     o = out["onset"]
     print(f"onset: isothermal {o['isothermal_onset_rpm']:.6g} rpm, heat {o['heat_onset_rpm']:.6g}"

@@ -25,8 +25,12 @@ name                       what it answers (the command that wraps it)
 :func:`run_doe`            a design of experiments of your own function, resumable
 =========================  ==================================================================
 
-The functions are the library's own (same docstrings, arguments and results); the only
-addition is the grid's string form (:func:`~gfbopt.inputs.grid.accepts_grid_strings`), read
+The functions are the library's own (same docstrings, arguments and results); the
+additions: ``stability``, ``onset_speed``, ``load_capacity`` and ``lift_off_speed`` also take
+a bearing file's path in place of the bearing — read with its ``[journal]`` and
+``[thermal]`` tables and analysed at the running condition exactly as ``gfbopt stability``
+and ``gfbopt capacity`` do (:mod:`gfbopt.rotor.running_files`; a file without them is
+today's analysis) — and the grid's string form (:func:`~gfbopt.inputs.grid.accepts_grid_strings`), read
 by :func:`~gfbopt.inputs.grid.as_grid` with the command line's one-line message for a
 malformed one (``grid = '72x': must be written NTHETAxNZ, e.g. 72x20``).  Importing this
 module imports the solvers (CasADi): ``import gfbopt`` loads it only when one of these names
@@ -41,14 +45,22 @@ from .inputs.rotor_system import load_rotor
 from .rotor import coefficient_table, onset_speed, stability
 from .rotor.analyse import analyse_rotor
 from .rotor.capacity import lift_off_speed, load_capacity
+from .rotor.running_files import (accepts_bearing_files, lift_off_of_file,
+                                  load_capacity_of_file, onset_of_file, stability_of_file)
 from .studies import load_study, run_study
 from .transient import rotor_orbit, rotor_ramp
 
-stability = accepts_grid_strings(stability)
-onset_speed = accepts_grid_strings(onset_speed)
+# a bearing file's path in place of the bearing: its [journal]/[thermal] tables read and the
+# analysis run at the running condition, as `gfbopt stability` / `gfbopt capacity` do
+stability = accepts_bearing_files(accepts_grid_strings(stability),
+                                  accepts_grid_strings(stability_of_file))
+onset_speed = accepts_bearing_files(accepts_grid_strings(onset_speed),
+                                    accepts_grid_strings(onset_of_file))
 coefficient_table = accepts_grid_strings(coefficient_table)
-load_capacity = accepts_grid_strings(load_capacity)
-lift_off_speed = accepts_grid_strings(lift_off_speed)
+load_capacity = accepts_bearing_files(accepts_grid_strings(load_capacity),
+                                      accepts_grid_strings(load_capacity_of_file))
+lift_off_speed = accepts_bearing_files(accepts_grid_strings(lift_off_speed),
+                                       accepts_grid_strings(lift_off_of_file))
 analyse_rotor = accepts_grid_strings(analyse_rotor)
 rotor_orbit = accepts_grid_strings(rotor_orbit)
 rotor_ramp = accepts_grid_strings(rotor_ramp)

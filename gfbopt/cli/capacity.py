@@ -10,7 +10,7 @@ A thin layer over :func:`gfbopt.rotor.capacity.load_capacity` and
 formulation comes from the bearing file's ``[model]`` table and the options given here; the
 bore, pads and zones from its ``[bore]``, ``[[pads]]`` and ``[[zones]]`` tables.  With
 ``[journal]``/``[thermal]`` the search runs at the running condition of its answer
-(:mod:`gfbopt.thermal.capacity`) and the output names the clearance model and reports
+(:mod:`gfbopt.rotor.running_bearing`) and the output names the clearance model and reports
 running_clearance_um, centrifugal_growth_um, thermal_growth_um, film_temperature_c and
 viscosity_pa_s.
 """
@@ -79,7 +79,7 @@ def run(args) -> int:
     from ..inputs import Grid
     from ..inputs.options import merge_options
     from ..thermal.files import load_running_bearing
-    from .running import running_lift_off, running_load_capacity
+    from ..rotor.running_bearing import running_lift_off, running_load_capacity
 
     _check(args)
     grid = Grid.parse(args.grid)

@@ -17,7 +17,7 @@ defaults (:mod:`gfbopt.cli.si`); every output states the conventions used.
 A bearing file with ``[journal]`` and/or ``[thermal]`` is analysed at the running condition
 (:mod:`gfbopt.thermal`: centrifugal and thermal growth, Sutherland's viscosity, the lumped
 heat balance solved to a fixed point): the operating point at the running clearance of its
-speed, the onset by :func:`gfbopt.thermal.bearing.running_onset`.  Every output names the
+speed, the onset by :func:`gfbopt.rotor.running_bearing.running_onset`.  Every output names the
 model (``thermal_model``: "isothermal, cold clearance", "centrifugal growth" or "heat
 balance + growth") and reports running_clearance_um, centrifugal_growth_um,
 thermal_growth_um, film_temperature_c and viscosity_pa_s (gfbopt/terms/thermal.py); a
@@ -145,7 +145,7 @@ def run(args) -> int:
     from ..rotor.onset import check_speed_range
     from ..static import SolverCache
     from ..thermal.files import load_running_bearing
-    from .running import running_onset
+    from ..rotor.running_bearing import running_onset
     from ..thermal.running import ISOTHERMAL
     from .common import grid_of
 
@@ -239,7 +239,7 @@ def _operating_point(bearing, spec, rotor, args, common):
     """(StabilityResult or None, RunningPoint, the bearing analysed): at the running
     condition when the file states [journal]/[thermal], else today's analysis exactly."""
     from ..inputs import OperatingPoint
-    from .running import running_stability
+    from ..rotor.running_bearing import running_stability
 
     return running_stability(bearing, spec, rotor,
                              OperatingPoint(args.speed_rpm, args.load_newton), **common)

@@ -5,12 +5,13 @@ the fixed point that ties them to the film's drag power.
 - :mod:`.growth`: Lamé plane-stress discs and rings, thermal growth Δr = α r ΔT;
 - :mod:`.viscosity`: Sutherland's law;
 - :mod:`.network`: the lumped thermal network (film, journal, foil, sleeve nodes);
+- :mod:`.balance`: the heat balance with the film's torque ratio frozen, and its lowest root;
 - :mod:`.running`: the fixed point per speed and the running clearance;
 - :mod:`.bearing`: the film's drag at a running state (static solves) and the warm bearing;
 - :mod:`.files`: a bearing file's ``[journal]`` and ``[thermal]`` tables → RunningSpec.
 
 The analyses at the running condition that call the rotor's (stability, onset, capacity,
-lift-off) are :mod:`gfbopt.cli.running` (above :mod:`gfbopt.rotor` in the package's floors);
+lift-off) are :mod:`gfbopt.rotor.running_bearing` (in the rotor's floor, above this one);
 docs/thermal.md states the equations, constants and what the lumped model leaves out.
 """
 from __future__ import annotations

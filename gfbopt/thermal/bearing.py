@@ -15,7 +15,7 @@ the bearing itself), so today's isothermal, cold-clearance answers are kept exac
 This module stays below :mod:`gfbopt.rotor` (the package's floors): the fixed point needs
 static solves only.  The analyses that then run :func:`gfbopt.rotor.stability`,
 :func:`~gfbopt.rotor.onset_speed` and the capacity searches on the warm bearing are
-:mod:`gfbopt.cli.running`.
+:mod:`gfbopt.rotor.running_bearing`.
 """
 from __future__ import annotations
 
@@ -114,7 +114,7 @@ class FilmDrag:
         self.last = sol
         _, power = drag_torque_and_power(sol.torque_ratio, model.bearing_number, geometry)
         return DragSample(power, sol.torque_ratio, side_outflow(sol), clearance, viscosity,
-                          film_k, sol)
+                          film_k, sol, speed_rpm=float(speed_rpm))
 
 
 def limit_on_line(spec: RunningSpec, case: FilmCase, low_rpm: float,

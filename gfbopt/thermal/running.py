@@ -35,22 +35,18 @@ from dataclasses import dataclass, field, replace
 from typing import Callable, Optional
 
 import numpy as np
-from scipy.optimize import brentq, minimize_scalar
 
 from ..errors import ParameterError
+from .balance import MIN_RUNNING_CLEARANCE, N_SAMPLES, log_bearing_number
+from .balance import Balance as _Balance
 from .growth import centrifugal_growth, thermal_growth
 from .network import (Conductances, JournalMaterial, NetworkState, ThermalNetwork,
                       solve_network)
 from .viscosity import sutherland_viscosity
 
-#: smallest running clearance analysed [m]: the bearing file's floor of the clearance (below
-#: 1 µm the gas film is no longer a continuum); a clearance that falls to it has closed
-MIN_RUNNING_CLEARANCE = 1e-6
 #: the three models every output names
 ISOTHERMAL, CENTRIFUGAL, HEAT_BALANCE = ("isothermal, cold clearance", "centrifugal growth",
                                          "heat balance + growth")
-#: samples of F(P) when looking for its lowest root
-N_SAMPLES = 256
 KELVIN = 273.15
 
 
@@ -132,7 +128,9 @@ class RunningSpec:
 class DragSample:
     """What one static solve at a running state tells the fixed point: the drag power [W],
     the torque ratio τ [-] and the non-dimensional side outflow q̄ [-] at clearance c [m],
-    viscosity μ [Pa s] and film temperature T_f [K]; ``solution`` the solve's own answer."""
+    viscosity μ [Pa s] and film temperature T_f [K]; ``solution`` the solve's own answer;
+    ``speed_rpm`` the speed it was solved at (NaN: not stated; a prior of another speed
+    then seeds τ only, without entering the secant in ln Λ)."""
 
     power_w: float
     torque_ratio: float
@@ -141,6 +139,12 @@ class DragSample:
     viscosity: float
     film_k: float
     solution: object = field(default=None, repr=False, compare=False)
+    speed_rpm: float = math.nan
+
+    def solved_torque(self) -> bool:
+        """True when τ is the solve's own (not changed after it, e.g. extrapolated)."""
+        own = getattr(self.solution, "torque_ratio", None)
+        return own is None or own == self.torque_ratio
 
     def leakage_flow(self, spec: RunningSpec) -> float:
         """Side-leakage mass flow ṁ_l = q̄ p_a² c³/(12 μ R_g T_f) [kg/s]."""
@@ -262,111 +266,38 @@ def closure_speeds(spec: RunningSpec, speed_rpm: float, growth: float) -> tuple:
             speed_rpm * math.sqrt(c0 / growth))
 
 
-class _Balance:
-    """The heat balance with τ, q̄ and the conductances frozen: temperatures linear in P."""
-
-    def __init__(self, spec: RunningSpec, omega: float,
-                 torque_ratio: Callable[[float], float], g: Conductances):
-        t = spec.thermal
-        self.spec, self.omega, self.tau, self.g = spec, omega, torque_ratio, g
-        capacity = t.cooling_mass_flow * t.gas_specific_heat
-        self.capacity = capacity
-        self.base = solve_network(0.0, g, t.ambient_temperature, t.inlet_k, capacity)
-        unit = solve_network(1.0, g, t.ambient_temperature, t.inlet_k, capacity)
-        self.rate = {k: getattr(unit, k) - getattr(self.base, k)
-                     for k in ("film_k", "journal_k", "sleeve_k")}
-        self.uc = spec.centrifugal(omega)
-
-    def temperatures(self, power):
-        return {k: getattr(self.base, k) + power * r for k, r in self.rate.items()}
-
-    def clearance(self, power) -> tuple[float, float, float]:
-        t = self.temperatures(power)
-        gj, gs = self.spec.thermal_growths(t["journal_k"], t["sleeve_k"])
-        return self.spec.cold_clearance - self.uc - gj + gs, gj, gs
-
-    def residual(self, power) -> float:
-        c = self.clearance(power)[0]
-        film = self.temperatures(power)["film_k"]
-        mu = self.spec.viscosity_at(film)
-        return power - self.tau(film) * self.spec.petroff_power(self.omega, mu, c)
-
-    def ceiling(self) -> Optional[float]:
-        """The power at which the clearance falls to the floor (None: it never does)."""
-        c0 = self.clearance(0.0)[0]
-        slope = self.clearance(1.0)[0] - c0
-        if slope >= 0:
-            return None
-        return max((c0 - MIN_RUNNING_CLEARANCE) / -slope, 0.0)
-
-    def film_ceiling(self) -> float:
-        """The power at which the film reaches the network's film limit
-        (:attr:`~gfbopt.thermal.network.ThermalNetwork.film_limit_k`) [W]: above it the
-        model has no valid state (the film temperature rises with P)."""
-        rate = self.rate["film_k"]
-        room = self.spec.thermal.film_limit_k - self.base.film_k
-        return max(room / rate, 0.0) if rate > 0 else math.inf
-
-    def top(self) -> tuple[float, str]:
-        """(the highest power with a valid state [W] or inf, what sets it: "closure",
-        "film" or "")."""
-        closes, hot = self.ceiling(), self.film_ceiling()
-        if closes is not None and closes <= hot:
-            return closes, "closure"
-        return (hot, "film") if math.isfinite(hot) else (math.inf, "")
-
-    def lowest_root(self) -> tuple[Optional[float], float]:
-        """(the lowest P > 0 with F(P) = 0, or None; the P where F comes closest to 0)."""
-        if self.clearance(0.0)[0] <= MIN_RUNNING_CLEARANCE or self.film_ceiling() <= 0.0:
-            return None, 0.0
-        top, _ = self.top()
-        if not math.isfinite(top):           # the clearance never closes: F → +∞
-            top = max(self.tau(self.base.film_k) * self.spec.petroff_power(
-                self.omega, self.spec.viscosity, self.spec.cold_clearance), 1e-12)
-            for _ in range(200):
-                if self.residual(top) > 0:
-                    break
-                top *= 2.0
-        if self.residual(0.0) >= 0:          # no drag at all (zero speed)
-            return 0.0, 0.0
-        grid = top * np.linspace(0.0, 1.0, N_SAMPLES + 1)[:-1]
-        grid = np.append(grid, top * (1.0 - 1e-12))
-        values = np.array([self.residual(p) for p in grid])
-        crossing = np.nonzero(values > 0)[0]
-        if crossing.size:
-            k = crossing[0]
-            return brentq(self.residual, grid[k - 1], grid[k], xtol=1e-300, rtol=1e-15,
-                          maxiter=200), grid[k]
-        k = int(np.argmax(values))
-        lo, hi = grid[max(k - 1, 0)], grid[min(k + 1, grid.size - 1)]
-        best = minimize_scalar(lambda p: -self.residual(p), bounds=(lo, hi),
-                               method="bounded", options={"xatol": 1e-12 * top})
-        if self.residual(best.x) > 0:        # a narrow crossing between samples
-            return brentq(self.residual, lo, best.x, xtol=1e-300, rtol=1e-15,
-                          maxiter=200), best.x
-        return None, float(best.x)
-
-
 def running_point(spec: RunningSpec, speed_rpm: float, drag: DragFunction, *,
                   prior: Optional[DragSample] = None, tolerance_k: float = 1e-2,
                   max_solves: int = 8) -> RunningPoint:
     """The fixed point at ``speed_rpm`` [rpm] (module docstring).  ``drag`` solves the film
-    at a running state; ``prior`` (e.g. the previous speed's last sample) seeds τ and q̄, so
-    that the first solve is already near the answer.  Without [thermal]:
+    at a running state; ``prior`` (e.g. the previous speed's last sample, or a tuple of the
+    last samples of the speeds below, oldest first) seeds τ and q̄ (the last one's), and the
+    priors solved at a stated speed with their own τ start the secant in ln Λ (the torque
+    model's line through the last two of them gives the first solve's τ), so that the first
+    solve is already near the answer.  Without [thermal]:
     :func:`without_heat`.  Counts the static solves in ``static_solves``."""
     cold = without_heat(spec, speed_rpm)
     if spec.thermal is None or not cold.converged:
         return cold                     # no heat balance, or closed by the speed alone
     omega = _rpm_to_omega(speed_rpm)
     t = spec.thermal
-    sample = prior if prior is not None else DragSample(
-        1.0, 1.0, 0.0, spec.cold_clearance, spec.viscosity, t.ambient_temperature)
     sampled_k: Optional[float] = None              # film temperature of our last solve
     solves, rootless, samples = 0, 0, []
+    # (ln Λ, τ) of the solves the torque model is fitted to: the prior's, when it was solved
+    # at a stated speed with its own τ, then this point's
+    priors = () if prior is None else (tuple(prior) if isinstance(prior, (tuple, list))
+                                        else (prior,))
+    prior = priors[-1] if priors else None
+    history = [(float(log_bearing_number(spec, _rpm_to_omega(p.speed_rpm), p.viscosity,
+                                         p.clearance)), p.torque_ratio)
+               for p in priors if math.isfinite(p.speed_rpm) and p.solved_torque()]
+    sample = prior if prior is not None else DragSample(
+        1.0, 1.0, 0.0, spec.cold_clearance, spec.viscosity, t.ambient_temperature)
     while True:
         g = t.conductances(spec.radius, spec.length, spec.cold_clearance,
                            sample.leakage_flow(spec))
-        balance = _Balance(spec, omega, _torque_model(samples, sample.torque_ratio), g)
+        balance = _Balance(spec, omega, _torque_model(history, sample.torque_ratio,
+                                                      curved=len(samples) >= 2), g)
         power, closest = balance.lowest_root()
         if power is None:               # solve where F comes closest to 0, then decide
             rootless += 1
@@ -392,23 +323,37 @@ def running_point(spec: RunningSpec, speed_rpm: float, drag: DragFunction, *,
             return _runaway(cold, balance, power, solves, sample,
                             why="the film has no equilibrium at the heated clearance")
         samples.append(new)
+        history.append((float(log_bearing_number(spec, omega, new.viscosity, new.clearance)),
+                        new.torque_ratio))
         sample, sampled_k = new, state.network.film_k
 
 
-def _torque_model(samples: list, seed: float) -> Callable[[float], float]:
-    """τ(T_f): the seed before any solve, the last solve's τ after one, and after two the
-    line through the last two solves' (T_f, τ) — the local deviation of the drag from
-    Petroff's μ/c scaling, which makes the iteration a secant method in the film
-    temperature (clipped to τ > 0)."""
-    if not samples:
-        return lambda film_k: seed
-    b = samples[-1]
-    if len(samples) < 2 or samples[-2].film_k == b.film_k:
-        return lambda film_k: b.torque_ratio
-    a = samples[-2]
-    slope = (b.torque_ratio - a.torque_ratio) / (b.film_k - a.film_k)
-    floor = 1e-3 * min(a.torque_ratio, b.torque_ratio)
-    return lambda film_k: max(b.torque_ratio + slope * (film_k - b.film_k), floor)
+def _torque_model(history: list, seed: float, curved: bool = False) -> Callable:
+    """τ(ln Λ): the seed before any solve, the one solve's τ after one, and after two the
+    line through the last two solves' (ln Λ, τ) — the local deviation of the drag from
+    Petroff's μ/c scaling as a function of the bearing number, which makes the iteration a
+    secant method (clipped to τ > 0).  ``history`` may start with priors solved at other
+    speeds under the same load: τ depends on the speed, μ and c through Λ (the compliance
+    S ∝ 1/c aside), so their points lie near the same curve and the first update is already
+    a secant step.  ``curved`` (two solves of this point or more): the parabola through
+    the last three points instead (its third point a prior or an earlier solve), whose
+    error is of third order in the spacing — near a thermal runaway the fixed point's film
+    temperature moves by ~2,000 K per unit of τ, so the line's second-order error decides
+    whether a third solve is the last."""
+    if not history:
+        return lambda log_lambda: seed
+    xb, tb = history[-1]
+    if len(history) < 2 or history[-2][0] == xb:
+        return lambda log_lambda: tb
+    xa, ta = history[-2]
+    slope = (tb - ta) / (xb - xa)
+    floor = 1e-3 * min(t for _, t in history[-3:])
+    if curved and len(history) >= 3 and len({x for x, _ in history[-3:]}) == 3:
+        x0, t0 = history[-3]
+        bend = (slope - (ta - t0) / (xa - x0)) / (xb - x0)     # second divided difference
+        return lambda log_lambda: np.maximum(
+            tb + (log_lambda - xb) * (slope + bend * (log_lambda - xa)), floor)
+    return lambda log_lambda: np.maximum(tb + slope * (log_lambda - xb), floor)
 
 
 def _state(spec: RunningSpec, speed_rpm: float, balance: _Balance, power: float,
@@ -466,15 +411,19 @@ class SpeedLine:
 
 def speed_line(spec: RunningSpec, speeds_rpm, drag: DragFunction, *,
                bracket: float = 0.005, **kwargs) -> SpeedLine:
-    """Running points at increasing ``speeds_rpm``, each seeded by the one below; at the
+    """Running points at increasing ``speeds_rpm``, each seeded by the two below; at the
     first failure, the limit speed is bracketed by bisection to ``bracket`` (relative); a
     closure by the centrifugal growth alone is found in closed form
     (:func:`closure_speeds`), a closure or runaway of the heat balance by bisection.  The
     last point is the first failing one's (at the speed asked)."""
-    points, prior = [], None
+    points, priors = [], ()
     speeds = sorted(float(s) for s in speeds_rpm)
+
+    def seeded(priors, point):           # the last two converged samples, oldest first
+        return (priors + (point.sample,))[-2:] if point.sample is not None else priors
+
     for k, speed in enumerate(speeds):
-        point = running_point(spec, speed, drag, prior=prior, **kwargs)
+        point = running_point(spec, speed, drag, prior=priors or None, **kwargs)
         points.append(point)
         if not point.converged:
             low = speeds[k - 1] if k else 0.0
@@ -487,12 +436,12 @@ def speed_line(spec: RunningSpec, speeds_rpm, drag: DragFunction, *,
                 failing = without_heat(spec, high)
             while high - low > bracket * high:
                 mid = 0.5 * (low + high)
-                trial = running_point(spec, mid, drag, prior=prior, **kwargs)
+                trial = running_point(spec, mid, drag, prior=priors or None, **kwargs)
                 if trial.converged:
-                    low, prior = mid, trial.sample or prior
+                    low, priors = mid, seeded(priors, trial)
                 else:
                     high, failing = mid, trial
             return SpeedLine(tuple(points), high, low, failing.status,
                              failing.reason)
-        prior = point.sample or prior
+        priors = seeded(priors, point)
     return SpeedLine(tuple(points))
