@@ -46,6 +46,7 @@ from ..inputs.checks import check_positive
 
 __all__ = ["HardeningLaw", "check_hardening_limit", "describe", "hardened_deflection",
            "hardened_foil_deflection", "hardened_reaction", "hardened_stiffness",
+           "hardened_deflection_and_slope", "hardened_reaction_nd",
            "hardened_tangent_compliance"]
 
 
@@ -183,3 +184,32 @@ def hardened_tangent_compliance(q, compliance, exponent, limit, compression_only
 
 def _expm1(x):
     return ca.expm1(x) if is_symbolic(x) else np.expm1(x)
+
+
+def hardened_reaction_nd(w, compliance, exponent, limit):
+    """q_b(W), the bump's reaction in ambient pressures at the deflection W [clearances]
+    (numpy): (W_lim/S)/(n − 1) [(1 − W/W_lim)^(1−n) − 1] (n = 1: −(W_lim/S) ln(1 − W/W_lim))
+    for 0 ≤ W < W_lim, W/S in tension; the inverse of :func:`hardened_foil_deflection`."""
+    w = np.asarray(w, dtype=float)
+    u = 1.0 - np.maximum(w, 0.0) / limit
+    e = exponent - 1.0
+    with np.errstate(divide="ignore", invalid="ignore"):
+        hard = (-np.log(u) if abs(e) < _SERIES_BELOW else np.expm1(-e * np.log(u)) / e)
+        return np.where(w >= 0.0, limit * hard, w) / compliance
+
+
+def hardened_deflection_and_slope(q, compliance, exponent, limit, compression_only):
+    """(W_h(q), dW_h/dq) of :func:`hardened_foil_deflection` together (numpy, one exp and one
+    log for both): W_lim (1 − e^(−g)) and S e^(−g)/(1 + (n − 1) x) with x = S q⁺/W_lim,
+    g = log(1 + (n − 1) x)/(n − 1); S q and S in tension (0 and 0 when ``compression_only``)."""
+    qp = np.maximum(q, 0.0)
+    x = compliance * qp / limit
+    e = exponent - 1.0
+    g = _exponent_term(x, e)
+    decay = np.exp(-g)
+    w = -limit * np.expm1(-g)
+    slope = compliance * decay / (1.0 + e * x)
+    if compression_only:
+        return w, np.where(q > 0, slope, 0.0)
+    tension = q < 0
+    return np.where(tension, compliance * q, w), np.where(tension, compliance, slope)

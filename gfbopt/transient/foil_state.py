@@ -38,6 +38,18 @@ periodic film) and −2.5e-5 (local law, seam 180° from the load) at 72 × 20, 
 supported (:attr:`gfbopt.physics.foil_laws.BeamLaw.damped_transient_refusal`: a Kelvin–Voigt
 foundation under a massless bending foil is stiff).
 
+With friction
+-------------
+With the bumps' spring–slider elements (:mod:`.friction_foil`, the one-bearing friction
+driver) the foil's balance with the dashpot is q = W/S + (τ_f/S) W' + r, r the element's
+reaction clip((κ/S)(W − Z), ±μ_f q⁺) at the state's W from the step's sliders Z (the play
+operator; Z moved after each accepted step as without damping), so
+τ_f W' + W = S (q − r) (the law's W(q − r): S max(q − r, 0) for compression-only bumps,
+W_h(q − r) for hardening bumps).  P and H then come from W alone, H = H_r + W, as without
+friction: the element enters the rate only, and with μ_f = 0 (r = 0) the rate is the
+undamped-friction model's exactly.  Linearised at γ = ν_ref the foundation is
+(1 + iη + κ D)/S, the linear analysis's (:mod:`gfbopt.linear.friction_units`).
+
 References: J.-P. Peng, M. Carpino, "Calculation of stiffness and damping coefficients for
 elastically supported gas foil bearings", J. Tribol. 115(1) (1993) 20–27; T. H. Kim,
 L. San Andrés, "Heavily loaded gas foil bearings: a model anchored to test data", ASME J. Eng.
@@ -81,8 +93,21 @@ class KelvinVoigtFoil:
         """τ_f = η/ν_ref [rad of shaft rotation]."""
         return self.loss_factor / self.reference_whirl_ratio
 
-    def rate(self, p: np.ndarray, w: np.ndarray, tm) -> np.ndarray:
-        """dW/dτ = (S q − W)/τ_f for a batch (P (B, m, n_z + 1), W in the layout) [1/rad]."""
+    def rate(self, p: np.ndarray, w: np.ndarray, tm, slider=None) -> np.ndarray:
+        """dW/dτ = (S q − W)/τ_f for a batch (P (B, m, n_z + 1), W in the layout) [1/rad].
+
+        With the bumps' friction (``tm.friction`` and the sliders Z, ``slider``, in the same
+        layout) the bump carries q − r, r the spring–slider element's reaction at W from Z
+        (:func:`.friction_foil.element_reaction`): dW/dτ = (S (q − r) − W)/τ_f (module doc,
+        "With friction")."""
+        if slider is not None and tm.friction is not None:
+            from .friction_foil import element_gauge, element_reaction
+
+            q = element_gauge(p, tm)
+            target = gauge_target(q - element_reaction(q, w, slider, tm), tm)
+            target -= w
+            target /= self.relaxation_time
+            return target
         target = tm.law.deflection_target(p, tm)
         target -= w
         target /= self.relaxation_time
@@ -96,6 +121,17 @@ class KelvinVoigtFoil:
                 "foil_relaxation_time": self.relaxation_time,
                 "foil_state": "Kelvin–Voigt, one W per "
                 + ("θ row" if self.layout == "rows" else "node")}
+
+
+def gauge_target(q: np.ndarray, tm) -> np.ndarray:
+    """The static law's deflection at the gauge q (rows (B, m) or nodes (B, m, n_z + 1)):
+    S q, S max(q, 0) for compression-only bumps, or the law's own (``law.gauge_target``, the
+    hardening bump's W_h(q))."""
+    own = getattr(tm.law, "gauge_target", None)
+    if own is not None:
+        return own(q, tm)
+    s = tm.compliance_rows if q.ndim == 2 else tm.compliance_rows[:, None]
+    return s * (np.maximum(q, 0.0) if tm.compression_only else q)
 
 
 def check_reference_whirl(value) -> float:
@@ -158,11 +194,18 @@ def foil_bound(p: np.ndarray, h: np.ndarray, tm) -> float:
     """Gershgorin bound on the foil rows of the Jacobian [1/rad of shaft rotation].
 
     Row of W (row i or node k): |∂W'/∂W| + Σ|∂W'/∂Φ| ≤ (1 + S (P + 1)/H)/τ_f, with P the
-    row's largest pressure (axial-mean law: ∂q/∂W = −P̄/H, Σ ∂q/∂Φ ≤ 1/H).
+    row's largest pressure (axial-mean law: ∂q/∂W = −P̄/H, Σ ∂q/∂Φ ≤ 1/H).  With the bumps'
+    friction, on rows with μ_f > 0: (1 + κ + S (1 + μ_f)(P + 1)/H)/τ_f (the stuck element's
+    spring κ/S, the slipping one's ±μ_f q).  A hardening bump's tangent is below S.
     """
     foil = tm.foil_state
     top = p.max(axis=-1, keepdims=True) if foil.layout == "rows" else p
     s = tm.compliance_rows[:, None]                     # S per θ row (bump zones)
+    fr = getattr(tm, "friction", None)
+    if fr is not None:
+        mu = fr.coefficient[:, None]
+        rows = (1.0 + fr.stiffness_ratio * (mu > 0.0) + s * (1.0 + mu) * (top + 1.0) / h)
+        return float((rows / foil.relaxation_time).max())
     return float(((1.0 + s * (top + 1.0) / h) / foil.relaxation_time).max())
 
 

@@ -13,8 +13,13 @@ forms, each the simple law's quadratic a² − b a − S_e Φ̃ = 0, b = H_r + W
 * stuck:           S_e = S/(1 + κ), W_off = κ Z/(1 + κ)   (r = (κ/S)(W − Z), |W − Z| ≤ X_s);
 * slipping out:    S_e = S (1 − μ_f), W_off = 0           (W − Z > X_s, r = +μ_f q);
 * slipping in:     S_e = S (1 + μ_f), W_off = 0           (W − Z < −X_s, r = −μ_f q);
-* unloaded rows (q ≤ 0, the sign of q is that of Φ̃/H_r + c − 1 for every S_e): W = S q, or
-  0 for compression-only bumps.
+* unloaded rows (q ≤ 0, the sign of q is that of Φ̃/H_r + c − 1 for every S_e when H_r > 0;
+  a row with H_r ≤ 0 is loaded, its film needs W > 0): W = S q, or 0 for compression-only
+  bumps.
+
+Hardening bumps (the 'hardened' law) have no closed form: their rows solve the same balance
+with the hardened reaction by a safeguarded Newton (:func:`.hardening_recovery.
+hardened_friction_rows`), the same branches picked the same way.
 
 The local law (one unit per node, q = P − 1) has the same branches on its per-node quadratic
 S_e P² + (H_r + W_off − S_e) P − Φ = 0 (:func:`friction_nodes`); boundary nodes carry none.
@@ -46,6 +51,7 @@ import numpy as np
 
 from ..errors import ParameterError
 from ..physics.foil_recovery import row_mean_phi, set_boundary
+from .hardening_recovery import hardened_friction_rows
 
 
 @dataclass(frozen=True, eq=False)
@@ -97,6 +103,8 @@ def _root(hr, off, s_e, phit, c):
 def friction_rows(phi: np.ndarray, hr: np.ndarray, slider: np.ndarray, tm) -> tuple:
     """(a, q, stuck): the row films a = H_r + W (B, m), gauge q = P̄ − 1 and the stuck mask,
     from Φ (B, m, n_z + 1), H_r (B, m) and the slider positions Z (B, m) (module doc)."""
+    if tm.law.name == "hardened":
+        return hardened_friction_rows(phi, hr, slider, tm)
     fr = tm.friction
     phit, c = row_mean_phi(phi, hr, tm)
     s = tm.compliance_rows
@@ -107,7 +115,7 @@ def friction_rows(phi: np.ndarray, hr: np.ndarray, slider: np.ndarray, tm) -> tu
     xs = mu * np.maximum(q_stuck, 0.0) * s / kappa
     stuck = (np.abs(stretch) <= xs) & (xs > 0.0)     # X_s = 0 carries nothing: slipping
     sense = np.where(stretch > 0, 1.0, -1.0)
-    loaded = phit / hr + c - 1.0 > 0.0
+    loaded = (hr <= 0.0) | (phit / np.where(hr > 0.0, hr, 1.0) + c - 1.0 > 0.0)  # H_r ≤ 0: W > 0
     s_slip = np.where(loaded, s * (1.0 - sense * mu), s)
     a = np.where(stuck, a_stuck, _root(hr, None, s_slip, phit, c))
     if tm.compression_only:
@@ -154,8 +162,13 @@ def recover_with_slider(phi: np.ndarray, hr: np.ndarray, slider: np.ndarray, tm)
     return set_boundary(phi / a[:, :, None], tm), a[:, :, None]
 
 
-def _deflection(phi, hr, slider, tm) -> tuple:
-    """(W, q, stuck) in the layout of the sliders."""
+def _deflection(phi, hr, slider, tm, deflection=None) -> tuple:
+    """(W, q, stuck) in the layout of the sliders; with the Kelvin–Voigt state W is
+    ``deflection`` and q that of P = Φ/(H_r + W) (:func:`damped_gauge`)."""
+    if tm.foil_state is not None:
+        q = damped_gauge(phi, hr, deflection, tm)
+        xs = slip(q, tm)
+        return deflection, q, (np.abs(deflection - slider) <= xs) & (xs > 0.0)
     if tm.friction.layout == "nodes":
         p, h, q, stuck = friction_nodes(phi, hr, slider, tm)
         return h - hr[:, :, None], q, stuck
@@ -163,20 +176,59 @@ def _deflection(phi, hr, slider, tm) -> tuple:
     return a - hr, q, stuck
 
 
-def slider_after_step(phi: np.ndarray, hr: np.ndarray, slider: np.ndarray, tm) -> np.ndarray:
-    """Z after an accepted step ending at Φ, H_r, from the step's starting Z: the play
-    operator clip(Z, W − X_s, W + X_s) at the step's final W and q (in the sliders' layout)."""
-    w, q, _ = _deflection(phi, hr, slider, tm)
+def slip(q: np.ndarray, tm) -> np.ndarray:
+    """X_s = μ_f q⁺ S/κ in the sliders' layout [clearances] (q in that layout)."""
     fr = tm.friction
     s = tm.compliance_rows if fr.layout == "rows" else tm.compliance_rows[:, None]
     mu = fr.coefficient if fr.layout == "rows" else fr.coefficient[:, None]
-    xs = mu * np.maximum(q, 0.0) * s / fr.stiffness_ratio
+    return mu * np.maximum(q, 0.0) * s / fr.stiffness_ratio
+
+
+def damped_gauge(phi: np.ndarray, hr: np.ndarray, w: np.ndarray, tm) -> np.ndarray:
+    """q in the foil state's layout from Φ, H_r and the Kelvin–Voigt W: P̄ − 1 per row (0 on
+    rows at ambient) or P − 1 per node, P = Φ/(H_r + W) (as the foil's rate sees it)."""
+    p = tm.law.recover_deflected(phi, hr, w, tm)[0]
+    return element_gauge(p, tm)
+
+
+def element_gauge(p: np.ndarray, tm) -> np.ndarray:
+    """The gauge pressure of each foil unit from P (B, m, n_z + 1): P̄ − 1 per θ row (0 on
+    rows at ambient), as :meth:`~gfbopt.physics.foil_laws.SimpleLaw.deflection_target` forms
+    it, or P − 1 per node (layout of ``tm.foil_state``, else of ``tm.friction``)."""
+    layout = (tm.foil_state or tm.friction).layout
+    if layout == "nodes":
+        return p - 1.0
+    q = (p @ tm.z_weight) / tm.z_weight.sum() - 1.0
+    q[:, tm.ambient] = 0.0
+    return q
+
+
+def element_reaction(q: np.ndarray, w: np.ndarray, slider: np.ndarray, tm) -> np.ndarray:
+    """The friction element's reaction r = clip((κ/S)(W − Z), −μ_f q⁺, μ_f q⁺) per unit
+    [ambient pressures], in the sliders' layout: the play operator at W from Z."""
+    fr = tm.friction
+    rows = fr.layout == "rows"
+    s = tm.compliance_rows if rows else tm.compliance_rows[:, None]
+    mu = fr.coefficient if rows else fr.coefficient[:, None]
+    kb = np.where(s > 0.0, fr.stiffness_ratio / np.where(s > 0.0, s, 1.0), 0.0)
+    bound = mu * np.maximum(q, 0.0)
+    return np.minimum(np.maximum(kb * (w - slider), -bound), bound)
+
+
+def slider_after_step(phi: np.ndarray, hr: np.ndarray, slider: np.ndarray, tm,
+                      deflection=None) -> np.ndarray:
+    """Z after an accepted step ending at Φ, H_r, from the step's starting Z: the play
+    operator clip(Z, W − X_s, W + X_s) at the step's final W and q (in the sliders' layout);
+    ``deflection``: the Kelvin–Voigt W of a damped model (its state at the step's end)."""
+    w, q, _ = _deflection(phi, hr, slider, tm, deflection)
+    xs = slip(q, tm)
     return np.minimum(np.maximum(slider, w - xs), w + xs)
 
 
-def stuck_share(phi: np.ndarray, hr: np.ndarray, slider: np.ndarray, tm) -> np.ndarray:
+def stuck_share(phi: np.ndarray, hr: np.ndarray, slider: np.ndarray, tm,
+                deflection=None) -> np.ndarray:
     """Share of the loaded units (rows or nodes) whose slider is stuck, per rotor (B,) [-]."""
-    _, q, stuck = _deflection(phi, hr, slider, tm)
+    _, q, stuck = _deflection(phi, hr, slider, tm, deflection)
     loaded = (q > 0).reshape(q.shape[0], -1)
     count = loaded.sum(axis=1)
     both = (stuck.reshape(q.shape[0], -1) & loaded).sum(axis=1)

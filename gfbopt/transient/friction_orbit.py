@@ -7,6 +7,9 @@ docstring says why it is consistent).  Every stage of a step recovers P and H wi
 starting Z.  This driver is the one-bearing loop of :mod:`.rk4` with that update between
 steps (the integrators' own loops have no post-step hook), stepping with RK4 or RKC
 (:mod:`.friction_steps`); with ``tm.friction`` None and rk4 it is rk4's loop exactly.
+With a loss factor η > 0 the Kelvin–Voigt foil state W is integrated with the rest and the
+sliders enter its rate (:mod:`.foil_state`, "With friction"); they move after each step
+from the state's W.
 
 :func:`friction_outcome` states how a run ended: "settled limit cycle" (the orbit's
 semi-major axis steady over the last whirl periods), "contact" (the film closed), or "end of
@@ -59,9 +62,6 @@ def integrate_friction_orbits(tm: TransientModel, mass, revolutions: float = 10.
     friction runs the rk4 loop exactly (its answers equal :func:`integrate_orbits`').
     """
     t0 = time.perf_counter()
-    if tm.foil_state is not None:
-        raise ParameterError("loss_factor", tm.foil_state.loss_factor, "this driver does not "
-                             "carry the Kelvin–Voigt foil state; use integrate_orbits")
     default_check = check_friction_method(method)
     check_every = default_check if check_every is None else int(check_every)
     tm.law.check_engine(method)
@@ -99,7 +99,7 @@ def integrate_friction_orbits(tm: TransientModel, mass, revolutions: float = 10.
         ys.append(s.y.copy())
         hs.append(h.min(axis=(1, 2)))
         if z is not None:
-            stuck.append(stuck_share(s.phi, rigid_film(s.x, s.y, tm), z, tm))
+            stuck.append(stuck_share(s.phi, rigid_film(s.x, s.y, tm), z, tm, s.w))
 
     record(state)
     failure = ""
@@ -115,7 +115,8 @@ def integrate_friction_orbits(tm: TransientModel, mass, revolutions: float = 10.
                        f"Δτ = {dt:.4g}; the step is above the stability limit")
             break
         if z is not None:                    # the play operator after the accepted step
-            moved = slider_after_step(state.phi, rigid_film(state.x, state.y, tm), z, tm)
+            moved = slider_after_step(state.phi, rigid_film(state.x, state.y, tm), z, tm,
+                                      state.w)
             z = np.where(active.reshape((-1,) + (1,) * (z.ndim - 1)), moved, z)
         touching = active & (rhs.min_film <= contact_film)
         if touching.any():

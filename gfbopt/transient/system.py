@@ -42,12 +42,13 @@ from ..discretisation import trapezoid_weights
 from ..errors import ParameterError
 from ..physics.film import force_gauge
 from ..physics.film import rigid_film_tabulated
-from ..physics.foil_laws import FoilLaw, foil_law
+from ..physics.foil_laws import FoilLaw
 from ..static import StaticSolution
 from ..static.build import row_values, solution_stencil
 from ..threads import single_threaded
 from .foil_state import KelvinVoigtFoil, foil_bound, kelvin_voigt_foil
 from .friction_foil import FrictionFoil, friction_foil, recover_with_slider
+from .hardening_recovery import transient_foil_law
 
 
 
@@ -122,11 +123,7 @@ def transient_model(solution: StaticSolution, reference_whirl_ratio: Optional[fl
     tw = dtheta * (np.ones(m) if periodic else trapezoid_weights(m))
     zw = dz * trapezoid_weights(nzn)
     rubbing = friction and model.has_friction
-    if rubbing and model.loss_factor > 0.0:
-        raise ParameterError("loss_factor", model.loss_factor, "the friction transient does "
-                             "not combine a loss factor with the bumps' friction (no "
-                             "Kelvin–Voigt state beside the sliders); use loss_factor = 0")
-    law = foil_law(model, engine="rk4" if rubbing else "transient")
+    law = transient_foil_law(model, engine="rk4" if rubbing else "transient")
     foil_data = law.transient_data(model, solution.grid, periodic, dtheta)
     cos, sin = np.cos(solution.theta), np.sin(solution.theta)
     x0 = solution.eccentricity * math.cos(solution.attitude_angle_rad)
@@ -233,9 +230,10 @@ def pressure_and_film(phi: np.ndarray, x: np.ndarray, y: np.ndarray, tm: Transie
     A damped model (``tm.foil_state``) needs the foil state W, ``deflection``: then
     H = H_r + W and P = Φ/H (:meth:`~gfbopt.physics.foil_laws.FoilLaw.recover_deflected`).
     A model with friction (``tm.friction``) needs the slider positions Z (B, m), ``slider``
-    (:func:`.friction_foil.recover_with_slider`).
+    (:func:`.friction_foil.recover_with_slider`); with friction and damping both, P and H come
+    from W alone (the sliders enter the foil's rate, :meth:`.foil_state.KelvinVoigtFoil.rate`).
     """
-    if tm.friction is not None:
+    if tm.friction is not None and tm.foil_state is None:
         if slider is None:
             raise ParameterError("slider", None, "the transient model with bump friction "
                                  "needs the slider positions Z: integrate it with "
@@ -317,7 +315,7 @@ class RightHandSide:
         dphi = flux_residual(p, h, tm)
         dphi /= 2 * tm.bearing_number
         fx, fy = film_force(p, tm)
-        dw = None if tm.foil_state is None else tm.foil_state.rate(p, s.w, tm)
+        dw = None if tm.foil_state is None else tm.foil_state.rate(p, s.w, tm, self.slider)
         return State(dphi, s.u, s.v, (fx + tm.load) / self.mass_load, fy / self.mass_load, dw)
 
 

@@ -210,8 +210,14 @@ def test_drivers_without_sliders_refuse_a_model_with_friction():
     assert np.array_equal(routed.x, direct.x) and np.array_equal(routed.y, direct.y)
     with pytest.raises(ParameterError, match="stages = 3: .*bump friction"):
         integrate_orbits(tm, [3.0], 1.0, method="rkc", stages=3)
-    with pytest.raises(ParameterError, match="friction_coefficient = 0.2: .*hardened foil law"):
-        transient_model(_solved(friction_coefficient=0.2, hardening_exponent=3.0,
-                                hardening_limit=0.8), friction=True)
-    with pytest.raises(ParameterError, match="loss_factor = 0.2: .*does not combine"):
-        transient_model(_solved(friction_coefficient=0.2, loss_factor=0.2), friction=True)
+    # hardening bumps and a loss factor are carried beside the sliders (the friction driver)
+    hard = transient_model(_solved(friction_coefficient=0.2, hardening_exponent=3.0,
+                                   hardening_limit=0.8), friction=True)
+    assert hard.law.name == "hardened" and hard.friction is not None
+    damped = transient_model(_solved(friction_coefficient=0.2, loss_factor=0.2),
+                             friction=True, reference_whirl_ratio=0.5)
+    assert damped.friction is not None and damped.foil_state.loss_factor == 0.2
+    with pytest.raises(ParameterError, match="method = 'bdf'"):
+        integrate_orbits(transient_model(_solved(hardening_exponent=3.0,
+                                                 hardening_limit=0.8)), [3.0], 1.0,
+                         method="bdf")
