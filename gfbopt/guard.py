@@ -46,6 +46,13 @@ STEP_SECONDS_PER_NODE = 5e-6
 ORBIT_STEP, RAMP_STEP = 0.1, 0.2
 #: geometric ratio of the speeds of an onset scan (gfbopt.rotor.onset.SCAN_RATIO)
 SCAN_RATIO = 1.25
+#: CPU time of one bearing-pair design evaluation at 36x10 (the blower's first onset of every
+#: mode over its search range, the film and the drag: 1.03 s measured, rounded up to 1.5 s),
+#: and the exponent of its growth with the grid's nodes (36x10 1.03 s, 72x20 1.84 s, 144x36
+#: 5.28 s CPU: ≈ nodes^0.6).  A speed-by-speed estimate (:func:`speeds`) overstated the main
+#: job 100–150× (57 min for a run of 44 s CPU): a design's onset search evaluates few speeds.
+DESIGN_SECONDS_36X10 = 1.5
+DESIGN_GRID_EXPONENT = 0.6
 #: bytes per pair of designs of NSGA-II's non-dominated sorting (a population² matrix)
 SORT_BYTES_PER_PAIR = 8.0
 
@@ -142,6 +149,13 @@ def speeds(option: str, value, count: float, grid: Grid, bearings: int = 1,
     return Work(option, value, seconds=count * per,
                 how=f"{count:,.6g} {what} × {bearings} bearing(s) at {grid} "
                 f"({per:.2g} s each)")
+
+
+def designs(option: str, value, count: float, grid: Grid, what: str = "designs") -> Work:
+    """``count`` bearing-pair design evaluations at ``grid`` (:data:`DESIGN_SECONDS_36X10`)."""
+    per = DESIGN_SECONDS_36X10 * (nodes(grid) / nodes(Grid(36, 10))) ** DESIGN_GRID_EXPONENT
+    return Work(option, value, seconds=count * per,
+                how=f"{count:,.6g} {what} at {grid} ({per:.2g} s each)")
 
 
 def steps(option: str, value, count: float, grid: Grid, bearings: int = 1,

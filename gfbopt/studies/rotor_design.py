@@ -45,6 +45,7 @@ from ..design.rotor_objectives import design_outputs
 from ..design.rotor_spec import BORE_KINDS, GOALS, plan_rotor_design
 from ..design.search import METHODS
 from .base import Kind, LoadedStudy, RunContext, Study, StudyResult
+from .work import LEVER_EVALUATIONS  # noqa: F401  (one lever's evaluations, the guard's too)
 from .spec import GRID, UNSET, opt, req
 
 VARIABLE = {
@@ -219,9 +220,6 @@ GRID_COST_EXPONENT = 0.6
 ORBIT_COST_PER_100_REVOLUTIONS = 10.0
 
 
-#: evaluations of one lever's search, about: the scan each way and the Illinois steps
-#: (about 8 on the smooth onset) and the full evaluation at the answer
-LEVER_EVALUATIONS = 2 * 4 + 8 + 1
 
 
 def grid_cost(grid, reference) -> float:

@@ -72,6 +72,12 @@ register(rotor_design)
 assert set(KINDS) == set(SCHEMAS), "every schema has a runner and vice versa"
 
 
+#: kinds whose plan reads their files and builds no points (cheap whatever the size): it runs
+#: before the resource estimate, so a typo'd variable or a reversed speed range is reported as
+#: itself rather than as a run too long to start
+PLAN_FIRST = ("rotor_bearing_design", "rotor_two_bearings", "rotor_run_up")
+
+
 def study_from_dict(data: dict, *, name: Optional[str] = None, file: str = "<dict>",
                     directory: Union[str, Path] = ".",
                     limits: Optional[Limits] = None) -> LoadedStudy:
@@ -86,10 +92,16 @@ def study_from_dict(data: dict, *, name: Optional[str] = None, file: str = "<dic
     name = spec["name"] if spec["name"] is not None else (name or Path(file).stem)
     check_name(name, f"{file}: name")
     check_file_names(spec, directory, file)      # what no run can mean, then the estimate
-    check(study_work(spec, file), limits)
-    spec = {**spec, "name": name}
-    study = Study(file=file, name=name, kind=spec["kind"], spec=spec,
+    study = Study(file=file, name=name, kind=spec["kind"], spec={**spec, "name": name},
                   directory=Path(directory))
+    if spec["kind"] in PLAN_FIRST:              # a mistake in the file before the time
+        work = study_work(spec, file)
+        memory = limits or Limits()
+        check([replace(w, seconds=0.0) for w in work], memory)      # memory first
+        plan = KINDS[study.kind].plan(study)
+        check(work, limits)
+        return LoadedStudy(study, plan)
+    check(study_work(spec, file), limits)
     return LoadedStudy(study, KINDS[study.kind].plan(study))
 
 

@@ -19,6 +19,9 @@ from typing import Iterator
 from .. import guard
 from ..inputs.grid import DEFAULT_GRID, Grid
 
+#: evaluations of one lever of a design's [what_it_would_take], about (as
+#: gfbopt.studies.rotor_design.LEVER_EVALUATIONS: the scan each way, the refinement, the answer)
+LEVER_EVALUATIONS = 2 * 4 + 8 + 1
 #: kinds on a rotor: two bearing models at each grid
 ROTOR_KINDS = ("rotor_two_bearings", "rotor_run_up", "rotor_bearing_design")
 #: lists that are not points of a study (labels, references, notes, published numbers)
@@ -98,26 +101,26 @@ def _run_up(spec: dict, grid: Grid, prefix: str) -> list:
 def _design(spec: dict, grid: Grid, prefix: str) -> list:
     search, robust = spec["search"], spec["robustness"]
     coarse = Grid.parse(spec["search_grid"])
-    low, top = spec["speed_range_rpm"]
-    high = spec.get("search_high_rpm") or 1.25 * top
-    count = guard.scan_count(low, high) or 2
-    per_design = guard.speeds("", None, count, coarse, 2).seconds
     square = "population" if search["method"] in ("nsga2", "nsga2_refine") else "budget"
     n = search[square]
     parts = [guard.Work(f"{prefix}search.{square}", n, memory_bytes=guard.SORT_BYTES_PER_PAIR
                         * float(n) ** 2, how=f"a {n:,} × {n:,} matrix of designs "
                         f"({guard.SORT_BYTES_PER_PAIR:g} bytes each)"),
-             guard.speeds(f"{prefix}search.budget", search["budget"],
-                          search["budget"] * count, coarse, 2,
-                          f"speeds ({search['budget']:,} designs × {count} speeds)")]
-    checked = robust["samples"] * robust["designs"]
-    parts.append(guard.Work(f"{prefix}robustness.samples", robust["samples"],
-                            seconds=checked * per_design,
-                            how=f"{checked:,} robustness designs × {count} speeds at "
-                            f"{coarse} ({per_design:.2g} s each)"))
-    parts.append(guard.speeds(f"{prefix}regrid_designs", spec["regrid_designs"],
-                              spec["regrid_designs"] * count, grid, 2,
-                              f"speeds ({spec['regrid_designs']:,} designs × {count} speeds)"))
+             guard.designs(f"{prefix}search.budget", search["budget"], search["budget"],
+                           coarse)]
+    band = spec.get("loss_factor_band") or [0.0, 0.0]
+    ends = len(set(band) - {band[0]})           # the band's other end, checked per design
+    checked = (robust["samples"] if robust.get("tolerances") else 0) + ends
+    parts.append(guard.designs(f"{prefix}robustness.samples", robust["samples"],
+                               checked * robust["designs"], coarse,
+                               f"robustness designs ({robust['designs']} × {checked})"))
+    parts.append(guard.designs(f"{prefix}regrid_designs", spec["regrid_designs"],
+                               spec["regrid_designs"], grid))
+    levers = len(spec.get("what_it_would_take") or {})
+    if levers:              # each lever: its scan each way, the refinement, the answer
+        parts.append(guard.designs(f"{prefix}what_it_would_take", levers,
+                                   levers * LEVER_EVALUATIONS, coarse,
+                                   f"designs ({levers} levers × {LEVER_EVALUATIONS})"))
     revolutions = spec.get("limit_cycle_revolutions") or 0.0
     if revolutions > 0:
         parts.append(guard.steps(f"{prefix}limit_cycle_revolutions", revolutions,

@@ -38,9 +38,13 @@ def no_handler(monkeypatch):
 
 @pytest.fixture
 def no_plan(monkeypatch):
-    """Every study kind's plan and run fail the test (the guard comes before both)."""
-    for kind in list(runner.KINDS):
-        monkeypatch.setitem(runner.KINDS, kind, Kind(_fail, _fail))
+    """Every study kind's run fails the test, and its plan too (the guard comes before
+    both) except for the kinds whose plan only reads their files (runner.PLAN_FIRST: a
+    mistake in the file is reported before the time estimate, the memory estimate still
+    comes first)."""
+    for kind, real in list(runner.KINDS.items()):
+        plan = real.plan if kind in runner.PLAN_FIRST else _fail
+        monkeypatch.setitem(runner.KINDS, kind, Kind(plan, _fail))
 
 
 def _refused(r, option: str, value: str, raises: str) -> str:
@@ -105,13 +109,21 @@ def _design(tmp_path, edit) -> Path:
     ('search_grid = "36x10"', 'search_grid = "2000x400"', "search_grid", "'2000x400'",
      "--max-memory-gb"),
 ])
-def test_a_design_study_above_the_limits_is_refused_before_it_is_planned(
+def test_a_design_study_above_the_limits_is_refused_before_it_runs(
         tmp_path, old, new, key, value, raises, no_plan):
     path = _design(tmp_path, lambda t: t.replace(old, new, 1))
     err = _refused(run_cli("run", str(path), "--results", str(tmp_path / "runs")),
                    f"{path}: {key}", value, raises)
     assert not (tmp_path / "runs").exists()
     assert ("GB of memory" in err) == (raises == "--max-memory-gb")
+
+
+def test_a_design_study_reports_its_mistake_before_the_time_estimate(tmp_path, no_plan):
+    """A reversed speed range in a study too long to run: the mistake, not the estimate."""
+    path = _design(tmp_path, lambda t: t.replace("budget = 116", "budget = 1000000000", 1)
+                   .replace("speed_range_rpm = [4000.0,", "speed_range_rpm = [90000.0,", 1))
+    r = run_cli("run", str(path), "--results", str(tmp_path / "runs"))
+    assert r.returncode == 2 and "speed_range_rpm" in r.stderr and "lowest < top" in r.stderr, r.stderr
 
 
 @pytest.mark.parametrize("study", ["rotor_blower.toml", "rotor_run_up.toml",
