@@ -11,6 +11,8 @@ import numpy as np
 from .core import new_axes, set_title
 
 _STYLE = {"forward": "-", "backward": "--"}
+#: the markers of tracks 1–10, 11–20, … (the colours C0–C9 repeat every ten tracks)
+_MARKERS = ("o", "s", "^", "D")
 
 
 def _mark_speeds(ax, onsets: dict, top_speed_rpm, legend: bool = True) -> None:
@@ -29,20 +31,26 @@ def plot_campbell(table, onsets: dict | None = None, top_speed_rpm: float | None
     """Campbell diagram from a :class:`~gfbopt.rotor.diagrams.CampbellDiagram` table: damped
     natural frequency [Hz] against speed [rpm] with the 1× (synchronous) line, and the log
     decrement [-] below (0: onset); one line per tracked mode (solid forward, dashed
-    backward); ``onsets`` : mode label → onset speed [rpm] (the matched-whirl onsets)."""
+    backward; colour and marker its own: colours C0–C9, the marker changing every ten
+    tracks), its legend entry "mode N: track_label"; ``onsets`` : mode label → onset speed [rpm] (the matched-whirl onsets)."""
     if axes is None:
         axes = new_axes(figsize=(7.2, 6.4), nrows=2, sharex=True)
     ax_f, ax_d = axes
     onsets = onsets or {}
+    count = int(table["mode"].nunique())
     colors = {}
     for mode, part in table.groupby("mode"):
         part = part.sort_values("speed_rpm")
         label = part["track_label"].iloc[0]
-        color = colors.setdefault(mode, f"C{len(colors) % 10}")
+        # each track its own colour and marker: beyond ten tracks the colours repeat, the
+        # markers do not (a track read as another mode in the legend otherwise)
+        k = len(colors)
+        color = colors.setdefault(mode, f"C{k % 10}")
+        marker = _MARKERS[(k // 10) % len(_MARKERS)]
         style = _STYLE["backward" if label.startswith("backward") else "forward"]
-        ax_f.plot(part["speed_rpm"], part["whirl_frequency_hz"], style, marker="o", ms=3,
+        ax_f.plot(part["speed_rpm"], part["whirl_frequency_hz"], style, marker=marker, ms=3,
                   color=color, label=f"mode {mode}: {label}")
-        ax_d.plot(part["speed_rpm"], part["log_decrement"], style, marker="o", ms=3,
+        ax_d.plot(part["speed_rpm"], part["log_decrement"], style, marker=marker, ms=3,
                   color=color)
     speeds = np.array([0.0, float(table["speed_rpm"].max()) * 1.05])
     ax_f.plot(speeds, speeds / 60.0, color="0.4", lw=1.0, label="1× (synchronous) line")
@@ -56,7 +64,7 @@ def plot_campbell(table, onsets: dict | None = None, top_speed_rpm: float | None
     ax_d.set_xlabel("shaft speed [rpm]")
     ax_f.set_xlim(0, speeds[1])
     ax_f.set_ylim(0, max(float(table["whirl_frequency_hz"].max()) * 1.1, 1.0))
-    ax_f.legend(fontsize=7, loc="upper left")
+    ax_f.legend(fontsize=7, loc="upper left", ncol=2 if count > 8 else 1)
     ax_d.legend(fontsize=7, loc="lower left")
     set_title(ax_f, title or "Campbell diagram (eigenvalues of the full linearised system)")
     return ax_f, ax_d
