@@ -94,8 +94,9 @@ def register(subparsers) -> None:
                      "tcp://127.0.0.1:8786 (a scheduler is trusted code; docs/doe.md)")
     run.add_argument("--rotor", metavar="FILE", default=None,
                      help="rotor studies: run on this rotor file instead of the study's "
-                     "(the result folder NAME_on_<rotor>; the same answer as a copy of the "
-                     "study file with rotor, name and title changed)")
+                     "(the result folder NAME_on_<rotor>, with _to_<top>rpm after it under "
+                     "--top-speed; the same answer as a copy of the study file with rotor, "
+                     "name and title changed)")
     run.add_argument("--top-speed", default=None, metavar="RPM",
                      help="rotor studies: the top of speed_range_rpm (above its lowest "
                      "speed)")
@@ -141,8 +142,15 @@ def _load(path: str, args):
                                  "e.g. a design's search budget)")
         if "max_points" in schema:
             data["max_points"] = args.max_points
+    import shlex
+
+    typed = [(flag, value) for flag, value in (("--rotor", rotor), ("--top-speed", top),
+                                                ("--grid", args.grid),
+                                                ("--max-points", args.max_points))
+             if value is not None]
+    options = " ".join(f"{flag} {shlex.quote(str(value))}" for flag, value in typed)
     return study_from_dict(data, name=Path(path).stem, file=str(path),
-                           directory=Path(path).parent, limits=limits(args))
+                           directory=Path(path).parent, limits=limits(args), options=options)
 
 
 def _no_tqdm_monitor() -> None:

@@ -25,6 +25,14 @@ class Study:
     kind: str
     spec: dict
     directory: Path
+    #: the command-line options that shaped it beyond its file (``--rotor …``, ``--top-speed
+    #: …``, ``--grid …``), as typed: part of the command that reproduces or resumes it
+    options: str = ""
+
+    @property
+    def command(self) -> str:
+        """The command that runs this study again (``gfbopt run FILE`` and its options)."""
+        return f"gfbopt run {self.file}" + (f" {self.options}" if self.options else "")
 
     @property
     def grid(self) -> Optional[Grid]:

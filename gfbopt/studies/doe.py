@@ -357,7 +357,7 @@ def run_sampled(loaded, results_root="runs", *, workers: int = 1,
                 kept = _stored(store)
                 why = signal_name(exc.signum) if isinstance(exc, Interrupted) else str(exc)
                 report = (f"{why}: {kept} of {len(sp.frame)} points of {study.name} are "
-                          f"stored in {out / 'store'}; `gfbopt run {study.file} --resume` "
+                          f"stored in {out / 'store'}; `{study.command} --resume` "
                           f"computes the other {len(sp.frame) - kept}")
                 if isinstance(exc, Interrupted):
                     raise Interrupted(exc.signum, report) from None

@@ -256,7 +256,7 @@ def resume_command(study: Study, results_root) -> str:
     from .base import DEFAULT_RESULTS
 
     where = "" if str(results_root) == DEFAULT_RESULTS else f" --results {results_root}"
-    return f"gfbopt run {study.file}{where} --resume"
+    return f"{study.command}{where} --resume"
 
 
 def run_design(loaded: LoadedStudy, results_root="results", *, workers: int = 1,

@@ -80,20 +80,21 @@ PLAN_FIRST = ("rotor_bearing_design", "rotor_two_bearings", "rotor_run_up")
 
 def study_from_dict(data: dict, *, name: Optional[str] = None, file: str = "<dict>",
                     directory: Union[str, Path] = ".",
-                    limits: Optional[Limits] = None) -> LoadedStudy:
+                    limits: Optional[Limits] = None, options: str = "") -> LoadedStudy:
     """Validate a study given as a dict (the same keys as a study file) and plan it.
 
     ``file`` names it in error messages; ``directory`` is where relative paths (a
     ``bearing`` file) are looked up.  A study whose estimated memory or time is above
     ``limits`` (:class:`gfbopt.guard.Limits`, default 4 GB and 60 min) is refused before it
-    is planned (:mod:`.work`).
+    is planned (:mod:`.work`).  ``options``: the command-line options that shaped ``data``
+    beyond its file (``--rotor …``), part of the commands its results print.
     """
     spec = validate(data, file)
     name = spec["name"] if spec["name"] is not None else (name or Path(file).stem)
     check_name(name, f"{file}: name")
     check_file_names(spec, directory, file)      # what no run can mean, then the estimate
     study = Study(file=file, name=name, kind=spec["kind"], spec={**spec, "name": name},
-                  directory=Path(directory))
+                  directory=Path(directory), options=options)
     if spec["kind"] in PLAN_FIRST:              # a mistake in the file before the time
         work = study_work(spec, file)
         memory = limits or Limits()

@@ -4,7 +4,7 @@
 :func:`on_user_rotor` returns the study's table with the study's ``rotor`` replaced by the
 user's file (its absolute path, as the command line named it from the current folder) and
 the top of ``speed_range_rpm`` by the top speed; the name gets the rotor file's stem (the
-result folder ``RESULTS/<name>_on_<rotor>/``), the title is rewritten from the user's rotor
+result folder ``RESULTS/<name>_on_<rotor>_to_<top>rpm/``, the parts of the options given), the title is rewritten from the user's rotor
 and top speed and the shipped notes, which describe the shipped rotor and top speed, are
 replaced by one note saying so (:func:`_retitled`), so the run answers exactly what an
 edited copy of the study file with those keys changed answers.  The source, when the study cites one, is kept with a note that the rotor is the
