@@ -181,6 +181,10 @@ def describe(column: str, references: tuple = ()) -> tuple[str, str]:
                 return unit, f"deviation of {quantity} from {ref}: {kind}"
         if column == f"verdicts_{ref}":
             return "text", f"verdicts published ({ref})"
+    bearing = re.fullmatch(r"([A-Z]):(\w+)", column)     # a design variable per bearing
+    if bearing:
+        unit, meaning = describe(bearing.group(2), references)
+        return unit, f"{meaning}, of bearing {bearing.group(1)}"
     for suffix, where in _SUFFIXES:
         base = column[:-len(suffix)] if column.endswith(suffix) else ""
         if base:
