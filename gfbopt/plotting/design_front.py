@@ -35,12 +35,14 @@ def variable_label(name: str) -> str:
 
 
 def plot_design_front(table, front, chosen: Optional[dict], top_speed_rpm: float,
-                      search_high_rpm: float, robust=None, ax=None, title: str = ""):
+                      search_high_rpm: float, robust=None, ax=None, title: str = "",
+                      limits: str = ""):
     """First onset over all modes [krpm] against power loss at the top speed [W] of every
     evaluated design (feasible filled, infeasible open, failed omitted), the Pareto front,
     the chosen design, the top speed and the top of the onset search (where 'stable over
     the range' designs sit), and, for the designs checked for robustness, a bar down to
-    their worst-case onset under the tolerances."""
+    their worst-case onset under the tolerances; ``limits``: the study's limits in words
+    (e.g. "start-up film"), named in the legend of the designs that break one."""
     ax = new_axes() if ax is None else ax
     ok = table[table["success"].astype(bool)]
     feasible = ok["feasible"].astype(bool) if "feasible" in ok else np.ones(len(ok), bool)
@@ -48,7 +50,7 @@ def plot_design_front(table, front, chosen: Optional[dict], top_speed_rpm: float
                / 1e3, s=14, color="tab:blue", alpha=0.6, label="feasible design")
     ax.scatter(ok.loc[~feasible, "total_power_loss_w"], ok.loc[~feasible, "first_onset_speed_rpm"]
                / 1e3, s=14, facecolors="none", edgecolors="tab:gray",
-               label="breaks a limit (film, lift-off, stress, sag)")
+               label=f"breaks a limit ({limits})" if limits else "breaks a limit")
     if front is not None and len(front):
         f = front.sort_values("total_power_loss_w")
         ax.plot(f["total_power_loss_w"], f["first_onset_speed_rpm"] / 1e3, "-o", color="tab:orange",
@@ -77,9 +79,12 @@ def plot_design_front(table, front, chosen: Optional[dict], top_speed_rpm: float
 
 
 def plot_onset_against_variables(table, names: list, top_speed_rpm: float, axes=None,
-                                 title: str = ""):
+                                 title: str = "", chosen: Optional[dict] = None,
+                                 bounds: Optional[dict] = None):
     """First onset [krpm] of every successful design against each design variable, feasible
-    and infeasible apart, the top speed drawn.  Returns the array of Axes."""
+    and infeasible apart, the top speed drawn; ``chosen``: the chosen design (a star);
+    ``bounds``: {variable: (low, high)} of the design space (dotted lines).  Returns the
+    array of Axes."""
     n = len(names)
     if axes is None:
         cols = min(n, 3)
@@ -93,7 +98,14 @@ def plot_onset_against_variables(table, names: list, top_speed_rpm: float, axes=
                    s=12, color="tab:blue", alpha=0.6, label="feasible")
         ax.scatter(ok.loc[~feasible, name], ok.loc[~feasible, "first_onset_speed_rpm"] / 1e3,
                    s=12, facecolors="none", edgecolors="tab:gray", label="breaks a limit")
-        ax.axhline(top_speed_rpm / 1e3, color="tab:green", ls="--", label="top speed")
+        ax.axhline(top_speed_rpm / 1e3, color="tab:green", ls="--",
+                   label=f"top speed {top_speed_rpm:,.0f} rpm")
+        if chosen is not None and name in chosen:
+            ax.plot(chosen[name], chosen["first_onset_speed_rpm"] / 1e3, "*", color="black",
+                    ms=12, label="chosen design")
+        for k, edge in enumerate((bounds or {}).get(name, ())):
+            ax.axvline(edge, color="tab:gray", ls=":", lw=1,
+                       label="bounds of the design space" if k == 0 else None)
         ax.set_xlabel(variable_label(name))
         ax.set_ylabel("first onset [krpm]")
         ax.grid(alpha=0.3)
