@@ -15,6 +15,14 @@ the number of designs the search asks is seen apart from the cost of one design.
 
     OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1 python benchmarks/bench_main_job_heat.py \\
         [--pairs 2] [--workers 2] [--out results/benchmarks/main_job_heat.json]
+
+Where the extra time goes: one run of each at ``--workers 1`` (every evaluation in the child
+process) under cProfile, then the functions whose cumulative CPU differs most::
+
+    python benchmarks/bench_main_job_heat.py --child --workers 1 --results DIR \
+        --rotor-file problems/rotors/blower.toml --profile iso.pstats     (and blower_thermal)
+    python benchmarks/bench_main_job_heat.py --compare-profiles iso.pstats heated.pstats \
+        [--out results/benchmarks/main_job_heat.json]     (adds "profile" to the JSON)
 """
 from __future__ import annotations
 
@@ -79,6 +87,47 @@ def _child(workers: int, results: str, rotor: str, profile: str = "") -> None:
                                 default=str), flush=True)
 
 
+def cpu_per_design_ratios(runs) -> list:
+    """Per pair, (CPU / designs evaluated) heated over isothermal: the ratio with the search's
+    different number of designs taken out (the stages after the search still included)."""
+    return [(b["cpu_s"] / b["search"]["evaluated"]) / (a["cpu_s"] / a["search"]["evaluated"])
+            for a, b in zip(runs[0::2], runs[1::2])
+            if a.get("search", {}).get("evaluated") and b.get("search", {}).get("evaluated")]
+
+
+def compare_profiles(iso_path: str, heated_path: str, top: int = 25) -> dict:
+    """The functions (file:line(function)) whose cumulative time [s] differs most between
+    the isothermal and the heated profile, and the totals (cProfile's own clock: the child's
+    process time, inflated by the profiler alike in both)."""
+    import pstats
+
+    def table(path):
+        st = pstats.Stats(path)
+        rows = {}
+        for (file, line, func), (_, ncalls, tottime, cumtime, _) in st.stats.items():
+            short = "/".join(Path(file).parts[-3:]) if file.startswith("/") else file
+            rows[f"{short}:{line}({func})"] = (ncalls, tottime, cumtime)
+        return rows, st.total_tt
+
+    iso, iso_total = table(iso_path)
+    heated, heated_total = table(heated_path)
+    names = set(iso) | set(heated)
+
+    def delta(key, k):
+        return heated.get(key, (0, 0.0, 0.0))[k] - iso.get(key, (0, 0.0, 0.0))[k]
+
+    def row(key):
+        a, b = iso.get(key, (0, 0.0, 0.0)), heated.get(key, (0, 0.0, 0.0))
+        return {"function": key, "calls_isothermal": a[0], "calls_heated": b[0],
+                "cumulative_s_isothermal": a[2], "cumulative_s_heated": b[2],
+                "self_s_isothermal": a[1], "self_s_heated": b[1]}
+    by_cum = sorted(names, key=lambda k: -delta(k, 2))[:top]
+    by_self = sorted(names, key=lambda k: -delta(k, 1))[:top]
+    return {"total_s_isothermal": iso_total, "total_s_heated": heated_total,
+            "largest_cumulative_increase": [row(k) for k in by_cum],
+            "largest_self_increase": [row(k) for k in by_self]}
+
+
 def _run(label: str, workers: int) -> dict:
     env = {**os.environ, "PYTHONPATH": str(ROOT), "GFBOPT_PROGRESS": "0"}
     before = resource.getrusage(resource.RUSAGE_CHILDREN)
@@ -111,7 +160,16 @@ def main() -> None:
     parser.add_argument("--results", default=None, help=argparse.SUPPRESS)
     parser.add_argument("--rotor-file", default=None, help=argparse.SUPPRESS)
     parser.add_argument("--profile", default="", help="child only: cProfile stats file")
+    parser.add_argument("--compare-profiles", nargs=2, metavar=("ISO", "HEATED"),
+                        default=None, help="add the profiles' comparison to --out")
     args = parser.parse_args()
+    if args.compare_profiles:
+        out = json.loads(Path(args.out).read_text()) if Path(args.out).is_file() else {}
+        out["profile"] = {"what": "one run of each at --workers 1 under cProfile "
+                          "(evaluations in the child process), same code as the pairs",
+                          **compare_profiles(*args.compare_profiles)}
+        write_report(out, args.out)
+        return
     if args.child:
         _child(args.workers, args.results, args.rotor_file, args.profile)
         return
@@ -123,20 +181,18 @@ def main() -> None:
     load_end = os.getloadavg()
     pairs = [(a["cpu_s"], b["cpu_s"]) for a, b in zip(runs[0::2], runs[1::2])]
     ratios = [b / a for a, b in pairs]
-    per_eval = [(b["search"]["evaluation_s_mean"] / a["search"]["evaluation_s_mean"])
-                for a, b in zip(runs[0::2], runs[1::2])
-                if a.get("search") and b.get("search")]
+    per_eval = cpu_per_design_ratios(runs)
     out = machine_info(
         benchmark="main_job_heat", code=tree_label(ROOT), study=str(STUDY.relative_to(ROOT)),
         command=(f"gfbopt run {STUDY.relative_to(ROOT)} --workers {args.workers} --rotor "
                  "problems/rotors/{blower,blower_thermal}.toml"),
         what="CPU s (user + system) of the whole job, child and its workers; A/B interleaved",
         pairs_cpu_s=pairs, ratios=ratios, ratio_mean=sum(ratios) / len(ratios),
-        evaluation_s_mean_ratios=per_eval, target_ratio=TARGET_RATIO,
+        cpu_per_design_ratios=per_eval, target_ratio=TARGET_RATIO,
         target_met=max(ratios) <= TARGET_RATIO, runs=runs, load_average_start=load_start,
         load_average_end=load_end)
     print(f"ratios {', '.join(f'{r:.3f}' for r in ratios)} (target {TARGET_RATIO}); "
-          f"per-evaluation ratios {', '.join(f'{r:.3f}' for r in per_eval)}")
+          f"per-design CPU ratios {', '.join(f'{r:.3f}' for r in per_eval)}")
     write_report(out, args.out)
 
 
