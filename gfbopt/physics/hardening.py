@@ -202,10 +202,10 @@ def hardened_deflection_and_slope(q, compliance, exponent, limit, compression_on
     """(W_h(q), dW_h/dq) of :func:`hardened_foil_deflection` together (numpy, one exp and one
     log for both): W_lim (1 − e^(−g)) and S e^(−g)/(1 + (n − 1) x) with x = S q⁺/W_lim,
     g = log(1 + (n − 1) x)/(n − 1); S q and S in tension (0 and 0 when ``compression_only``)."""
-    qp = np.maximum(q, 0.0)
-    x = compliance * qp / limit
+    x = compliance * np.maximum(q, 0.0) / limit
     e = exponent - 1.0
-    g = _exponent_term(x, e)
+    g = (x - 0.5 * e * x * x + e * e * x * x * x / 3.0 if abs(e) < _SERIES_BELOW
+         else np.log1p(e * x) / e)                        # _exponent_term's, numpy only
     decay = np.exp(-g)
     w = -limit * np.expm1(-g)
     slope = compliance * decay / (1.0 + e * x)

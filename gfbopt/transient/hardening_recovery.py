@@ -101,7 +101,7 @@ def row_balance(phit, c, hr, s, hard: HardeningData, compression_only: bool, kb=
         newton = x - step
         done = np.abs(step) <= STEP_TOLERANCE * (1.0 + np.abs(x))
         bisect = ~done & (~((newton > lo) & (newton < hi)) | (np.abs(f) > 0.5 * previous))
-        x = np.where(bisect, _mid(lo, hi), newton)
+        x = np.where(bisect, _mid(lo, hi), newton) if bisect.any() else newton
         previous = np.abs(f)
         if done.all():
             w = hardened_deflection_and_slope(x, s, n, lim, compression_only)[0]
