@@ -2,6 +2,11 @@
 
 With ``--loss-factor η > 0`` (structural damping of the bumps) the damping at whirl ratio 0 is
 reported as null: hysteretic damping η k/γ is unbounded at zero frequency.
+
+A bearing file with ``[journal]``/``[thermal]``: K and C at the running condition of
+``--speed-rpm`` (the equilibrium at the running clearance and μ(T),
+:mod:`gfbopt.cli.running_point`), the output naming the model and giving the running
+clearance, growths, film temperature and viscosity; a file without them: today's output.
 """
 from __future__ import annotations
 
@@ -40,15 +45,25 @@ def run(args) -> int:
     from ..linear import coefficients, least_stable_mode, linear_threshold, linearise
     from ..static import solve_static, solver_for
 
-    op = operating_point(args)
+    from .running_point import no_running_state, running_fields, running_operating_point
+
+    running = running_operating_point(args)
+    point = None
+    if running is None:                          # no [journal]/[thermal]: today's route
+        op = operating_point(args)
+    else:
+        op, point, solver = running
     if args.mass is not None and not 0 < args.mass <= MAX_MASS_PARAMETER:
         raise ParameterError("--mass", args.mass, f"must lie in (0, {MAX_MASS_PARAMETER:g}]")
     for gamma in args.whirl_ratio:
         if not 0 <= gamma <= MAX_WHIRL_RATIO:
             raise ParameterError("--whirl-ratio", gamma, f"must lie in [0, {MAX_WHIRL_RATIO:g}]"
                                  " (the rotor's roots lie below 3 times the shaft speed)")
+    if point is not None and op is None:         # thermal runaway or closure at the speed
+        return no_running_state(point, "linear", args.json)
     t0 = time.perf_counter()
-    solver = solver_for(op.model, op.grid)
+    if point is None:
+        solver = solver_for(op.model, op.grid)
     sol = solve_static(op.model, eccentricity=op.eccentricity, load=op.load, solver=solver)
     if not sol.success:
         print(f"gfbopt: error: static equilibrium did not converge ({sol.message}); "
@@ -75,6 +90,8 @@ def run(args) -> int:
            "wall_time_s": time.perf_counter() - t0}
     if mode is not None:
         out.update({"mass": args.mass, "growth_rate": mode.real, "mode_whirl_ratio": mode.imag})
+    if point is not None:
+        out.update(running_fields(point))
 
     def report() -> str:
         model = op.model
@@ -93,6 +110,10 @@ def run(args) -> int:
         if mode is not None:
             lines.append(f"  least stable mode at M̄ = {args.mass:g}: growth rate "
                          f"{mode.real:.4g} per rad, whirl ratio {mode.imag:.4f}")
+        if point is not None:
+            from .stability import running_lines
+
+            lines.extend(running_lines(out["running"]))
         return "\n".join(lines)
 
     emit(out, args.json, report, describe(op, frame=args.frame))

@@ -1,4 +1,10 @@
-"""``gfbopt static``: one static equilibrium (non-dimensional, or SI from a bearing file)."""
+"""``gfbopt static``: one static equilibrium (non-dimensional, or SI from a bearing file).
+
+A bearing file with ``[journal]``/``[thermal]``: the equilibrium at the running condition of
+``--speed-rpm`` (the running clearance and μ(T), :mod:`gfbopt.cli.running_point`), its
+output naming the model (``thermal_model``) and giving running_clearance_um,
+centrifugal_growth_um, thermal_growth_um, film_temperature_c and viscosity_pa_s; a file
+without them gives today's output unchanged."""
 from __future__ import annotations
 
 import math
@@ -28,9 +34,17 @@ def run(args) -> int:
 
     if not 0 < args.time_limit <= 1e6:
         raise ParameterError("--time-limit", args.time_limit, "must lie in (0, 1e6] s")
-    op = operating_point(args)
-    solver = solver_for(op.model, op.grid,
-                        ipopt_options={"ipopt.max_cpu_time": float(args.time_limit)})
+    from .running_point import no_running_state, running_fields, running_operating_point
+
+    ipopt = {"ipopt.max_cpu_time": float(args.time_limit)}
+    running = running_operating_point(args, ipopt_options=ipopt)
+    if running is None:                          # no [journal]/[thermal]: today's route
+        op, point = operating_point(args), None
+        solver = solver_for(op.model, op.grid, ipopt_options=ipopt)
+    else:
+        op, point, solver = running
+        if op is None:                           # thermal runaway or closure at the speed
+            return no_running_state(point, "static", args.json)
     sol = solve_static(op.model, eccentricity=op.eccentricity, load=op.load, solver=solver)
     budget = (f"budget per IPOPT solve: {default_ipopt_options()['ipopt.max_iter']} "
               f"iterations, {args.time_limit:g} s CPU (--time-limit)")
@@ -42,6 +56,8 @@ def run(args) -> int:
         out["load_newton"] = op.geometry.load_newton(sol.load)
         out["drag_torque_nm"], out["power_loss_w"] = drag_torque_and_power(
             sol.torque_ratio, op.model.bearing_number, op.geometry)
+    if point is not None:
+        out.update(running_fields(point))
     emit(out, args.json, lambda: _report(out), describe(op))
     if not sol.success:
         print(f"gfbopt: solve did not converge: {sol.message} (status {sol.status}, residual "
@@ -81,6 +97,10 @@ def _report(out: dict) -> str:
                      f"(load {out['load_newton']:.2f} N at {out['speed_rpm']:.0f} rpm)")
         lines.append(f"  drag torque             {out['drag_torque_nm'] * 1e3:.4g} mN m, power "
                      f"loss {out['power_loss_w']:.4g} W")
+    if out.get("running"):
+        from .stability import running_lines
+
+        lines += running_lines(out["running"])
     lines.append(f"  solver: {out['status']}, {out['iterations']} iterations, residual "
                  f"{out['residual']:.1e}, {out['solve_time_s']:.3f} s"
                  + ("" if out["success"] else "  ** NOT CONVERGED **"))

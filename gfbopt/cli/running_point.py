@@ -1,0 +1,167 @@
+"""``gfbopt static`` and ``gfbopt linear`` on a bearing file with ``[journal]``/``[thermal]``:
+the operating point at the running condition of the file's speed.
+
+The running point (:func:`gfbopt.thermal.running.running_point`: the centrifugal growth, and
+with ``[thermal]`` the heat balance's fixed point of temperatures, growths, μ(T) and clearance
+under the operating point's load) gives the warm bearing
+(:func:`gfbopt.thermal.bearing.warm_bearing`: radial clearance = the running clearance,
+viscosity = μ(T_f)); the command's model is that bearing's at ``--speed-rpm``, with the
+formulation resolved as :func:`gfbopt.cli.common.operating_point` resolves it (the flags over
+the file's ``[model]`` table, then the defaults).  The heat balance needs the load (the drag
+depends on it): ``--load-newton`` or ``--load``; ``--eccentricity`` is refused with it.  A
+file with neither table never comes here (:func:`running_operating_point` returns None): the
+command's output is today's, unchanged.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Optional
+
+from ..errors import ParameterError
+from ..thermal.running import HEAT_BALANCE, ISOTHERMAL, RunningPoint
+
+#: the clearance at speed's fields added to ``gfbopt static/linear --json`` for such a file
+RUNNING_FIELDS = ("thermal_model", "cold_clearance_um", "running_clearance_um",
+                  "centrifugal_growth_um", "thermal_growth_um", "film_temperature_c",
+                  "viscosity_pa_s", "running")
+
+
+@dataclass(frozen=True)
+class _Formulation:
+    """The command's model keywords, as a FilmCase's ``options`` (``model_kwargs()``)."""
+
+    kwargs: tuple
+
+    def model_kwargs(self) -> dict:
+        return dict(self.kwargs)
+
+
+class _OneSolver:
+    """A solver cache that returns the command's own build (its IPOPT options) on the
+    command's grid, and caches the others (the coarse start's grid)."""
+
+    def __init__(self, grid, solver):
+        from ..static import SolverCache
+
+        self.grid, self.solver, self.others = grid, solver, SolverCache(grid)
+
+    def __call__(self, model, grid=None):
+        from ..static.build import solver_key
+
+        if solver_key(model, grid or self.grid) == solver_key(model, self.grid) and \
+                (grid is None or grid == self.grid):
+            return self.solver
+        return self.others(model, grid)
+
+
+def running_operating_point(args, ipopt_options: Optional[dict] = None):
+    """None when ``args.bearing`` is not given or its file states neither ``[journal]`` nor
+    ``[thermal]`` (the command's route of today).  Else (the OperatingPoint at the running
+    condition or None when there is no running state, the RunningPoint, the solver of the
+    command's grid): bad input refused in one line before any solve."""
+    if getattr(args, "bearing", None) is None:
+        return None
+    from ..thermal.files import load_running_bearing
+
+    bearing, spec = load_running_bearing(args.bearing)       # the tables checked
+    if spec.model_name == ISOTHERMAL:
+        return None
+    from ..inputs.options import merge_options
+    from ..static import solver_for
+    from ..thermal.bearing import FilmCase, FilmDrag, warm_bearing
+    from ..thermal.running import running_point, without_heat
+    from .common import OperatingPoint, _refuse_ignored_options, grid_of
+    from .si import MAX_FILM, stated_options
+
+    resolved = merge_options(stated_options(args), bearing.options)   # as fill_model_options
+    args.film, args.deflection_law = resolved.film, resolved.deflection_law
+    args.loss_factor, args.foil = resolved.loss_factor, resolved.foil
+    args.seam_angle = (None if resolved.seam_angle_deg in (None, MAX_FILM)
+                       else resolved.seam_angle_deg)
+    _refuse_ignored_options(args)
+    kwargs = dict(film=args.film, deflection_law=args.deflection_law,
+                  subambient=args.subambient, compression_only=args.compression_only,
+                  seam_angle_deg=args.seam_angle, loss_factor=args.loss_factor,
+                  foil=args.foil or "simple")
+    for key in ("friction_coefficient", "friction_stiffness_ratio"):
+        if getattr(resolved, key, None) is not None:
+            kwargs[key] = getattr(resolved, key)
+    if args.eccentricity is None and args.load is None and args.load_newton is None:
+        raise ParameterError("--eccentricity/--load", None, "give one of them (or "
+                             "--load-newton)")
+    if spec.model_name == HEAT_BALANCE and args.eccentricity is not None:
+        raise ParameterError("--eccentricity", args.eccentricity, "is not used with a "
+                             "[thermal] table: the heat balance is solved under the "
+                             "bearing's load (its drag depends on it); give --load-newton "
+                             "or --load")
+    grid = grid_of(args)
+    speed = args.speed_rpm
+    cold_model = _model(bearing, speed, kwargs, args)
+    solver = solver_for(cold_model, grid, ipopt_options=ipopt_options)
+    load_newton = (args.load_newton if args.load_newton is not None else
+                   None if args.load is None else bearing.load_newton(args.load))
+    if spec.model_name == HEAT_BALANCE:
+        from ..rotor.running_bearing import coarse_start
+
+        cache = _OneSolver(grid, solver)
+        case = FilmCase(bearing, _Formulation(tuple(sorted(kwargs.items()))), grid, cache,
+                        load_newton)
+        point = running_point(spec, speed, FilmDrag(case, start=coarse_start(grid, cache)))
+    else:
+        point = without_heat(spec, speed)
+    if not point.converged:
+        return None, point, solver
+    try:
+        warm = warm_bearing(bearing, point)
+    except ParameterError as exc:
+        return None, _unanalysable(point, exc), solver
+    extra = dict(geometry=warm, speed_rpm=speed)
+    if args.load_newton is not None:
+        extra.update(load=warm.nondimensional_load(args.load_newton),
+                     load_newton=args.load_newton)
+    elif args.load is not None:
+        extra["load"] = args.load
+    else:
+        extra["eccentricity"] = args.eccentricity
+    return OperatingPoint(model=_model(warm, speed, kwargs, args), grid=grid, **extra), \
+        point, solver
+
+
+def _model(bearing, speed, kwargs, args):
+    model = bearing.model(speed, **kwargs)
+    if args.top_foil_coefficient is not None:
+        model = model.replace(top_foil_coefficient=args.top_foil_coefficient)
+    return model
+
+
+def _unanalysable(point: RunningPoint, exc) -> RunningPoint:
+    import dataclasses
+
+    return dataclasses.replace(point, status="runaway", message=(
+        f"the running clearance {point.running_clearance * 1e6:.3g} µm cannot be analysed "
+        f"({exc})"))
+
+
+def running_fields(point: RunningPoint) -> dict:
+    """The clearance at speed's fields of the answer (RUNNING_FIELDS)."""
+    d = point.to_dict()
+    return {**{k: d[k] for k in RUNNING_FIELDS[:-1]}, "running": d}
+
+
+def no_running_state(point: RunningPoint, command: str, as_json: bool) -> int:
+    """The answer when there is no running state at the file's speed (thermal runaway, or
+    the journal reaching the foil): the running point's fields and why, exit 1 (there is no
+    equilibrium to report)."""
+    import sys
+
+    from .common import emit
+    from .stability import running_lines
+
+    out = {"command": command, **running_fields(point), "success": False,
+           "message": point.message}
+    emit(out, as_json, lambda: "\n".join([f"gfbopt {command} — no running state"]
+                                         + running_lines(out["running"])),
+         {"command": command})
+    print(f"gfbopt: no equilibrium at {point.speed_rpm:,.0f} rpm: {point.message}",
+          file=sys.stderr)
+    return 1
