@@ -40,16 +40,18 @@ class _OneSolver:
     """A solver cache that returns the command's own build (its IPOPT options) on the
     command's grid, and caches the others (the coarse start's grid)."""
 
-    def __init__(self, grid, solver):
+    def __init__(self, grid, solver, model):
         from ..static import SolverCache
+        from ..static.build import solver_key
 
         self.grid, self.solver, self.others = grid, solver, SolverCache(grid)
+        self.key = solver_key(model, grid)
 
     def __call__(self, model, grid=None):
         from ..static.build import solver_key
 
-        if solver_key(model, grid or self.grid) == solver_key(model, self.grid) and \
-                (grid is None or grid == self.grid):
+        # one build per grid, film and structure: a warm model's key is the cold one's
+        if solver_key(model, grid or self.grid) == self.key:
             return self.solver
         return self.others(model, grid)
 
@@ -103,7 +105,7 @@ def running_operating_point(args, ipopt_options: Optional[dict] = None):
     if spec.model_name == HEAT_BALANCE:
         from ..rotor.running_bearing import coarse_start
 
-        cache = _OneSolver(grid, solver)
+        cache = _OneSolver(grid, solver, cold_model)
         case = FilmCase(bearing, _Formulation(tuple(sorted(kwargs.items()))), grid, cache,
                         load_newton)
         point = running_point(spec, speed, FilmDrag(case, start=coarse_start(grid, cache)))
