@@ -159,7 +159,7 @@ def no_running_state(point: RunningPoint, command: str, as_json: bool) -> int:
     from .common import emit
     from .stability import running_lines
 
-    out = {"command": command, **running_fields(point), "success": False,
+    out = {"speed_rpm": point.speed_rpm, **running_fields(point), "success": False,
            "message": point.message}
     emit(out, as_json, lambda: "\n".join([f"gfbopt {command} — no running state"]
                                          + running_lines(out["running"])),
