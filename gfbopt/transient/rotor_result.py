@@ -254,8 +254,8 @@ def summarise(run: RotorRun, profile, rotor, solutions, settings: dict, *, syste
     if rotor_friction.rubbing(model):
         settings = {**settings, "bump_friction": rotor_friction.model_words(model)}
         notes.append("Bumps that rub: " + settings["bump_friction"] + "; " + (
-            "per bearing, how the orbit ended (friction_orbit_kind: settled limit cycle, contact or "
-            "end of run): the semi-major axis of the whirl's first harmonic over the last "
+            "per bearing, how the orbit ended (friction_orbit_kind: settled limit cycle, "
+            "contact or end of run): the semi-major axis of the whirl's first harmonic over the last "
             f"{rotor_friction.PERIODS} whirl periods against the {rotor_friction.PERIODS} "
             f"before (settled within {rotor_friction.TOLERANCE:g}), 1× removed"
             if profile.kind == "orbit" else "a ramp states no limit cycle"))

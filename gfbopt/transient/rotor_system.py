@@ -34,9 +34,10 @@ the direction of rotation, positions over its clearance c_k, forces over p_a R_k
 of one grid, film and axial-mean (or rigid) law are evaluated together in one fused pass
 (:mod:`.rotor_films`, equal to the one-bearing functions to round-off); others call that
 model's own functions (:func:`.system.pressure_and_film`, :func:`.system.flux_residual`,
-:func:`.system.film_force`, the foil state's ``rate``).  A bearing whose bumps rub (μ_f > 0) keeps its
-sliders Z beside the state (``sliders``, :mod:`.rotor_friction`): its films always take the
-one-bearing functions, with ``slider=`` (the fused pass carries no slider).
+:func:`.system.film_force`, the foil state's ``rate``).  A bearing whose bumps rub (μ_f > 0)
+keeps its sliders Z beside the state (``sliders``, :mod:`.rotor_friction`): its films take
+the fused rows with the friction elements (:mod:`.rotor_friction_films`) or the one-bearing
+functions with ``slider=``.
 
 Time and speed
 --------------
