@@ -5,21 +5,14 @@ A ``line`` is a :class:`gfbopt.rotor.system.SpeedLine` (crossings per speed, cac
 ``rows`` are one mode's (speed, crossing or None) at the scan speeds (None: the mode has no
 crossing there, stable for every inertia scale): one track (below).
 
-Tracks: one identity per mode (:func:`crossing_tracks`).  At each scan speed after the first,
-the crossings (:class:`~gfbopt.rotor.matched_whirl.ModeCrossing`) are matched to the tracks
-that had one at the speed before by the optimal assignment on the cost
-
-    (1 − MAC) + :data:`WHIRL_WEIGHT` |γ − γ_prev|/γ_prev + :data:`SCALE_WEIGHT` |ln μ_c − ln μ_pred|,
-
-MAC the modal assurance criterion of the two crossings' shapes (:func:`gfbopt.rotor.modes.
-shape_vector`: the axis' motion at the bearings, along the shaft for a shaft), γ the whirl
-ratio, μ_pred the track's μ_c extrapolated linearly in ln N from its last two speeds (from
-one, μ_c ∝ N⁻²).  A match costing more than :data:`MAX_COST` starts a new track.  The shape
-class of a crossing is not used: an asymmetric rotor's mode drifts between mixed, conical
-and cylindrical along speed.  Each track's onset is :func:`mode_onset` on its own rows (on a
-fine grid, :func:`guided_onset` on the coarse track, the fine crossing continuing each
-coarse row by the same cost, :func:`continuing`); inside the bracket the refinement follows
-the label of the bracket's unstable crossing (:meth:`~gfbopt.rotor.system.SpeedLine.follow`).
+Tracks: one identity per mode (:func:`gfbopt.rotor.modes.crossing_tracks`: the crossings
+matched from speed to speed by the MAC of their shapes, the whirl ratio and the trend of
+ln μ_c, never by label — an asymmetric rotor's mode drifts between mixed, conical and
+cylindrical along speed).  Each track's onset is :func:`mode_onset` on its own rows (on a
+fine grid, :func:`guided_onset` on the coarse track, the fine crossing continuing each coarse
+row by the same cost, :func:`gfbopt.rotor.modes.continuing`); inside the bracket the
+refinement follows the label of the bracket's unstable crossing
+(:meth:`~gfbopt.rotor.system.SpeedLine.follow`).
 
 Names (:func:`named`; one per mode, used in the text, JSON, CSV and figures): a track is named
 once, by its shape class where it is reported — at its onset; at the lowest speed when
@@ -55,10 +48,11 @@ from dataclasses import dataclass, field, replace
 from typing import Optional
 
 import numpy as np
-from scipy.optimize import brentq, linear_sum_assignment
+from scipy.optimize import brentq
 
 from ..progress import progress
-from .modes import mac, shape_vector
+from .modes import continuing, crossing_tracks
+from .running import CLOSURE, RUNAWAY
 from .speed_line import secant_root
 
 #: the secant refinement stops when the next secant step from its latest point would be at
@@ -289,86 +283,6 @@ def guided_onset(fine, coarse, speeds: list, label: str, tol: float,
         return None
 
 
-# ------------------------------------------------------------ tracks: one identity per mode
-#: weight of the relative change of the whirl ratio in the cost [-]
-WHIRL_WEIGHT = 2.0
-#: weight of |ln μ_c − ln μ_pred| in the cost [-]
-SCALE_WEIGHT = 0.5
-#: a match costing more than this starts a new track [-]
-MAX_COST = 1.5
-#: ln μ_c of a crossing with μ_c = 0 (unstable for every inertia scale) [-]
-_LOG_FLOOR = math.log(1e-12)
-
-
-def _log_mu(c) -> float:
-    return math.log(c.inertia_scale) if c.inertia_scale > 0 else _LOG_FLOOR
-
-
-def _predicted(points: list, speed: float) -> float:
-    """ln μ_c at ``speed`` from a track's last (speed, crossing) points (module docstring)."""
-    s1, c1 = points[-1]
-    if len(points) < 2:
-        return _log_mu(c1) + NOMINAL_SLOPE * math.log(speed / s1)
-    s0, c0 = points[-2]
-    slope = (_log_mu(c1) - _log_mu(c0)) / math.log(s1 / s0)
-    return _log_mu(c1) + slope * math.log(speed / s1)
-
-
-def cost(points: list, c, speed: float, d_last: np.ndarray, d_new: np.ndarray) -> float:
-    """The cost of continuing a track (its last (speed, crossing) points, its last shape
-    ``d_last``) by crossing ``c`` of shape ``d_new`` at ``speed`` (module docstring)."""
-    last = points[-1][1]
-    whirl = abs(c.whirl_ratio - last.whirl_ratio) / max(abs(last.whirl_ratio), 1e-12)
-    return (1.0 - mac(d_last, d_new) + WHIRL_WEIGHT * whirl
-            + SCALE_WEIGHT * abs(_log_mu(c) - _predicted(points, speed)))
-
-
-def crossing_tracks(line, speeds: list) -> list:
-    """The tracks of the crossings of ``line`` at ``speeds`` (those with both bearings
-    solved), each a list of (speed, crossing or None) over all ``speeds`` (module
-    docstring), in the order they start (then by μ_c)."""
-    rotor = line.rotor
-    tracks: list = []                       # each: list of (speed, crossing, shape)
-    active: list = []
-    for speed in speeds:
-        found = sorted(line.crossings(speed) or [], key=lambda c: c.inertia_scale)
-        shapes = [shape_vector(c.vector, rotor) for c in found]
-        matrix = np.array([[cost([(s, c) for s, c, _ in tracks[t]], c, speed,
-                                 tracks[t][-1][2], d) for c, d in zip(found, shapes)]
-                           for t in active]).reshape(len(active), len(found))
-        rows, cols = linear_sum_assignment(matrix) if matrix.size else ((), ())
-        new_active, used = [], set()
-        for i, j in zip(rows, cols):
-            if matrix[i, j] <= MAX_COST:
-                tracks[active[i]].append((speed, found[j], shapes[j]))
-                new_active.append(active[i])
-                used.add(j)
-        for j, c in enumerate(found):
-            if j not in used:
-                tracks.append([(speed, c, shapes[j])])
-                new_active.append(len(tracks) - 1)
-        active = new_active
-    out = []
-    for tr in tracks:
-        at = {s: c for s, c, _ in tr}
-        out.append([(s, at.get(s)) for s in speeds])
-    return out
-
-
-def continuing(line, speed: float, ref):
-    """The crossing of ``line`` at ``speed`` that continues the crossing ``ref`` (of another
-    grid at the same speed): the least :func:`cost` (None when there is none or it exceeds
-    :data:`MAX_COST`)."""
-    found = line.crossings(speed) or []
-    if ref is None or not found:
-        return None
-    d_ref = shape_vector(ref.vector, line.rotor)
-    costs = [cost([(speed, ref)], c, speed, d_ref, shape_vector(c.vector, line.rotor))
-             for c in found]
-    k = int(np.argmin(costs))
-    return found[k] if costs[k] <= MAX_COST else None
-
-
 def _follow_label(rows: list) -> str:
     """The label the refinement follows: that of the first unstable crossing, else of the
     crossing with the least μ_c."""
@@ -382,12 +296,16 @@ def track_onset(line, rows: list, tol: float, method: str) -> ModeOnset:
     return mode_onset(line, [s for s, _ in rows], _follow_label(rows), tol, method, rows=rows)
 
 
+def _order(m: ModeOnset) -> tuple:
+    """Onsets first, lowest first (then unstable at the lowest speed, then the others)."""
+    return math.isnan(m.onset_speed_rpm), m.onset_speed_rpm, m.status != UNSTABLE_LOW
+
+
 def named(modes: list) -> list:
     """The modes (each one track's :class:`ModeOnset`) sorted onsets first, lowest first,
     each named once (module docstring), with its own whirl (stable: null, the threshold's
     kept as ``threshold_whirl_frequency_hz``)."""
-    modes = sorted(modes, key=lambda m: (math.isnan(m.onset_speed_rpm), m.onset_speed_rpm,
-                                         m.status != UNSTABLE_LOW))
+    modes = sorted(modes, key=_order)
     taken, out = set(), []
     for m in modes:
         base = (m.shape or {}).get("label") or m.label
@@ -403,15 +321,38 @@ def named(modes: list) -> list:
     return out
 
 
+class _Recording:
+    """A speed line that records every crossing its mode searches follow (``seen``)."""
+
+    def __init__(self, line, seen: list):
+        self._line, self.seen = line, seen
+
+    def __getattr__(self, name):
+        return getattr(self._line, name)
+
+    def follow(self, *args):
+        found = self._line.follow(*args)
+        self.seen.append(found)
+        return found
+
+    def follow_from(self, *args):
+        found = self._line.follow_from(*args)
+        self.seen.append(found)
+        return found
+
+
 def track_onsets(line, guide, speeds: list, tol: float, method: str,
-                 show_progress: bool = False) -> list:
+                 show_progress: bool = False, names: Optional[dict] = None) -> list:
     """Every mode's onset, one per track (module docstring): on ``line`` alone, or guided by
     the coarse ``guide``'s tracks (a mode the fine grid contradicts is searched on the fine
     grid's own tracks; a bearing over capacity on either grid: everything on ``line``
     alone).  The drop-in for the search by label of :mod:`gfbopt.rotor.system`; the
-    refinement after the scan is a stage of its own in the progress (one step a mode)."""
-    from .system import _below_thermal_limit, _thermal
-
+    refinement after the scan is a stage of its own in the progress (one step a mode).
+    ``names``: filled with id(crossing) → the name of the mode it belongs to, for every
+    crossing of a track and every crossing its refinement followed (the scan's rows)."""
+    seen: list = []
+    line = _Recording(line, seen)
+    guide = _Recording(guide, seen) if guide is not None else None
     fine_tracks: list = []
 
     def fine_alone(rows_coarse):
@@ -427,18 +368,32 @@ def track_onsets(line, guide, speeds: list, tol: float, method: str,
         s, ref = rows_coarse[k]
         best = continuing(line, s, ref)
         track = next((tr for tr in fine_tracks if any(c is best for _, c in tr)), None)
-        return track_onset(line, track, tol, method) if track is not None else None
+        if track is None:
+            return None
+        seen.extend(c for _, c in track)
+        return track_onset(line, track, tol, method)
 
     def refined(tracks, search) -> list:
-        out = []
+        out, own, followed = [], [], []
         with progress(total=len(tracks), desc=f"rotor onset refinement on {line.rotor.grid}",
                       unit="mode", enabled=show_progress) as bar:
             for rows in tracks:
+                seen.clear()
                 found = search(rows)
                 if found is not None:
                     out.append(found)
+                    own.append([c for _, c in rows if c is not None])
+                    followed.append([c for c in seen if c is not None])
                 bar.update(1)
-        return named(out)
+        final = named(out)
+        if names is not None:        # a track's own crossings first, then those followed
+            by_id = {id(m): n for m, n in zip(sorted(out, key=_order), final)}
+            for m, crossings in zip(out, own):
+                names.update({id(c): by_id[id(m)].label for c in crossings})
+            for m, crossings in zip(out, followed):
+                for c in crossings:
+                    names.setdefault(id(c), by_id[id(m)].label)
+        return final
 
     below = _below_thermal_limit(guide, speeds) if guide is not None else speeds
     if guide is not None and len(below) >= 2 and \
@@ -473,3 +428,26 @@ def track_onsets(line, guide, speeds: list, tol: float, method: str,
     valid = [s for s in speeds if line.crossings(s) is not None]
     return refined(crossing_tracks(line, valid),
                    lambda rows: track_onset(line, rows, tol, method))
+
+
+#: a speed's failures that are a bearing's thermal limit, not its load capacity
+THERMAL_KINDS = (RUNAWAY, CLOSURE)
+
+
+def _thermal(failure: dict) -> bool:
+    """A speed's failure is a bearing's thermal runaway or closed clearance (rotor.running)."""
+    return failure.get("kind") in THERMAL_KINDS
+
+
+def _below_thermal_limit(guide, speeds: list) -> list:
+    """The scan speeds below the first one where the guide's bearings run away thermally or
+    their clearance closes (a heated rotor's top speeds): the guided search runs over them, as
+    there is no state above to guide; any other failure keeps every speed (today's rule:
+    everything on the fine line alone)."""
+    for k, s in enumerate(speeds):
+        failure = guide.states(s).failure
+        if failure:
+            return speeds[:k] if _thermal(failure) and all(
+                not guide.states(x).failure or _thermal(guide.states(x).failure)
+                for x in speeds[k:]) else speeds
+    return speeds

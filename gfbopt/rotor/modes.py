@@ -26,6 +26,11 @@ Labels (:func:`label`):
   half-sine has two nodes from its best line, a free–free first mode two).  A rigid
   body never bends (two stations lie on a line).  :func:`mode_label` makes every label.
 
+Crossings along speed (:func:`crossing_tracks`, :func:`continuing`: the tracks of
+:mod:`gfbopt.rotor.mode_search`, one per mode): matched from speed to speed by the optimal
+assignment on (1 − MAC of :func:`shape_vector`) + :data:`WHIRL_WEIGHT` |Δγ|/γ +
+:data:`SCALE_WEIGHT` |ln μ_c − ln μ_pred| (μ_pred extrapolated in ln N), never by label.
+
 The shape reported is the amplitude and phase at each bearing (forward/backward radii
 normalised so that the largest radius is 1, phase of the dominant component relative to
 bearing A's), the shape class (key ``shape_class``: cylindrical, conical, mixed or bending;
@@ -37,6 +42,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
+from scipy.optimize import linear_sum_assignment
 
 from .rigid import station_matrix
 from .structure import is_rigid
@@ -185,3 +191,85 @@ def mac(a: np.ndarray, b: np.ndarray) -> float:
     """Modal assurance criterion |aᴴb|²/(|a|²|b|²) ∈ [0, 1]."""
     den = np.vdot(a, a).real * np.vdot(b, b).real
     return float(abs(np.vdot(a, b)) ** 2 / den) if den > 0 else 0.0
+
+
+# ------------ matched-whirl crossings along speed: one track per mode (gfbopt.rotor.mode_search)
+#: weight of the relative change of the whirl ratio in the cost [-]
+WHIRL_WEIGHT = 2.0
+#: weight of |ln μ_c − ln μ_pred| in the cost [-]
+SCALE_WEIGHT = 0.5
+#: a match costing more than this starts a new track [-]
+MAX_COST = 1.5
+#: d ln μ_c / d ln N of a track of one speed: the inertia terms grow as N² [-]
+PREDICTED_SLOPE = -2.0
+#: ln μ_c of a crossing with μ_c = 0 (unstable for every inertia scale) [-]
+_LOG_FLOOR = math.log(1e-12)
+
+
+def _log_mu(c) -> float:
+    return math.log(c.inertia_scale) if c.inertia_scale > 0 else _LOG_FLOOR
+
+
+def _predicted(points: list, speed: float) -> float:
+    """ln μ_c at ``speed`` from a track's last (speed, crossing) points (module docstring)."""
+    s1, c1 = points[-1]
+    if len(points) < 2:
+        return _log_mu(c1) + PREDICTED_SLOPE * math.log(speed / s1)
+    s0, c0 = points[-2]
+    slope = (_log_mu(c1) - _log_mu(c0)) / math.log(s1 / s0)
+    return _log_mu(c1) + slope * math.log(speed / s1)
+
+
+def cost(points: list, c, speed: float, d_last: np.ndarray, d_new: np.ndarray) -> float:
+    """The cost of continuing a track (its last (speed, crossing) points, its last shape
+    ``d_last``) by crossing ``c`` of shape ``d_new`` at ``speed`` (module docstring)."""
+    last = points[-1][1]
+    whirl = abs(c.whirl_ratio - last.whirl_ratio) / max(abs(last.whirl_ratio), 1e-12)
+    return (1.0 - mac(d_last, d_new) + WHIRL_WEIGHT * whirl
+            + SCALE_WEIGHT * abs(_log_mu(c) - _predicted(points, speed)))
+
+
+def crossing_tracks(line, speeds: list) -> list:
+    """The tracks of the crossings of ``line`` at ``speeds`` (those with both bearings
+    solved), each a list of (speed, crossing or None) over all ``speeds`` (module
+    docstring), in the order they start (then by μ_c)."""
+    rotor = line.rotor
+    tracks: list = []                       # each: list of (speed, crossing, shape)
+    active: list = []
+    for speed in speeds:
+        found = sorted(line.crossings(speed) or [], key=lambda c: c.inertia_scale)
+        shapes = [shape_vector(c.vector, rotor) for c in found]
+        matrix = np.array([[cost([(s, c) for s, c, _ in tracks[t]], c, speed,
+                                 tracks[t][-1][2], d) for c, d in zip(found, shapes)]
+                           for t in active]).reshape(len(active), len(found))
+        rows, cols = linear_sum_assignment(matrix) if matrix.size else ((), ())
+        new_active, used = [], set()
+        for i, j in zip(rows, cols):
+            if matrix[i, j] <= MAX_COST:
+                tracks[active[i]].append((speed, found[j], shapes[j]))
+                new_active.append(active[i])
+                used.add(j)
+        for j, c in enumerate(found):
+            if j not in used:
+                tracks.append([(speed, c, shapes[j])])
+                new_active.append(len(tracks) - 1)
+        active = new_active
+    out = []
+    for tr in tracks:
+        at = {s: c for s, c, _ in tr}
+        out.append([(s, at.get(s)) for s in speeds])
+    return out
+
+
+def continuing(line, speed: float, ref):
+    """The crossing of ``line`` at ``speed`` that continues the crossing ``ref`` (of another
+    grid at the same speed): the least :func:`cost` (None when there is none or it exceeds
+    :data:`MAX_COST`)."""
+    found = line.crossings(speed) or []
+    if ref is None or not found:
+        return None
+    d_ref = shape_vector(ref.vector, line.rotor)
+    costs = [cost([(speed, ref)], c, speed, d_ref, shape_vector(c.vector, line.rotor))
+             for c in found]
+    k = int(np.argmin(costs))
+    return found[k] if costs[k] <= MAX_COST else None
