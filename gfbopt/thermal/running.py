@@ -12,16 +12,22 @@ comes from a static solve; between solves it is predicted by Petroff's scaling
 
     P(c, μ) = τ · 2π μ ω² R³ L / c
 
-with the torque ratio τ = T/T_Petroff of the last solve (exact for any τ that does not change;
-τ varies slowly with Λ and ε), and the side-leakage flow ṁ_l = q̄ p_a² c³/(12 μ R_g T_f) with
-the last solve's non-dimensional outflow q̄.  With τ and the conductances frozen, the heat
-balance is one equation in P,
+with the torque ratio τ = T/T_Petroff modelled as a function of ln Λ (Λ = 6μωR²/(p_a c²):
+under a fixed load τ depends on the speed, μ and c mostly through Λ; it varies slowly), and
+the side-leakage flow ṁ_l = q̄ p_a² c³/(12 μ R_g T_f) with the last solve's non-dimensional
+outflow q̄.  With τ(ln Λ) and the conductances frozen, the heat balance is one equation in P,
 
-    F(P) = P − τ 2π μ(T_f(P)) ω² R³ L / c(P) = 0,
+    F(P) = P − τ(ln Λ(P)) 2π μ(T_f(P)) ω² R³ L / c(P) = 0,
 
-the temperatures being linear in P; its lowest root is found by sampling and Brent's method.
-Each static solve updates τ (and q̄); after two solves τ is modelled as linear in T_f through
-them (a secant method in the film temperature).  The point has converged when the predicted
+the temperatures being linear in P; its lowest root is found by sampling (one vectorised
+evaluation) and Brent's method (:mod:`.balance`).  Each static solve adds a point (ln Λ, τ)
+(and updates q̄): τ is the seed before any, the solve's after one, then the line through the
+last two (a secant method), and after two solves of this point the parabola through the last
+three.  Priors solved at other speeds under the same load (:func:`speed_line` passes the two
+speeds below) are the first points of that secant, so the first solve's τ is already
+extrapolated in ln Λ; the fixed point costs at most 3 static solves per point on the
+Ruscitto bearing up to 1 % below its runaway (results/benchmarks/thermal.json).  The point
+has converged when the predicted
 film temperature differs from the last solve's by at most ``tolerance_k`` (default 0.01 K:
 0.2 nm of clearance and 2.5e-5 of μ on a 19 mm steel journal); the state reported is that
 prediction, the secant's next iterate, which is closer still.  No root below the closing of the clearance
