@@ -35,6 +35,9 @@ from .rotor_io import rotor_input
 from .rotor_result import RotorTransientResult, summarise
 from .rotor_run import CONTACT_FILM, integrate_rotor
 from .rotor_setup import RotorInput, build_model, equilibrium_states, set_station_velocities
+from .rotor_films import fusable
+from .rotor_friction import rubbing
+from .rotor_running import STEP_RPM
 from .rotor_system import runs
 
 #: most shaft revolutions a run may take without ``force`` (a run-up 5,000 → 60,000 rpm at
@@ -48,6 +51,9 @@ RAMP_MAX_STEP = 0.2
 #: starting perturbations: none (the equilibrium), a cylindrical or conical kick of the
 #: journal velocities (both bearings moving together, or opposite)
 PERTURBATIONS = ("none", "cylindrical", "conical")
+#: how a heated rotor's orbit is run: at its speed's running condition on the bearing at
+#: c_run ('frozen'), or on the cold-c model with the running line's one speed ('line')
+RUNNING_PATHS = ("frozen", "line")
 
 
 @dataclass(frozen=True)
@@ -133,7 +139,9 @@ def run_profile(rotor: Union[RotorSystem, RotorInput], profile: SpeedProfile, *,
                 contact_film: float = CONTACT_FILM, foil_travel_m: Optional[float] = None,
                 sample_every: float = 0.2, progress=None,
                 cache: Optional[SolverCache] = None, system: Optional[RotorSystem] = None,
-                linear_onset=None, **post) -> RotorTransientResult:
+                linear_onset=None, running_path: str = "frozen",
+                running_step_rpm: float = STEP_RPM, force: bool = False,
+                **post) -> RotorTransientResult:
     """Run ``profile`` for a batch of runs (one per entry of ``inertia_scale`` ×
     ``imbalance_scale``, broadcast) and post-process it (:func:`.rotor_result.summarise`).
 
@@ -142,15 +150,25 @@ def run_profile(rotor: Union[RotorSystem, RotorInput], profile: SpeedProfile, *,
     inertia_scale μ multiplies M and G (loads unchanged; μ = 1 is the rotor);
     imbalance_scale multiplies every imbalance plane; foil_travel_m : bump travel [m] before
     the foil is exhausted (None: not checked); the other options as :func:`.rotor_run
-    .integrate_rotor`.
+    .integrate_rotor`.  A heated rotor (bearings with [journal]/[thermal]): a ramp follows
+    each bearing's running line, quasi-steady in temperature (thermal time constants
+    neglected), solved at least every ``running_step_rpm`` and interpolated by a monotone
+    cubic in speed (:mod:`.rotor_running`); an orbit holds its speed's running condition
+    (``running_path`` 'frozen', or 'line': the orbit on the cold-c model with the line's
+    one speed).
     """
     if perturbation not in PERTURBATIONS:
         raise ParameterError("perturbation", perturbation,
                              f"must be one of {', '.join(PERTURBATIONS)}")
     grid = as_grid(grid)
-    rotor, running = _at_running_condition(rotor, profile, grid)
+    cache = cache if cache is not None else SolverCache(grid)
+    requested = profile
+    rotor, running, plan = _at_running_condition(rotor, profile, grid, cache, running_path,
+                                                 running_step_rpm)
     if running is not None:
         system = rotor
+    if plan is not None:                # the ramp ends where the running line does
+        profile = _to_end(profile, plan, force)
     inp = _rotor(rotor)
     mu, scale = np.broadcast_arrays(_check_batch("inertia_scale", inertia_scale),
                                     _check_batch("imbalance_scale", imbalance_scale))
@@ -162,16 +180,19 @@ def run_profile(rotor: Union[RotorSystem, RotorInput], profile: SpeedProfile, *,
     travel = None
     if foil_travel_m is not None:
         travel = check_positive("foil_travel_m", foil_travel_m) / inp.bearings[0].geometry.radial_clearance
-    cache = cache if cache is not None else SolverCache(grid)
     model, solutions = build_model(inp, profile.start_rpm, grid,
                                    reference_speed_rpm=profile.top_rpm,
                                    reference_whirl_ratio=reference_whirl_ratio, cache=cache)
+    if plan is not None:
+        model, solutions, z0 = _on_running_line(model, inp, rotor, plan, profile, grid, cache,
+                                                reference_whirl_ratio)
     omega = model.reference_speed
     r0 = profile.start_rpm / profile.top_rpm
     sign = 1.0 if profile.end_rpm >= profile.start_rpm else -1.0
     ramp = sign * profile.rate_rpm_per_s * math.pi / 30.0 / omega ** 2
     batch = runs(mu.size, speed=r0, ramp=ramp, inertia_scale=mu, imbalance_scale=scale)
-    z = equilibrium_states(model, batch.size)
+    z = (equilibrium_states(model, batch.size) if plan is None
+         else np.repeat(z0, batch.size, axis=0))
     if perturbation != "none":
         v = check_positive("kick", kick) / math.sqrt(2)
         sign_b = 1.0 if perturbation == "cylindrical" else -1.0
@@ -192,34 +213,86 @@ def run_profile(rotor: Union[RotorSystem, RotorInput], profile: SpeedProfile, *,
     if running is not None:             # the clearance model each bearing was held at
         settings["clearance_model"] = running["model"]
         settings["running_condition"] = running["bearings"]
-    return summarise(run, profile, inp, solutions, settings, system=system,
-                     linear_onset=linear_onset, **post)
+    if plan is not None:                # the running line each bearing followed
+        settings.update(plan.settings())
+        settings["requested_end_rpm"] = requested.end_rpm
+        settings["running_step_rpm"] = running_step_rpm
+    result = summarise(run, profile, inp, solutions, settings, system=system,
+                       linear_onset=linear_onset, **post)
+    if plan is None:
+        return result
+    from .rotor_heated import heated_result
+
+    if plan.verdict is not None:
+        result.notes.append("Running line: " + plan.verdict["message"])
+    result.notes.append("Clearance model: " + settings["clearance_model"] + "; the largest "
+                        "interpolation miss at a solved midpoint "
+                        f"{plan.errors['clearance_um'] * 1e3:.3g} nm of clearance, "
+                        f"{plan.errors['viscosity_relative']:.2g} of μ.")
+    return heated_result(result, plan)
 
 
-def _at_running_condition(rotor, profile, grid) -> tuple:
-    """(the rotor to integrate, its running summary or None).  The rotor transient holds each
-    bearing at one clearance and viscosity: a rotor read with its bearings' [journal]/[thermal]
-    tables (load_rotor(..., running=True)) runs a constant-speed orbit at the running condition
-    of that speed (:func:`gfbopt.rotor.supports.frozen_at_running_condition`: the temperatures
-    taken as settled), and a run-up or coast-down — whose clearance would change with the
-    speed — is refused rather than run at the cold clearance."""
+def _to_end(profile: SpeedProfile, plan, force: bool) -> SpeedProfile:
+    """The profile ending where the running line ends (a failure above, on a run-up)."""
+    if plan.end_rpm == profile.end_rpm or profile.kind == "orbit":
+        return profile
+    return ramp_profile(profile.start_rpm, plan.end_rpm, profile.rate_rpm_per_s,
+                        profile.kind, force)
+
+
+def _on_running_line(model, inp, rotor, plan, profile, grid, cache, reference_whirl_ratio):
+    """(the cold-c model carrying each bearing's running line, the start's static solutions
+    in the cold-c reference, the start state (1, K, L)): the equilibria at the start speed's
+    running condition (:func:`.rotor_heated.frozen_start`), converted
+    (:func:`.rotor_heated.start_states`)."""
+    from .rotor_heated import frozen_start, heated_model, start_states
+    from .rotor_setup import bearing_equilibria
+
+    warm = rotor_input(frozen_start(rotor, plan))
+    warm_solutions, _ = bearing_equilibria(warm, profile.start_rpm, grid, cache)
+    model = heated_model(model, plan)
+    if not fusable(model) or rubbing(model):
+        raise ParameterError("rotor", "[journal]/[thermal]", "a run-up or coast-down at the "
+                             "running condition needs every bearing's film fused (rigid or "
+                             "axial-mean law, one grid, no bump friction): the one-bearing "
+                             "kernels do not carry the running line")
+    z, cold = start_states(model, 1, warm_solutions, plan)
+    return model, cold, z
+
+
+def _at_running_condition(rotor, profile, grid, cache, path: str, step_rpm: float) -> tuple:
+    """(the rotor to integrate, its frozen running summary or None, the running line or
+    None).  A rotor read with its bearings' [journal]/[thermal] tables
+    (load_rotor(..., running=True)):
+
+    * a run-up or coast-down (or an orbit with ``running_path="line"``) follows each
+      bearing's running line (:mod:`.rotor_running`): at every instant the running condition
+      of the instantaneous speed, quasi-steady in temperature (the temperatures settled at
+      each speed, the thermal time constants neglected), on the cold-c model; a speed where
+      a heat balance runs away or a clearance closes ends the ramp there, with that verdict
+      (reported, not raised);
+    * a constant-speed orbit (``running_path="frozen"``, the default) holds each bearing at
+      the running condition of that speed on the bearing at c_run
+      (:func:`gfbopt.rotor.supports.frozen_at_running_condition`)."""
     heated = [b for b in getattr(rotor, "bearings", ()) if getattr(b, "running_tables", ())]
+    if path not in RUNNING_PATHS:
+        raise ParameterError("running_path", path, f"must be one of {', '.join(RUNNING_PATHS)}")
     if not heated:
-        return rotor, None
+        return rotor, None, None
+    if profile.kind != "orbit" or path == "line":
+        from .rotor_running import solve_running_line
+
+        plan = solve_running_line(rotor, grid, profile.start_rpm, profile.end_rpm,
+                                  cache=cache, step_rpm=step_rpm)
+        return rotor, None, plan
     b = heated[0]
-    if profile.kind != "orbit":
-        raise ParameterError(f"bearing {b.name} ({b.file})", "[journal]/[thermal]",
-                             f"a {profile.kind} changes the speed and the rotor transient does "
-                             "not carry the heat balance in time: run an orbit at a constant "
-                             "speed (it holds that speed's running condition), or use bearing "
-                             "files without [journal]/[thermal] (cold clearance)")
     from ..rotor.supports import frozen_at_running_condition
 
     frozen, running = frozen_at_running_condition(rotor, profile.start_rpm, grid)
     if running.get("failure"):
         raise ParameterError(f"bearing {b.name} ({b.file})", "[journal]/[thermal]",
                              f"has no running state to hold: {running['failure']}")
-    return frozen, running
+    return frozen, running, None
 
 
 def rotor_orbit(rotor, speed_rpm: float, revolutions: float, *, grid: Grid,
@@ -227,7 +300,8 @@ def rotor_orbit(rotor, speed_rpm: float, revolutions: float, *, grid: Grid,
     """The rotor at a constant ``speed_rpm`` for ``revolutions`` from its equilibrium
     (perturbed as ``perturbation``); journal orbits at both bearings, the limit cycle."""
     return run_profile(rotor, orbit_profile(speed_rpm, revolutions, force), grid=grid,
-                       system=rotor if isinstance(rotor, RotorSystem) else None, **options)
+                       system=rotor if isinstance(rotor, RotorSystem) else None, force=force,
+                       **options)
 
 
 def rotor_ramp(rotor, start_rpm: float, end_rpm: float, rate_rpm_per_s: float, *,
@@ -239,4 +313,4 @@ def rotor_ramp(rotor, start_rpm: float, end_rpm: float, rate_rpm_per_s: float, *
     options.setdefault("perturbation", "none")
     return run_profile(rotor, ramp_profile(start_rpm, end_rpm, rate_rpm_per_s, kind, force),
                        grid=grid, system=rotor if isinstance(rotor, RotorSystem) else None,
-                       **options)
+                       force=force, **options)

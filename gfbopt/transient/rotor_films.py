@@ -30,6 +30,7 @@ from typing import Optional
 
 import numpy as np
 
+from .rotor_running import speed_table
 from .system import TransientModel, rigid_film
 
 FUSED_LAWS = ("rigid", "simple")
@@ -61,6 +62,13 @@ class FusedFilms:
 
     ``film_divisor`` and ``foil_factor`` per bearing are the rotor system's (2Λ_m ω_ref/ω_m
     and ω_m/ω_ref); ``base_lambda`` per bearing is Λ at ω = ω_ref.
+
+    Bearings that carry a running line (``BearingFilm.running``, a heated rotor's ramp,
+    :mod:`.rotor_running`) get, at each evaluation's speed, the film offset
+    H_r → H_r − (c − c_run)/c and the viscosity ratio f = μ/μ_ref: Λ → f Λ in the Couette
+    term and in the time scale 2Λ, so the diffusion coefficients (H³ terms) are divided by
+    f and the advection is unchanged; S stays the cold-c one (exact, see that module).
+    Without one the evaluation is today's, operation for operation.
     """
 
     def __init__(self, model, size: int, film_divisor, foil_factor, base_lambda):
@@ -125,6 +133,11 @@ class FusedFilms:
         self._interior = np.ones(self.shape)          # 1 at a film's interior nodes, else 0
         self._interior[:, [0, -1]] = 0.0
         self._interior[self.ambient, :] = 0.0
+        #: the bearings' running lines (None: today's films)
+        self.running = speed_table(model)
+        if self.running is not None:                 # the diffusion scales at μ = μ_ref
+            self._axial0 = self.axial[:, 0].reshape(size, k).copy()
+            self._face0 = self.face[:, 0].reshape(size, k).copy()
 
     def evaluate(self, z: np.ndarray, xy: np.ndarray, speed, out: np.ndarray,
                  min_film: np.ndarray, max_deflection: Optional[np.ndarray]) -> np.ndarray:
@@ -150,6 +163,8 @@ class FusedFilms:
         hr = (np.dot(xy.reshape(big, 2), self.trig) if self.same_angles
               else np.einsum("ni,nim->nm", xy.reshape(big, 2), self.trig))
         hr += self.base
+        if self.running is not None:                 # at the running condition of ``speed``
+            self._at_speed(hr, speed, nb)
         # Φ̄ (B·K, m): the axial-mean law's recovery and the force share it
         mean = np.matmul(phi, self.zw_inner, out=self._mean) if self.shared_mean else None
         a = self._film(hr, mean, flat)
@@ -224,6 +239,15 @@ class FusedFilms:
             dfl = np.zeros(big) if self.law == "rigid" else (a - hr).max(axis=1)
             np.maximum(max_deflection, dfl.reshape(nb, k), out=max_deflection)
         return forces.reshape(nb, k, 2)
+
+    def _at_speed(self, hr: np.ndarray, speed, nb: int) -> None:
+        """Lower ``hr`` (B·K, m) by each bearing's offset δ(ω) and set the diffusion scales
+        to their μ = μ_ref values times μ_ref/μ(ω) (class docstring)."""
+        offset, inverse = self.running.at(speed)            # (K,) or (B, K)
+        k = self.k
+        hr.reshape(nb, k, -1)[...] -= offset[..., None]
+        np.multiply(self._axial0, inverse, out=self._scale[1, :, 0].reshape(nb, k))
+        np.multiply(self._face0, inverse, out=self._scale[2, :, 0].reshape(nb, k))
 
     def _edges(self, big: int) -> np.ndarray:
         """Flat indices of the boundary nodes (axial ends, ambient rows) of ``big`` films in

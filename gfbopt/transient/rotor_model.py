@@ -49,7 +49,11 @@ class BearingFilm:
     coordinate (from the CG of a rigid body, from a shaft's first end);
     frame_angle : ψ [rad], the bearing's load line (its X axis) from the global x, in the
     direction of rotation; model_speed : ω_m [rad/s] at which ``tm`` was built;
-    label : for outputs.
+    label : for outputs.  running : the bearing's running line over a ramp of a heated
+    rotor (:class:`.rotor_running.RunningSchedule`: running clearance and viscosity against
+    speed, quasi-steady in temperature), None for today's bearing at its cold clearance and
+    constant viscosity; ``tm`` and ``geometry`` stay the cold ones (the reference c), and
+    only the fused films (:class:`.rotor_films.FusedFilms`) apply it (the run refuses others).
     """
 
     tm: TransientModel
@@ -58,6 +62,7 @@ class BearingFilm:
     frame_angle: float
     model_speed: float
     label: str = ""
+    running: Optional[object] = None
 
     @property
     def force_scale(self) -> float:

@@ -1,7 +1,8 @@
 """Bearings at their clearance at speed in the rotor transient and the design (issues 28/30):
 a constant-speed orbit of a rotor read with its [journal]/[thermal] tables runs at that speed's
 running condition (each bearing's running clearance and viscosity there, the tables gone; the
-design's top-speed orbit is one), a run-up is refused rather than run at the cold clearance."""
+design's top-speed orbit is one); a run-up follows each bearing's running line
+(tests/unit/test_rotor_heated_rampup.py)."""
 from __future__ import annotations
 
 from pathlib import Path
@@ -9,7 +10,6 @@ from pathlib import Path
 import pytest
 
 from gfbopt.rotor.supports import frozen_at_running_condition
-from gfbopt.errors import ParameterError
 from gfbopt.inputs.grid import Grid
 from gfbopt.inputs.rotor_system import load_rotor
 from gfbopt.transient.rotor_analysis import rotor_orbit, rotor_ramp
@@ -18,10 +18,10 @@ ROOT = Path(__file__).resolve().parents[2]
 HEATED = ROOT / "problems" / "rotors" / "blower_thermal.toml"
 
 
-def test_a_run_up_of_a_heated_rotor_is_refused_an_orbit_holds_its_speeds_condition():
+def test_a_run_up_of_a_heated_rotor_follows_its_line_an_orbit_holds_its_speeds_condition():
     system = load_rotor(HEATED, running=True)
-    with pytest.raises(ParameterError, match="does not carry the heat balance in time"):
-        rotor_ramp(system, 5000.0, 30000.0, 50000.0, grid="24x8")
+    ramp = rotor_ramp(system, 5000.0, 30000.0, 5.0e6, grid="24x8", linear_onset=False)
+    assert ramp.to_dict()["clearance_model"].startswith("heat balance + growth, quasi-steady")
     orbit = rotor_orbit(system, 30000.0, 2.0, grid="24x8").to_dict()
     _, running = frozen_at_running_condition(system, 30000.0, Grid.parse("24x8"))
     assert orbit["clearance_model"].startswith("heat balance + growth, frozen")
