@@ -85,3 +85,40 @@ def test_hardened_rubbing_bump_follows_the_describing_functions_verdict():
     out = friction_outcome(run.orbit)
     assert out.kind == "contact", out.verdict
     assert out.min_film <= 0.02
+
+
+def test_symmetric_rotor_on_hardened_bearings_is_the_one_bearing_transient():
+    # the rotor transient takes a hardened bearing on its per-bearing path (the fused films
+    # serve the rigid and simple laws only): a symmetric rotor (CG midway, I_p = 0) in
+    # cylindrical whirl is the one-bearing engine with half the mass and load, to round-off
+    # (measured 5e-15 of the clearance; 1e-12 as tests/verification/test_rotor_transient.py)
+    from gfbopt.static import SolverCache
+    from gfbopt.transient.rotor_films import fusable
+    from gfbopt.transient.rotor_run import integrate_rotor
+    from gfbopt.transient.rotor_setup import (RotorBearing, RotorInput, build_model,
+                                              equilibrium_states, set_station_velocities,
+                                              static_force_of)
+    from gfbopt.transient.rotor_system import rigid_rotor_matrices, runs
+
+    bearing, g, speed = load_bearing(ROOT / "problems/bearings/ruscitto.toml"), 9.80665, 30_000.0
+    c = bearing.radial_clearance
+    options = {"film": "seam", "seam_angle_deg": 180.0, **HARD}
+    m, gyro = rigid_rotor_matrices(3.2, 0.012, 0.0)
+    rotor = RotorInput(m, gyro, (RotorBearing(bearing, -0.05, options, "A"),
+                                 RotorBearing(bearing, 0.05, options, "B")),
+                       static_force_of([(3.2 * g, 0.0, 0.0)]), ())
+    model, _ = build_model(rotor, speed, GRID, cache=SolverCache(GRID))
+    tm = model.bearings[0].tm
+    assert tm.law.name == "hardened" and not fusable(model)
+    mbar = 1.6 * c * (speed * math.pi / 30) ** 2 / (1.6 * g)
+    step = {"time_step": 0.1, "stages": 6}
+    one = integrate_orbits(tm, [mbar], 2.0, kick=1e-3, method="rkc", **step)
+    z = set_station_velocities(model, equilibrium_states(model, 1),
+                               [[1e-3 / math.sqrt(2)] * 2] * 2)
+    run = integrate_rotor(model, runs(1), 4 * math.pi, z, method="rkc", **step)
+    assert run.success and run.tau.shape == one.tau.shape
+    for k in range(2):
+        x, y = run.journal(0, k)
+        assert np.max(np.abs(x / c - one.x[0])) < 1e-12
+        assert np.max(np.abs(y / c - one.y[0])) < 1e-12
+    assert np.max(np.abs(one.x[0] - one.x[0, 0])) > 1e-4
