@@ -57,9 +57,11 @@ def integrate_friction_orbits(tm: TransientModel, mass, revolutions: float = 10.
     Arguments as :func:`gfbopt.transient.orbit.integrate_orbits`; ``method`` 'rk4' (the
     reference, Δτ from the stability bound) or 'rkc' (Δτ for accuracy, stages from the bound;
     ≈ 2.5× fewer evaluations at 24 × 8, ≈ 9× at 72 × 20), :mod:`.friction_steps`;
-    ``slider`` : the sliders Z (B, m) or (B, m, n_z + 1) to start from (default: relaxed at the equilibrium,
-    Z = W0; with ``initial`` it must be given for a friction model).  A model without
-    friction runs the rk4 loop exactly (its answers equal :func:`integrate_orbits`').
+    ``slider`` : the sliders Z (B, m) or (B, m, n_z + 1) to start from (default: relaxed at
+    the equilibrium, Z = W0; with ``initial`` it must be given for a friction model).  A model
+    without friction runs the rk4 loop exactly (its answers equal :func:`integrate_orbits`').
+    A damped model (η > 0) carries its Kelvin–Voigt state W with the sliders in its rate;
+    with μ_f = 0 its answers equal :func:`integrate_orbits`' to 1e-12.
     """
     t0 = time.perf_counter()
     default_check = check_friction_method(method)
