@@ -57,11 +57,13 @@ BEARING_FILE_RUNNING = dataclasses.replace(
     example=BEARING_FILE.example + RUNNING_EXAMPLE,
     doc=BEARING_FILE.doc + "  The optional `[journal]` and `[thermal]` tables give the "
     "clearance at speed (centrifugal and thermal growth, Sutherland's viscosity, a lumped "
-    "heat balance), used by `gfbopt stability` and `gfbopt capacity`; a file with neither "
-    "keeps the isothermal, cold-clearance answers.")
+    "heat balance), used by `gfbopt stability`, `capacity`, `static` and `linear`; a file "
+    "with neither keeps the isothermal, cold-clearance answers.")
 #: the commands that read [journal] and [thermal]; other routes refuse a file stating them
-RUNNING_ROUTES = ("`gfbopt stability` and `gfbopt capacity` (gfbopt.thermal.files), and the linear "
-                  "analyses of `gfbopt rotor` (load_rotor(..., running=True))")
+RUNNING_ROUTES = ("`gfbopt stability`, `gfbopt capacity`, `gfbopt static` and `gfbopt linear` "
+                  "(gfbopt.thermal.files), gfbopt.api's stability, onset_speed, load_capacity "
+                  "and lift_off_speed given the file's path, and the analyses of "
+                  "`gfbopt rotor` (load_rotor(..., running=True))")
 
 #: largest TOML file read [bytes] (a bearing or study file is a few kB)
 MAX_FILE_BYTES = 1_000_000
