@@ -21,6 +21,8 @@ static model), so P and H are recovered from Φ and (X, Y) algebraically:
   a² − b a − S Φ̃ = 0 (b, Φ̃ from the row's axial sums) — closed form; with compression-only
   bumps a = max(that, H_r);
 * simple, local law: S P² + (H_r − S) P − Φ = 0 per node — closed form;
+* hardened (bumps k0/(1 − δ/δ_lim)^n): the row balance in the bump's reaction by a
+  safeguarded Newton, to round-off (:mod:`.hardening_recovery`);
 * beam: W = 𝓛 (P̄ − 1) with 𝓛 the (dense, m × m) compliance of the Hermite beam on the bump
   foundation; a few Newton steps per evaluation solve a − H_r − 𝓛(P̄(a) − 1) = 0.
 
@@ -104,7 +106,8 @@ def transient_model(solution: StaticSolution, reference_whirl_ratio: Optional[fl
     without damping.
 
     ``friction``: a model with Coulomb friction in the bumps (μ_f > 0) is built with its
-    slider state (:mod:`.friction_foil`; axial-mean or local law, no loss factor), integrated by
+    slider state (:mod:`.friction_foil`; axial-mean, hardened or local law, with or without
+    the loss factor's Kelvin–Voigt state), integrated by
     :func:`gfbopt.transient.friction_orbit.integrate_friction_orbits` (which
     :func:`gfbopt.transient.orbit.integrate_orbits` hands such a model to; the other drivers
     refuse it: they carry no slider).  Without friction it is today's model.
