@@ -13,6 +13,14 @@ perturbed), integrate (:mod:`.rotor_run`) and post-process (:mod:`.spectra`,
 :mod:`.rotor_result`).  A run-up's film follows the speed through Λ(t) in the engine itself
 (no rebuild); its time unit is the top speed's rotation, τ = ω_max t.
 
+A heated rotor (bearing files with ``[journal]``/``[thermal]``, ``load_rotor(...,
+running=True)``): a run-up or coast-down follows each bearing's running line, quasi-steady in
+temperature — the running condition of the instantaneous speed, the temperatures taken as
+settled, the thermal time constants neglected (:mod:`.rotor_running`, :mod:`.rotor_heated`);
+a thermal runaway or closure on the way ends the ramp at the last speed that runs, with the
+verdict in ``running_end`` (reported, not raised).  A constant-speed orbit holds its speed's
+running condition.
+
 Limits, refused before any solve (ParameterError, one line): a rate ≤ 0, a run-up whose end
 speed is not above its start (a coast-down whose end is not below it), more shaft
 revolutions than :data:`MAX_REVOLUTIONS` without ``force=True`` (each costs ≈ 0.05–0.5 s).
@@ -228,7 +236,16 @@ def run_profile(rotor: Union[RotorSystem, RotorInput], profile: SpeedProfile, *,
     result.notes.append("Clearance model: " + settings["clearance_model"] + "; the largest "
                         "interpolation miss at a solved midpoint "
                         f"{plan.errors['clearance_um'] * 1e3:.3g} nm of clearance, "
-                        f"{plan.errors['viscosity_relative']:.2g} of μ.")
+                        f"{plan.errors['viscosity_relative']:.2g} of μ; contact is H ≤ "
+                        f"{contact_film:g} of the cold clearance (a fixed thickness).")
+    opening = [sc.label for sc in plan.schedules
+               if np.any(sc.clearance_m > sc.cold_clearance_m)
+               or np.any(sc.viscosity_pa_s < sc.reference_viscosity_pa_s)]
+    if opening:     # rotor_system.stiffness bounds the films at c and μ_ref (conservative
+        result.notes.append(   # only while c_run ≤ c and μ ≥ μ_ref)
+            "Step control: the films' stiffness bound is taken at the cold clearance and "
+            f"μ_ref, which underestimates it where the running clearance opens or the gas "
+            f"thins (bearing {', '.join(opening)}); check the run with a smaller --time-step.")
     return heated_result(result, plan)
 
 

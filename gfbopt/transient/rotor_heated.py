@@ -9,6 +9,10 @@ neglected), applied in the fused films (:class:`.rotor_films.FusedFilms`) as the
 start speed's running condition — each bearing's static solution on the bearing at c_run and
 μ there (as :func:`gfbopt.rotor.supports.frozen_at_running_condition` builds it), converted to
 the cold-c reference: X = e/c = ε c_run/c, Φ = P h/c = P H_run c_run/c (and W likewise).
+On the cold-c model the contact criterion H ≤ contact_film is a fixed thickness,
+contact_film × c (the frozen orbit's is contact_film × c_run); the kick of a perturbed start is
+in cold clearances per rad.  Otherwise a constant-speed orbit on the line (one speed) is the
+frozen orbit in another scaling: equal to round-off (tests/unit/test_rotor_heated_rampup.py).
 """
 from __future__ import annotations
 

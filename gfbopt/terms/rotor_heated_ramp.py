@@ -1,0 +1,31 @@
+"""Glossary entries of a heated rotor's run-up or coast-down (gfbopt.transient.rotor_running,
+rotor_heated; issue 28): the running line each bearing follows, quasi-steady in temperature.
+Merged into :data:`gfbopt.glossary.GLOSSARY` once listed in :data:`gfbopt.terms._PARTS`.  The
+per-speed columns of ``running_line`` (running_clearance_um, film_temperature_c,
+viscosity_pa_s) are gfbopt/terms/thermal.py's."""
+
+TERMS: dict[str, tuple[str, str]] = {
+    "clearance_model": ("text", "the clearance and viscosity model of a rotor transient: "
+                        "quasi-steady running line (ramps) or frozen at one speed's running "
+                        "condition (orbits)"),
+    "running_condition": ("-", "bearing → its running point (running clearance, growths, "
+                          "temperatures, viscosity) held through a constant-speed orbit"),
+    "running_line": ("-", "per bearing and solved speed: speed_rpm, running_clearance_um, "
+                     "film_temperature_c, viscosity_pa_s of the line a ramp follows"),
+    "running_nodes": ("count", "speeds at which the running line was solved (after "
+                      "refinement)"),
+    "running_interpolation": ("text", "how the running line is interpolated in speed (PCHIP: "
+                              "monotone piecewise cubic)"),
+    "running_interpolation_error": ("-", "the largest miss of the cubic at a solved midpoint "
+                                    "of an accepted interval: clearance_um, "
+                                    "clearance_fraction (of the cold clearance), "
+                                    "viscosity_relative; refinements (halvings)"),
+    "running_fixed_points": ("count", "fixed points of the heat balance solved for the line "
+                             "(both bearings, refinement and bracketing included)"),
+    "running_static_solves": ("count", "static solves of those fixed points"),
+    "running_end": ("text", "why the ramp ends before its requested end (thermal runaway or "
+                    "closure, bracketed to 1 %), null when it does not"),
+    "requested_end_rpm": ("rpm", "the end speed asked for (end_speed_rpm: where the ramp "
+                          "ended)"),
+    "running_step_rpm": ("rpm", "the coarsest spacing of the running line's speeds"),
+}
