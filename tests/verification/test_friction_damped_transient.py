@@ -40,3 +40,25 @@ def test_stuck_damped_onset_is_the_linear_one():
     assert abs(sigma[0]) < 0.01 * above.real
     assert sigma[1] == pytest.approx(above.real, rel=0.10)
     assert run.orbit.whirl_ratio[1] == pytest.approx(above.imag, rel=0.01)
+
+
+@pytest.mark.slow
+def test_damped_rubbing_limit_cycle_against_the_describing_function():
+    # the friction test's bounded case (μ_f = 0.05, κ = 2, M̄ = 8) with η = 0.1: the describing
+    # function (k_u = 1 + iη + κ D) settles at A = 0.0502 c; the transient (RKC, 80 revolutions,
+    # Kelvin–Voigt at ν_ref = the stuck threshold's whirl) on a settled limit cycle within 5 %
+    # (measured 0.0491 c, −2.2 %, γ 0.3788 against 0.3786): within the 5 % the describing
+    # function keeps without η (−4.4 %), though KV matches η at ν_ref only
+    from gfbopt.linear.friction_onset import settled_amplitude
+    from gfbopt.transient.friction_orbit import friction_outcome
+
+    sol = _bounded_case(mu=0.05, loss_factor=0.1)
+    lin = linearise(sol)
+    predicted = settled_amplitude(lin, 8.0, samples=12, smallest=1e-2, xtol=1e-4)
+    assert predicted.bounded
+    tm = transient_model(sol, friction=True, threshold=linear_threshold(lin))
+    out = friction_outcome(integrate_friction_orbits(tm, [8.0], 80.0, kick=0.03,
+                                                     method="rkc").orbit)
+    assert out.kind == "settled limit cycle", out.verdict
+    assert out.amplitude == pytest.approx(predicted.amplitude, rel=0.05)
+    assert out.whirl_ratio == pytest.approx(predicted.whirl_ratio, rel=0.01)
