@@ -283,3 +283,26 @@ def test_each_run_keeps_its_own_sliders():
             np.testing.assert_allclose(a[i], b[0], rtol=0, atol=1e-12)
     start = initial_sliders(model, 2)
     assert np.abs(both.sliders[1] - start[1]).max() > 1e-3
+
+
+@pytest.mark.slow
+def test_blower_just_above_its_onset_settles_on_rubbing_bumps():
+    # blower_friction at 13,500 rpm (its stuck onset μ_c = 0.920, forward conical, 36 × 10),
+    # no imbalance, 400 revolutions, 36 × 10 (≈ 12 s CPU): the whirl settles at 3.63 µm (A)
+    # and 11.36 µm (B) at 0.494× — where the rotor's describing function, which holds the
+    # film linear, finds no bounded orbit inside the film — while on plain bumps the film
+    # closes (B, after ≈ 0.17 s at 72 × 20); amplitudes asserted to 2 % (the one-bearing
+    # step study: halving the step moves a settled friction orbit by ≤ 0.5 %)
+    grid = Grid(36, 10)
+    out = rotor_orbit(load_rotor(ROTORS / "blower_friction.toml"), 13500.0, 400, grid=grid,
+                      imbalance_scale=0.0).to_dict()
+    assert not out["contact"] and out["success"]
+    kinds = [b["friction_orbit_kind"] for b in out["bearings"]]
+    assert kinds == ["settled limit cycle", "settled limit cycle"]
+    amps = [b["friction_orbit_amplitude_um"] for b in out["bearings"]]
+    assert amps == pytest.approx([3.63, 11.36], rel=0.02)
+    for b in out["bearings"]:
+        assert b["friction_orbit_whirl_ratio"] == pytest.approx(0.494, abs=0.003)
+    bare = rotor_orbit(load_rotor(ROTORS / "blower.toml"), 13500.0, 400, grid=grid,
+                       imbalance_scale=0.0).to_dict()
+    assert bare["contact"] and bare["contact_bearing"] == "B"
