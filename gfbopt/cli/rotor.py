@@ -122,8 +122,6 @@ def run(args) -> int:
                            show_progress=not args.json)
     out = {"rotor_file": args.rotor_file, "rotor": system.body.name, "grid": str(grid),
            **result.to_dict()}
-    if result.campbell is not None and "frequency_limit_hz" not in out["campbell"]:
-        out["campbell"]["frequency_limit_hz"] = result.campbell.frequency_limit_hz
     if args.imbalance_response:
         out["imbalance_planes"] = [
             {"name": p.name, "amount_g_mm": p.amount_kg_m * 1e6, "phase_deg": p.phase_deg,

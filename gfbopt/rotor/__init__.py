@@ -17,6 +17,9 @@ module                     answers
 :mod:`.coefficients`       :func:`coefficient_table` — K [N/m], C [N s/m] against excitation
                            frequency [Hz], matched whirl
 :mod:`.capacity`           load capacity and lift-off speed for a minimum-film limit
+:mod:`.running_bearing`    one bearing's stability, onset and capacity at its running
+                           clearance and viscosity (the heat balance of gfbopt.thermal)
+:mod:`.running_files`      the same given a bearing file's path (gfbopt.api, the CLI)
 *the rotor's structure*
 :mod:`.structure`          the contract: M, G, K, C of any size and the station matrix S(z);
                            the rigid body (``RigidStructure``); ``structure_of(system)``

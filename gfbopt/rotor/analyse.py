@@ -85,7 +85,8 @@ class RotorAnalysis:
                                else 0, "least_stable": (self.campbell.least_stable().to_dict()
                                                         if len(table) else None),
                                "tracks": self.campbell.tracks(),
-                               "load_capacity_exceeded": self.campbell.capacity}
+                               "load_capacity_exceeded": self.campbell.capacity,
+                               "frequency_limit_hz": self.campbell.frequency_limit_hz}
         if self.imbalance is not None:
             above = self.imbalance.unstable_from_rpm
             out["imbalance_response"] = {**self.imbalance.to_dict(),
@@ -245,7 +246,8 @@ def clearance_warnings(system: RotorSystem, response: Optional[ImbalanceResponse
 def modes_at_speed(line: SpeedLine, speed_rpm: float) -> dict:
     """Each bearing's equilibrium and the rotor's modes (full system) at one speed, each with
     its shape class there (``shape_label``: one speed's eigenvector, not a mode's name), and
-    every matched-whirl threshold μ_c there (``label``: the mode's name)."""
+    every matched-whirl threshold μ_c there (``shape_label``: its shape class at this speed;
+    the mode it belongs to is named by the onset search's tracks)."""
     states = line.states(speed_rpm)
     if not states.ok:
         return {"speed_rpm": speed_rpm, "load_capacity_exceeded": states.failure}
@@ -259,7 +261,7 @@ def modes_at_speed(line: SpeedLine, speed_rpm: float) -> dict:
                        "damping_ratio": m.damping_ratio,
                        "growth_rate_per_s": m.growth_rate_per_s, "shape": m.shape}
                       for m in modes],
-            "thresholds": [{"label": c.label, "inertia_scale": c.inertia_scale,
+            "thresholds": [{"shape_label": c.label, "inertia_scale": c.inertia_scale,
                             "inertia_margin": c.inertia_scale - 1.0,
                             "whirl_frequency_hz": c.whirl_frequency_hz,
                             "whirl_ratio": c.whirl_ratio, "note": c.note}

@@ -55,10 +55,9 @@ from ..static import SolverCache
 from ..threads import single_threaded
 from .matched_whirl import LOCAL_WINDOW, ModeCrossing, crossings, local_crossing
 from .modes import family
-from .mode_search import (ONSET, SECANT_TOLERANCE, STABLE, UNSTABLE_LOW,  # noqa: F401
-                          ModeOnset, guided_onset, mode_onset)
+from .mode_search import (ONSET, SECANT_TOLERANCE, STABLE, THERMAL_KINDS,  # noqa: F401
+                          UNSTABLE_LOW, ModeOnset, track_onsets)
 from .onset import SCAN_RATIO, check_coarse_grid, check_speed_range
-from .running import CLOSURE, RUNAWAY
 from .speed_line import transferred_start
 from .supports import (WHIRL_RANGE, RotorCase, SpeedStates, predicted_starts, resolve_rotor,
                        support_states)
@@ -210,15 +209,19 @@ class SpeedLine:
         c = self.follow(speed, label, whirl)
         return 1.0 if c is None else (c.inertia_scale - 1) / (c.inertia_scale + 1)
 
-    def scan_rows(self) -> list:
-        """One row per (speed, crossing) evaluated (speed_rpm, label, inertia_scale, whirl
-        ratio, whirl frequency [Hz], grid)."""
+    def scan_rows(self, names: Optional[dict] = None) -> list:
+        """One row per (speed, crossing) evaluated (speed_rpm, track_label: the name of the
+        mode it belongs to, ``names`` id(crossing) → name of
+        :func:`~gfbopt.rotor.mode_search.track_onsets`, empty when none; shape_label: its
+        shape class at that speed; inertia_scale, whirl ratio, whirl frequency [Hz], grid)."""
+        names = names or {}
         grid = str(self.rotor.grid)
         found = {s: c for s, c in self._crossings.items() if c}
         for (s, _), c in self._local.items():
             if s not in self._crossings:
                 found.setdefault(s, []).append(c)
-        return [{"speed_rpm": s, "label": c.label, "inertia_scale": c.inertia_scale,
+        return [{"speed_rpm": s, "track_label": names.get(id(c), ""), "shape_label": c.label,
+                 "inertia_scale": c.inertia_scale,
                  "whirl_ratio": c.whirl_ratio, "whirl_frequency_hz": c.whirl_frequency_hz,
                  "grid": grid}
                 for s in sorted(found) for c in found[s]]
@@ -280,7 +283,9 @@ def rotor_onsets(system: RotorSystem, speed_range, *, grid: Grid = DEFAULT_GRID,
             bar.update(1)
     line.guide = guide
     try:
-        modes = _modes(line, guide, speeds, speed_tolerance, method, show_progress)
+        names: dict = {}               # id(crossing) -> its mode's name, for the scan rows
+        modes = track_onsets(line, guide, speeds, speed_tolerance, method, show_progress,
+                             names)
     finally:
         line.guide = None
     modes.sort(key=lambda m: (math.isnan(m.onset_speed_rpm), m.onset_speed_rpm, m.label))
@@ -308,80 +313,10 @@ def rotor_onsets(system: RotorSystem, speed_range, *, grid: Grid = DEFAULT_GRID,
         first_mode=first.label if first else None,
         onset_whirl_frequency_hz=first.whirl_frequency_hz if first else math.nan,
         onset_reason=reason, bearing_loads=rotor.loads,
-        scan=[row for x in lines for row in x.scan_rows()],
+        scan=[row for x in lines for row in x.scan_rows(names)],
         equilibria=[row for x in lines for row in x.equilibria()], capacity=capacity,
         conventions=conventions, speed_range_rpm=(low, high),
         wall_time_s=time.perf_counter() - t0)
-
-
-def _modes(line: SpeedLine, guide: Optional[SpeedLine], speeds: list, tol: float,
-           method: str, show_progress: bool = False) -> list:
-    """Every mode's onset: on ``line`` alone, or guided by the coarse ``guide``'s scan (a
-    mode the fine grid contradicts is searched on ``line`` alone; a bearing over capacity
-    on either grid: everything on ``line`` alone).  The refinement after the scan is a stage
-    of its own in the progress (one step a mode; on a fine grid it is most of the work)."""
-    def fine_alone(label):
-        valid = [s for s in speeds if line.crossings(s) is not None]
-        return mode_onset(line, valid, label, tol, method)
-
-    def refined(labels, search) -> list:
-        out = []
-        with progress(total=len(labels), desc=f"rotor onset refinement on {line.rotor.grid}",
-                      unit="mode", enabled=show_progress) as bar:
-            for label in labels:
-                out.append(search(label))
-                bar.update(1)
-        return out
-
-    below = _below_thermal_limit(guide, speeds) if guide is not None else speeds
-    if guide is not None and len(below) >= 2 and \
-            all(guide.crossings(s) is not None for s in below) and \
-            line.crossings(below[0]) is not None:
-        labels = sorted({c.label for s in below for c in guide.crossings(s)}
-                        | {c.label for c in line.crossings(below[0])})
-
-        def guided(label):
-            found = guided_onset(line, guide, below, label, tol)
-            return found if found is not None else fine_alone(label)
-
-        out = refined(labels, guided)
-        if len(below) < len(speeds):     # the fine line's own state at the guide's limit:
-            line.states(speeds[len(below)])    # its thermal limit is bracketed from there
-        if not any(line.states(s).failure and not _thermal(line.states(s).failure)
-                   for s in line.speeds_solved):
-            return out
-    if guide is not None:                 # the fine grid's own scan (on line: done above)
-        with progress(total=len(speeds), desc=f"rotor onset scan on {line.rotor.grid}",
-                      unit="speed", enabled=show_progress) as bar:
-            for speed in speeds:
-                line.crossings(speed)
-                bar.update(1)
-    valid = [s for s in speeds if line.crossings(s) is not None]
-    labels = sorted({c.label for s in valid for c in line.crossings(s)})
-    return refined(labels, fine_alone)
-
-
-#: a speed's failures that are a bearing's thermal limit, not its load capacity
-THERMAL_KINDS = (RUNAWAY, CLOSURE)
-
-
-def _thermal(failure: dict) -> bool:
-    """A speed's failure is a bearing's thermal runaway or closed clearance (rotor.running)."""
-    return failure.get("kind") in THERMAL_KINDS
-
-
-def _below_thermal_limit(guide: "SpeedLine", speeds: list) -> list:
-    """The scan speeds below the first one where the guide's bearings run away thermally or
-    their clearance closes (a heated rotor's top speeds): the guided search runs over them, as
-    there is no state above to guide; any other failure keeps every speed (today's rule:
-    everything on the fine line alone)."""
-    for k, s in enumerate(speeds):
-        failure = guide.states(s).failure
-        if failure:
-            return speeds[:k] if _thermal(failure) and all(
-                not guide.states(x).failure or _thermal(guide.states(x).failure)
-                for x in speeds[k:]) else speeds
-    return speeds
 
 
 def without_gyroscopics(system: RotorSystem) -> RotorSystem:

@@ -6,11 +6,11 @@ adding its module to :data:`_PARTS`.
 """
 from __future__ import annotations
 
-from . import (design, design_levers, friction, rotor_friction, rotor_running, rotor_structure,
-               rotor_transient, shaft, thermal)
+from . import (design, design_levers, friction, mode_shape, rotor_friction, rotor_running,
+               rotor_structure, rotor_transient, shaft, thermal)
 
 _PARTS = (rotor_transient, rotor_structure, shaft, thermal, rotor_running, friction,
-          rotor_friction, design, design_levers)
+          rotor_friction, design, design_levers, mode_shape)
 
 
 def _merged() -> dict:
