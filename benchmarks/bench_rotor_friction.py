@@ -16,7 +16,9 @@ Run:  OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1 python benchmarks/bench_rotor_fri
 2. ``blower_top_speed``: ``gfbopt.transient.rotor_orbit`` of blower_friction at 60,000 rpm
    for 100 revolutions at 72 × 20 (statics, model and integration, CPU), how it ended at each
    bearing, against the describing function's verdict (gfbopt.rotor.friction_onset
-   .settled_whirl, same grid).  Target ≤ 60 s CPU.
+   .settled_whirl, same grid).
+3. ``blower_limit_cycle``: the same at 13,500 rpm (just above the onset) for 400 revolutions,
+   where the whirl settles on a limit cycle.  Target ≤ 60 s CPU.
 
 The machine's load (uptime) is stated before and after each part: 2 cores shared with other
 jobs, so only CPU time and interleaved ratios are meaningful.
@@ -138,6 +140,26 @@ def measured_state() -> dict:
             "measured_files_dirty": bool(git("status", "--porcelain", "--", *MEASURED))}
 
 
+def blower_limit_cycle(speed: float = 13_500.0, revolutions: float = 400) -> dict:
+    """The blower on rubbing bumps just above its onset, 72 × 20, the file's imbalance: CPU of
+    the whole ``rotor_orbit`` (statics, model, integration) and how it ended per bearing."""
+    system = load_rotor(ROTORS / "blower_friction.toml")
+    before = load()
+    t0 = time.process_time()
+    d = rotor_orbit(system, speed, revolutions, grid=GRID).to_dict()
+    cpu = time.process_time() - t0
+    keys = ("friction_orbit_kind", "friction_orbit_amplitude_um",
+            "friction_orbit_previous_amplitude_um", "friction_orbit_whirl_frequency_hz",
+            "friction_orbit_whirl_ratio", "friction_orbit_verdict", "min_film_um")
+    return {"rotor_file": "problems/rotors/blower_friction.toml", "grid": str(GRID),
+            "speed_rpm": speed, "revolutions": revolutions, "cpu_s": cpu,
+            "target_cpu_s": 60.0, "evaluations": d["evaluations"],
+            "rkc_stages": d["rkc_stages"], "contact": d["contact"],
+            "bearings": [{"bearing": b["bearing"], **{k: b.get(k) for k in keys}}
+                         for b in d["bearings"]],
+            "load_before": before, "load_after": load()}
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--repeats", type=int, default=5)
@@ -146,7 +168,8 @@ def main() -> None:
     out = {"machine": machine_info(), "source": tree_label(ROOT),
            "measured_code": measured_state(),
            "per_revolution": per_revolution(args.repeats),
-           "blower_top_speed": blower_top_speed()}
+           "blower_top_speed": blower_top_speed(),
+           "blower_limit_cycle": blower_limit_cycle()}
     path = write_report(out, args.out)
     p = out["per_revolution"]
     for rule in ("fixed", "default"):
@@ -157,6 +180,10 @@ def main() -> None:
     print(f"blower_friction 60,000 rpm 72x20: {b['cpu_s']:.1f} s CPU; "
           + "; ".join(f"{e['bearing']}: {e['verdict']}" for e in b["bearings"])
           + f"; describing function: {b['describing_function']['verdict']}")
+    c = out["blower_limit_cycle"]
+    print(f"blower_friction 13,500 rpm 72x20, {c['revolutions']:g} revolutions: "
+          f"{c['cpu_s']:.1f} s CPU; "
+          + "; ".join(f"{e['bearing']}: {e['friction_orbit_verdict']}" for e in c["bearings"]))
     print(f"written {path}")
 
 
