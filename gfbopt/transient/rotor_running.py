@@ -283,11 +283,14 @@ def solve_running_line(system, grid: Grid, start_rpm: float, end_rpm: float, *,
         kind = failure.get("kind", "thermal runaway")
         words = ("the journal reaches the foil at bearing" if kind == CLOSURE
                  else "thermal runaway at bearing")
+        why = failure["message"]
+        if why.endswith(")") and " (" in why:          # its own "… at N rpm (why)"
+            why = why.partition(" (")[2][:-1]
         verdict = {"kind": kind, "bearing": failure["bearing"], "limit_rpm": high,
                    "last_running_rpm": low,
                    "message": f"{words} {failure['bearing']} from {high:,.0f} rpm (bracketed "
-                              f"to {100 * BRACKET:g} %: the run ends at {low:,.0f} rpm); "
-                              f"{failure['message']}"}
+                              f"to {100 * BRACKET:g} %: the run ends at {low:,.0f} rpm): "
+                              f"{why}"}
         break
     errors = _refine(rotor, line, sorted(good))
     speeds = sorted(s for s in line.cases if min(good) <= s <= max(good))
