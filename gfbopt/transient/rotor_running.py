@@ -122,8 +122,7 @@ class SpeedTable:
             r = min(max(speed, x[0]), x[-1])
             i = min(max(bisect.bisect_right(x, r) - 1, 0), max(last - 1, 0))
             t = r - x[i] if last else 0.0
-            c = self.coef[i]
-            v = ((c[0] * t + c[1]) * t + c[2]) * t + c[3]
+            v = np.dot((t * t * t, t * t, t, 1.0), self.coef[i])    # the cubic, one call
             return v[:self.k], v[self.k:]
         r = np.clip(np.asarray(speed, dtype=float), x[0], x[-1])
         i = np.clip(np.searchsorted(self.x, r, side="right") - 1, 0, max(last - 1, 0))
