@@ -188,7 +188,8 @@ def whirl_at_top_speed(system, design: dict, settings, revolutions: float,
         designed, running = frozen_at_running_condition(designed, settings.top_speed_rpm,
                                                         settings.grid)
         if running.get("failure"):
-            return {"revolutions": 0.0, "grid": str(settings.grid), "success": False,
+            return {"revolutions": 0.0, "limit_cycle_revolutions": revolutions,
+                    "grid": str(settings.grid), "success": False,
                     "message": running["failure"], "contact": False, "contact_bearing": None,
                     "contact_time_s": math.nan, "bearings": [], "running": running}
     from ..progress import Fraction
@@ -198,7 +199,9 @@ def whirl_at_top_speed(system, design: dict, settings, revolutions: float,
     result = rotor_orbit(designed, settings.top_speed_rpm, revolutions, grid=settings.grid,
                          progress=reporter)
     d = result.to_dict()
-    out = {"revolutions": revolutions, "grid": str(settings.grid), "success": bool(d["success"]),
+    out = {"revolutions": float(d.get("revolutions_integrated") or 0.0),
+           "limit_cycle_revolutions": revolutions, "grid": str(settings.grid),
+           "success": bool(d["success"]),
            "message": d.get("message", ""), "contact": bool(d.get("contact")),
            "contact_bearing": d.get("contact_bearing"),
            "contact_time_s": d.get("contact_time_s", math.nan), "bearings": []}
@@ -211,10 +214,10 @@ def whirl_at_top_speed(system, design: dict, settings, revolutions: float,
     for b in d["bearings"]:
         out["bearings"].append({
             "bearing": b["bearing"], "min_film_um": number(b.get("min_film_um")),
-            "status": b.get("limit_cycle_status") or "none",
-            "limit_cycle_um": number(b.get("limit_cycle_amplitude_um")),
-            "settled": bool(b.get("limit_cycle_settled")),
-            "whirl_frequency_hz": number(b.get("limit_cycle_frequency_hz"))})
+            "limit_cycle_status": b.get("limit_cycle_status") or "none",
+            "limit_cycle_amplitude_um": number(b.get("limit_cycle_amplitude_um")),
+            "limit_cycle_settled": bool(b.get("limit_cycle_settled")),
+            "limit_cycle_frequency_hz": number(b.get("limit_cycle_frequency_hz"))})
     return out
 
 
@@ -227,7 +230,8 @@ def friction_whirl_at_top_speed(designed, settings) -> dict:
     from ..rotor.friction_onset import MODEL, settled_whirl
     from ..rotor.supports import resolve_rotor
 
-    out = {"revolutions": 0.0, "grid": str(settings.grid), "success": True, "message": "",
+    out = {"revolutions": 0.0, "limit_cycle_revolutions": 0.0, "grid": str(settings.grid),
+           "success": True, "message": "",
            "contact": False, "contact_bearing": None, "contact_time_s": math.nan,
            "model": MODEL, "bearings": []}
     try:
@@ -239,8 +243,8 @@ def friction_whirl_at_top_speed(designed, settings) -> dict:
     for name, amp in zip(orbit.bearings, orbit.amplitude_um):
         out["bearings"].append({
             "bearing": name, "min_film_um": orbit.min_film_um,
-            "status": "describing function" if orbit.bounded else "unbounded",
-            "limit_cycle_um": amp, "settled": bool(orbit.bounded),
-            "whirl_frequency_hz": orbit.whirl_frequency_hz})
+            "limit_cycle_status": "limit cycle" if orbit.bounded else "growing",
+            "limit_cycle_amplitude_um": amp, "limit_cycle_settled": bool(orbit.bounded),
+            "limit_cycle_frequency_hz": orbit.whirl_frequency_hz})
     return out
 

@@ -373,3 +373,16 @@ def evaluate_rotor_design(system, settings: EvaluationSettings, cache=None,
         row.update(success=False, message=str(exc))
     row["wall_time_s"] = time.perf_counter() - t0
     return row
+
+
+def design_conventions(system, design: dict, settings: EvaluationSettings) -> dict:
+    """The conventions every evaluation of ``design`` states (the rotor's frame, each
+    bearing's resolved formulation — film, seam angle, foil, deflection law, loss factor —,
+    load, position, file and clearance model: :meth:`gfbopt.rotor.supports.RotorCase.
+    conventions`), resolved as :func:`evaluate_rotor_design` resolves them, no solve."""
+    from ..inputs.options import ModelOptions
+    from ..rotor.supports import resolve_rotor
+
+    designed, _ = apply_design(system, design, settings)
+    return resolve_rotor(designed, settings.grid,
+                         options=ModelOptions(loss_factor=settings.loss_factor)).conventions()

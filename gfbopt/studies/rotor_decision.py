@@ -108,7 +108,12 @@ def run_levers(study, plan, chosen: dict, store, run_tasks, resume: bool, step):
     return answers, ev
 
 
+def answers_records(answers: list) -> list:
+    """One dict per lever in the columns of ``what_it_would_take.csv`` (summary.json's
+    ``what_it_would_take``: one name per quantity in both)."""
+    return [{ANSWER_COLUMNS[k]: v for k, v in a.to_dict().items()} for a in answers]
+
+
 def answers_frame(answers: list) -> pd.DataFrame:
     """``what_it_would_take.csv``: one row per lever."""
-    return pd.DataFrame([{ANSWER_COLUMNS[k]: v for k, v in a.to_dict().items()}
-                         for a in answers], columns=list(ANSWER_COLUMNS.values()))
+    return pd.DataFrame(answers_records(answers), columns=list(ANSWER_COLUMNS.values()))

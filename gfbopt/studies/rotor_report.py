@@ -12,10 +12,11 @@ import pandas as pd
 
 from ..design.decision import binding_limits, failed_count, limits_frame, limits_text
 from ..design.pareto import feasible_rows
+from ..design.rotor_objectives import design_conventions
 from ..design.lever_runs import STORE_SCHEMA, answers_text
 from ..plotting.design_front import variable_label
 from .base import StudyResult
-from .rotor_decision import answers_frame, margin_of, margin_text, run_levers
+from .rotor_decision import answers_frame, answers_records, margin_of, margin_text, run_levers
 
 #: the search methods (gfbopt.design.search.METHODS) in words
 SEARCH_WORDS = {"nsga2": "pymoo NSGA-II",
@@ -86,6 +87,11 @@ def verdict(chosen, why: str, plan, check, whirl=None) -> str:
                        f"{check['min_film_lowest_speed_um_default_grid']:.2f} µm against "
                        f"{check['min_film_lowest_speed_um_search_grid']:.2f} µm on the search grid): the "
                        "search grid is too coarse for this limit")
+            alt = check.get("feasible_alternative")
+            honest += (f"; of the designs re-checked there, {describe(alt, names)} meets every "
+                       f"limit (first onset {alt['first_onset_speed_rpm_default_grid']:,.0f} rpm, "
+                       f"minimum film {alt['min_film_lowest_speed_um_default_grid']:.2f} µm)"
+                       if alt else "; none of the designs re-checked there meets it")
     film = (f"minimum film {chosen['min_film_lowest_speed_um']:.2f} µm at {s.speed_low_rpm:,.0f} rpm under "
             f"{s.heaviest_load_factor:g}× the static load")
     heated = [b.name for b in plan.system.bearings if getattr(b, "running_tables", ())]
@@ -123,16 +129,17 @@ def whirl_text(whirl, top: float) -> str:
         return (f"the orbit at {top:,.0f} rpm on the {whirl['grid']} grid failed "
                 f"({whirl['message']}): no limit cycle to report")
     film = min(b["min_film_um"] for b in whirl["bearings"])
-    run = f"{whirl['revolutions']:g} revolutions on the {whirl['grid']} grid"
-    whirling = [b for b in whirl["bearings"] if b.get("status", "none") != "none"]
+    run = f"{whirl['revolutions']:.4g} revolutions on the {whirl['grid']} grid"
+    whirling = [b for b in whirl["bearings"] if b.get("limit_cycle_status", "none") != "none"]
     if not whirling:
         return (f"at {top:,.0f} rpm no subsynchronous whirl (minimum film {film:.2f} µm; "
                 f"{run})")
-    cycles = " and ".join(f"{b['limit_cycle_um']:.2f} µm at bearing {b['bearing']}"
+    cycles = " and ".join(f"{b['limit_cycle_amplitude_um']:.2f} µm at bearing {b['bearing']}"
                           for b in whirling)
     quiet = [b["bearing"] for b in whirl["bearings"] if b not in whirling]
     cycles += "".join(f", none at bearing {q}" for q in quiet)
-    state = "settled" if all(b["settled"] for b in whirling) else "not yet settled"
+    state = ("settled" if all(b["limit_cycle_settled"] for b in whirling)
+             else "not yet settled")
     return (f"at {top:,.0f} rpm the whirl limit cycle is {cycles} with minimum film "
             f"{film:.2f} µm ({run}, {state})")
 
@@ -195,6 +202,10 @@ def report(study, plan, search, run_tasks, stages, started: float, store,
         robust = robustness(plan.system, s, checked[:r.designs], r.tolerances,
                             plan.loss_factor_band, r.samples, r.seed, problem, run_tasks, step)
     check = default.iloc[0].to_dict() if len(default) else None
+    if check is not None and not check.get("feasible_default_grid", True):
+        ok = default.iloc[1:][default.iloc[1:]["feasible_default_grid"].astype(bool)]
+        check["feasible_alternative"] = (ok.sort_values(
+            "first_onset_speed_rpm_default_grid").iloc[-1].to_dict() if len(ok) else None)
     limits = binding_limits(table, problem, chosen)
     levers, lever_runs, margin = None, None, None
     named = bool(study.spec.get("what_it_would_take"))   # its stage exists (run_stages)
@@ -244,6 +255,7 @@ def report(study, plan, search, run_tasks, stages, started: float, store,
     if whirl is not None:
         tables["whirl_at_top_speed.csv"] = pd.DataFrame(
             [{**b, "speed_rpm": s.top_speed_rpm, "revolutions": whirl["revolutions"],
+              "limit_cycle_revolutions": whirl.get("limit_cycle_revolutions", math.nan),
               "contact": whirl["contact"], "success": whirl["success"],
               "message": whirl["message"], "grid": whirl["grid"]}
              for b in whirl["bearings"]])
@@ -256,9 +268,14 @@ def report(study, plan, search, run_tasks, stages, started: float, store,
     title = study.spec["title"]
     figures = {"design_front.png": plot_design_front(
         table, front, chosen, s.top_speed_rpm, s.search_high_rpm, robust,
-        title=f"{title}: every design evaluated ({s.grid} grid)").figure}
-    axes = plot_onset_against_variables(table, problem.names, s.top_speed_rpm,
-                                        title="First onset against each design variable")
+        title=f"{title}: every design evaluated ({s.grid} grid)",
+        limits=", ".join(r.words.removesuffix(" limit") for r in limits)).figure}
+    bounds = {v.name: ((v.low, v.high) if v.values is None else (min(v.values), max(v.values)))
+              for v in problem.variables}
+    axes = plot_onset_against_variables(
+        table, problem.names, s.top_speed_rpm, chosen=chosen, bounds=bounds,
+        title=(f"First onset against each design variable ({s.grid} search grid, top speed "
+               f"{s.top_speed_rpm:,.0f} rpm)"))
     figures["onset_vs_variables.png"] = np.atleast_1d(axes).ravel()[0].figure
     asked = search.evaluated + search.reused
     rows = store.rows_written()
@@ -279,7 +296,10 @@ def report(study, plan, search, run_tasks, stages, started: float, store,
                                        "loss_factor_band": list(plan.loss_factor_band)}},
                "grid": str(plan.default_settings.grid), "search_grid": str(s.grid),
                "method": plan.search.method, "budget": plan.search.budget,
-               "seed": plan.search.seed, "top_speed_rpm": s.top_speed_rpm}
+               "seed": plan.search.seed, "top_speed_rpm": s.top_speed_rpm,
+               "conventions": design_conventions(
+                   plan.system, {n: float(chosen[n]) for n in problem.names}
+                   if chosen is not None else {}, s)}
     return StudyResult(study, tables=tables, figures=figures, checks=checks, options=options,
                        notes=notes, wall_time_s=time.perf_counter() - started,
                        verdict=text, answer=found)
@@ -311,7 +331,8 @@ def answer(chosen, why: str, table: pd.DataFrame, plan, check=None, whirl=None,
             "answer_grid": str(plan.settings.grid), "chosen_design": design,
             "limits": [r.to_dict() for r in limits or []],
             "active_limits": [r.name for r in limits or [] if r.active],
-            "what_it_would_take": None if levers is None else [a.to_dict() for a in levers],
+            "what_it_would_take": None if levers is None else
+            answers_records(levers),
             "margin": margin}
 
 

@@ -74,6 +74,9 @@ TERMS: dict[str, tuple[str, str]] = {
     "margin": ("text", "summary.json, a chosen design stable to the top speed: first onset "
                "[rpm], margin over the top speed [rpm] and relative, the worst case under "
                "the tolerances [rpm] and its relative margin; null otherwise"),
+    "limit_cycle_revolutions": ("-", "revolutions of the top-speed orbit the study asked for "
+                                "(the run stops earlier at contact: revolutions is what was "
+                                "integrated)"),
     "consistency_checks_hold": ("flag", "summary.json: every internal consistency check of "
                                 "the computation holds (not a verdict on the design)"),
 }

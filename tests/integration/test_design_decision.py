@@ -118,13 +118,14 @@ def test_verdict_limits_and_what_it_would_take_agree_everywhere(study, tmp_path)
     # what it would take
     levers = {a["lever"]: a for a in summary["what_it_would_take"]}
     eta = levers["loss_factor"]
-    assert eta["found"] is True and eta["start"] == 0.0
-    assert eta["value"] == pytest.approx((TOP - _onset(c)) / 1e5, abs=1e-3)
-    assert eta["onset_rpm"] >= TOP and eta["meets_limits"] is True
+    assert eta["threshold_found"] is True and eta["lever_start"] == 0.0
+    assert eta["threshold_value"] == pytest.approx((TOP - _onset(c)) / 1e5, abs=1e-3)
+    assert eta["threshold_onset_speed_rpm"] >= TOP and eta["threshold_meets_limits"] is True
     side = levers["side_load_n"]
-    assert side["found"] is False and side["value"] is None or math.isnan(side["value"])
-    assert side["limit_value"] == 100.0
-    assert side["limit_onset_rpm"] == pytest.approx(_onset(c, force=100.0), rel=1e-12)
+    assert side["threshold_found"] is False
+    assert side["threshold_value"] is None or math.isnan(side["threshold_value"])
+    assert side["at_bound_value"] == 100.0
+    assert side["at_bound_onset_speed_rpm"] == pytest.approx(_onset(c, force=100.0), rel=1e-12)
     text = "\n".join(readme)
     assert "static side load on the rotor: none within physical limits [0, 100]" in text
     assert (folder / "what_it_would_take.csv").is_file()

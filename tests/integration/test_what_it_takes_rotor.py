@@ -41,19 +41,20 @@ def test_the_side_load_found_is_the_threshold_on_the_blower(tmp_path):
     design = {n: float(chosen[n]) for n in plan.problem.names}
     levers = {v.name: v for v in parse_levers(data["what_it_would_take"], str(FILE))}
     side = answers["side_load_n"]
-    assert side["found"], side
+    assert side["threshold_found"], side
     top = plan.settings.top_speed_rpm
 
     def onset(value: float) -> float:
         row = evaluate_rotor_design(**lever_point(levers["side_load_n"], value, plan.system,
                                                   design, plan.settings), onset_only=True)
         return row["first_onset_speed_rpm"]
-    assert onset(side["value"]) == pytest.approx(side["onset_rpm"], rel=1e-9)
-    assert onset(side["value"]) >= top
-    assert onset(side["value"] - 1e-3 * 200.0) < top          # the smallest, to 1e-3
+    assert onset(side["threshold_value"]) == pytest.approx(side["threshold_onset_speed_rpm"],
+                                                           rel=1e-9)
+    assert onset(side["threshold_value"]) >= top
+    assert onset(side["threshold_value"] - 1e-3 * 200.0) < top    # the smallest, to 1e-3
     eta = answers["loss_factor"]                               # η to 0.02 cannot
-    assert not eta["found"] and eta["limit_value"] == 0.02 and eta["limit_onset_rpm"] < top
-    assert not math.isnan(eta["limit_onset_rpm"])
+    assert not eta["threshold_found"] and eta["at_bound_value"] == 0.02 and eta["at_bound_onset_speed_rpm"] < top
+    assert not math.isnan(eta["at_bound_onset_speed_rpm"])
 
 
 def test_the_override_answers_as_an_edited_copy_on_real_physics(tmp_path):

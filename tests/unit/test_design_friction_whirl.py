@@ -24,6 +24,6 @@ def test_friction_rotor_whirl_at_top_speed_is_the_describing_functions():
     assert [b["bearing"] for b in whirl["bearings"]] == [b.name for b in system.bearings]
     # results/bumps_that_rub: on the Ruscitto bearings this rotor is never bounded
     assert "no bounded orbit" in whirl["verdict"]
-    assert not any(b["settled"] for b in whirl["bearings"])
+    assert not any(b["limit_cycle_settled"] for b in whirl["bearings"])
     text = whirl_text(whirl, 30000.0)
     assert text.startswith("at 30,000 rpm no bounded orbit") and MODEL in text

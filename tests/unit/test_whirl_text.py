@@ -9,8 +9,9 @@ BASE = {"contact": False, "success": True, "revolutions": 40, "grid": "36x10"}
 
 
 def _bearing(name, status, amplitude, film, settled=False):
-    return {"bearing": name, "status": status, "limit_cycle_um": amplitude,
-            "min_film_um": film, "settled": settled, "whirl_frequency_hz": math.nan}
+    return {"bearing": name, "limit_cycle_status": status,
+            "limit_cycle_amplitude_um": amplitude, "min_film_um": film,
+            "limit_cycle_settled": settled, "limit_cycle_frequency_hz": math.nan}
 
 
 def test_no_subsynchronous_whirl_at_either_bearing():
