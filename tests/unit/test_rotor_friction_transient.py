@@ -306,3 +306,18 @@ def test_blower_just_above_its_onset_settles_on_rubbing_bumps():
     bare = rotor_orbit(load_rotor(ROTORS / "blower.toml"), 13500.0, 400, grid=grid,
                        imbalance_scale=0.0).to_dict()
     assert bare["contact"] and bare["contact_bearing"] == "B"
+
+
+def test_a_run_up_carries_the_sliders_and_states_no_limit_cycle():
+    # the sliders do not depend on the bearing number, so a ramp (Λ following the speed in
+    # the engine) carries them as an orbit does; its result names the model, and no
+    # per-bearing limit cycle (a ramp has none)
+    from gfbopt.transient.rotor_analysis import rotor_ramp
+
+    result = rotor_ramp(load_rotor(ROTORS / "blower_friction.toml"), 8000.0, 12000.0,
+                        100000.0, grid=GRID, linear_onset=False)
+    out = result.to_dict()
+    assert result.success and result.run.sliders is not None
+    assert out["bump_friction"].startswith("bump friction μ_f = 0.5")
+    assert all("friction_orbit_kind" not in b for b in out["bearings"])
+    assert any("a ramp states no limit cycle" in n for n in out["notes"])
