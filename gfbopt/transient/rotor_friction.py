@@ -77,6 +77,9 @@ def initial_sliders(model, batch: int, given=None) -> Optional[tuple]:
     friction; None for a rotor without friction.  ``given``: the sliders of an earlier run
     (:attr:`.rotor_run.RotorRun.sliders`), checked against the batch."""
     if not rubbing(model):
+        if given is not None:
+            raise ParameterError("sliders", "given", "the rotor's bearings carry no bump "
+                                 "friction: there are no sliders to start from")
         return None
     out = []
     for k, b in enumerate(model.bearings):

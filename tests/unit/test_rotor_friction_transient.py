@@ -262,6 +262,9 @@ def test_refusals():
     with pytest.raises(ParameterError, match="sliders"):
         integrate_rotor(model, runs(2), 1.0, _kicked(model, 2),
                         sliders=initial_sliders(model, 1))
+    plain, _ = build_model(rotor_input(load_rotor(ROTORS / "blower.toml")), 60000.0, GRID)
+    with pytest.raises(ParameterError, match="no bump friction"):
+        integrate_rotor(plain, runs(1), 1.0, _kicked(plain), sliders=initial_sliders(model, 1))
 
 
 def test_each_run_keeps_its_own_sliders():
