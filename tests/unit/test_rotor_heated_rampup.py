@@ -153,3 +153,26 @@ def test_the_speed_table_is_the_pchip_of_each_bearing_at_nodes_and_between():
         assert d_all[j] == pytest.approx(d1, rel=1e-13, abs=1e-16)
         assert i_all[j] == pytest.approx(i1, rel=1e-13)
     assert np.array_equal(table.at(0.1)[0], table.at(0.2)[0])          # clamped below
+
+
+def test_a_run_up_into_a_centrifugal_closure_ends_below_it_with_the_verdict(tmp_path):
+    """A [journal]-only bearing on a soft journal (E = 1e10 Pa: a test material) closes by
+    centrifugal growth, u_c ∝ ω²: the run-up stops at the last speed that runs, the closure
+    (running clearance at the 1 µm floor, gfbopt.thermal.running.closure_speeds' closed form)
+    lies inside the reported 1 % bracket."""
+    from gfbopt.thermal.running import closure_speeds
+
+    src = (ROOT / "problems" / "bearings" / "ruscitto_thermal.toml").read_text()
+    src = src[:src.index("\n[thermal]\n")].replace("youngs_modulus = 200e9",
+                                                     "youngs_modulus = 1e10")
+    (tmp_path / "bearing.toml").write_text(src)
+    rotor = tmp_path / "rotor.toml"
+    rotor.write_text(COLD.read_text().replace("../bearings/ruscitto.toml", "bearing.toml"))
+    system = load_rotor(rotor, running=True)
+    d = rotor_ramp(system, 30000.0, 50000.0, 2.0e6, grid=GRID, linear_onset=False).to_dict()
+    assert d["running_end"].startswith("the journal reaches the foil at bearing A from ")
+    assert d["thermal_models"] == {"A": "centrifugal growth", "B": "centrifugal growth"}
+    limit = float(d["running_end"].split("from ")[1].split(" rpm")[0].replace(",", ""))
+    spec = resolve_rotor(system, Grid.parse(GRID)).running.specs[0]
+    close, _ = closure_speeds(spec, 40000.0, spec.centrifugal(40000.0 * np.pi / 30.0))
+    assert d["end_speed_rpm"] < close <= limit + 0.5 <= 1.0101 * d["end_speed_rpm"]  # N rounded
