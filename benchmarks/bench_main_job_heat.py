@@ -97,8 +97,8 @@ def cpu_per_design_ratios(runs) -> list:
 
 def compare_profiles(iso_path: str, heated_path: str, top: int = 25) -> dict:
     """The functions (file:line(function)) whose cumulative time [s] differs most between
-    the isothermal and the heated profile, and the totals (cProfile's own clock: the child's
-    process time, inflated by the profiler alike in both)."""
+    the isothermal and the heated profile, and the totals (cProfile's default clock, the
+    wall time of the child process: on a loaded machine, shares rather than CPU seconds)."""
     import pstats
 
     def table(path):
