@@ -160,9 +160,8 @@ def operating_point(args) -> OperatingPoint:
                   subambient=args.subambient, compression_only=args.compression_only,
                   seam_angle_deg=args.seam_angle,
                   loss_factor=args.loss_factor)
-    for key in ("friction_coefficient", "friction_stiffness_ratio"):   # the bumps' friction
-        if getattr(resolved, key) is not None and args.bearing is not None:
-            common[key] = getattr(resolved, key)
+    if args.bearing is not None:            # the bumps' friction and hardening, as stated
+        common.update(resolved.bump_kwargs())
     grid = grid_of(args)
     extra: dict = {}
     if args.bearing is not None:

@@ -163,7 +163,7 @@ def _check_damping(args, op) -> None:
     """Refuse structural-damping options the run would not use, and a method or foil law
     the damped transient does not support (before anything is solved)."""
     from ..errors import ParameterError
-    from ..physics.foil_laws import foil_law
+    from ..transient.hardening_recovery import transient_foil_law as foil_law
 
     eta = op.model.loss_factor
     ref = args.reference_whirl_ratio

@@ -67,8 +67,8 @@ class ModelOptions:
         (:class:`~gfbopt.inputs.model.BearingModel`, :mod:`gfbopt.physics.friction`)
     bump_height : h_b [m]; hardening_limit : δ_lim [m] (≤ h_b; default h_b);
     hardening_exponent : n [-] (0: off) of the hardening bump k0/(1 − δ/δ_lim)^n
-        (:mod:`gfbopt.physics.hardening`).  Checked here; not yet carried by the static
-        engine, so a model with n > 0 is refused by :meth:`model_kwargs` (one line).
+        (:mod:`gfbopt.physics.hardening`).  Checked here; carried into every model built
+        from these options (:meth:`bump_kwargs`: statics, linear analysis, transients).
     """
 
     film: Optional[str] = None
@@ -140,15 +140,21 @@ class ModelOptions:
             raise ParameterError("options", self, "are not complete: apply "
                                  "resolve_model_options first")
         seam = None if self.seam_angle_deg in (None, MAX_FILM) else self.seam_angle_deg
-        friction = {key: getattr(self, key) for key in ("friction_coefficient",
-                                                        "friction_stiffness_ratio")
-                    if getattr(self, key) is not None}
-        if (self.hardening_exponent or 0.0) > 0.0:      # SI limit: BearingGeometry.model
-            friction.update(hardening_exponent=self.hardening_exponent,
-                            hardening_limit_m=self.hardening_limit or self.bump_height)
         return dict(foil=self.foil, film=self.film, seam_angle_deg=seam,
                     deflection_law=self.deflection_law, loss_factor=self.loss_factor,
-                    **friction)
+                    **self.bump_kwargs())
+
+    def bump_kwargs(self) -> dict:
+        """The bumps' friction and hardening as keyword arguments of
+        :meth:`BearingGeometry.model` (the hardening limit in SI), those stated only: every
+        route that builds a model from a bearing file passes them (the command line's too)."""
+        out = {key: getattr(self, key) for key in ("friction_coefficient",
+                                                   "friction_stiffness_ratio")
+               if getattr(self, key) is not None}
+        if (self.hardening_exponent or 0.0) > 0.0:      # SI limit: BearingGeometry.model
+            out.update(hardening_exponent=self.hardening_exponent,
+                       hardening_limit_m=self.hardening_limit or self.bump_height)
+        return out
 
     def convention(self) -> str:
         """One line naming the film convention, for every output."""
