@@ -138,7 +138,7 @@ def _check_bearing_names(args) -> None:
     from ..inputs.rotor_system import load_rotor
     from ..guard import check_file_name_part
 
-    for bearing in load_rotor(args.rotor_file).bearings:
+    for bearing in load_rotor(args.rotor_file, running=True).bearings:
         check_file_name_part(bearing.name, f"{args.rotor_file}: bearing name",
                              "--csv/--plot write components_NAME.csv and waterfall_NAME.png")
 

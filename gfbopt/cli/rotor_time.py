@@ -395,6 +395,19 @@ def _emit(out: dict, as_json: bool, result) -> None:
             if "friction_orbit_verdict" in b:
                 lines.append(f"  bearing {b['bearing']} with friction: "
                              f"{b['friction_orbit_verdict']}")
+    if out.get("clearance_model"):
+        lines.append(f"  clearance model: {out['clearance_model']}")
+    for name in dict.fromkeys(r["bearing"] for r in out.get("running_line", [])):
+        rows = [r for r in out["running_line"] if r["bearing"] == name]
+        a, b = rows[0], rows[-1]
+        lines.append(f"  bearing {name} running line ({len(rows)} speeds, running_line.csv): "
+                     f"{a['running_clearance_um']:.4g} µm, {a['film_temperature_c']:.4g} °C, "
+                     f"{a['viscosity_pa_s']:.4g} Pa s at {a['speed_rpm']:,.0f} rpm → "
+                     f"{b['running_clearance_um']:.4g} µm, {b['film_temperature_c']:.4g} °C, "
+                     f"{b['viscosity_pa_s']:.4g} Pa s at {b['speed_rpm']:,.0f} rpm")
+    if out.get("running_end"):
+        lines.append(f"  RAMP ENDS at {out['end_speed_rpm']:,.0f} rpm (asked "
+                     f"{out['requested_end_rpm']:,.0f}): {out['running_end']}")
     if p.kind != "orbit":
         lines.append(f"  subsynchronous line (≥ {out['subsync_threshold_um']:.3g} µm) appears "
                      f"at {_rpm(out['subsync_appearance_rpm'])}; linear onset "

@@ -43,7 +43,6 @@ from .rotor_io import rotor_input
 from .rotor_result import RotorTransientResult, summarise
 from .rotor_run import CONTACT_FILM, integrate_rotor
 from .rotor_setup import RotorInput, build_model, equilibrium_states, set_station_velocities
-from .rotor_films import fusable
 from .rotor_friction import rubbing
 from .rotor_running import STEP_RPM
 from .rotor_system import runs
@@ -268,11 +267,11 @@ def _on_running_line(model, inp, rotor, plan, profile, grid, cache, reference_wh
     warm = rotor_input(frozen_start(rotor, plan))
     warm_solutions, _ = bearing_equilibria(warm, profile.start_rpm, grid, cache)
     model = heated_model(model, plan)
-    if not fusable(model) or rubbing(model):
+    if rubbing(model):
         raise ParameterError("rotor", "[journal]/[thermal]", "a run-up or coast-down at the "
-                             "running condition needs every bearing's film fused (rigid or "
-                             "axial-mean law, one grid, no bump friction): the one-bearing "
-                             "kernels do not carry the running line")
+                             "running condition with bump friction is not modelled: the "
+                             "sliders' play operator has no film offset (state no "
+                             "friction_coefficient, or hold one speed: an orbit)")
     z, cold = start_states(model, 1, warm_solutions, plan)
     return model, cold, z
 

@@ -66,6 +66,7 @@ import numpy as np
 from ..errors import ParameterError
 from .foil_state import foil_bound
 from .rotor_films import FusedFilms, AtSpeed, largest_deflection, fusable
+from .rotor_running import speed_table
 from .rotor_friction import rubbing, same_friction
 from .rotor_friction_films import FrictionFusedFilms, fusable_with_friction
 from .rotor_batch import Runs, runs  # noqa: F401  (re-exported: the batch of runs)
@@ -99,7 +100,11 @@ class RotorRightHandSide:
         if rub and sliders is None:
             raise ParameterError("sliders", None, "a rotor with bump friction needs each "
                                  "bearing's sliders Z (rotor_friction.initial_sliders)")
+        #: the bearings' running lines (a heated rotor's ramp, .rotor_running; None: today's)
+        self.running = speed_table(model)
         self.stack = (stackable(model) and same_friction(model)) if stack is None else stack
+        if self.running is not None:       # the running line's offset goes bearing by bearing
+            self.stack = False
         self.track_deflection = track_deflection
         if fuse is None:                               # fuse=False: the one-bearing kernels
             fuse = fusable_with_friction(model) if rub else fusable(model)
@@ -214,12 +219,23 @@ class RotorRightHandSide:
         return [(k, b.tm, lay.phi_of(z, k), xy[:, k, 0], xy[:, k, 1], lay.foil_of(z, k))
                 for k, b in enumerate(bearings)]
 
+    def _at_running(self, tm, k: int, offset):
+        """Bearing k's model with its running line's film offset δ_k (a float: one speed for
+        the batch) folded into the bore: H_r = 1 + bore − δ − X cos θ − Y sin θ."""
+        if offset is None:
+            return tm
+        return replace(tm, bore=tm.bore - float(np.max(np.atleast_1d(offset)[..., k])))
+
     def pressures(self, z: np.ndarray) -> list:
         """[(P, H)] per bearing, each (B, ...), at the states ``z``."""
         xy = self.journals(z)
         out = []
+        offset = None
+        if self.running is not None:
+            offset = self.running.at(self._speed(self.layout.rotor_of(z)[:, 2 * self.dofs]))[0]
         for k, b in enumerate(self.model.bearings):
-            p, h = pressure_and_film(self.layout.phi_of(z, k), xy[:, k, 0], xy[:, k, 1], b.tm,
+            p, h = pressure_and_film(self.layout.phi_of(z, k), xy[:, k, 0], xy[:, k, 1],
+                                     self._at_running(b.tm, k, offset),
                                      deflection=self.layout.foil_of(z, k),
                                      slider=self.slider(k))
             out.append((p, h))
@@ -277,16 +293,24 @@ class RotorRightHandSide:
         dΦ/dτ and dW/dτ into ``out``, returns the forces (B, K, 2)."""
         lay, nb, k = self.layout, z.shape[0], len(self.model.bearings)
         forces = np.empty((nb, k, 2))
+        offset = inverse = None
+        if self.running is not None:
+            if not isinstance(speed, float):
+                raise ParameterError("runs", "speeds", "the running line's films take one "
+                                     "speed for the batch")
+            offset, inverse = self.running.at(speed)
         for j, tm, phi, x, y, w in self._films(z, xy):
             jj = 0 if self.stack else j
-            p, h = pressure_and_film(phi, x, y, tm, deflection=w, slider=self.slider(j))
+            p, h = pressure_and_film(phi, x, y, self._at_running(tm, j, offset), deflection=w,
+                                     slider=self.slider(j))
             lam = self.base_lambda[jj] * speed
             if not isinstance(speed, float):
                 lam = (np.repeat(lam, k) if self.stack else lam)[:, None, None]
             kernel = self._kernels[jj]
-            kernel.bearing_number = lam
+            ratio = 1.0 if inverse is None else float(inverse[j])      # μ_ref/μ
+            kernel.bearing_number = lam / ratio                        # Λ μ/μ_ref
             dphi = flux_residual(p, h, kernel)
-            dphi /= self.film_divisor[jj]
+            dphi *= ratio / self.film_divisor[jj]                      # over 2Λ μ/μ_ref
             fx, fy = film_force(p, tm)
             hmin = h.min(axis=(1, 2))
             n = lay.phi_size[jj]
@@ -350,14 +374,19 @@ class RotorRightHandSide:
         xy = self.journals(z)
         r = float(np.max(self.runs.speed_at(self.layout.rotor_of(z)[:, 2 * self.dofs])))
         rho = self.structure_rate
+        offset = inverse = None
+        if self.running is not None:
+            offset, inverse = self.running.at(r)
         for k, b in enumerate(self.model.bearings):
-            tm = b.tm
+            tm = self._at_running(b.tm, k, offset)
             lam = self.base_lambda[k] * r
             s = State(self.layout.phi_of(z, k), xy[:, k, 0], xy[:, k, 1], xy[:, k, 0] * 0,
                       xy[:, k, 0] * 0, self.layout.foil_of(z, k))
             film = stiffness_bound(s, replace(tm, bearing_number=lam, foil_state=None),
                                    self.slider(k))
-            rho = max(rho, film * 2.0 * lam / self.film_divisor[k])
+            # the diffusion carries μ_ref/μ, the advection not: max(1, μ_ref/μ) bounds both
+            rho = max(rho, film * 2.0 * lam / self.film_divisor[k]
+                      * (1.0 if inverse is None else max(1.0, float(inverse[k]))))
             if tm.foil_state is not None:
                 p, h = pressure_and_film(s.phi, s.x, s.y, tm, deflection=s.w)
                 rho = max(rho, foil_bound(p, h, tm) * self.foil_factor[k])
