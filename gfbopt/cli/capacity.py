@@ -68,11 +68,12 @@ def _check(args) -> None:
         if args.speed_rpm is None:
             raise ParameterError("--speed-rpm", None, "is required for the load capacity (or "
                                  "give --lift-off --load-newton F)")
-        for option, value in (("--load-newton", args.load_newton),
-                              ("--max-speed-rpm", args.max_speed_rpm)):
-            if value is not None:
-                raise ParameterError(option, value, "is used with --lift-off only (the load "
-                                     "is the answer of the load capacity)")
+        if args.load_newton is not None:
+            raise ParameterError("--load-newton", args.load_newton, "is used with --lift-off "
+                                 "only (the load is the answer of the load capacity)")
+        if args.max_speed_rpm is not None:
+            raise ParameterError("--max-speed-rpm", args.max_speed_rpm, "is used with "
+                                 "--lift-off only (it bounds the lift-off speed searched)")
 
 
 def run(args) -> int:
@@ -84,6 +85,10 @@ def run(args) -> int:
     _check(args)
     grid = Grid.parse(args.grid)
     bearing, spec = load_running_bearing(args.bearing)   # [journal], [thermal] checked
+    from ..inputs.rotor_limits import check_surface_speed
+
+    check_surface_speed(bearing, [args.speed_rpm], "--speed-rpm")
+    check_surface_speed(bearing, [args.max_speed_rpm], "--max-speed-rpm")
     options = merge_options(stated_options(args), bearing.options)
     if args.lift_off:
         extra = {} if args.max_speed_rpm is None else {"max_speed_rpm": args.max_speed_rpm}

@@ -168,6 +168,9 @@ def operating_point(args) -> OperatingPoint:
         from ..inputs import load_bearing
 
         geometry = load_bearing(args.bearing)
+        from ..inputs.rotor_limits import check_surface_speed
+
+        check_surface_speed(geometry, [args.speed_rpm], "--speed-rpm")
         model = geometry.model(args.speed_rpm, foil=args.foil or "simple", **common)
         if args.top_foil_coefficient is not None:
             model = model.replace(top_foil_coefficient=args.top_foil_coefficient)

@@ -66,6 +66,9 @@ def running_operating_point(args, ipopt_options: Optional[dict] = None):
     from ..thermal.files import load_running_bearing
 
     bearing, spec = load_running_bearing(args.bearing)       # the tables checked
+    from ..inputs.rotor_limits import check_surface_speed
+
+    check_surface_speed(bearing, [getattr(args, "speed_rpm", None)], "--speed-rpm")
     if spec.model_name == ISOTHERMAL:
         return None
     from ..inputs.options import merge_options

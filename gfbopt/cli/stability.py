@@ -152,6 +152,10 @@ def run(args) -> int:
     _check(args)
     grid = grid_of(args)
     bearing, spec = load_running_bearing(args.bearing)      # [journal], [thermal] checked
+    from ..inputs.rotor_limits import check_surface_speed
+
+    check_surface_speed(bearing, [args.speed_rpm], "--speed-rpm")
+    check_surface_speed(bearing, list(args.speed_range or ()), "--speed-range")
     options = merge_options(stated_options(args), bearing.options)
     if args.mass is not None:      # M = M̄ W0/(c ω²): the same rotor, in kg
         mass = mass_from_parameter(args.mass, bearing.radial_clearance,

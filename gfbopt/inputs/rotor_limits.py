@@ -202,6 +202,22 @@ def _check_imbalance(system, where: str) -> None:
                              "at every speed above the rigid-body criticals)")
 
 
+def check_surface_speed(bearing, speeds, name: str) -> None:
+    """Every speed [rpm] of ``speeds`` moves the journal surface of ``bearing`` (a
+    BearingGeometry, SI) at most :data:`MAX_SURFACE_SPEED`: the rotor's rule, for one bearing
+    (``gfbopt stability``, ``capacity``, ``static``, ``linear``, ``orbit``); one ParameterError
+    naming ``name``, before any solve."""
+    for speed in speeds:
+        if speed is None:
+            continue
+        surface = float(speed) * math.pi / 30.0 * bearing.radius
+        if not surface <= MAX_SURFACE_SPEED:
+            fastest = MAX_SURFACE_SPEED / bearing.radius * 30.0 / math.pi
+            raise ParameterError(name, speed, f"moves the journal surface at {surface:.3g} m/s, "
+                                 f"above {MAX_SURFACE_SPEED:g} m/s (rotors burst near 600–700 "
+                                 f"m/s): at most {fastest:.6g} rpm")
+
+
 def check_rotor_speeds(system, speeds, name: str = "--speed-range") -> tuple:
     """``speeds`` [rpm] as floats, each finite and > 0 and with every bearing's bearing
     number Λ at most :data:`~gfbopt.inputs.model.MAX_BEARING_NUMBER` (one ParameterError
