@@ -92,6 +92,11 @@ def pct(new: float, reference: float) -> float:
 
 # ---------------------------------------------------------------- what the text quotes
 
+#: the rotor transient with bump friction (results/rotor_friction_transient)
+RFT = "results/rotor_friction_transient/cases.csv"
+RFT_ROW = {"case": "blower_friction", "grid": "72x20", "speed_rpm": 13500}
+
+
 @dataclass(frozen=True)
 class Quoted:
     source: str                      # the shipped file the value is read from
@@ -374,6 +379,11 @@ QUOTED: dict[str, Quoted] = {
         key(f"{BENCH}/thermal.json", "onset.heat_cpu_s")), "{:.2f}"),
     "thermal_onset_isothermal_cpu_s": Quoted(f"{BENCH}/thermal.json", lambda: statistics.median(
         key(f"{BENCH}/thermal.json", "onset.isothermal_cpu_s")), "{:.2f}"),
+    "rotor_friction_speed_rpm": Quoted(RFT, lambda: cell(RFT, "speed_rpm", **RFT_ROW, bearing="A")),
+    "rotor_friction_a_um": Quoted(RFT, lambda: cell(RFT, "amplitude_um", **RFT_ROW, bearing="A"),
+                                  "{:.2f}"),
+    "rotor_friction_b_um": Quoted(RFT, lambda: cell(RFT, "amplitude_um", **RFT_ROW, bearing="B"),
+                                  "{:.1f}"),
     "thermal_onset_ratio": Quoted(f"{BENCH}/thermal.json", lambda: key(
         f"{BENCH}/thermal.json", "onset.onset_ratio"), "{:.2f}"),
     "thermal_heat_onset_rpm": Quoted(f"{BENCH}/thermal.json", lambda: key(
