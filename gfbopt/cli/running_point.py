@@ -1,5 +1,6 @@
-"""``gfbopt static`` and ``gfbopt linear`` on a bearing file with ``[journal]``/``[thermal]``:
-the operating point at the running condition of the file's speed.
+"""``gfbopt static``, ``gfbopt linear`` and ``gfbopt orbit`` on a bearing file with
+``[journal]``/``[thermal]``: the operating point at the running condition of the file's speed
+(the orbit: the bearing held at that condition, constant speed, for the whole transient).
 
 The running point (:func:`gfbopt.thermal.running.running_point`: the centrifugal growth, and
 with ``[thermal]`` the heat balance's fixed point of temperatures, growths, μ(T) and clearance
@@ -15,12 +16,13 @@ command's output is today's, unchanged.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Optional
+from typing import Callable, Optional
 
 from ..errors import ParameterError
 from ..thermal.running import HEAT_BALANCE, ISOTHERMAL, RunningPoint
 
-#: the clearance at speed's fields added to ``gfbopt static/linear --json`` for such a file
+#: the clearance at speed's fields added to ``gfbopt static/linear/orbit --json`` for such a
+#: file
 RUNNING_FIELDS = ("thermal_model", "cold_clearance_um", "running_clearance_um",
                   "centrifugal_growth_um", "thermal_growth_um", "film_temperature_c",
                   "viscosity_pa_s", "running")
@@ -56,11 +58,14 @@ class _OneSolver:
         return self.others(model, grid)
 
 
-def running_operating_point(args, ipopt_options: Optional[dict] = None):
+def running_operating_point(args, ipopt_options: Optional[dict] = None,
+                            check: Optional[Callable] = None):
     """None when ``args.bearing`` is not given or its file states neither ``[journal]`` nor
     ``[thermal]`` (the command's route of today).  Else (the OperatingPoint at the running
     condition or None when there is no running state, the RunningPoint, the solver of the
-    command's grid): bad input refused in one line before any solve."""
+    command's grid): bad input refused in one line before any solve (``check(model)``, the
+    command's own rules on the cold model, e.g. ``gfbopt orbit``'s method and damping, is
+    called before anything is built)."""
     if getattr(args, "bearing", None) is None:
         return None
     from ..thermal.files import load_running_bearing
@@ -88,9 +93,7 @@ def running_operating_point(args, ipopt_options: Optional[dict] = None):
                   subambient=args.subambient, compression_only=args.compression_only,
                   seam_angle_deg=args.seam_angle, loss_factor=args.loss_factor,
                   foil=args.foil or "simple")
-    for key in ("friction_coefficient", "friction_stiffness_ratio"):
-        if getattr(resolved, key, None) is not None:
-            kwargs[key] = getattr(resolved, key)
+    kwargs.update(resolved.bump_kwargs())   # friction and hardening, as operating_point
     if args.eccentricity is None and args.load is None and args.load_newton is None:
         raise ParameterError("--eccentricity/--load", None, "give one of them (or "
                              "--load-newton)")
@@ -102,6 +105,8 @@ def running_operating_point(args, ipopt_options: Optional[dict] = None):
     grid = grid_of(args)
     speed = args.speed_rpm
     cold_model = _model(bearing, speed, kwargs, args)
+    if check is not None:
+        check(cold_model)
     solver = solver_for(cold_model, grid, ipopt_options=ipopt_options)
     load_newton = (args.load_newton if args.load_newton is not None else
                    None if args.load is None else bearing.load_newton(args.load))

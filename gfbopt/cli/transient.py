@@ -177,21 +177,51 @@ def _check_damping(args, op) -> None:
         args.method, damped=eta > 0.0)
 
 
-def _operating_point(args):
+def _check_loss_factor(args) -> None:
     from ..errors import ParameterError
 
     if args.loss_factor is not None and args.loss_factor < 0:
         raise ParameterError("--loss-factor", args.loss_factor, "must be >= 0 (a negative "
                              "loss factor would feed energy into the rotor)")
+
+
+def _operating_point(args):
+    _check_loss_factor(args)
     op = operating_point(args)
     _check_damping(args, op)
     return op
 
 
-def _solve(op):
+def _orbit_point(args):
+    """(OperatingPoint or None, RunningPoint or None, solver or None) of ``gfbopt orbit``: a
+    bearing file with ``[journal]``/``[thermal]`` held at its running condition at
+    ``--speed-rpm`` exactly as ``gfbopt static`` holds it
+    (:func:`gfbopt.cli.running_point.running_operating_point`; the damping and method checked
+    on the cold model before the heat balance is solved); else today's operating point."""
+    from .running_point import running_operating_point
+
+    _check_loss_factor(args)
+    running = running_operating_point(
+        args, check=lambda model: _check_damping(args, _Model(model)))
+    if running is None:                          # no [journal]/[thermal]: today's route
+        return _operating_point(args), None, None
+    op, point, solver = running
+    if op is not None:
+        _check_damping(args, op)
+    return op, point, solver
+
+
+class _Model:
+    """An operating point's ``model`` alone (what :func:`_check_damping` reads)."""
+
+    def __init__(self, model):
+        self.model = model
+
+
+def _solve(op, solver=None):
     from ..static import solve_static, solver_for
 
-    solver = solver_for(op.model, op.grid)
+    solver = solver or solver_for(op.model, op.grid)
     sol = solve_static(op.model, eccentricity=op.eccentricity, load=op.load, solver=solver)
     return solver, sol
 
@@ -249,8 +279,12 @@ def run_orbit(args) -> int:
 
     _refuse_method_options(args)
     _check_orbit_mass(args)
-    op = _operating_point(args)
-    solver, sol = _solve(op)
+    op, point, solver = _orbit_point(args)
+    if op is None:                               # thermal runaway or closure at the speed
+        from .running_point import no_running_state
+
+        return no_running_state(point, "orbit", args.json)
+    solver, sol = _solve(op, solver)
     mass = _orbit_mass(args, op, sol)
     tm = transient_model(sol, args.reference_whirl_ratio, solver,
                          friction=op.model.has_friction)
@@ -278,16 +312,28 @@ def run_orbit(args) -> int:
                         rotor_mass_kg=args.rotor_mass_kg)
     out = {**settings, **orbit.to_dict(0), "eccentricity": sol.eccentricity,
            "load": sol.load, "attitude_angle_deg": sol.attitude_angle_deg}
-    emit(out, args.json, lambda: (
-        f"gfbopt orbit — M̄ = {mass:.6g}"
-        + (f" ({args.rotor_mass_kg:g} kg)" if args.mass is None else "")
-        + f": {out['verdict']}, growth rate "
-        f"{out['growth_rate']:.3g} per rad, whirl ratio {out['whirl_ratio']:.4g}, "
-        f"min film {out['min_film']:.4g}, {out['revolutions']:.1f} revolutions "
-        f"({args.method}, Δτ = {orbit.time_step:.3g}) in {orbit.wall_time_s:.1f} s"
-        + _damping_text(orbit)
-        + ("" if orbit.success else f"  ** FAILED: {orbit.message}")), settings)
+    if point is not None:                        # the clearance at speed (RUNNING_FIELDS)
+        from .running_point import running_fields
+
+        out.update(running_fields(point))
+    emit(out, args.json, lambda: _orbit_text(out, args, mass, orbit), settings)
     return 0 if orbit.success else 1
+
+
+def _orbit_text(out: dict, args, mass: float, orbit) -> str:
+    text = (f"gfbopt orbit — M̄ = {mass:.6g}"
+            + (f" ({args.rotor_mass_kg:g} kg)" if args.mass is None else "")
+            + f": {out['verdict']}, growth rate "
+            f"{out['growth_rate']:.3g} per rad, whirl ratio {out['whirl_ratio']:.4g}, "
+            f"min film {out['min_film']:.4g}, {out['revolutions']:.1f} revolutions "
+            f"({args.method}, Δτ = {orbit.time_step:.3g}) in {orbit.wall_time_s:.1f} s"
+            + _damping_text(orbit)
+            + ("" if orbit.success else f"  ** FAILED: {orbit.message}"))
+    if not out.get("running"):
+        return text
+    from .stability import running_lines
+
+    return "\n".join([text] + running_lines(out["running"]))
 
 
 def run_critical_mass(args) -> int:
