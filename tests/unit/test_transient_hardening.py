@@ -6,36 +6,32 @@ the hardened transient; hardening off is today's law object; friction 0 with η 
 integrate_orbits' damped answer."""
 import dataclasses
 import math
-from pathlib import Path
 
 import numpy as np
 import pytest
 from scipy.optimize import brentq
 
-from gfbopt.inputs import load_bearing
-from gfbopt.inputs.grid import Grid
-from gfbopt.inputs.options import resolve_model_options
 from gfbopt.physics.foil_laws import foil_law
 from gfbopt.physics.foil_recovery import row_mean_phi
 from gfbopt.physics.hardening import hardened_foil_deflection, hardened_reaction_nd
-from gfbopt.static import solve_static
 from gfbopt.transient.friction_foil import FrictionFoil, friction_rows
 from gfbopt.transient.friction_orbit import integrate_friction_orbits
-from gfbopt.transient.hardening_recovery import HardeningData, row_balance, transient_foil_law
+from gfbopt.transient.hardening_recovery import (
+    HardeningData,
+    row_balance,
+    transient_foil_law,
+)
 from gfbopt.transient.orbit import integrate_orbits
-from gfbopt.transient.system import (RightHandSide, equilibrium_state, pressure_and_film,
-                                     rigid_film, transient_model)
+from gfbopt.transient.system import (
+    RightHandSide,
+    equilibrium_state,
+    pressure_and_film,
+    rigid_film,
+    transient_model,
+)
+from tests.hardened_case import HARD, solved
 
-ROOT = Path(__file__).resolve().parents[2]
-GRID = Grid(24, 8)
-HARD = dict(hardening_exponent=3.0, hardening_limit=0.8)
-
-
-def _solved(**changes):
-    bearing = load_bearing(ROOT / "problems/bearings/ruscitto.toml")
-    kw = resolve_model_options(bearing.options).model_kwargs()
-    model = bearing.model(30000.0, **kw).replace(**changes)
-    return solve_static(model, load=bearing.nondimensional_load(20.0), grid=GRID)
+_solved = solved
 
 
 def _brent(phit, c, hr, s, n, lim, comp, kb, z, sb):

@@ -11,26 +11,15 @@ import numpy as np
 import pytest
 
 from gfbopt.inputs import load_bearing
-from gfbopt.inputs.grid import Grid
-from gfbopt.inputs.options import resolve_model_options
 from gfbopt.linear import linear_threshold, linearise
 from gfbopt.linear.friction_onset import settled_amplitude
 from gfbopt.linear.least_stable import least_stable_mode
-from gfbopt.static import solve_static
 from gfbopt.transient.friction_orbit import friction_outcome, integrate_friction_orbits
 from gfbopt.transient.orbit import integrate_orbits
 from gfbopt.transient.system import transient_model
+from tests.hardened_case import GRID, HARD, ROOT, solved
 
-ROOT = Path(__file__).resolve().parents[2]
-GRID = Grid(24, 8)
-HARD = dict(hardening_exponent=3.0, hardening_limit=0.8)
-
-
-def _solved(**changes):
-    bearing = load_bearing(ROOT / "problems/bearings/ruscitto.toml")
-    kw = resolve_model_options(bearing.options).model_kwargs()
-    model = bearing.model(30000.0, **kw).replace(**changes)
-    return solve_static(model, load=bearing.nondimensional_load(20.0), grid=GRID)
+_solved = solved
 
 
 def test_the_hardened_static_equilibrium_is_the_transients():
@@ -95,9 +84,14 @@ def test_symmetric_rotor_on_hardened_bearings_is_the_one_bearing_transient():
     from gfbopt.static import SolverCache
     from gfbopt.transient.rotor_films import fusable
     from gfbopt.transient.rotor_run import integrate_rotor
-    from gfbopt.transient.rotor_setup import (RotorBearing, RotorInput, build_model,
-                                              equilibrium_states, set_station_velocities,
-                                              static_force_of)
+    from gfbopt.transient.rotor_setup import (
+        RotorBearing,
+        RotorInput,
+        build_model,
+        equilibrium_states,
+        set_station_velocities,
+        static_force_of,
+    )
     from gfbopt.transient.rotor_system import rigid_rotor_matrices, runs
 
     bearing, g, speed = load_bearing(ROOT / "problems/bearings/ruscitto.toml"), 9.80665, 30_000.0
