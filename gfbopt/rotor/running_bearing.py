@@ -293,19 +293,36 @@ def running_load_capacity(bearing, spec: RunningSpec, speed_rpm, min_film_um, *,
         return _failed(_no_search(bearing, speed_rpm, min_film_um, options, grid), point,
                        0, 0, "load_capacity_newton")
     result = load_capacity(warm_bearing(bearing, point), speed_rpm, min_film_um, **kw)
+    if spec.model_name != HEAT_BALANCE:
+        return _answer(result, point, 1, 0)
+
+    def running_at(load):                    # the heat balance under the answer's load
+        drag = FilmDrag(_film(bearing, options, grid, cache, load),
+                        start=coarse_start(grid, cache))
+        found = running_point(spec, speed_rpm, drag)
+        return (found if found.converged else _under_load(found, load)), drag.solves
+
+    return _iterate(result, point, running_at,
+                    lambda p: load_capacity(warm_bearing(bearing, p), speed_rpm, min_film_um,
+                                            **kw),
+                    "load_capacity_newton", tolerance, max_steps)
+
+
+def _iterate(result, point, running_at, search, key, tolerance, max_steps) -> dict:
+    """The search's fixed point with its running condition: the running point at the
+    previous answer (``running_at(value) -> (point, static solves)``), the search again on
+    that warm bearing (``search(point)``), until the answer moves by ≤ ``tolerance``
+    (relative) or is not finite; a failing running point ends it as :func:`_failed`."""
     iterations, solves = 1, 0
-    if spec.model_name != HEAT_BALANCE or not math.isfinite(result.value):
-        return _answer(result, point, iterations, solves)
     for _ in range(max_steps):
-        film = _film(bearing, options, grid, cache, result.value)
-        drag = FilmDrag(film, start=coarse_start(grid, cache))
-        point = running_point(spec, speed_rpm, drag)
-        solves += drag.solves
-        if not point.converged:
-            point = _under_load(point, result.value)
-            return _failed(result, point, iterations, solves, "load_capacity_newton")
+        if not math.isfinite(result.value):
+            break
         previous = result.value
-        result = load_capacity(warm_bearing(bearing, point), speed_rpm, min_film_um, **kw)
+        point, used = running_at(previous)
+        solves += used
+        if not point.converged:
+            return _failed(result, point, iterations, solves, key)
+        result = search(point)
         iterations += 1
         if not math.isfinite(result.value) or \
                 abs(result.value - previous) <= tolerance * previous:
@@ -344,25 +361,18 @@ def running_lift_off(bearing, spec: RunningSpec, load_newton, min_film_um, *,
     cache = cache or SolverCache(grid)
     kw = dict(options=options, grid=grid, cache=cache, max_speed_rpm=max_speed_rpm)
     result = lift_off_speed(bearing, load_newton, min_film_um, **kw)
-    iterations, solves = 1, 0
     point = without_heat(spec, result.value if math.isfinite(result.value)
                          else max_speed_rpm)
     if spec.model_name == ISOTHERMAL:
-        return _answer(result, point, iterations, solves)
+        return _answer(result, point, 1, 0)
     film = _film(bearing, options, grid, cache, load_newton)
-    for _ in range(max_steps):
-        if not math.isfinite(result.value):
-            break
-        previous = result.value
+
+    def running_at(speed):                   # the running point at the answer's speed
         drag = FilmDrag(film, start=coarse_start(grid, cache))
-        point = running_point(spec, previous, drag)
-        solves += drag.solves
-        if not point.converged:
-            point = _under_load(point, load_newton)
-            return _failed(result, point, iterations, solves, "lift_off_speed_rpm")
-        result = lift_off_speed(warm_bearing(bearing, point), load_newton, min_film_um, **kw)
-        iterations += 1
-        if not math.isfinite(result.value) or \
-                abs(result.value - previous) <= tolerance * previous:
-            break
-    return _answer(result, point, iterations, solves)
+        found = running_point(spec, speed, drag)
+        return (found if found.converged else _under_load(found, load_newton)), drag.solves
+
+    return _iterate(result, point, running_at,
+                    lambda p: lift_off_speed(warm_bearing(bearing, p), load_newton,
+                                             min_film_um, **kw),
+                    "lift_off_speed_rpm", tolerance, max_steps)
