@@ -19,8 +19,8 @@ BEARING_FILE`, documented for users in ``docs/formats/bearing_file.md`` (generat
     [thermal]                   # optional: the lumped heat balance (needs [journal])
 
 (:mod:`gfbopt.inputs.thermal_tables`; read by :func:`gfbopt.thermal.files.load_running_bearing`
-for ``gfbopt stability`` and ``gfbopt capacity``; :func:`load_bearing` refuses them on every
-other route rather than answer with the cold clearance.)
+on the routes of :data:`RUNNING_ROUTES`; :func:`load_bearing` refuses them on every other
+route rather than answer with the cold clearance.)
 
 The file is checked as strictly as a study file, before anything is built: an unknown table or
 key (``[modle]``) is refused with "did you mean", and a geometry that cannot be built (a bump
@@ -50,6 +50,16 @@ from .file_schema import BEARING, BEARING_FILE, check_file, check_table
 from .options import ModelOptions
 from .thermal_tables import RUNNING_EXAMPLE, RUNNING_TABLES
 
+#: the study kinds (``gfbopt run``) that read [journal] and [thermal]: each point at its
+#: running condition (gfbopt.studies.base.load_running_geometry); other kinds refuse the file
+RUNNING_STUDY_KINDS = ("onset_conventions",)
+#: the commands that read [journal] and [thermal]; other routes refuse a file stating them
+RUNNING_ROUTES = ("`gfbopt stability`, `gfbopt capacity`, `gfbopt static`, `gfbopt linear` "
+                  "and `gfbopt orbit` (gfbopt.thermal.files), gfbopt.api's stability, "
+                  "onset_speed, load_capacity and lift_off_speed given the file's path, the "
+                  "analyses of `gfbopt rotor` (load_rotor(..., running=True)) and the study "
+                  "kinds " + ", ".join(f"`{k}`" for k in RUNNING_STUDY_KINDS)
+                  + " (`gfbopt run`)")
 #: the bearing file with the clearance at speed's ``[journal]`` and ``[thermal]`` tables
 #: (:mod:`gfbopt.inputs.thermal_tables`); the file every route checks against
 BEARING_FILE_RUNNING = dataclasses.replace(
@@ -57,13 +67,8 @@ BEARING_FILE_RUNNING = dataclasses.replace(
     example=BEARING_FILE.example + RUNNING_EXAMPLE,
     doc=BEARING_FILE.doc + "  The optional `[journal]` and `[thermal]` tables give the "
     "clearance at speed (centrifugal and thermal growth, Sutherland's viscosity, a lumped "
-    "heat balance), used by `gfbopt stability`, `capacity`, `static` and `linear`; a file "
-    "with neither keeps the isothermal, cold-clearance answers.")
-#: the commands that read [journal] and [thermal]; other routes refuse a file stating them
-RUNNING_ROUTES = ("`gfbopt stability`, `gfbopt capacity`, `gfbopt static` and `gfbopt linear` "
-                  "(gfbopt.thermal.files), gfbopt.api's stability, onset_speed, load_capacity "
-                  "and lift_off_speed given the file's path, and the analyses of "
-                  "`gfbopt rotor` (load_rotor(..., running=True))")
+    f"heat balance), read by {RUNNING_ROUTES}; a file with neither keeps the isothermal, "
+    "cold-clearance answers.")
 
 #: largest TOML file read [bytes] (a bearing or study file is a few kB)
 MAX_FILE_BYTES = 1_000_000

@@ -135,10 +135,44 @@ def build_model(options: dict, where: Where, *, rigid_when_no_compliance: bool =
 
 
 def load_geometry(study: Study) -> BearingGeometry:
-    """The bearing file named by the study (relative to the study file)."""
+    """The bearing file named by the study (relative to the study file).  A file stating
+    ``[journal]``/``[thermal]`` is refused in one line naming the study kind and the kinds
+    and commands that read the tables (:data:`~gfbopt.inputs.bearing_file.RUNNING_ROUTES`):
+    this kind would answer with the cold clearance."""
+    from ..inputs.bearing_file import RUNNING_ROUTES, read_bearing_file
+    from ..inputs.thermal_tables import RUNNING_TABLES
+
     path = study.directory / study.spec["bearing"]
     try:
+        stated = read_bearing_file(path)            # every table and key checked
+    except ParameterError as exc:
+        raise study.where("bearing").error(str(study.spec["bearing"]),
+                                           f"{exc.name}: {exc.rule}") from None
+    running = [f"[{t.name}]" for t in RUNNING_TABLES if t.name in stated]
+    if running:
+        raise study.where("bearing").error(str(study.spec["bearing"]), (
+            f"states {' and '.join(running)}, which the study kind '{study.kind}' does not "
+            "read in this version (it would use the cold clearance and a constant "
+            f"viscosity): the clearance at speed is read by {RUNNING_ROUTES}; use one of "
+            "those, or a file without the tables"))
+    try:
         return load_bearing(path)
+    except ParameterError as exc:
+        raise study.where("bearing").error(str(study.spec["bearing"]),
+                                           f"{exc.name}: {exc.rule}") from None
+
+
+def load_running_geometry(study: Study):
+    """(the bearing, its :class:`~gfbopt.thermal.running.RunningSpec`) of the bearing file
+    named by the study, for the kinds of
+    :data:`~gfbopt.inputs.bearing_file.RUNNING_STUDY_KINDS`: the ``[journal]`` and
+    ``[thermal]`` tables read and checked as every command reads them
+    (:func:`gfbopt.thermal.files.load_running_bearing`); a file with neither gives the
+    isothermal spec (the kind's route of today)."""
+    from ..thermal.files import load_running_bearing
+
+    try:
+        return load_running_bearing(study.directory / study.spec["bearing"])
     except ParameterError as exc:
         raise study.where("bearing").error(str(study.spec["bearing"]),
                                            f"{exc.name}: {exc.rule}") from None

@@ -33,17 +33,10 @@ from .base import (
     Study,
     StudyResult,
     frame,
-    load_geometry,
+    load_running_geometry,
 )
+from .onset_status import FAILED, ONSET, OVERLOAD, STABLE, UNSTABLE_ALL, UNSTABLE_LOW
 from .spec import GRID, UNSET, opt, req
-
-# ------------------------------------------------------------------ onset statuses
-ONSET = "onset"
-STABLE = "stable over the range"
-UNSTABLE_LOW = "unstable at the lowest speed"
-UNSTABLE_ALL = "unstable at every mass"
-OVERLOAD = "load exceeds capacity"
-FAILED = "failed"
 
 _FILM_KEYS = {
     "film": opt("string", "seam", "film: periodic or seam", choices=("periodic", "seam")),
@@ -86,10 +79,20 @@ SCHEMAS: dict[str, dict] = {
 # they are pickled to the workers)
 def onset_point(bearing, rotor_mass_kg: float, load_newton: float, speed_range, *,
                 film: str, seam_angle_deg, foil: str, deflection_law: str, loss_factor: float,
-                grid: Grid, cache=None) -> dict:
-    """The onset speed of one rotor on one formulation, as a row with ``onset_status``."""
+                grid: Grid, cache=None, running=None) -> dict:
+    """The onset speed of one rotor on one formulation, as a row with ``onset_status``;
+    with ``running`` (the bearing file's RunningSpec with ``[journal]``/``[thermal]``) at
+    the running condition of each speed (:func:`.running_points.running_onset_row`)."""
     from ..inputs.rotor import Rotor
     from ..rotor import onset_speed
+
+    if running is not None:
+        from .running_points import running_onset_row
+
+        return running_onset_row(bearing, running, rotor_mass_kg, load_newton, speed_range,
+                                 film=film, seam_angle_deg=seam_angle_deg, foil=foil,
+                                 deflection_law=deflection_law, loss_factor=loss_factor,
+                                 grid=grid, cache=cache)
 
     t0 = time.perf_counter()
     row = {"onset_speed_rpm": math.nan, "whirl_frequency_hz": math.nan,
@@ -208,7 +211,7 @@ def _status_text(row) -> str:
 # ------------------------------------------------------------------ onset_conventions
 def plan_onset_conventions(study: Study) -> dict:
     spec = study.spec
-    bearing = load_geometry(study)
+    bearing, running = load_running_geometry(study)     # [journal]/[thermal] read
     speed_range = _speed_range(study)
     for k, angle in enumerate(spec["seam_angles_deg"]):
         if not 0.0 <= angle < 360.0:
@@ -252,11 +255,19 @@ def plan_onset_conventions(study: Study) -> dict:
                   "load_newton": spec["load_newton"], "speed_range": speed_range,
                   "foil": model["foil"], "deflection_law": model["deflection_law"],
                   "loss_factor": model["loss_factor"], "grid": study.grid}
+    from ..thermal.running import ISOTHERMAL
+
+    if running.model_name != ISOTHERMAL:        # each onset at the running condition
+        from ..inputs.rotor_limits import check_surface_speed
+
+        check_surface_speed(bearing, list(speed_range), f"{study.file}: speed_range_rpm")
+        common["running"] = running
     points = [{**common, "film": f, "seam_angle_deg": None if s is None else _seam(s)}
               for f, s in conventions]
     tags = [{"convention": _convention_label(f, s), "film": f,
              "seam_angle_deg": s if s is not None else "none"} for f, s in conventions]
-    return {"points": points, "tags": tags, "bearing": bearing, "bump": bump}
+    return {"points": points, "tags": tags, "bearing": bearing, "bump": bump,
+            "thermal_model": common.get("running") and running.model_name}
 
 
 _CONVENTION_TITLES = {"periodic": "periodic film (no seam)",
@@ -298,9 +309,15 @@ def run_onset_conventions(study: Study, plan: dict, ctx: RunContext) -> StudyRes
                                     **plan.get("bump", {})}},
                "grid": str(study.grid), "rotor_mass_kg": spec["rotor_mass_kg"],
                "load_newton": spec["load_newton"], "speed_range_rpm": [low, high]}
+    if plan.get("thermal_model"):                # the clearance at speed, named
+        from .running_points import running_notes
+
+        options["thermal_model"] = plan["thermal_model"]
+        notes += running_notes(plan["thermal_model"], study.spec["bearing"])
     return StudyResult(study, tables={"onset.csv": table},
                        figures={"onset_speed.png": ax.figure}, checks=found, options=options,
-                       notes=notes)
+                       notes=notes, answer=({"thermal_model": plan["thermal_model"]}
+                                            if plan.get("thermal_model") else {}))
 
 
 def _convention_notes(table, by: dict) -> list:

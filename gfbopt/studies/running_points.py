@@ -1,0 +1,103 @@
+"""Study points at the running condition: a study whose bearing file states ``[journal]``/
+``[thermal]`` (the kinds of :data:`gfbopt.inputs.bearing_file.RUNNING_STUDY_KINDS`) evaluates
+each point through the functions ``gfbopt stability`` and :mod:`gfbopt.api` call
+(:mod:`gfbopt.rotor.running_bearing`: the growths, Sutherland's μ(T) and the lumped heat
+balance of :mod:`gfbopt.thermal`), so that a study row and the command give one answer for
+the same inputs.  A file with neither table never comes here: the kind's points are today's.
+
+* :func:`running_onset_row` — ``onset_conventions``: the onset of whirl with the running
+  clearance and viscosity at each speed (:func:`~gfbopt.rotor.running_bearing.running_onset`,
+  as ``gfbopt stability --bearing FILE --speed-range LOW HIGH``), with the running point at
+  the onset.
+"""
+from __future__ import annotations
+
+import math
+import time
+
+from ..errors import ParameterError
+
+#: the clearance at speed's columns of a row (glossary: gfbopt/terms/thermal.py), from the
+#: running point at the answer
+RUNNING_COLUMNS = ("thermal_model", "thermal_status", "running_clearance_um",
+                   "centrifugal_growth_um", "thermal_growth_um", "film_temperature_c",
+                   "viscosity_pa_s")
+#: the search's own figures of the running onset (glossary: gfbopt/terms/thermal.py)
+SEARCH_COLUMNS = ("frozen_onset_speed_rpm", "frozen_at_rpm", "thermal_evaluations",
+                  "thermal_static_solves", "thermal_limit_rpm", "thermal_limit_kind")
+
+
+def stated_options(bearing, *, film, seam_angle_deg, foil, deflection_law, loss_factor):
+    """The point's formulation over the bearing file's ``[model]``, then the defaults: the
+    resolution of ``gfbopt stability``'s flags (:func:`~gfbopt.inputs.options.merge_options`
+    of the stated options over ``bearing.options``)."""
+    from ..inputs.options import ModelOptions, merge_options
+
+    return merge_options(ModelOptions(film=film, seam_angle_deg=seam_angle_deg, foil=foil,
+                                      deflection_law=deflection_law,
+                                      loss_factor=loss_factor), bearing.options)
+
+
+def running_onset_row(bearing, running, rotor_mass_kg: float, load_newton: float,
+                      speed_range, *, film: str, seam_angle_deg, foil: str,
+                      deflection_law: str, loss_factor: float, grid, cache=None) -> dict:
+    """The onset row of :func:`gfbopt.studies.stability.onset_point` at the running
+    condition (``running``: the file's RunningSpec): ``onset_speed_rpm`` of
+    :func:`~gfbopt.rotor.running_bearing.running_onset` (searched from the geometric mean of
+    the range, as the command does without ``--speed-rpm``), the running point at the onset
+    (RUNNING_COLUMNS) and the search's figures (SEARCH_COLUMNS).  The frozen search's
+    margins are not the running answer: ``smallest_mass_margin`` and
+    ``critical_mass_kg_at_low_speed`` are NaN."""
+    from ..inputs.rotor import Rotor
+    from ..rotor.running_bearing import running_onset
+    from ..static import SolverCache
+    from .onset_status import (CLOSURE, FAILED, ONSET, OVERLOAD, STABLE, THERMAL_RUNAWAY,
+                               UNSTABLE_ALL, UNSTABLE_LOW)
+
+    t0 = time.perf_counter()
+    row = {"onset_speed_rpm": math.nan, "whirl_frequency_hz": math.nan,
+           "whirl_ratio": math.nan, "onset_status": FAILED, "smallest_mass_margin": math.nan,
+           "critical_mass_kg_at_low_speed": math.nan, "thermal_model": running.model_name}
+    options = stated_options(bearing, film=film, seam_angle_deg=seam_angle_deg, foil=foil,
+                             deflection_law=deflection_law, loss_factor=loss_factor)
+    try:
+        found = running_onset(bearing, running, Rotor(rotor_mass_kg), load_newton,
+                              tuple(speed_range), options=options, grid=grid,
+                              cache=cache or SolverCache(grid))
+    except ParameterError as exc:
+        overload = "load capacity" in str(exc)
+        return {**row, "onset_status": OVERLOAD if overload else FAILED, "success": overload,
+                "message": str(exc), "wall_time_s": time.perf_counter() - t0}
+    onset = found.get("onset_speed_rpm", math.nan)
+    if math.isfinite(onset):
+        status = ONSET
+    elif found.get("thermal_limit_kind"):
+        status = CLOSURE if found["thermal_limit_kind"] == "closure" else THERMAL_RUNAWAY
+    elif found.get("unstable_at_lower_end"):
+        first = found["scan"][0]
+        status = UNSTABLE_ALL if first["critical_mass_parameter"] == 0 else UNSTABLE_LOW
+    elif found.get("stable_over_range"):
+        status = STABLE
+    else:
+        status = FAILED
+    point = found.get("running") or {}
+    row.update({key: point.get(key, math.nan) for key in RUNNING_COLUMNS[1:]})
+    row.update({key: found.get(key, math.nan) for key in SEARCH_COLUMNS})
+    row.update(onset_speed_rpm=onset, whirl_frequency_hz=found.get("whirl_frequency_hz"),
+               whirl_ratio=found.get("whirl_ratio", math.nan), onset_status=status,
+               evaluations=found.get("evaluations", 0),
+               success=bool(found.get("success", True)) and status != FAILED,
+               message=found.get("answer") or found.get("message", ""),
+               wall_time_s=time.perf_counter() - t0)
+    return row
+
+
+def running_notes(thermal_model: str, bearing_file: str) -> list:
+    """The README/summary notes of a study at the running condition (its model named)."""
+    return [f"Clearance at speed: the bearing file {bearing_file} states the running "
+            f"condition ({thermal_model}); each point is evaluated at its running clearance "
+            "and viscosity, through the functions `gfbopt stability` and gfbopt.api call "
+            "(gfbopt.rotor.running_bearing), so a row equals the command's answer for the same "
+            "inputs. The columns thermal_model … viscosity_pa_s give the running point at the "
+            "answer; smallest_mass_margin and critical_mass_kg_at_low_speed are empty (the "
+            "frozen search's figures are not the running answer)."]
