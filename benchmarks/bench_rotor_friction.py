@@ -1,7 +1,8 @@
 """What the bumps' Coulomb friction costs the rotor transient, and the blower's top-speed run.
 
 Run:  OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1 python benchmarks/bench_rotor_friction.py
-      [--repeats N] [--out FILE]      (default results/benchmarks/rotor_friction.json)
+      [--repeats N] [--out FILE] [--eta η] [--only-damped]
+      (default results/benchmarks/rotor_friction.json)
 
 1. ``per_revolution``: CPU time (time.process_time) per shaft revolution of the rotor
    transient of problems/rotors/blower_friction.toml (μ_f = 0.5, κ = 2 at both bearings:
@@ -19,6 +20,10 @@ Run:  OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1 python benchmarks/bench_rotor_fri
    .settled_whirl, same grid).
 3. ``blower_limit_cycle``: the same at 13,500 rpm (just above the onset) for 400 revolutions,
    where the whirl settles on a limit cycle.  Target ≤ 60 s CPU.
+4. ``per_revolution_damped``: part 1 with a loss factor η (``--eta``, default 0.2) at both
+   bearings of both rotors: friction + η (the Kelvin–Voigt W and the sliders in its rate)
+   against η alone (the damped fused films of today).  ``--only-damped`` runs this part only
+   and adds its key to the existing ``--out`` file, keeping the others as they were.
 
 The machine's load (uptime) is stated before and after each part: 2 cores shared with other
 jobs, so only CPU time and interleaved ratios are meaningful.
@@ -31,10 +36,12 @@ for _var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
     os.environ[_var] = "1"
 
 import argparse  # noqa: E402
+import json  # noqa: E402
 import math  # noqa: E402
 import statistics  # noqa: E402
 import sys  # noqa: E402
 import time  # noqa: E402
+from dataclasses import replace  # noqa: E402
 from pathlib import Path  # noqa: E402
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))  # noqa: E402
@@ -59,20 +66,31 @@ def load() -> str:
     return os.popen("uptime").read().strip()
 
 
-def _setup(name: str):
-    model, _ = build_model(rotor_input(load_rotor(ROTORS / f"{name}.toml")), SPEED, GRID)
+def _setup(name: str, eta: float = 0.0):
+    system = load_rotor(ROTORS / f"{name}.toml")
+    if eta > 0:
+        system = replace(system, bearings=tuple(
+            replace(b, options=replace(b.options, loss_factor=eta)) for b in system.bearings))
+    model, _ = build_model(rotor_input(system), SPEED, GRID)
     z = set_station_velocities(model, equilibrium_states(model, 1),
                                [[7.07e-4, 7.07e-4], [7.07e-4, 7.07e-4]])
     return model, z
 
 
-def per_revolution(repeats: int) -> dict:
-    cases = {"friction": _setup("blower_friction"), "bare": _setup("blower")}
+def per_revolution(repeats: int, eta: float = 0.0) -> dict:
+    """Part 1 (η = 0: friction against bare) or part 4 (η > 0: friction + η against η)."""
+    cases = {"friction": _setup("blower_friction", eta), "bare": _setup("blower", eta)}
     duration = 2 * math.pi * REVOLUTIONS
     rules = {"fixed": {"time_step": 0.1, "stages": 6}, "default": {}}
     out = {"grid": str(GRID), "speed_rpm": SPEED, "revolutions_per_run": REVOLUTIONS,
            "method": "rkc", "pairs": repeats, "target_ratio": 2.0,
            "load_before": load()}
+    if eta > 0:
+        out.update(loss_factor=eta, cases="friction: blower_friction with η at both "
+                   "bearings (Kelvin–Voigt W and sliders); bare: blower with η (no friction)",
+                   reference_whirl_ratio={name: [b.tm.foil_state.reference_whirl_ratio
+                                                 for b in model.bearings]
+                                          for name, (model, _) in cases.items()})
     for rule, step in rules.items():
         cpu = {k: [] for k in cases}
         info = {}
@@ -83,6 +101,8 @@ def per_revolution(repeats: int) -> dict:
                 cpu[name].append((time.process_time() - t) / REVOLUTIONS)
                 assert run.success and not run.contact[0], run.message
                 info[name] = {"evaluations_per_revolution": run.evaluations / REVOLUTIONS,
+                              "damped": all(b.tm.foil_state is not None
+                                            for b in model.bearings),
                               "time_step_rad": run.time_step, "rkc_stages": list(run.stages),
                               "sliders_integrated": run.sliders is not None}
         ratios = [a / b for a, b in zip(cpu["friction"], cpu["bare"])]
@@ -164,18 +184,41 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--repeats", type=int, default=5)
     parser.add_argument("--out", default=str(ROOT / "results/benchmarks/rotor_friction.json"))
+    parser.add_argument("--eta", type=float, default=0.2,
+                        help="loss factor η of part 4 (friction + η against η alone)")
+    parser.add_argument("--only-damped", action="store_true",
+                        help="run part 4 only and add its key to the existing --out file")
     args = parser.parse_args()
-    out = {"machine": machine_info(), "source": tree_label(ROOT),
-           "measured_code": measured_state(),
-           "per_revolution": per_revolution(args.repeats),
-           "blower_top_speed": blower_top_speed(),
-           "blower_limit_cycle": blower_limit_cycle()}
+    if not (math.isfinite(args.eta) and args.eta > 0):
+        parser.exit(2, f"--eta = {args.eta}: must be finite and > 0 (the loss factor of "
+                       "part 4)\n")
+    if args.only_damped:
+        if not Path(args.out).is_file():
+            parser.exit(2, f"--out = {args.out}: --only-damped adds a key to an existing "
+                           "results file, and there is none\n")
+        out = json.loads(Path(args.out).read_text())
+        out["per_revolution_damped"] = {"machine": machine_info(), "source": tree_label(ROOT),
+                                        "measured_code": measured_state(),
+                                        **per_revolution(args.repeats, args.eta)}
+    else:
+        out = {"machine": machine_info(), "source": tree_label(ROOT),
+               "measured_code": measured_state(),
+               "per_revolution": per_revolution(args.repeats),
+               "per_revolution_damped": per_revolution(args.repeats, args.eta),
+               "blower_top_speed": blower_top_speed(),
+               "blower_limit_cycle": blower_limit_cycle()}
     path = write_report(out, args.out)
-    p = out["per_revolution"]
-    for rule in ("fixed", "default"):
-        print(f"{rule:8s} friction/bare CPU per revolution: median {p[rule]['ratio_median']:.2f} "
-              f"(pairs {p[rule]['ratio_range'][0]:.2f}–{p[rule]['ratio_range'][1]:.2f}; "
-              "target ≤ 2)")
+    parts = (("per_revolution_damped", "friction+η/η"),) if args.only_damped else (
+        ("per_revolution", "friction/bare"), ("per_revolution_damped", "friction+η/η"))
+    for key, words in parts:
+        p = out[key]
+        for rule in ("fixed", "default"):
+            print(f"{rule:8s} {words} CPU per revolution: median "
+                  f"{p[rule]['ratio_median']:.2f} (pairs {p[rule]['ratio_range'][0]:.2f}–"
+                  f"{p[rule]['ratio_range'][1]:.2f}; target ≤ 2)")
+    if args.only_damped:
+        print(f"written {path}")
+        return
     b = out["blower_top_speed"]
     print(f"blower_friction 60,000 rpm 72x20: {b['cpu_s']:.1f} s CPU; "
           + "; ".join(f"{e['bearing']}: {e['verdict']}" for e in b["bearings"])

@@ -28,7 +28,8 @@ module                        responsibility
 :mod:`.rotor_model`           the model: a :class:`~gfbopt.rotor.structure.Structure` on its films
 :mod:`.rotor_layout`          where each part of a packed batch state sits
 :mod:`.rotor_films`           both bearings' films in one fused numpy evaluation
-:mod:`.rotor_friction_films`  the fused films of bearings whose bumps rub
+:mod:`.rotor_friction_films`  the fused films of bearings whose bumps rub (with or without η,
+                              the sliders in the Kelvin–Voigt rate)
 :mod:`.rotor_friction`        each bearing's sliders beside the rotor's state
 :mod:`.rotor_running`         each bearing's running line over a ramp (a heated rotor)
 :mod:`.rotor_heated`          the heated rotor's model, start and result on its running line

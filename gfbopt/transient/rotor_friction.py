@@ -12,10 +12,20 @@ by the play operator at the step's final deflection (:func:`move_sliders`, which
 is confined to the steps containing a reversal of W (tests/verification/
 test_friction_transient.py: halving the step moves the settled amplitude by 1e-4).
 
-The fused film evaluation (:mod:`.rotor_films`) carries no slider: a rotor with friction at
-any bearing runs its films through the one-bearing kernels (stacked in one call when both
-bearings have the same film structure and the same friction elements, :func:`same_friction`).
-Implicit methods (bdf) are refused (the sliders move between accepted steps only).
+The fused film evaluation (:mod:`.rotor_films`) carries no slider: a rotor whose every
+bearing rubs on θ rows runs the fused friction rows (:mod:`.rotor_friction_films`), others
+the one-bearing kernels (stacked in one call when both bearings have the same film structure
+and the same friction elements, :func:`same_friction`).  Implicit methods (bdf) are refused
+(the sliders move between accepted steps only).
+
+With a loss factor η > 0 as well, each bearing keeps the one-bearing friction driver's
+model (:mod:`.friction_orbit`, :mod:`.foil_state` "With friction"): its Kelvin–Voigt W is
+integrated with the rest, P and H come from W alone, and the sliders enter W's rate,
+τ_f W' + W = S (q − r); after each step Z moves from the state's W.  The fused rows carry it
+(μ_f = 0 is the damped rotor transient bit for bit; the symmetric rotor equals the
+one-bearing friction + η orbit to 4e-14 c, tests/unit/test_rotor_friction_damped.py); a
+rotor whose films take the one-bearing kernels is refused friction with η > 0
+(:func:`.rotor_setup.check_damped_friction`).
 
 How a constant-speed run ended, per bearing (:func:`bearing_outcomes`): 'contact' (the run
 ended at the film's closure), 'settled limit cycle' (the semi-major axis of the whirl's
@@ -110,7 +120,8 @@ def move_sliders(rhs, z: np.ndarray) -> tuple:
             out.append(None)
             continue
         hr = rigid_film(xy[:, k, 0], xy[:, k, 1], b.tm)
-        out.append(slider_after_step(rhs.layout.phi_of(z, k), hr, zk, b.tm))
+        out.append(slider_after_step(rhs.layout.phi_of(z, k), hr, zk, b.tm,
+                                     rhs.layout.foil_of(z, k)))
     return tuple(out)
 
 
