@@ -161,7 +161,11 @@ def model_words(model) -> str:
         return ""
     parts = [f"μ_f = {v['friction_coefficient']:g}, κ = {v['friction_stiffness_ratio']:g} "
              f"at {name}" for name, v in d.items()]
-    return "bump friction " + "; ".join(parts) + f" ({MODEL_WORDS})"
+    damped = any(b.tm.friction is not None and b.tm.foil_state is not None
+                 for b in model.bearings)
+    return "bump friction " + "; ".join(parts) + f" ({MODEL_WORDS}" + (
+        "; with the loss factor the element acts in the Kelvin–Voigt foil's rate"
+        if damped else "") + ")"
 
 
 # ------------------------------------------------------------------ how a run ended

@@ -21,7 +21,8 @@ from gfbopt.errors import ParameterError
 from gfbopt.inputs.rotor_system import load_rotor
 from gfbopt.transient.friction_foil import slider_after_step
 from gfbopt.transient.friction_orbit import friction_outcome, integrate_friction_orbits
-from gfbopt.transient.rotor_friction import bearing_outcomes, initial_sliders, move_sliders
+from gfbopt.transient.rotor_friction import (bearing_outcomes, initial_sliders, model_words,
+                                             move_sliders)
 from gfbopt.transient.rotor_io import rotor_input
 from gfbopt.transient.rotor_run import integrate_rotor
 from gfbopt.transient.rotor_setup import build_model
@@ -74,6 +75,8 @@ def test_fused_damped_friction_rows_equal_the_one_bearing_kernels():
                                                0.2)), 60000.0, GRID)
     assert all(b.tm.foil_state is not None and b.tm.friction is not None
                for b in model.bearings)
+    assert model_words(model).endswith("with the loss factor the element acts in the "
+                                       "Kelvin–Voigt foil's rate)")
     rng = np.random.default_rng(5)
     z = _kicked(model, 2)
     z[:, :, :-9] *= 1 + 0.02 * rng.standard_normal(z[:, :, :-9].shape)
