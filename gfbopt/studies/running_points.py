@@ -8,12 +8,19 @@ the same inputs.  A file with neither table never comes here: the kind's points 
 * :func:`running_onset_row` — ``onset_conventions``: the onset of whirl with the running
   clearance and viscosity at each speed (:func:`~gfbopt.rotor.running_bearing.running_onset`,
   as ``gfbopt stability --bearing FILE --speed-range LOW HIGH``), with the running point at
-  the onset.
+  the onset;
+* :func:`running_static_row` — ``load_sweep``: the static equilibrium of each (speed, load)
+  at its running condition (the heat balance under that load), as ``gfbopt static --bearing
+  FILE --speed-rpm N --load-newton F`` (:mod:`gfbopt.cli.running_point`): the fixed point of
+  :func:`gfbopt.thermal.running.running_point` with :class:`~gfbopt.thermal.bearing.FilmDrag`
+  started by :func:`~gfbopt.rotor.running_bearing.coarse_start`, then one cold static solve
+  of :func:`~gfbopt.thermal.bearing.warm_bearing`.
 """
 from __future__ import annotations
 
 import math
 import time
+from dataclasses import dataclass
 
 from ..errors import ParameterError
 
@@ -51,8 +58,16 @@ def running_onset_row(bearing, running, rotor_mass_kg: float, load_newton: float
     from ..inputs.rotor import Rotor
     from ..rotor.running_bearing import running_onset
     from ..static import SolverCache
-    from .onset_status import (CLOSURE, FAILED, ONSET, OVERLOAD, STABLE, THERMAL_RUNAWAY,
-                               UNSTABLE_ALL, UNSTABLE_LOW)
+    from .onset_status import (
+        CLOSURE,
+        FAILED,
+        ONSET,
+        OVERLOAD,
+        STABLE,
+        THERMAL_RUNAWAY,
+        UNSTABLE_ALL,
+        UNSTABLE_LOW,
+    )
 
     t0 = time.perf_counter()
     row = {"onset_speed_rpm": math.nan, "whirl_frequency_hz": math.nan,
@@ -94,10 +109,91 @@ def running_onset_row(bearing, running, rotor_mass_kg: float, load_newton: float
 
 def running_notes(thermal_model: str, bearing_file: str) -> list:
     """The README/summary notes of a study at the running condition (its model named)."""
-    return [f"Clearance at speed: the bearing file {bearing_file} states the running "
-            f"condition ({thermal_model}); each point is evaluated at its running clearance "
+    return [(f"Clearance at speed: the bearing file {bearing_file} states the running "
+             f"condition ({thermal_model}); each point is evaluated at its running clearance "
             "and viscosity, through the functions `gfbopt stability` and gfbopt.api call "
             "(gfbopt.rotor.running_bearing), so a row equals the command's answer for the same "
             "inputs. The columns thermal_model … viscosity_pa_s give the running point at the "
             "answer; smallest_mass_margin and critical_mass_kg_at_low_speed are empty (the "
-            "frozen search's figures are not the running answer)."]
+            "frozen search's figures are not the running answer).")]
+
+
+@dataclass(frozen=True)
+class Formulation:
+    """A point's resolved model keywords, as a :class:`~gfbopt.thermal.bearing.FilmCase`'s
+    ``options`` (``model_kwargs()``)."""
+
+    kwargs: tuple
+
+    def model_kwargs(self) -> dict:
+        return dict(self.kwargs)
+
+
+def model_keywords(bearing, opts: dict) -> Formulation:
+    """The keywords of :meth:`BearingGeometry.model` that
+    :func:`gfbopt.analyses.bearing_model` resolves from a study point's ``opts`` (the
+    variant's and the study's keys over the bearing file's ``[model]``, then the defaults;
+    ``subambient`` and ``compression_only`` as stated)."""
+    named = ("film", "seam_angle_deg", "foil", "deflection_law", "loss_factor")
+    resolved = stated_options(bearing, **{key: opts.get(key) for key in named})
+    extra = {key: value for key, value in opts.items() if key not in named}
+    return Formulation(tuple(sorted({**resolved.model_kwargs(), **extra}.items())))
+
+
+def running_static_row(bearing, running, formulation: Formulation, speed_rpm: float,
+                       load_newton: float, *, grid, cache=None) -> dict:
+    """One row of ``load_sweep`` at the running condition of (speed, load): the static row
+    of the warm bearing (:func:`gfbopt.analyses.static_row` with the geometry: h_min in µm
+    of the running clearance, drag, power) and the running point (RUNNING_COLUMNS,
+    ``thermal_static_solves``).  No running state (thermal runaway, closure): NaN figures,
+    ``thermal_status`` and the message say why, ``success`` False."""
+    from ..analyses import STATIC_OUTPUTS, static_row
+    from ..rotor.running_bearing import coarse_start
+    from ..static import SolverCache, solve_static
+    from ..thermal.bearing import FilmCase, FilmDrag, warm_bearing
+    from ..thermal.running import HEAT_BALANCE, running_point, without_heat
+
+    t0 = time.perf_counter()
+    cache = cache or SolverCache(grid)
+    kwargs = formulation.model_kwargs()
+    solves = 0
+    if running.model_name == HEAT_BALANCE:
+        drag = FilmDrag(FilmCase(bearing, formulation, grid, cache, load_newton),
+                        start=coarse_start(grid, cache))
+        point = running_point(running, speed_rpm, drag)
+        solves = drag.solves
+    else:
+        point = without_heat(running, speed_rpm)
+    d = point.to_dict()
+    found = {"thermal_model": running.model_name,
+             **{key: d[key] for key in RUNNING_COLUMNS[1:]}, "thermal_static_solves": solves}
+    message = point.message
+    if point.converged:
+        try:
+            warm = warm_bearing(bearing, point)
+        except ParameterError as exc:
+            warm, message = None, (f"the running clearance {point.running_clearance * 1e6:.3g}"
+                                   f" µm cannot be analysed ({exc})")
+        if warm is not None:
+            model = warm.model(speed_rpm, **kwargs)
+            sol = solve_static(model, load=warm.nondimensional_load(load_newton),
+                               solver=cache(model, grid))
+            row = static_row(model, sol, warm)
+            row["load_newton"] = load_newton
+            return {**row, **found, "wall_time_s": time.perf_counter() - t0}
+    model = bearing.model(speed_rpm, **kwargs)             # the cold groups, for the row
+    nan = math.nan
+    return {**model.groups(), **dict.fromkeys(STATIC_OUTPUTS, nan), "load_newton": load_newton,
+            "min_film_thickness_um": nan, "drag_torque_nm": nan, "power_loss_w": nan,
+            **found, "success": False, "message": message or "no running state",
+            "wall_time_s": time.perf_counter() - t0}
+
+
+def running_static_notes(thermal_model: str, bearing_file: str) -> list:
+    """The README/summary notes of a load sweep at the running condition."""
+    return [(f"Clearance at speed: the bearing file {bearing_file} states the running "
+             f"condition ({thermal_model}); each (speed, load) is the equilibrium at its own "
+            "running clearance and viscosity (the heat balance under that load), as `gfbopt "
+            "static --bearing FILE --speed-rpm N --load-newton F` gives it; "
+            "min_film_thickness_um is of the running clearance, and the columns "
+            "thermal_model … viscosity_pa_s give the running point of each row.")]

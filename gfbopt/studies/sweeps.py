@@ -25,6 +25,7 @@ from .base import (
     StudyResult,
     frame,
     load_geometry,
+    load_running_geometry,
     merged,
     options_of,
     variant_titles,
@@ -36,9 +37,15 @@ LOAD_TRENDS = {"min_film_thickness_decreases_with_load": ("min_film_thickness_um
 
 
 def _plan(study: Study) -> tuple:
-    """(geometry, [(variant label, speed, model)]) — models of every variant and speed."""
+    """(geometry, [(variant label, speed, model)]) — models of every variant and speed; for
+    ``load_sweep`` on a file with ``[journal]``/``[thermal]`` a third item, the running
+    condition (:func:`_running`); a file without them gives today's plan unchanged."""
     spec = study.spec
-    geometry = load_geometry(study)
+    running = None
+    if study.kind == "load_sweep":               # reads [journal]/[thermal]
+        geometry, running = load_running_geometry(study)
+    else:
+        geometry = load_geometry(study)
     for key in ("speeds_rpm", "loads_newton"):
         for k, v in enumerate(spec[key]):
             if v <= 0:
@@ -53,7 +60,26 @@ def _plan(study: Study) -> tuple:
                 raise (study.where("variants", k) / exc.name).error(exc.value,
                                                                     exc.rule) from None
             models.append((variant["label"], speed, model))
-    return geometry, models
+    running = _running(study, geometry, running)
+    return (geometry, models) if running is None else (geometry, models, running)
+
+
+def _running(study: Study, geometry, running):
+    """None without the tables; else {"spec": the RunningSpec, "formulations": the model
+    keywords of each variant (:func:`.running_points.model_keywords`)}."""
+    from ..thermal.running import ISOTHERMAL
+
+    if running is None or running.model_name == ISOTHERMAL:
+        return None
+    from ..inputs.rotor_limits import check_surface_speed
+    from .running_points import model_keywords
+
+    check_surface_speed(geometry, list(study.spec["speeds_rpm"]), f"{study.file}: speeds_rpm")
+    spec = study.spec
+    return {"spec": running, "formulations": {
+        variant["label"]: model_keywords(geometry, {key: v for key, v in merged(
+            spec["model"], variant).items() if key != "label"})
+        for variant in spec["variants"]}}
 
 
 plan_load_sweep = _plan
@@ -72,13 +98,17 @@ def run_load_sweep(study: Study, plan: tuple, ctx: RunContext) -> StudyResult:
     from ..plotting import plot_load_sweep
 
     spec = study.spec
-    geometry, models = plan
-    loads = [geometry.nondimensional_load(w) for w in spec["loads_newton"]]
-    rows = run_points(analyses.load_curve,
-                      [{"model": m, "loads": loads, "grid": study.grid, "geometry": geometry}
-                       for _, _, m in models],
-                      tags=[{"variant": label, "foil": m.foil, "speed_rpm": speed}
-                            for label, speed, m in models], progress=ctx.progress)
+    geometry, models, *heated = plan
+    running = heated[0] if heated else None
+    if running is None:
+        loads = [geometry.nondimensional_load(w) for w in spec["loads_newton"]]
+        rows = run_points(analyses.load_curve,
+                          [{"model": m, "loads": loads, "grid": study.grid,
+                            "geometry": geometry} for _, _, m in models],
+                          tags=[{"variant": label, "foil": m.foil, "speed_rpm": speed}
+                                for label, speed, m in models], progress=ctx.progress)
+    else:                 # each (speed, load) at its running condition (the heat balance)
+        rows = _running_rows(study, geometry, models, running, ctx)
     table = frame(rows, ("variant", "foil", "speed_rpm", "load_newton"))
     found = [checks.all_converged(table)]
     for name in spec["trends"]:
@@ -94,8 +124,29 @@ def run_load_sweep(study: Study, plan: tuple, ctx: RunContext) -> StudyResult:
         ax = plot_load_sweep(table, quantity, labels=titles,
                              title=f"{what} against static load: {geometry.name} bearing")
         figures[name] = ax.figure
+    options, notes, answer = _options(study, models), [], {}
+    if running is not None:                      # the clearance at speed, named
+        from .running_points import running_static_notes
+
+        options["thermal_model"] = answer["thermal_model"] = running["spec"].model_name
+        notes = running_static_notes(running["spec"].model_name, spec["bearing"])
     return StudyResult(study, tables={"table.csv": table}, figures=figures, checks=found,
-                       options=_options(study, models))
+                       options=options, notes=notes, answer=answer)
+
+
+def _running_rows(study: Study, geometry, models: list, running: dict, ctx) -> list:
+    from ..inputs import DEFAULT_GRID
+    from .running_points import running_static_row
+
+    points, tags = [], []
+    for label, speed, model in models:
+        for load_newton in study.spec["loads_newton"]:
+            points.append({"bearing": geometry, "running": running["spec"],
+                           "formulation": running["formulations"][label],
+                           "speed_rpm": speed, "load_newton": load_newton,
+                           "grid": study.grid or DEFAULT_GRID})
+            tags.append({"variant": label, "foil": model.foil, "speed_rpm": speed})
+    return run_points(running_static_row, points, tags=tags, progress=ctx.progress)
 
 
 def run_linear_coefficients(study: Study, plan: tuple, ctx: RunContext) -> StudyResult:

@@ -89,7 +89,7 @@ def test_a_centrifugal_file_takes_an_eccentricity():
      "--reference-whirl-ratio"),
 ])
 def test_refusals_are_one_line_before_any_solve(extra, option, monkeypatch):
-    import gfbopt.thermal.running as running
+    from gfbopt.thermal import running
 
     def no_solve(*args, **kwargs):
         raise AssertionError("the heat balance was solved")

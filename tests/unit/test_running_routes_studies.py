@@ -1,8 +1,8 @@
 """Studies on a bearing file with [journal]/[thermal]: ``onset_conventions`` evaluates each
 onset at the running condition through the functions ``gfbopt stability`` and gfbopt.api
-call (one answer whatever the route), naming the model in summary.json and the README;
-kinds that do not read the tables refuse the file in one line naming the kind, before any
-solve."""
+call, ``load_sweep`` each (speed, load) as ``gfbopt static`` does (one answer whatever the
+route), naming the model in summary.json and the README; kinds that do not read the tables
+refuse the file in one line naming the kind, before any solve."""
 import json
 import math
 import re
@@ -57,8 +57,9 @@ def heated(tmp_path_factory):
 
 
 def test_the_study_kinds_reading_the_tables_are_listed_in_the_routes():
-    assert RUNNING_STUDY_KINDS == ("onset_conventions",)
-    assert "`onset_conventions`" in RUNNING_ROUTES and "`gfbopt orbit`" in RUNNING_ROUTES
+    assert RUNNING_STUDY_KINDS == ("onset_conventions", "load_sweep")
+    for route in ("`onset_conventions`", "`load_sweep`", "`gfbopt orbit`"):
+        assert route in RUNNING_ROUTES
 
 
 @pytest.mark.parametrize("convention", sorted(FLAGS))
@@ -136,7 +137,7 @@ def no_solver(monkeypatch):
 
 @pytest.mark.parametrize("problem, kind", [
     ("loss_factor", "loss_factor_map"), ("ruscitto_coefficients", "linear_coefficients"),
-    ("ruscitto_static", "load_sweep"), ("ruscitto_drag", "drag_power"),
+    ("ruscitto_drag", "drag_power"),
     ("ruscitto_pitch_design", "pitch_design"), ("ruscitto_preload", "onset_as_built")])
 def test_kinds_that_do_not_read_the_tables_refuse_in_one_line(tmp_path, no_solver, problem,
                                                                kind):
@@ -150,5 +151,121 @@ def test_kinds_that_do_not_read_the_tables_refuse_in_one_line(tmp_path, no_solve
     assert len(line.splitlines()) == 1
     assert f"the study kind '{kind}' does not read" in line
     assert re.search(r"states \[journal\] and \[thermal\]", line)
-    assert "`onset_conventions`" in line and "`gfbopt stability`" in line
+    assert "`onset_conventions`, `load_sweep`" in line and "`gfbopt stability`" in line
     assert not (tmp_path / "results").exists() or not any((tmp_path / "results").iterdir())
+
+
+SWEEP = f"""
+name = "heated_sweep"
+kind = "load_sweep"
+title = "Minimum film against load at the running condition"
+source = "gfbopt"
+grid = "{GRID}"
+bearing = "bearings/BEARING"
+speeds_rpm = [30000.0, 45000.0]
+loads_newton = [10.0, 20.0, 40.0]
+trends = ["min_film_thickness_decreases_with_load", "eccentricity_increases_with_load"]
+[model]
+film = "seam"
+seam_angle_deg = "max_film"
+[[variants]]
+label = "simple"
+foil = "simple"
+[[variants]]
+label = "beam"
+foil = "beam"
+"""
+
+
+@pytest.fixture(scope="module")
+def sweep(tmp_path_factory):
+    tmp = tmp_path_factory.mktemp("sweep")
+    result = run_study(_study(tmp, text=SWEEP), results_root=tmp / "results")
+    return result, tmp / "results" / "heated_sweep"
+
+
+@pytest.mark.parametrize("foil, speed, load", [("simple", 45000.0, 20.0),
+                                               ("beam", 30000.0, 40.0)])
+def test_a_load_sweep_row_is_the_static_commands_equilibrium(sweep, foil, speed, load):
+    table = sweep[0].tables["table.csv"]
+    row = table[(table["variant"] == foil) & (table["speed_rpm"] == speed)
+                & (table["load_newton"] == load)].iloc[0]
+    cli = run_cli("static", "--bearing", THERMAL, "--speed-rpm", f"{speed:g}",
+                  "--load-newton", f"{load:g}", "--seam-angle", "max_film", "--foil", foil,
+                  "--grid", GRID, "--json")
+    assert cli.returncode == 0, cli.stderr
+    out = json.loads(cli.stdout)
+    assert row["thermal_model"] == out["thermal_model"] == HEAT_BALANCE
+    # the same fixed point and the same cold solve of the warm bearing (1e-9: rounding)
+    for key in (*RUNNING, "eccentricity", "attitude_angle_deg", "min_film_thickness_um",
+                "power_loss_w", "bearing_number", "compliance"):
+        assert row[key] == pytest.approx(out[key], rel=1e-9), key
+    assert row["min_film_thickness_um"] == pytest.approx(
+        row["min_film"] * row["running_clearance_um"], rel=1e-12)
+    assert row["running_clearance_um"] < 19.0 and bool(row["success"])
+
+
+def test_the_load_sweeps_outputs_name_the_thermal_model(sweep):
+    result, folder = sweep
+    assert result.checks_hold                     # converged, h_min falls and ε rises
+    summary = json.loads((folder / "summary.json").read_text())
+    assert summary["thermal_model"] == HEAT_BALANCE
+    assert any("running clearance" in n for n in summary["notes"])
+    assert f"thermal_model = {HEAT_BALANCE}" in (folder / "README.md").read_text()
+    header = (folder / "table.csv").read_text().splitlines()[0].split(",")
+    assert {"thermal_model", "thermal_static_solves", *RUNNING} <= set(header)
+
+
+def test_a_load_sweep_without_the_tables_is_todays(tmp_path):
+    loaded = load_study(_study(tmp_path, "ruscitto.toml", text=SWEEP))
+    assert len(loaded.plan) == 2                  # today's plan: no running condition
+    result = compute(loaded)
+    assert not set(result.tables["table.csv"].columns) & {"thermal_model", *RUNNING}
+    assert result.answer == {} and "thermal_model" not in result.options
+
+
+def _hot(tmp_path):
+    """The thermal file with its paths to ambient choked (a runaway below 60,000 rpm)."""
+    src = THERMAL.read_text()
+    for old, new in (("journal_to_ambient = 0.5 ", "journal_to_ambient = 0.02"),
+                     ("sleeve_to_ambient = 1.0 ", "sleeve_to_ambient = 0.02")):
+        assert old in src
+        src = src.replace(old, new)
+    (tmp_path / "bearings").mkdir(exist_ok=True)
+    (tmp_path / "bearings" / "hot.toml").write_text(src)
+
+
+def test_no_running_state_is_a_row_saying_so(tmp_path):
+    _hot(tmp_path)
+    text = (SWEEP.replace("bearings/BEARING", "bearings/hot.toml")
+            .replace("[30000.0, 45000.0]", "[60000.0]").replace("[10.0, 20.0, 40.0]", "[20.0]"))
+    (tmp_path / "sweep.toml").write_text(text)
+    result = compute(load_study(tmp_path / "sweep.toml"))
+    row = result.tables["table.csv"].iloc[0]
+    assert row["thermal_status"] == "runaway" and "thermal runaway" in row["message"]
+    assert math.isnan(row["min_film_thickness_um"]) and math.isnan(row["eccentricity"])
+    assert not bool(row["success"]) and not result.checks_hold   # no equilibrium: exit 1
+    # the command says the same: no running state, exit 1
+    cli = run_cli("static", "--bearing", tmp_path / "bearings" / "hot.toml", "--speed-rpm",
+                  "60000", "--load-newton", "20", "--seam-angle", "max_film", "--grid", GRID,
+                  "--json")
+    assert cli.returncode == 1 and json.loads(cli.stdout)["running"]["thermal_status"] == \
+        "runaway"
+
+
+def test_a_runaway_before_the_onset_is_the_rows_status(tmp_path):
+    _hot(tmp_path)
+    text = (STUDY.replace("bearings/BEARING", "bearings/hot.toml")
+            .replace("rotor_mass_kg = 2.0", "rotor_mass_kg = 0.2"))
+    (tmp_path / "study.toml").write_text(text)
+    table = compute(load_study(tmp_path / "study.toml")).tables["onset.csv"]
+    row = table.set_index("convention").loc["seam_180"]
+    assert row["onset_status"] == "thermal runaway" and math.isnan(row["onset_speed_rpm"])
+    cli = run_cli("stability", "--bearing", tmp_path / "bearings" / "hot.toml",
+                  "--rotor-mass-kg", "0.2", "--load-newton", "20", "--speed-range", "3000",
+                  "60000", "--film", "seam", "--seam-angle", "180", "--grid", GRID, "--json")
+    out = json.loads(cli.stdout)
+    assert out["onset_speed_rpm"] is None
+    assert row["thermal_limit_rpm"] == pytest.approx(out["onset"]["thermal_limit_rpm"],
+                                                     rel=1e-9)
+    assert 20000.0 < row["thermal_limit_rpm"] < 60000.0
