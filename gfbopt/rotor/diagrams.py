@@ -9,7 +9,10 @@ answer.
   mode's name (``track_label``, one name per track, no two alike: the matched-whirl onset's
   label where the track loses its damping at that onset; :func:`gfbopt.rotor.tracking.
   name_tracks` states the rule) and the shape class of its own row (``shape_label``, which
-  drifts with speed on an asymmetric rotor); the table has the damped
+  drifts with speed on an asymmetric rotor); a track that breaks between two speeds is
+  joined again and a root found at one speed only that continues no track is left out of
+  the table and stated (``dropped``; :func:`gfbopt.rotor.tracking.stitch`: no line of one
+  point, no name of no mode); the table has the damped
   natural frequency [Hz], whirl ratio, log decrement, damping ratio and growth rate of every
   mode.  With a loss factor the foil's Kelvin–Voigt states use at each
   speed the reference whirl ratio of the least-stable matched-whirl crossing there (stated in
@@ -40,7 +43,7 @@ from ..progress import progress
 from ..threads import single_threaded
 from .campbell import MAX_WHIRL, system_modes
 from .modes import ellipse_radii
-from .tracking import assign, guesses, name_tracks
+from .tracking import MAX_COST, assign, guesses, name_tracks, stitch
 from .onset import onset_speed
 from .running import speed_columns
 from .rigid import dynamic_stiffness, imbalance_forces, station_matrix
@@ -63,6 +66,10 @@ class CampbellDiagram:
     #: a shaft's modes are followed up to this damped natural frequency [Hz] (every mode
     #: below it at every speed; the rigid body's four always); nan: a rigid body
     frequency_limit_hz: float = math.nan
+    #: the roots found at one speed only that no track continues, taken out of the table
+    #: (:func:`~gfbopt.rotor.tracking.stitch`): one dict each, speed_rpm, whirl_frequency_hz,
+    #: log_decrement, shape_label and reason
+    dropped: tuple = ()
 
     def least_stable(self) -> pd.Series:
         """The row with the smallest log decrement."""
@@ -122,6 +129,8 @@ def campbell_diagram(line: SpeedLine, speeds, show_progress: bool = True,
             active = assign(tracks, active, speed, states.omega, modes, positions, start,
                             line.rotor.structure)
             refs[speed] = ref
+    tracks, lost = stitch(tracks, list(refs), positions, line.rotor.structure)
+    dropped = tuple(_dropped(tr, least) for tr, least in lost)
     rows = []
     names = name_tracks([[(s, m) for s, m, _ in tr] for tr in tracks], onsets or (),
                         line.rotor)
@@ -138,7 +147,24 @@ def campbell_diagram(line: SpeedLine, speeds, show_progress: bool = True,
     table = pd.DataFrame(rows)
     if not table.empty:
         table = table.sort_values(["mode", "speed_rpm"]).reset_index(drop=True)
-    return CampbellDiagram(table, skipped, limit)
+    return CampbellDiagram(table, skipped, limit, dropped)
+
+
+def _dropped(track: list, least: float) -> dict:
+    """What a root found at one speed only was, and why it is not a track."""
+    speed, m, _ = track[0]
+    why = f"found at {speed:,.0f} rpm only: "
+    if not math.isfinite(least):
+        why += ("no track ends at the speed before it or starts at the one after, so it "
+                "continues none")
+    elif least > MAX_COST:
+        why += (f"it continues no track (least join cost {least:.3g} > {MAX_COST:g}: "
+                "gfbopt.rotor.tracking.stitch)")
+    else:
+        why += (f"the track it could continue (join cost {least:.3g}) continues a mode "
+                "nearer it")
+    return {"speed_rpm": float(speed), "whirl_frequency_hz": float(m.whirl_frequency_hz),
+            "log_decrement": float(m.log_decrement), "shape_label": m.label, "reason": why}
 
 
 @dataclass(frozen=True)

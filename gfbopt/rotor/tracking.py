@@ -18,6 +18,20 @@ read through the structure's stations, S(z_k) q, for any structure),
 s_pred the track's prediction (per second). A match costing more than :data:`MAX_COST` starts a
 new track instead.
 
+Gaps (:func:`stitch`, after the last speed).  A step of a coarse diagram can change a mode's
+damping by more than its frequency: the blower rotor's forward modes on the half-speed line
+go from log decrement 3.1 at 4,000 rpm to −0.05 at 13,333 rpm (7 speeds), so the eigenvalue's
+jump alone exceeds :data:`MAX_COST` and the mode went on as a new track, leaving a track of
+one point with a name of its own.  So every track that ends before the last speed is joined
+to a track that starts at the next speed when :func:`join_cost` — :func:`cost` with the jump
+of the damped natural frequency alone (the Campbell line is continuous in Hz), the lesser of
+the forward prediction from the ending track and the backward one from the starting track —
+is at most :data:`MAX_COST`, by the optimal assignment of the ends to the starts at each
+speed.  A track still shorter than :data:`MIN_POINTS` (a root found at one speed only that
+continues no track) is taken out of the table and stated with its reason
+(:attr:`gfbopt.rotor.diagrams.CampbellDiagram.dropped`): no one-point line, no name that
+belongs to no mode.
+
 Names (one name per mode, used by every output: the text, JSON, CSV and the figures).  A
 mode's name is its shape class (:func:`gfbopt.rotor.modes.label`: "forward conical", …); a
 matched-whirl onset's mode keeps the onset's label.  Each Campbell row also keeps its own
@@ -66,6 +80,9 @@ MAX_COST = 1.5
 #: (1 − MAC) in the cost [-]: continuity of the eigenvalue decides, the shape breaks ties
 #: (at a veering the shapes of two modes exchange, their eigenvalues do not jump)
 FREQUENCY_WEIGHT = 4.0
+#: a track of fewer points than this is no line of the diagram: joined to the track it
+#: continues (:func:`stitch`) or taken out, stated and counted [-]
+MIN_POINTS = 2
 #: a track continues at the root nearest its guess when that root is within this of the
 #: guess, relative [-]
 NEAR = 0.25
@@ -101,11 +118,18 @@ def predicted(track: list, speed: float, omega: float) -> list:
         (speed - s1) / (s1 - s0))]
 
 
-def cost(track: list, mode, speed: float, omega: float, positions, structure=None) -> float:
+def cost(track: list, mode, speed: float, omega: float, positions, structure=None,
+         frequency_only: bool = False) -> float:
     """(1 − MAC with the track's last mode) + :data:`FREQUENCY_WEIGHT` × the distance of the
-    mode's eigenvalue from the track's (nearest) prediction, relative (module docstring)."""
-    jump = min(abs(mode.eigenvalue * omega - g) / abs(g)
-               for g in predicted(track, speed, omega))
+    mode's eigenvalue from the track's (nearest) prediction, relative (module docstring);
+    ``frequency_only``: the distance of the damped natural frequencies alone (Im s ω), as
+    :func:`stitch` measures it."""
+    if frequency_only:
+        jump = min(abs((mode.eigenvalue * omega).imag - g.imag) / abs(g.imag)
+                   for g in predicted(track, speed, omega))
+    else:
+        jump = min(abs(mode.eigenvalue * omega - g) / abs(g)
+                   for g in predicted(track, speed, omega))
     shape_change = 1.0 - mac(orbit_vector(track[-1][1], positions, structure),
                              orbit_vector(mode, positions, structure))
     return shape_change + FREQUENCY_WEIGHT * jump
@@ -156,6 +180,50 @@ def assign(tracks: list, active: list, speed: float, omega: float, modes: list,
             tracks.append([(speed, m, omega)])
             new_active.append(len(tracks) - 1)
     return new_active
+
+
+def join_cost(end: list, start: list, positions, structure=None) -> float:
+    """The cost of track ``start`` (its first speed the one after ``end``'s last) being the
+    continuation of track ``end``: the lesser of :func:`cost` (frequency only) of ``start``'s
+    first mode on ``end`` predicted forwards and of ``end``'s last mode on ``start``
+    predicted backwards (module docstring, "Gaps")."""
+    s1, m1, w1 = start[0]
+    s0, m0, w0 = end[-1]
+    return min(cost(end, m1, s1, w1, positions, structure, frequency_only=True),
+               cost(start[::-1], m0, s0, w0, positions, structure, frequency_only=True))
+
+
+def stitch(tracks: list, speeds, positions, structure=None) -> tuple[list, list]:
+    """(tracks, dropped): the tracks (lists of (speed, mode, omega)) with every track that
+    ends at one of ``speeds`` [rpm] (the speeds solved, in order) joined to the track that
+    continues it at the next speed — the optimal assignment of the ends to the starts on
+    :func:`join_cost`, a pair joined when it costs at most :data:`MAX_COST` — and then every
+    track still shorter than :data:`MIN_POINTS` taken out: ``dropped``, (track, the least
+    :func:`join_cost` to a kept track ending at the speed before it or starting at the one
+    after; inf when there is none) (module docstring, "Gaps")."""
+    speeds = sorted(set(float(s) for s in speeds))
+    out = [list(t) for t in tracks]
+    for a, b in zip(speeds, speeds[1:]):
+        ends = [i for i, t in enumerate(out) if t and t[-1][0] == a]
+        starts = [j for j, t in enumerate(out) if t and t[0][0] == b]
+        if not (ends and starts):
+            continue
+        matrix = np.array([[join_cost(out[i], out[j], positions, structure) for j in starts]
+                           for i in ends])
+        for r, c in zip(*linear_sum_assignment(matrix)):
+            if matrix[r, c] <= MAX_COST:
+                out[ends[r]].extend(out[starts[c]])
+                out[starts[c]] = []
+    kept = [t for t in out if len(t) >= MIN_POINTS]
+    dropped = []
+    for t in (t for t in out if 0 < len(t) < MIN_POINTS):
+        k = speeds.index(float(t[0][0]))
+        before = speeds[k - 1] if k > 0 else None
+        after = speeds[k + 1] if k + 1 < len(speeds) else None
+        near = [join_cost(u, t, positions, structure) for u in kept if u[-1][0] == before]
+        near += [join_cost(t, u, positions, structure) for u in kept if u[0][0] == after]
+        dropped.append((t, min(near, default=math.inf)))
+    return kept, dropped
 
 
 def _zero(rows: list):

@@ -22,6 +22,7 @@ import pytest
 
 from gfbopt.cli import main
 from gfbopt.cli import rotor as rotor_cli
+from gfbopt.rotor.tracking import MIN_POINTS
 
 ROOT = Path(__file__).resolve().parents[2]
 ROTORS = ROOT / "problems" / "rotors"
@@ -29,7 +30,7 @@ SPEEDS = 8
 HIGH = 60000.0
 
 
-def _run(folder: Path, rotor: Path, *extra) -> dict:
+def _run(folder: Path, rotor: Path, *extra, low: float = 5000.0) -> dict:
     """One CLI run read as JSON, as text, as CSV and through the figures' legends."""
     legends, printed = {}, []
     original_emit = rotor_cli.emit
@@ -50,7 +51,7 @@ def _run(folder: Path, rotor: Path, *extra) -> dict:
     buffer = io.StringIO()
     try:
         with contextlib.redirect_stdout(buffer):
-            code = main(["rotor", str(rotor), "--speed-range", "5000", f"{HIGH:g}",
+            code = main(["rotor", str(rotor), "--speed-range", f"{low:g}", f"{HIGH:g}",
                          "--grid", "24x8", "--json", "--csv", str(folder / "csv"), *extra])
     finally:
         mp.undo()
@@ -112,6 +113,8 @@ def test_every_output_gives_each_mode_one_label(flexible):
     line = text.split("tracks: ", 1)[1].splitlines()[0]
     for number, label in json_tracks.items():
         assert re.search(rf"(^|; ){number} {re.escape(label)}( \(damping|;|$)", line)
+    # no track of one point (gfbopt.rotor.tracking.stitch): every legend entry is a line
+    assert table.groupby("mode").size().min() >= MIN_POINTS
     speeds = sorted(table["speed_rpm"].unique())
     width = speeds[1] - speeds[0]
     for m in onsets:
@@ -159,3 +162,49 @@ def test_the_blower_keeps_its_onsets(tmp_path):
     assert found == {"forward conical": pytest.approx(12282.348178892993, rel=1e-9),
                      "forward cylindrical": pytest.approx(13079.731056007204, rel=1e-9)}
     assert all(m["shape"]["shape_class"] in ("conical", "cylindrical") for m in out["modes"])
+
+
+def _same_names(run: dict) -> dict:
+    """mode number → name, checked equal in campbell.csv, the JSON, the figure's legend and
+    the text's "tracks:" line."""
+    table, out, legend, text = run["campbell"], run["json"], run["legend"], run["text"]
+    assert all(len(s) == 1 for s in table.groupby("mode")["track_label"].agg(set))
+    csv_tracks = table.groupby("mode")["track_label"].first().to_dict()
+    json_tracks = {t["mode"]: t["label"] for t in out["campbell"]["tracks"]}
+    legend_tracks = {int(g.group(1)): g.group(2) for g in
+                     (re.fullmatch(r"mode (\d+): (.+)", t) for t in legend) if g}
+    assert csv_tracks == json_tracks == legend_tracks
+    assert len(set(json_tracks.values())) == len(json_tracks)
+    line = text.split("tracks: ", 1)[1].splitlines()[0]
+    for number, label in json_tracks.items():
+        assert re.search(rf"(^|; ){number} {re.escape(label)}( \(damping|;|$)", line)
+    return json_tracks
+
+
+def test_a_coarse_blower_diagram_has_no_track_of_one_point(tmp_path):
+    """The blower at 24 × 8, 7 Campbell speeds over 4,000–60,000 rpm (steps of 9,333 rpm):
+    before, the two forward modes on the half-speed line — log decrement 3.1 and 1.8 at
+    4,000 rpm, −0.15 and −0.05 at 13,333 — each went on as a new track, leaving three tracks
+    of one point (modes 1, 2 and 6 of 8: "forward mixed", "forward conical" at 4,000 rpm,
+    "forward cylindrical" at 13,333 rpm, measured) in the CSV and the legend, and the onset
+    labels on other tracks.  Now each of the two is one track over all 7 speeds, from
+    31.8 and 32.9 Hz at 4,000 rpm to 226 and 296 Hz at 60,000 rpm (the 20-speed diagram's
+    lines, results/rotor_blower), named by its onset; five tracks, one name each in every
+    output."""
+    run = _run(tmp_path, ROTORS / "blower.toml", "--campbell", "--campbell-speeds", "7",
+               "--plot", str(tmp_path / "fig"), low=4000.0)
+    table = run["campbell"]
+    sizes = table.groupby("mode").size()
+    assert sizes.min() >= MIN_POINTS and len(sizes) == 5
+    names = _same_names(run)
+    onsets = {m["label"] for m in run["json"]["modes"] if _finite(m["onset_speed_rpm"])}
+    assert onsets == {"forward conical", "forward cylindrical"}
+    for label in onsets:
+        rows = table[table["track_label"] == label].sort_values("speed_rpm")
+        assert len(rows) == 7, label
+        assert rows["whirl_frequency_hz"].iloc[0] == pytest.approx(32.4, abs=0.7)
+        assert rows["log_decrement"].iloc[0] > 1.5 and rows["log_decrement"].iloc[-1] < 0
+    top = table[table["speed_rpm"] == table["speed_rpm"].max()]
+    forward = sorted(top[top["track_label"].isin(onsets)]["whirl_frequency_hz"])
+    assert forward == pytest.approx([226.4, 295.9], abs=0.5)
+    assert sorted(names.values())[0].startswith("backward")
