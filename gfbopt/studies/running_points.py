@@ -14,7 +14,9 @@ the same inputs.  A file with neither table never comes here: the kind's points 
   FILE --speed-rpm N --load-newton F`` (:mod:`gfbopt.cli.running_point`): the fixed point of
   :func:`gfbopt.thermal.running.running_point` with :class:`~gfbopt.thermal.bearing.FilmDrag`
   started by :func:`~gfbopt.rotor.running_bearing.coarse_start`, then one cold static solve
-  of :func:`~gfbopt.thermal.bearing.warm_bearing`.
+  of :func:`~gfbopt.thermal.bearing.warm_bearing`;
+* :func:`running_coefficient_rows` — ``linear_coefficients``: K and C at the running
+  condition of each (speed, load), as ``gfbopt linear`` gives them.
 """
 from __future__ import annotations
 
@@ -140,22 +142,17 @@ def model_keywords(bearing, opts: dict) -> Formulation:
     return Formulation(tuple(sorted({**resolved.model_kwargs(), **extra}.items())))
 
 
-def running_static_row(bearing, running, formulation: Formulation, speed_rpm: float,
-                       load_newton: float, *, grid, cache=None) -> dict:
-    """One row of ``load_sweep`` at the running condition of (speed, load): the static row
-    of the warm bearing (:func:`gfbopt.analyses.static_row` with the geometry: h_min in µm
-    of the running clearance, drag, power) and the running point (RUNNING_COLUMNS,
-    ``thermal_static_solves``).  No running state (thermal runaway, closure): NaN figures,
-    ``thermal_status`` and the message say why, ``success`` False."""
-    from ..analyses import STATIC_OUTPUTS, static_row
+def warm_at(bearing, running, formulation: Formulation, speed_rpm: float,
+            load_newton: float, *, grid, cache):
+    """(the warm bearing or None, the running point's columns, why there is none): the fixed
+    point under ``load_newton`` at ``speed_rpm`` as ``gfbopt static/linear`` solve it
+    (:func:`gfbopt.thermal.running.running_point`, :class:`~gfbopt.thermal.bearing.FilmDrag`
+    started by :func:`~gfbopt.rotor.running_bearing.coarse_start`), the centrifugal growth
+    alone without ``[thermal]``."""
     from ..rotor.running_bearing import coarse_start
-    from ..static import SolverCache, solve_static
     from ..thermal.bearing import FilmCase, FilmDrag, warm_bearing
     from ..thermal.running import HEAT_BALANCE, running_point, without_heat
 
-    t0 = time.perf_counter()
-    cache = cache or SolverCache(grid)
-    kwargs = formulation.model_kwargs()
     solves = 0
     if running.model_name == HEAT_BALANCE:
         drag = FilmDrag(FilmCase(bearing, formulation, grid, cache, load_newton),
@@ -167,33 +164,79 @@ def running_static_row(bearing, running, formulation: Formulation, speed_rpm: fl
     d = point.to_dict()
     found = {"thermal_model": running.model_name,
              **{key: d[key] for key in RUNNING_COLUMNS[1:]}, "thermal_static_solves": solves}
-    message = point.message
-    if point.converged:
-        try:
-            warm = warm_bearing(bearing, point)
-        except ParameterError as exc:
-            warm, message = None, (f"the running clearance {point.running_clearance * 1e6:.3g}"
-                                   f" µm cannot be analysed ({exc})")
-        if warm is not None:
-            model = warm.model(speed_rpm, **kwargs)
-            sol = solve_static(model, load=warm.nondimensional_load(load_newton),
-                               solver=cache(model, grid))
-            row = static_row(model, sol, warm)
-            row["load_newton"] = load_newton
-            return {**row, **found, "wall_time_s": time.perf_counter() - t0}
+    if not point.converged:
+        return None, found, point.message or "no running state"
+    try:
+        return warm_bearing(bearing, point), found, ""
+    except ParameterError as exc:
+        return None, found, (f"the running clearance {point.running_clearance * 1e6:.3g} µm "
+                             f"cannot be analysed ({exc})")
+
+
+def running_static_row(bearing, running, formulation: Formulation, speed_rpm: float,
+                       load_newton: float, *, grid, cache=None) -> dict:
+    """One row of ``load_sweep`` at the running condition of (speed, load): the static row
+    of the warm bearing (:func:`gfbopt.analyses.static_row` with the geometry: h_min in µm
+    of the running clearance, drag, power) and the running point (RUNNING_COLUMNS,
+    ``thermal_static_solves``).  No running state (thermal runaway, closure): NaN figures,
+    ``thermal_status`` and the message say why, ``success`` False."""
+    from ..analyses import STATIC_OUTPUTS, static_row
+    from ..static import SolverCache, solve_static
+
+    t0 = time.perf_counter()
+    cache = cache or SolverCache(grid)
+    kwargs = formulation.model_kwargs()
+    warm, found, message = warm_at(bearing, running, formulation, speed_rpm, load_newton,
+                                   grid=grid, cache=cache)
+    if warm is not None:
+        model = warm.model(speed_rpm, **kwargs)
+        sol = solve_static(model, load=warm.nondimensional_load(load_newton),
+                           solver=cache(model, grid))
+        row = static_row(model, sol, warm)
+        row["load_newton"] = load_newton
+        return {**row, **found, "wall_time_s": time.perf_counter() - t0}
     model = bearing.model(speed_rpm, **kwargs)             # the cold groups, for the row
     nan = math.nan
     return {**model.groups(), **dict.fromkeys(STATIC_OUTPUTS, nan), "load_newton": load_newton,
             "min_film_thickness_um": nan, "drag_torque_nm": nan, "power_loss_w": nan,
-            **found, "success": False, "message": message or "no running state",
+            **found, "success": False, "message": message,
             "wall_time_s": time.perf_counter() - t0}
 
 
-def running_static_notes(thermal_model: str, bearing_file: str) -> list:
-    """The README/summary notes of a load sweep at the running condition."""
+def running_coefficient_rows(bearing, running, formulation: Formulation, speed_rpm: float,
+                             load_newton: float, *, whirl_ratios, grid,
+                             cache=None) -> list:
+    """The rows of ``linear_coefficients`` at the running condition of (speed, load): K and
+    C of the warm bearing (:func:`gfbopt.analyses.coefficients_point`, the equilibrium and
+    linearisation of ``gfbopt linear``) with the running point's columns on each row.  No
+    running state: one row saying why, ``success`` False."""
+    from ..analyses import coefficients_point
+    from ..static import SolverCache
+
+    t0 = time.perf_counter()
+    cache = cache or SolverCache(grid)
+    warm, found, message = warm_at(bearing, running, formulation, speed_rpm, load_newton,
+                                   grid=grid, cache=cache)
+    if warm is None:
+        return [{"load_newton": load_newton, "speed_rpm": speed_rpm, **found,
+                 "success": False, "message": message,
+                 "wall_time_s": time.perf_counter() - t0}]
+    model = warm.model(speed_rpm, **formulation.model_kwargs())
+    rows = coefficients_point(model, whirl_ratios=whirl_ratios,
+                              load=warm.nondimensional_load(load_newton), grid=grid,
+                              cache=cache, geometry=warm, speed_rpm=speed_rpm)
+    return [{**row, **found, "wall_time_s": time.perf_counter() - t0} for row in rows]
+
+
+def running_static_notes(thermal_model: str, bearing_file: str,
+                         kind: str = "load_sweep") -> list:
+    """The README/summary notes of a load sweep or coefficient study at the running
+    condition."""
+    command, what = (("linear", "K and C are") if kind == "linear_coefficients" else
+                     ("static", "min_film_thickness_um is"))
     return [(f"Clearance at speed: the bearing file {bearing_file} states the running "
-             f"condition ({thermal_model}); each (speed, load) is the equilibrium at its own "
-            "running clearance and viscosity (the heat balance under that load), as `gfbopt "
-            "static --bearing FILE --speed-rpm N --load-newton F` gives it; "
-            "min_film_thickness_um is of the running clearance, and the columns "
-            "thermal_model … viscosity_pa_s give the running point of each row.")]
+             f"condition ({thermal_model}); each (speed, load) is analysed at its own "
+             "running clearance and viscosity (the heat balance under that load), as "
+             f"`gfbopt {command} --bearing FILE --speed-rpm N --load-newton F` does; {what} "
+             "of the running clearance, and the columns thermal_model … viscosity_pa_s give "
+             "the running point of each row.")]

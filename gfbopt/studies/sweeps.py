@@ -24,7 +24,6 @@ from .base import (
     Study,
     StudyResult,
     frame,
-    load_geometry,
     load_running_geometry,
     merged,
     options_of,
@@ -37,15 +36,11 @@ LOAD_TRENDS = {"min_film_thickness_decreases_with_load": ("min_film_thickness_um
 
 
 def _plan(study: Study) -> tuple:
-    """(geometry, [(variant label, speed, model)]) — models of every variant and speed; for
-    ``load_sweep`` on a file with ``[journal]``/``[thermal]`` a third item, the running
-    condition (:func:`_running`); a file without them gives today's plan unchanged."""
+    """(geometry, [(variant label, speed, model)]) — models of every variant and speed; on a
+    file with ``[journal]``/``[thermal]`` a third item, the running condition
+    (:func:`_running`); a file without them gives today's plan unchanged."""
     spec = study.spec
-    running = None
-    if study.kind == "load_sweep":               # reads [journal]/[thermal]
-        geometry, running = load_running_geometry(study)
-    else:
-        geometry = load_geometry(study)
+    geometry, running = load_running_geometry(study)      # [journal]/[thermal] read
     for key in ("speeds_rpm", "loads_newton"):
         for k, v in enumerate(spec[key]):
             if v <= 0:
@@ -124,36 +119,50 @@ def run_load_sweep(study: Study, plan: tuple, ctx: RunContext) -> StudyResult:
         ax = plot_load_sweep(table, quantity, labels=titles,
                              title=f"{what} against static load: {geometry.name} bearing")
         figures[name] = ax.figure
-    options, notes, answer = _options(study, models), [], {}
-    if running is not None:                      # the clearance at speed, named
-        from .running_points import running_static_notes
-
-        options["thermal_model"] = answer["thermal_model"] = running["spec"].model_name
-        notes = running_static_notes(running["spec"].model_name, spec["bearing"])
     return StudyResult(study, tables={"table.csv": table}, figures=figures, checks=found,
-                       options=options, notes=notes, answer=answer)
+                       **_named(study, models, running))
+
+
+def _named(study: Study, models: list, running) -> dict:
+    """The StudyResult's options, notes and answer: at the running condition they name the
+    clearance model (``thermal_model`` in summary.json and the README)."""
+    options = _options(study, models)
+    if running is None:
+        return {"options": options}
+    from .running_points import running_static_notes
+
+    name = options["thermal_model"] = running["spec"].model_name
+    return {"options": options, "answer": {"thermal_model": name},
+            "notes": running_static_notes(name, study.spec["bearing"], study.kind)}
 
 
 def _running_rows(study: Study, geometry, models: list, running: dict, ctx) -> list:
+    """Each (variant, speed, load) at its running condition (.running_points)."""
     from ..inputs import DEFAULT_GRID
-    from .running_points import running_static_row
+    from .running_points import running_coefficient_rows, running_static_row
 
     points, tags = [], []
+    coefficients = study.kind == "linear_coefficients"
     for label, speed, model in models:
         for load_newton in study.spec["loads_newton"]:
-            points.append({"bearing": geometry, "running": running["spec"],
-                           "formulation": running["formulations"][label],
-                           "speed_rpm": speed, "load_newton": load_newton,
-                           "grid": study.grid or DEFAULT_GRID})
-            tags.append({"variant": label, "foil": model.foil, "speed_rpm": speed})
-    return run_points(running_static_row, points, tags=tags, progress=ctx.progress)
+            point = {"bearing": geometry, "running": running["spec"],
+                     "formulation": running["formulations"][label], "speed_rpm": speed,
+                     "load_newton": load_newton, "grid": study.grid or DEFAULT_GRID}
+            if coefficients:
+                point["whirl_ratios"] = study.spec["whirl_ratios"]
+            points.append(point)
+            tags.append({"variant": label, "load_newton": load_newton} if coefficients else
+                        {"variant": label, "foil": model.foil, "speed_rpm": speed})
+    return run_points(running_coefficient_rows if coefficients else running_static_row,
+                      points, tags=tags, progress=ctx.progress)
 
 
 def run_linear_coefficients(study: Study, plan: tuple, ctx: RunContext) -> StudyResult:
     from ..plotting import new_axes, plot_coefficients
 
     spec = study.spec
-    geometry, models = plan
+    geometry, models, *heated = plan
+    running = heated[0] if heated else None
     points, tags = [], []
     for label, speed, model in models:
         for load_newton in spec["loads_newton"]:
@@ -161,8 +170,11 @@ def run_linear_coefficients(study: Study, plan: tuple, ctx: RunContext) -> Study
                            "whirl_ratios": spec["whirl_ratios"], "grid": study.grid,
                            "geometry": geometry, "speed_rpm": speed})
             tags.append({"variant": label, "load_newton": load_newton})
-    rows = run_points(analyses.coefficients_point, points, tags=tags, cache=SolverCache(),
-                      progress=ctx.progress)
+    if running is None:
+        rows = run_points(analyses.coefficients_point, points, tags=tags,
+                          cache=SolverCache(), progress=ctx.progress)
+    else:                 # each (speed, load) at its running condition (the heat balance)
+        rows = _running_rows(study, geometry, models, running, ctx)
     table = frame(rows, ("variant", "load_newton", "speed_rpm", "whirl_ratio", "frequency_hz"))
     tables = {"coefficients.csv": table}
     figures = {}
@@ -182,4 +194,4 @@ def run_linear_coefficients(study: Study, plan: tuple, ctx: RunContext) -> Study
     found = [checks.check("all static solves and thresholds converged (count of failures)",
                           float((~table["success"].astype(bool)).sum()), 0)]
     return StudyResult(study, tables=tables, figures=figures, checks=found,
-                       options=_options(study, models))
+                       **_named(study, models, running))

@@ -1,7 +1,7 @@
 """Studies on a bearing file with [journal]/[thermal]: ``onset_conventions`` evaluates each
 onset at the running condition through the functions ``gfbopt stability`` and gfbopt.api
-call, ``load_sweep`` each (speed, load) as ``gfbopt static`` does (one answer whatever the
-route), naming the model in summary.json and the README; kinds that do not read the tables
+call, ``load_sweep`` and ``linear_coefficients`` each (speed, load) as ``gfbopt static`` and
+``gfbopt linear`` do (one answer whatever the route), naming the model in summary.json and the README; kinds that do not read the tables
 refuse the file in one line naming the kind, before any solve."""
 import json
 import math
@@ -57,8 +57,9 @@ def heated(tmp_path_factory):
 
 
 def test_the_study_kinds_reading_the_tables_are_listed_in_the_routes():
-    assert RUNNING_STUDY_KINDS == ("onset_conventions", "load_sweep")
-    for route in ("`onset_conventions`", "`load_sweep`", "`gfbopt orbit`"):
+    assert RUNNING_STUDY_KINDS == ("onset_conventions", "load_sweep", "linear_coefficients")
+    for route in ("`onset_conventions`", "`load_sweep`", "`linear_coefficients`",
+                  "`gfbopt orbit`"):
         assert route in RUNNING_ROUTES
 
 
@@ -136,8 +137,7 @@ def no_solver(monkeypatch):
 
 
 @pytest.mark.parametrize("problem, kind", [
-    ("loss_factor", "loss_factor_map"), ("ruscitto_coefficients", "linear_coefficients"),
-    ("ruscitto_drag", "drag_power"),
+    ("loss_factor", "loss_factor_map"), ("ruscitto_drag", "drag_power"),
     ("ruscitto_pitch_design", "pitch_design"), ("ruscitto_preload", "onset_as_built")])
 def test_kinds_that_do_not_read_the_tables_refuse_in_one_line(tmp_path, no_solver, problem,
                                                                kind):
@@ -151,7 +151,8 @@ def test_kinds_that_do_not_read_the_tables_refuse_in_one_line(tmp_path, no_solve
     assert len(line.splitlines()) == 1
     assert f"the study kind '{kind}' does not read" in line
     assert re.search(r"states \[journal\] and \[thermal\]", line)
-    assert "`onset_conventions`, `load_sweep`" in line and "`gfbopt stability`" in line
+    assert "`onset_conventions`, `load_sweep`, `linear_coefficients`" in line
+    assert "`gfbopt stability`" in line
     assert not (tmp_path / "results").exists() or not any((tmp_path / "results").iterdir())
 
 
@@ -269,3 +270,40 @@ def test_a_runaway_before_the_onset_is_the_rows_status(tmp_path):
     assert row["thermal_limit_rpm"] == pytest.approx(out["onset"]["thermal_limit_rpm"],
                                                      rel=1e-9)
     assert 20000.0 < row["thermal_limit_rpm"] < 60000.0
+
+
+COEFFICIENTS = SWEEP.replace('name = "heated_sweep"', 'name = "heated_coefficients"').replace(
+    'kind = "load_sweep"', 'kind = "linear_coefficients"').replace(
+    "[30000.0, 45000.0]", "[45000.0]").replace("[10.0, 20.0, 40.0]", "[20.0, 50.0]").replace(
+    'trends = ["min_film_thickness_decreases_with_load", "eccentricity_increases_with_load"]',
+    "whirl_ratios = [0.0, 0.5, 1.0]")
+
+
+@pytest.fixture(scope="module")
+def coefficients(tmp_path_factory):
+    return compute(load_study(_study(tmp_path_factory.mktemp("coefficients"),
+                                     text=COEFFICIENTS)))
+
+
+@pytest.mark.parametrize("foil, load", [("simple", 20.0), ("beam", 50.0)])
+def test_a_coefficient_row_is_the_linear_commands(coefficients, foil, load):
+    result = coefficients
+    assert result.answer == {"thermal_model": HEAT_BALANCE} and result.checks_hold
+    table = result.tables["coefficients.csv"]
+    row = table[(table["variant"] == foil) & (table["load_newton"] == load)
+                & (table["whirl_ratio"] == 0.5)].iloc[0]
+    cli = run_cli("linear", "--bearing", THERMAL, "--speed-rpm", "45000", "--load-newton",
+                  f"{load:g}", "--seam-angle", "max_film", "--foil", foil, "--whirl-ratio",
+                  "0", "0.5", "1", "--grid", GRID, "--json")
+    assert cli.returncode == 0, cli.stderr
+    out = json.loads(cli.stdout)
+    for key in (*RUNNING, "eccentricity", "critical_mass"):
+        assert row[key] == pytest.approx(out[key], rel=1e-9), key
+    k, c = out["stiffness"]["0.5"], out["damping"]["0.5"]
+    for i, a in enumerate("xy"):
+        for j, b in enumerate("xy"):
+            assert row[f"k{a}{b}"] == pytest.approx(k[i][j], rel=1e-9, abs=1e-12)
+            assert row[f"c{a}{b}"] == pytest.approx(c[i][j], rel=1e-9, abs=1e-12)
+    # K in N/m of the running clearance: K̄ p_a R²/c_run (p_a = 1e5 Pa, R = 19.05 mm)
+    assert row["kxx_N_per_m"] == pytest.approx(
+        row["kxx"] * 1e5 * 19.05e-3**2 / (row["running_clearance_um"] * 1e-6), rel=1e-9)
