@@ -23,9 +23,9 @@ model (:mod:`.friction_orbit`, :mod:`.foil_state` "With friction"): its Kelvin�
 integrated with the rest, P and H come from W alone, and the sliders enter W's rate,
 τ_f W' + W = S (q − r); after each step Z moves from the state's W.  The fused rows carry it
 (μ_f = 0 is the damped rotor transient bit for bit; the symmetric rotor equals the
-one-bearing friction + η orbit to 4e-14 c, tests/unit/test_rotor_friction_damped.py); a
-rotor whose films take the one-bearing kernels is refused friction with η > 0
-(:func:`.rotor_setup.check_damped_friction`).
+one-bearing friction + η orbit to 4e-14 c, tests/unit/test_rotor_friction_damped.py), and
+so do the one-bearing kernels (``KelvinVoigtFoil.rate`` with the bearing's sliders; the local
+law's nodes).
 
 How a constant-speed run ended, per bearing (:func:`bearing_outcomes`): 'contact' (the run
 ended at the film's closure), 'settled limit cycle' (the semi-major axis of the whirl's

@@ -24,7 +24,6 @@ from ..inputs.bearing import BearingGeometry
 from ..inputs.conversions import rpm_to_rad_per_s
 from ..inputs.grid import Grid
 from ..static import SolverCache, StaticSolution, solve_static
-from .rotor_friction_films import fusable_with_friction
 from .rotor_system import (BearingFilm, ImbalancePlane, RotorTransientModel, empty_states,
                            layout, rigid_structure, rotation, station_matrix,
                            structure_transient_model)
@@ -163,10 +162,8 @@ def build_model(rotor: RotorInput, model_speed_rpm: float, grid: Grid, *,
     (:func:`gfbopt.transient.system.transient_model`).  A bearing whose file states bump
     friction (μ_f > 0) gets its sliders (``transient_model(..., friction=True)``,
     :mod:`.rotor_friction`); with a loss factor η > 0 as well it carries both, the
-    Kelvin–Voigt W and the sliders in its rate (:mod:`.foil_state` "With friction", fused
-    rows :mod:`.rotor_friction_films`) — on the fused films only: a rotor whose films take
-    the one-bearing kernels (local law, bearings of different grids or films) is refused
-    friction with η > 0 in one line."""
+    Kelvin–Voigt W and the sliders in its rate (:mod:`.foil_state` "With friction"; fused
+    rows :mod:`.rotor_friction_films`, or the one-bearing kernels)."""
     cache = cache if cache is not None else SolverCache(grid)
     solutions, angles = bearing_equilibria(rotor, model_speed_rpm, grid, cache)
     omega_m = rpm_to_rad_per_s(model_speed_rpm)
@@ -181,24 +178,7 @@ def build_model(rotor: RotorInput, model_speed_rpm: float, grid: Grid, *,
     ref = omega_m if reference_speed_rpm is None else rpm_to_rad_per_s(reference_speed_rpm)
     model = structure_transient_model(rotor.rotor_structure(), films, rotor.structure_force(),
                                       rotor.imbalance, ref)
-    check_damped_friction(model)
     return model, solutions
-
-
-def check_damped_friction(model: RotorTransientModel) -> None:
-    """Bump friction with a loss factor η > 0 needs the fused friction films (every bearing
-    on θ rows of the axial-mean law, one grid and film, :func:`.rotor_friction_films.
-    fusable_with_friction`): the one-bearing kernels of the rotor do not pass the sliders to
-    the foil's rate."""
-    if not any(b.tm.friction is not None and b.tm.foil_state is not None
-               for b in model.bearings) or fusable_with_friction(model):
-        return
-    b = next(b for b in model.bearings if b.tm.friction is not None
-             and b.tm.foil_state is not None)
-    raise ParameterError(f"{b.label}.loss_factor", b.tm.foil_state.loss_factor,
-                         "the rotor transient combines a loss factor with the bumps' friction "
-                         "only on the fused films (both bearings' friction on θ rows of the "
-                         "axial-mean law, one grid and film); use loss_factor = 0 here")
 
 
 def frame_angles_deg(model: RotorTransientModel) -> list:

@@ -325,7 +325,7 @@ class RotorRightHandSide:
                 forces[:, j, 0], forces[:, j, 1] = fx, fy
                 np.minimum(self.min_film[:, j], hmin, out=self.min_film[:, j])
             if tm.foil_state is not None:
-                dw = tm.foil_state.rate(p, w, tm)
+                dw = tm.foil_state.rate(p, w, tm, self.slider(j))
                 if self.foil_factor[jj] != 1.0:
                     dw *= self.foil_factor[jj]
                 view[:, n:n + dw[0].size] = dw.reshape(view.shape[0], -1)

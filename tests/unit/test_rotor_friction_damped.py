@@ -17,7 +17,6 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from gfbopt.errors import ParameterError
 from gfbopt.inputs.rotor_system import load_rotor
 from gfbopt.transient.friction_foil import slider_after_step
 from gfbopt.transient.friction_orbit import friction_outcome, integrate_friction_orbits
@@ -169,19 +168,49 @@ def test_symmetric_damped_rotor_settles_where_the_describing_function_says(symme
         assert out["whirl_ratio"] == pytest.approx(predicted.whirl_ratio, rel=0.01)
 
 
-def test_friction_with_eta_off_the_fused_rows_is_refused():
-    # the local law's friction is per node: its films take the one-bearing kernels, whose
-    # foil rate has no sliders in the rotor — friction with η > 0 there is refused in one
-    # line naming the bearing's loss factor, before any integration
-    system = load_rotor(ROTORS / "blower_friction.toml")
-    local = replace(system, bearings=tuple(
-        replace(b, options=replace(b.options, deflection_law="local", loss_factor=0.2))
+def _local(system, eta):
+    """``system`` on the local law (friction per node: the one-bearing kernels) with η."""
+    return replace(system, bearings=tuple(
+        replace(b, options=replace(b.options, deflection_law="local", loss_factor=eta))
         for b in system.bearings))
-    with pytest.raises(ParameterError, match=r"A\.loss_factor.*fused films") as err:
-        build_model(rotor_input(local), 60000.0, GRID)
-    assert "\n" not in str(err.value)
-    # without η the same rotor builds (friction per node on the one-bearing kernels)
-    plain = replace(local, bearings=tuple(
-        replace(b, options=replace(b.options, loss_factor=0.0)) for b in local.bearings))
-    model, _ = build_model(rotor_input(plain), 60000.0, GRID)
+
+
+def test_the_one_bearing_kernels_carry_friction_with_eta():
+    # the local law's friction is per node, so its films take the one-bearing kernels, whose
+    # foil rate gets each bearing's sliders: the blower on rubbing bumps, η = 0.2, two
+    # perturbed runs, against pressure_and_film and the foil's rate with the sliders (measured
+    # 1e-16 and 0); the symmetric rotor on the local law (η = 0.1, kick 0.003, 20
+    # revolutions, rkc at Δτ = 0.1) is its one-bearing friction + η orbit to 1e-12 c
+    # (measured 4e-14 c)
+    model, _ = build_model(rotor_input(_local(load_rotor(ROTORS / "blower_friction.toml"),
+                                              0.2)), 60000.0, GRID)
     assert model.bearings[0].tm.friction.layout == "nodes"
+    rng = np.random.default_rng(5)
+    z = _kicked(model, 2)
+    z[:, :, :-9] *= 1 + 0.02 * rng.standard_normal(z[:, :, :-9].shape)
+    sliders = tuple(s + 0.01 * rng.standard_normal(s.shape) for s in initial_sliders(model, 2))
+    rhs = RotorRightHandSide(model, runs(2), sliders=sliders)
+    assert not rhs.fuse
+    out, xy, lay = rhs(z), rhs.journals(z), rhs.layout
+    moved = move_sliders(rhs, z)
+    for k, b in enumerate(model.bearings):
+        tm, w, phi = b.tm, lay.foil_of(z, k), lay.phi_of(z, k)
+        p, _ = pressure_and_film(phi, xy[:, k, 0], xy[:, k, 1], tm, deflection=w)
+        dw = tm.foil_state.rate(p, w, tm, sliders[k])
+        n = lay.phi_size[k]
+        np.testing.assert_allclose(out[:, k, n:n + w[0].size].reshape(dw.shape), dw, rtol=0,
+                                   atol=1e-12 * np.abs(dw).max())
+        assert np.abs(tm.foil_state.rate(p, w, tm) - dw).max() > 0.1 * np.abs(dw).max()
+        hr = rigid_film(xy[:, k, 0], xy[:, k, 1], tm)
+        np.testing.assert_allclose(moved[k], slider_after_step(phi, hr, sliders[k], tm, w),
+                                   rtol=0, atol=1e-14)
+    model, _ = build_model(rotor_input(_local(_symmetric_system(), 0.1)), SPEED, GRID)
+    run = integrate_rotor(model, runs(1), 2 * math.pi * 20, _kicked(model, kick=0.003),
+                          method="rkc", time_step=0.1)
+    one = integrate_friction_orbits(model.bearings[0].tm, [MBAR], 20.0, kick=0.003,
+                                    method="rkc", time_step=0.1)
+    assert run.success and not run.contact[0] and run.evaluations == one.orbit.evaluations
+    for k in range(2):
+        x, y = run.journal(0, k)
+        np.testing.assert_allclose(x / CLEARANCE, one.orbit.x[0], rtol=0, atol=1e-12)
+        np.testing.assert_allclose(y / CLEARANCE, one.orbit.y[0], rtol=0, atol=1e-12)

@@ -254,11 +254,8 @@ def test_refusals():
     with pytest.raises(ParameterError, match="method = 'bdf'.*rk4 or rkc") as err:
         integrate_rotor(model, runs(1), 1.0, _kicked(model), method="bdf")
     assert "\n" not in str(err.value)
-    damped = replace(system, bearings=tuple(
-        replace(b, options=replace(b.options, loss_factor=0.2)) for b in system.bearings))
-    with pytest.raises(ParameterError, match="A.loss_factor.*friction") as err:
-        build_model(rotor_input(damped), 60000.0, GRID)
-    assert "\n" not in str(err.value)
+    # friction with η > 0: tests/unit/test_rotor_friction_damped.py (carried on the fused
+    # rows, refused off them)
     with pytest.raises(ParameterError, match="sliders"):
         integrate_rotor(model, runs(2), 1.0, _kicked(model, 2),
                         sliders=initial_sliders(model, 1))
