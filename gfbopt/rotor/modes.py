@@ -34,8 +34,19 @@ assignment on (1 − MAC of :func:`shape_vector`) + :data:`WHIRL_WEIGHT` |Δγ|/
 The shape reported is the amplitude and phase at each bearing (forward/backward radii
 normalised so that the largest radius is 1, phase of the dominant component relative to
 bearing A's), the shape class (key ``shape_class``: cylindrical, conical, mixed or bending;
-not ``kind``, which in the outputs says why a speed was skipped) and the node position
-(where |p(z)| is least) [m].
+not ``kind``, which in the outputs says why a speed was skipped) and the node.
+
+Node (one definition): ``node_position_m`` is where the dominant whirl |p(z)| of the mode is
+least along the rotor's axis as the structure moves it.  A shaft's is read from its shape
+along the shaft (:func:`shaft_node`: always on the shaft, from its first end; before, the
+straight line through the two bearings, which put a bending mode's node 2.45 m from a 0.4 m
+shaft); the rigid body's axis is a straight line, least at −Re(p_c p̄_ψ)/|p_ψ|² from the
+centre of gravity (:func:`rigid_node`), which may lie off the rotor: the rigid rotor file
+gives the rotor no length, so ``node_location`` says "between the bearings" or "outside the
+bearings (it may be off the rotor)", a shaft's "on the shaft", and a translating axis (no
+node, p_ψ = 0) has nan with "none (the axis translates)".  ``node_relative_whirl`` is |p| there
+over its largest at the stations read (the bearings; a shaft's shape stations): 0 at a true
+node, near 1 where the least whirl is no node (a shaft's cylindrical mode, least at an end).
 """
 from __future__ import annotations
 
@@ -55,6 +66,11 @@ BENDING_SHARE = 0.25
 SHAPE_STATIONS = 21
 #: deflection values below this fraction of the largest are not counted as a sign [-]
 NODE_FLOOR = 1e-3
+#: ``node_location`` of a node (module docstring, "Node")
+ON_SHAFT = "on the shaft"
+BETWEEN = "between the bearings"
+OUTSIDE = "outside the bearings (it may be off the rotor)"
+NO_NODE = "none (the axis translates)"
 
 
 def ellipse_radii(x_hat, y_hat) -> tuple:
@@ -141,16 +157,7 @@ def shape(q: np.ndarray, positions, names, structure=None) -> dict:
         form = "bending"
     else:
         order = 0
-    # p(z) = p_c + z p_ψ (dominant component; for a shaft the line through the bearings):
-    # least |p| at z = −Re(p_c p̄_ψ)/|p_ψ|²
-    if rigid:
-        pc = q[0] + (1j if k == 0 else -1j) * q[1]
-        pp = q[2] + (1j if k == 0 else -1j) * q[3]
-    else:
-        (za, zb) = positions[0], positions[1]
-        pp = (pb - pa) / (zb - za)
-        pc = pa - za * pp
-    node = (-float(np.real(pc * np.conj(pp))) / abs(pp) ** 2 if abs(pp) > 0 else math.inf)
+    node = rigid_node(q, k, positions) if rigid else shaft_node(structure, q, positions, k)
     scale = max(max(abs(c[0]), abs(c[1])) for c in comps) / 2 or 1.0
     ref = np.angle(pa) if abs(pa) > 0 else 0.0
     at = {}
@@ -160,10 +167,56 @@ def shape(q: np.ndarray, positions, names, structure=None) -> dict:
                     "phase_deg": _wrap(math.degrees(np.angle(dominant) - ref))}
     out = {"label": mode_label(direction, form, order), "direction": direction,
            "shape_class": form,
-           "phase_b_from_a_deg": phase, "node_position_m": node, "at_bearings": at}
+           "phase_b_from_a_deg": phase, "node_position_m": node["node_position_m"],
+           "node_location": node["node_location"],
+           "node_relative_whirl": node["node_relative_whirl"], "at_bearings": at}
     if not rigid:
         out["bending_share"] = share
     return out
+
+
+def _dominant(xy: np.ndarray, k: int) -> np.ndarray:
+    """p = X ± iY (k = 0: forward, 1: backward) of (X, Y) rows."""
+    return xy[..., 0] + (1j if k == 0 else -1j) * xy[..., 1]
+
+
+def rigid_node(q: np.ndarray, k: int, positions) -> dict:
+    """The rigid body's node (module docstring, "Node"): p(z) = p_c + z p_ψ of component k
+    is least at z = −Re(p_c p̄_ψ)/|p_ψ|² [m from the centre of gravity]."""
+    pc = q[0] + (1j if k == 0 else -1j) * q[1]
+    pp = q[2] + (1j if k == 0 else -1j) * q[3]
+    ends = [abs(pc + z * pp) for z in positions]
+    if max(ends) == 0 or abs(pp) * (max(positions) - min(positions)) <= 1e-12 * max(ends):
+        return {"node_position_m": math.nan, "node_location": NO_NODE,
+                "node_relative_whirl": 1.0}
+    z = -float(np.real(pc * np.conj(pp))) / abs(pp) ** 2
+    where = BETWEEN if min(positions) <= z <= max(positions) else OUTSIDE
+    return {"node_position_m": z, "node_location": where,
+            "node_relative_whirl": float(abs(pc + z * pp) / max(ends))}
+
+
+def shaft_node(structure, q: np.ndarray, positions, k: int) -> dict:
+    """A shaft's node (module docstring, "Node"): where |p(z)| of component k is least along
+    the shaft, from its shape: the least of the shape stations, refined in the elements on
+    either side of it, where p is the elements' cubic displacement interpolation (four
+    points fix it; |p|² is least at a root of its derivative) [m from the first end]."""
+    z = shape_stations(structure, positions)
+    values = np.abs(_dominant(np.array([structure.station(zj) @ q for zj in z]), k))
+    top = float(values.max())
+    j = int(np.argmin(values))
+    best_z, best = float(z[j]), float(values[j])
+    for a, b in [(z[i], z[i + 1]) for i in (j - 1, j) if 0 <= i < len(z) - 1]:
+        xi = np.linspace(0.0, 1.0, 4)
+        p = _dominant(np.array([structure.station(a + x * (b - a)) @ q for x in xi]), k)
+        cubic = np.polyfit(xi, p, 3)
+        square = np.polymul(cubic, np.conj(cubic)).real
+        for r in np.roots(np.polyder(square)):
+            if abs(r.imag) <= 1e-9 and 0.0 <= r.real <= 1.0:
+                value = float(abs(np.polyval(cubic, r.real)))
+                if value < best:
+                    best_z, best = float(a + r.real * (b - a)), value
+    return {"node_position_m": best_z, "node_location": ON_SHAFT,
+            "node_relative_whirl": best / top if top > 0 else 1.0}
 
 
 def label(q: np.ndarray, positions, structure=None) -> str:
