@@ -29,6 +29,7 @@ import numpy as np
 import pandas as pd
 
 from ..doe.sampling import SamplePlan, Variable, sample
+from ..transient.rotor_friction import MODEL_WORDS
 from .optimiser import evaluate_points
 from .problem import DesignProblem
 from .rotor_objectives import evaluate_rotor_design
@@ -169,7 +170,15 @@ def whirl_at_top_speed(system, design: dict, settings, revolutions: float,
     rotor transient, on the search grid, the loss factor of the search): per
     bearing the subsynchronous limit cycle [µm] (settled or not) and the smallest film
     [µm], and whether the film closed (contact) first; ``progress``: called with the fraction
-    of the revolutions integrated."""
+    of the revolutions integrated.
+
+    Bearings whose files state the bumps' Coulomb friction run the same transient, their
+    sliders integrated with the rotor (:mod:`gfbopt.transient.rotor_friction`): the keys
+    above plus ``model`` (:data:`FRICTION_MODEL`, the model the verdict uses), per bearing
+    how the orbit ended (``friction_orbit_kind`` 'settled limit cycle' / 'contact' / 'end of
+    run', ``friction_orbit_amplitude_um``, ``friction_orbit_whirl_frequency_hz``,
+    ``friction_orbit_verdict``), and beside it the describing function's prediction, a second
+    statement (:func:`describing_function_whirl`)."""
     from ..inputs.options import ModelOptions, merge_options
     from ..transient.rotor_analysis import rotor_orbit
     from .rotor_objectives import apply_design
@@ -179,8 +188,7 @@ def whirl_at_top_speed(system, design: dict, settings, revolutions: float,
         ModelOptions(loss_factor=settings.loss_factor), b.options))
         for b in designed.bearings)
     designed = dataclasses.replace(designed, bearings=supports)
-    if any((b.options.friction_coefficient or 0.0) > 0 for b in designed.bearings):
-        return friction_whirl_at_top_speed(designed, settings)   # the bumps rub
+    rubbing = any((b.options.friction_coefficient or 0.0) > 0 for b in designed.bearings)
     running = None
     if any(b.running_tables for b in designed.bearings):     # the clearance at speed
         from ..rotor.supports import frozen_at_running_condition
@@ -207,44 +215,59 @@ def whirl_at_top_speed(system, design: dict, settings, revolutions: float,
            "contact_time_s": d.get("contact_time_s", math.nan), "bearings": []}
     if running is not None:
         out["running"] = running
-
-    def number(value) -> float:                  # null in the orbit's JSON: not measured
-        return math.nan if value is None else float(value)
-
     for b in d["bearings"]:
-        out["bearings"].append({
-            "bearing": b["bearing"], "min_film_um": number(b.get("min_film_um")),
-            "limit_cycle_status": b.get("limit_cycle_status") or "none",
-            "limit_cycle_amplitude_um": number(b.get("limit_cycle_amplitude_um")),
-            "limit_cycle_settled": bool(b.get("limit_cycle_settled")),
-            "limit_cycle_frequency_hz": number(b.get("limit_cycle_frequency_hz"))})
+        entry = {"bearing": b["bearing"], "min_film_um": _number(b.get("min_film_um")),
+                 "limit_cycle_status": b.get("limit_cycle_status") or "none",
+                 "limit_cycle_amplitude_um": _number(b.get("limit_cycle_amplitude_um")),
+                 "limit_cycle_settled": bool(b.get("limit_cycle_settled")),
+                 "limit_cycle_frequency_hz": _number(b.get("limit_cycle_frequency_hz"))}
+        if rubbing:                              # how the orbit ended (the sliders')
+            entry.update({
+                "friction_orbit_kind": b.get("friction_orbit_kind", ""),
+                "friction_orbit_amplitude_um": _number(b.get("friction_orbit_amplitude_um")),
+                "friction_orbit_whirl_frequency_hz":
+                    _number(b.get("friction_orbit_whirl_frequency_hz")),
+                "friction_orbit_verdict": b.get("friction_orbit_verdict", "")})
+        out["bearings"].append(entry)
+    if rubbing:
+        out["model"] = FRICTION_MODEL
+        out.update(describing_function_whirl(designed, settings, out["bearings"]))
     return out
 
 
-def friction_whirl_at_top_speed(designed, settings) -> dict:
-    """The top-speed whirl of a rotor whose bearing files state the bumps' Coulomb friction
-    (the rotor transient carries no sliders): the describing function's settled orbit
-    (:func:`gfbopt.rotor.friction_onset.settled_whirl`, search grid), in the keys of
-    :func:`whirl_at_top_speed` plus ``model`` and ``verdict``."""
+#: the model of the top-speed whirl of a rotor whose bumps rub (the verdict's)
+FRICTION_MODEL = f"rotor transient with sliders ({MODEL_WORDS})"
+
+
+def _number(value) -> float:                     # null in the orbit's JSON: not measured
+    return math.nan if value is None else float(value)
+
+
+def describing_function_whirl(designed, settings, bearings: list) -> dict:
+    """The describing function's settled orbit of the rotor at the top speed
+    (:func:`gfbopt.rotor.friction_onset.settled_whirl`, the search grid), the second
+    statement beside the transient's: ``describing_function_model``,
+    ``describing_function_verdict`` ('bounded whirl of …' or 'no bounded orbit inside the
+    film', or why there is no answer), ``describing_function_bounded``; and in each entry of
+    ``bearings`` (updated in place) its ``settled_orbit_um``, ``settled_whirl_hz`` and
+    ``settled_min_film_um`` (glossary: gfbopt/terms/rotor_friction.py)."""
     from ..errors import ParameterError
     from ..rotor.friction_onset import MODEL, settled_whirl
     from ..rotor.supports import resolve_rotor
 
-    out = {"revolutions": 0.0, "limit_cycle_revolutions": 0.0, "grid": str(settings.grid),
-           "success": True, "message": "",
-           "contact": False, "contact_bearing": None, "contact_time_s": math.nan,
-           "model": MODEL, "bearings": []}
+    out = {"describing_function_model": MODEL}
     try:
         orbit = settled_whirl(resolve_rotor(designed, settings.grid), settings.top_speed_rpm)
     except ParameterError as exc:
-        return {**out, "success": False, "message": str(exc), "verdict": str(exc)}
-    out.update(success=orbit.converged, verdict=orbit.verdict,
-               message="" if orbit.converged else orbit.verdict)
-    for name, amp in zip(orbit.bearings, orbit.amplitude_um):
-        out["bearings"].append({
-            "bearing": name, "min_film_um": orbit.min_film_um,
-            "limit_cycle_status": "limit cycle" if orbit.bounded else "growing",
-            "limit_cycle_amplitude_um": amp, "limit_cycle_settled": bool(orbit.bounded),
-            "limit_cycle_frequency_hz": orbit.whirl_frequency_hz})
-    return out
-
+        for b in bearings:
+            b.update(settled_orbit_um=math.nan, settled_whirl_hz=math.nan,
+                     settled_min_film_um=math.nan)
+        return {**out, "describing_function_verdict": f"no describing-function answer: {exc}",
+                "describing_function_bounded": False}
+    amplitude = dict(zip(orbit.bearings, orbit.amplitude_um))
+    for b in bearings:
+        b.update(settled_orbit_um=float(amplitude.get(b["bearing"], math.nan)),
+                 settled_whirl_hz=float(orbit.whirl_frequency_hz),
+                 settled_min_film_um=float(orbit.min_film_um))
+    return {**out, "describing_function_verdict": orbit.verdict,
+            "describing_function_bounded": bool(orbit.bounded)}

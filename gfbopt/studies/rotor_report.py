@@ -116,9 +116,8 @@ def whirl_text(whirl, top: float) -> str:
         return f"the whirl at {top:,.0f} rpm was not computed (limit_cycle_revolutions = 0)"
     if whirl.get("running") and whirl["running"].get("failure"):
         return f"the orbit at {top:,.0f} rpm was not run: {whirl['running']['failure']}"
-    if whirl.get("model"):          # the bumps rub: the describing function's answer
-        return (f"at {top:,.0f} rpm {whirl['verdict']} (by the {whirl['model']}, "
-                f"{whirl['grid']} grid)")
+    if whirl.get("model"):          # the bumps rub: the transient with sliders
+        return friction_whirl_text(whirl, top)
     frozen = (" (each bearing held at its running clearance and viscosity at that speed)"
               if whirl.get("running") else "")
     if whirl["contact"]:
@@ -142,6 +141,43 @@ def whirl_text(whirl, top: float) -> str:
              else "not yet settled")
     return (f"at {top:,.0f} rpm the whirl limit cycle is {cycles} with minimum film "
             f"{film:.2f} µm ({run}, {state})")
+
+
+def friction_whirl_text(whirl, top: float) -> str:
+    """The top-speed whirl of a rotor whose bumps rub in words (the rotor transient with
+    sliders, :func:`gfbopt.design.robustness.whirl_at_top_speed`): 'bounded whirl of A µm at
+    B Hz, minimum film F µm' when every bearing's orbit settled, 'contact at bearing X after
+    T ms', or how the run ended; the model named, the describing function's prediction
+    beside it."""
+    run = f"{whirl['revolutions']:.4g} revolutions on the {whirl['grid']} grid"
+    second = (f"; the describing function of the bumps' friction says "
+              f"{whirl.get('describing_function_verdict', 'nothing')}")
+    by = f" (by the {whirl['model']}, {run}{second})"
+    bearings = whirl["bearings"]
+    if whirl["contact"]:
+        return (f"at {top:,.0f} rpm contact at bearing {whirl['contact_bearing']} after "
+                f"{whirl['contact_time_s'] * 1e3:.3g} ms{by}")
+    if not whirl["success"]:
+        return (f"the orbit at {top:,.0f} rpm on the {whirl['grid']} grid failed "
+                f"({whirl['message']}): no limit cycle to report (by the {whirl['model']}"
+                f"{second})")
+    film = min(b["min_film_um"] for b in bearings)
+    if all(b.get("friction_orbit_kind") == "settled limit cycle" for b in bearings):
+        hz = [b["friction_orbit_whirl_frequency_hz"] for b in bearings]
+        if max(hz) - min(hz) <= 1e-3 * max(hz):     # one whirl (to the figures shown)
+            amps = " and ".join(f"{b['friction_orbit_amplitude_um']:.3g} µm at bearing "
+                                f"{b['bearing']}" for b in bearings)
+            whirling = f"{amps} at {hz[0]:.4g} Hz"
+        else:
+            whirling = " and ".join(f"{b['friction_orbit_amplitude_um']:.3g} µm at "
+                                    f"{b['friction_orbit_whirl_frequency_hz']:.4g} Hz at "
+                                    f"bearing {b['bearing']}" for b in bearings)
+        return (f"at {top:,.0f} rpm bounded whirl of {whirling}, minimum film {film:.3g} µm"
+                f"{by}")
+    ends = "; ".join(f"bearing {b['bearing']} {b.get('friction_orbit_verdict', '')}"
+                     for b in bearings)
+    return (f"at {top:,.0f} rpm no settled whirl by the end of the run ({ends}), minimum "
+            f"film {film:.3g} µm{by}")
 
 
 def _reproduce(plan, chosen: dict) -> float:
@@ -184,9 +220,8 @@ def report(study, plan, search, run_tasks, stages, started: float, store,
                               if r["point"] != chosen["point"]]
     whirl = None            # first: its length (it ends at contact) is the least known
     step = stages.stage("whirl at top speed")
-    rubbing = any((b.options.friction_coefficient or 0.0) > 0 for b in plan.system.bearings)
     if (chosen is not None and chosen["first_onset_speed_rpm"] < s.top_speed_rpm
-            and (plan.limit_cycle_revolutions > 0 or rubbing)):
+            and plan.limit_cycle_revolutions > 0):
         from ..design.robustness import whirl_at_top_speed
 
         whirl = whirl_at_top_speed(plan.system, {n: float(chosen[n]) for n in problem.names},
@@ -253,11 +288,15 @@ def report(study, plan, search, run_tasks, stages, started: float, store,
         tables["what_it_would_take_evaluations.csv"] = pd.DataFrame(
             lever_runs.rows).drop_duplicates("point").reindex(columns=list(STORE_SCHEMA))
     if whirl is not None:
+        # bumps that rub: the describing function's statement beside the transient's
+        second = ({"friction_model": whirl["describing_function_model"],
+                   "friction_verdict": whirl["describing_function_verdict"]}
+                  if "describing_function_verdict" in whirl else {})
         tables["whirl_at_top_speed.csv"] = pd.DataFrame(
             [{**b, "speed_rpm": s.top_speed_rpm, "revolutions": whirl["revolutions"],
               "limit_cycle_revolutions": whirl.get("limit_cycle_revolutions", math.nan),
               "contact": whirl["contact"], "success": whirl["success"],
-              "message": whirl["message"], "grid": whirl["grid"]}
+              "message": whirl["message"], "grid": whirl["grid"], **second}
              for b in whirl["bearings"]])
     if chosen is not None:
         tables["chosen.csv"] = pd.DataFrame([chosen])
