@@ -20,7 +20,15 @@ import time
 from ..inputs.bore_si import BearingBuild, BoreSpec, PadSpec
 from ..parallel import run_points
 from . import checks
-from .base import Kind, RunContext, Study, StudyResult, frame, load_geometry
+from .base import (
+    Kind,
+    RunContext,
+    Study,
+    StudyResult,
+    frame,
+    load_geometry,
+    load_running_geometry,
+)
 from .spec import GRID, opt, req
 from .stability import FAILED, ONSET, onset_point
 
@@ -56,19 +64,33 @@ SCHEMAS: dict[str, dict] = {
 
 
 # ------------------------------------------------------------------ points
+_DRAG_COLUMNS = ("torque_ratio", "drag_torque_nm", "power_loss_w", "min_film_thickness_um",
+                 "eccentricity", "attitude_angle_deg", "bearing_number", "success", "message")
+
+
 def drag_point(bearing, speed_rpm: float, load_newton: float, grid, options,
-               cache=None) -> dict:
+               cache=None, running=None) -> dict:
     """Static equilibrium of ``bearing`` under ``load_newton`` at ``speed_rpm`` with the
     formulation ``options`` (complete ModelOptions): drag torque, power loss, torque ratio,
-    film (one row, :func:`gfbopt.analyses.static_row`)."""
+    film (one row, :func:`gfbopt.analyses.static_row`).  With ``running`` (the file's
+    RunningSpec with ``[journal]``/``[thermal]``): at the running condition of (speed, load),
+    as ``gfbopt static`` (:func:`.running_points.running_static_row`), with the running
+    point's columns."""
+    if running is not None:
+        from ..inputs import DEFAULT_GRID
+        from .running_points import RUNNING_COLUMNS, Formulation, running_static_row
+
+        row = running_static_row(bearing, running, Formulation(tuple(sorted(
+            options.model_kwargs().items()))), speed_rpm, load_newton,
+            grid=grid or DEFAULT_GRID, cache=cache)
+        return {k: row[k] for k in (*_DRAG_COLUMNS, *RUNNING_COLUMNS,
+                                    "thermal_static_solves")}
     from ..analyses import static_point
 
     model = bearing.model(speed_rpm, **options.model_kwargs())
     row = static_point(model, load=bearing.nondimensional_load(load_newton), grid=grid,
                        cache=cache, geometry=bearing)
-    return {k: row[k] for k in ("torque_ratio", "drag_torque_nm", "power_loss_w",
-                                "min_film_thickness_um", "eccentricity", "attitude_angle_deg",
-                                "bearing_number", "success", "message")}
+    return {k: row[k] for k in _DRAG_COLUMNS}
 
 
 # ------------------------------------------------------------------ onset_as_built
@@ -182,13 +204,11 @@ def _describe(table, x: str, unit: str, reference: float) -> str:
 
 # ------------------------------------------------------------------ drag_power
 def plan_drag_power(study: Study) -> dict:
-    from ..inputs.bearing_file import load_bearing_file
-    from ..inputs.options import merge_options, ModelOptions
+    from ..inputs.options import ModelOptions, merge_options
 
     spec = study.spec
-    bearing = load_geometry(study)
-    options = merge_options(ModelOptions(), load_bearing_file(study.directory
-                                                              / spec["bearing"])[1])
+    bearing, running = load_running_geometry(study)       # [journal]/[thermal] read
+    options = merge_options(ModelOptions(), bearing.options)   # the file's [model]
     for key in ("speeds_rpm", "loads_newton"):
         for k, v in enumerate(spec[key]):
             if not v > 0:
@@ -200,7 +220,17 @@ def plan_drag_power(study: Study) -> dict:
                            "load_newton": float(load), "grid": study.grid,
                            "options": options})
             tags.append({"speed_rpm": float(speed), "load_newton": float(load)})
-    return {"points": points, "tags": tags, "bearing": bearing, "options": options}
+    from ..thermal.running import ISOTHERMAL
+
+    thermal = None
+    if running.model_name != ISOTHERMAL:         # each point at its running condition
+        from ..inputs.rotor_limits import check_surface_speed
+
+        check_surface_speed(bearing, list(spec["speeds_rpm"]), f"{study.file}: speeds_rpm")
+        points = [{**p, "running": running} for p in points]
+        thermal = running.model_name
+    return {"points": points, "tags": tags, "bearing": bearing, "options": options,
+            "thermal_model": thermal}
 
 
 def run_drag_power(study: Study, plan: dict, ctx: RunContext) -> StudyResult:
@@ -213,9 +243,16 @@ def run_drag_power(study: Study, plan: dict, ctx: RunContext) -> StudyResult:
     table = frame(rows, ("speed_rpm", "load_newton", "drag_torque_nm", "power_loss_w",
                          "torque_ratio"), ("drag_torque_nm", "power_loss_w"))
     omega = table["speed_rpm"] * math.pi / 30.0
-    table["petroff_power_w"] = [petroff_torque(bearing.viscosity, w, bearing.radius,
-                                               bearing.length, bearing.radial_clearance) * w
-                                for w in omega]
+    if plan.get("thermal_model"):               # Petroff's at each row's running condition
+        table["petroff_power_w"] = [
+            petroff_torque(mu, w, bearing.radius, bearing.length, c_um * 1e-6) * w
+            for w, mu, c_um in zip(omega, table["viscosity_pa_s"],
+                                   table["running_clearance_um"])]
+    else:
+        table["petroff_power_w"] = [petroff_torque(bearing.viscosity, w, bearing.radius,
+                                                   bearing.length,
+                                                   bearing.radial_clearance) * w
+                                    for w in omega]
     name = bearing.name
     ax = plot_against_lever(table, "speed_rpm", "power_loss_w", group="load_newton",
                             xlabel="shaft speed [rpm]", ylabel="power loss per bearing [W]", group_label="W = {:g} N",
@@ -241,8 +278,19 @@ def run_drag_power(study: Study, plan: dict, ctx: RunContext) -> StudyResult:
              "parts (docs/PHYSICS.md §5b); isothermal film at the bearing file's viscosity."]
     options = {"grid": str(study.grid), **plan["options"].to_dict(),
                **({} if bearing.build is None else bearing.build.describe())}
+    answer = {}
+    if plan.get("thermal_model"):                # the clearance at speed, named
+        from .running_points import running_static_notes
+
+        options["thermal_model"] = answer["thermal_model"] = plan["thermal_model"]
+        notes[-1] = ("Drag torque from the film shear on the journal, Couette and "
+                     "pressure-gradient parts (docs/PHYSICS.md §5b); Petroff's power at each "
+                     "row's running clearance and viscosity (the line drawn: the first "
+                     "load's).")
+        notes += running_static_notes(plan["thermal_model"], study.spec["bearing"],
+                                      study.kind)
     return StudyResult(study, tables={"drag.csv": table}, figures=figures, checks=found,
-                       options=options, notes=notes)
+                       options=options, notes=notes, answer=answer)
 
 
 KINDS = {"onset_as_built": Kind(plan_onset_as_built, run_onset_as_built, parallel=True),

@@ -230,10 +230,11 @@ def running_coefficient_rows(bearing, running, formulation: Formulation, speed_r
 
 def running_static_notes(thermal_model: str, bearing_file: str,
                          kind: str = "load_sweep") -> list:
-    """The README/summary notes of a load sweep or coefficient study at the running
+    """The README/summary notes of a load sweep, coefficient or drag study at the running
     condition."""
-    command, what = (("linear", "K and C are") if kind == "linear_coefficients" else
-                     ("static", "min_film_thickness_um is"))
+    command, what = {"linear_coefficients": ("linear", "K and C are"),
+                     "drag_power": ("static", "the drag and power loss are")}.get(
+        kind, ("static", "min_film_thickness_um is"))
     return [(f"Clearance at speed: the bearing file {bearing_file} states the running "
              f"condition ({thermal_model}); each (speed, load) is analysed at its own "
              "running clearance and viscosity (the heat balance under that load), as "

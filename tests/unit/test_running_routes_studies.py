@@ -1,7 +1,7 @@
 """Studies on a bearing file with [journal]/[thermal]: ``onset_conventions`` evaluates each
 onset at the running condition through the functions ``gfbopt stability`` and gfbopt.api
-call, ``load_sweep`` and ``linear_coefficients`` each (speed, load) as ``gfbopt static`` and
-``gfbopt linear`` do (one answer whatever the route), naming the model in summary.json and the README; kinds that do not read the tables
+call, ``load_sweep``, ``linear_coefficients`` and ``drag_power`` each (speed, load) as
+``gfbopt static`` and ``gfbopt linear`` do (one answer whatever the route), naming the model in summary.json and the README; kinds that do not read the tables
 refuse the file in one line naming the kind, before any solve."""
 import json
 import math
@@ -57,9 +57,10 @@ def heated(tmp_path_factory):
 
 
 def test_the_study_kinds_reading_the_tables_are_listed_in_the_routes():
-    assert RUNNING_STUDY_KINDS == ("onset_conventions", "load_sweep", "linear_coefficients")
+    assert RUNNING_STUDY_KINDS == ("onset_conventions", "load_sweep", "linear_coefficients",
+                                   "drag_power")
     for route in ("`onset_conventions`", "`load_sweep`", "`linear_coefficients`",
-                  "`gfbopt orbit`"):
+                  "`drag_power`", "`gfbopt orbit`"):
         assert route in RUNNING_ROUTES
 
 
@@ -137,7 +138,7 @@ def no_solver(monkeypatch):
 
 
 @pytest.mark.parametrize("problem, kind", [
-    ("loss_factor", "loss_factor_map"), ("ruscitto_drag", "drag_power"),
+    ("loss_factor", "loss_factor_map"),
     ("ruscitto_pitch_design", "pitch_design"), ("ruscitto_preload", "onset_as_built")])
 def test_kinds_that_do_not_read_the_tables_refuse_in_one_line(tmp_path, no_solver, problem,
                                                                kind):
@@ -151,7 +152,7 @@ def test_kinds_that_do_not_read_the_tables_refuse_in_one_line(tmp_path, no_solve
     assert len(line.splitlines()) == 1
     assert f"the study kind '{kind}' does not read" in line
     assert re.search(r"states \[journal\] and \[thermal\]", line)
-    assert "`onset_conventions`, `load_sweep`, `linear_coefficients`" in line
+    assert "`onset_conventions`, `load_sweep`, `linear_coefficients`, `drag_power`" in line
     assert "`gfbopt stability`" in line
     assert not (tmp_path / "results").exists() or not any((tmp_path / "results").iterdir())
 
@@ -307,3 +308,34 @@ def test_a_coefficient_row_is_the_linear_commands(coefficients, foil, load):
     # K in N/m of the running clearance: K̄ p_a R²/c_run (p_a = 1e5 Pa, R = 19.05 mm)
     assert row["kxx_N_per_m"] == pytest.approx(
         row["kxx"] * 1e5 * 19.05e-3**2 / (row["running_clearance_um"] * 1e-6), rel=1e-9)
+
+
+DRAG = f"""
+name = "heated_drag"
+kind = "drag_power"
+title = "Drag at the running condition"
+source = "gfbopt"
+grid = "{GRID}"
+bearing = "bearings/BEARING"
+speeds_rpm = [20000.0, 45000.0]
+loads_newton = [20.0, 50.0]
+"""
+
+
+def test_a_drag_row_is_the_static_commands_drag(tmp_path):
+    result = compute(load_study(_study(tmp_path, text=DRAG)))
+    assert result.answer == {"thermal_model": HEAT_BALANCE} and result.checks_hold
+    table = result.tables["drag.csv"]
+    row = table[(table["speed_rpm"] == 45000.0) & (table["load_newton"] == 50.0)].iloc[0]
+    cli = run_cli("static", "--bearing", THERMAL, "--speed-rpm", "45000", "--load-newton",
+                  "50", "--grid", GRID, "--json")                # the file's [model]
+    assert cli.returncode == 0, cli.stderr
+    out = json.loads(cli.stdout)
+    for key in (*RUNNING, "power_loss_w", "drag_torque_nm", "min_film_thickness_um"):
+        assert row[key] == pytest.approx(out[key], rel=1e-9), key
+    # Petroff's power at the row's own running clearance and μ: P/P_Petroff is the ratio
+    for _, r in table.iterrows():
+        assert r["power_loss_w"] / r["petroff_power_w"] == pytest.approx(r["torque_ratio"],
+                                                                         rel=1e-9)
+    # a hot film (more viscous) in a closed-down clearance: 64.0 W against 50.7 W cold
+    assert row["film_temperature_c"] > 60.0 and row["running_clearance_um"] < 17.0
