@@ -11,7 +11,8 @@ every speed, ``SpeedLine(local=False)``) when the code has it, and the agreement
 All after the builds (a first run of each builds the CasADi solvers); the three are
 interleaved ``--repeats`` times and the medians taken (CPU time of this process; the machine
 is shared, so the load average before and after is recorded).  Where the time goes: the
-rotor's CPU split by stage and grid (statics, full crossings, local crossings).
+rotor's CPU split by stage and grid (statics, full crossings, local crossings by Krylov
+spaces, and ``local_crossing direct``: the secant's last steps by one direct LU per bearing).
 
 Where the grid has no coarse guide by default (72 × 20: fewer than GUIDE_FACTOR = 8 times
 36 × 10's cells), the rotor is also timed with the 36 × 10 guide (``rotor_guided``: a different
@@ -97,7 +98,7 @@ def _breakdown(system, grid: Grid, cache) -> dict:
             try:
                 return f(rotor, *args, **kwargs)
             finally:
-                key = f"{name} {rotor.grid}"
+                key = f"{name}{' direct' if kwargs.get('direct') else ''} {rotor.grid}"
                 spent[key] += time.process_time() - c
                 calls[key] += 1
         return timed

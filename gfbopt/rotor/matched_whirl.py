@@ -48,6 +48,7 @@ from scipy.optimize import brentq, linear_sum_assignment
 
 from .modes import shape
 from .probe import probe, probe_scale
+from .reduced import TaylorImpedance
 from .structure import is_rigid
 from ..linear.krylov import ShiftedImpedance
 from .supports import WHIRL_RANGE, RotorCase, SpeedStates
@@ -383,8 +384,8 @@ LOCAL_STEPS = 12
 SLOPE_STEP = 1e-6
 
 
-def local_crossing(rotor: RotorCase, states: SpeedStates, near: ModeCrossing
-                   ) -> Optional[ModeCrossing]:
+def local_crossing(rotor: RotorCase, states: SpeedStates, near: ModeCrossing,
+                   direct: bool = False) -> Optional[ModeCrossing]:
     """The crossing Im ν(γ) = 0 of the root branch through the crossing ``near`` (of a nearby
     speed, or of the same mode on another grid), by Newton's method on the whirl ratio; None
     when it does not converge in :data:`LOCAL_STEPS` steps, leaves the whirl range, or ends
@@ -400,7 +401,15 @@ def local_crossing(rotor: RotorCase, states: SpeedStates, near: ModeCrossing
     The search stops when the Newton step is at most :data:`WHIRL_TOLERANCE` (the scan's own
     tolerance on γ, by Brent's method), so the crossing is the scan's on the same branch to
     ~1e-10 in γ and μ_c, for one LU and a few block steps per bearing instead of a converged
-    space over the whole whirl range, the scan's refinements and the probe."""
+    space over the whole whirl range, the scan's refinements and the probe.
+
+    ``direct``: for a start already within ~1e-6 of the crossing (``near`` a crossing
+    extrapolated from the secant's last two speeds to one a step of at most
+    :data:`~gfbopt.rotor.mode_search.DIRECT_DISTANCE` away), each bearing's Z̄ from one
+    direct LU at the start and its Taylor series (:class:`~gfbopt.rotor.reduced.
+    TaylorImpedance`: four more solves instead of a Krylov space's blocks), accepted at every
+    γ used by its last term (≤ 1e-11 of Z̄); None when a point is beyond its reach (the
+    caller then makes the Krylov search)."""
     if not (near.inertia_scale > 0 and states.ok):
         return None
     low, high = states.states[0].whirl_range
@@ -410,16 +419,24 @@ def local_crossing(rotor: RotorCase, states: SpeedStates, near: ModeCrossing
     for _ in range(LOCAL_STEPS):
         if not low <= gamma <= high:
             return None
-        if models is None or abs(gamma - centre) > 0.5 * LOCAL_WINDOW:
+        points = (gamma - SLOPE_STEP, gamma, gamma + SLOPE_STEP)
+        if direct:
+            try:
+                models = models or [TaylorImpedance(st.linearisation, gamma)
+                                    for st in states.states]
+            except RuntimeError:                 # A + iγ B exactly singular
+                return None
+            if not all(m.evaluate(g)[1] for m in models for g in points):
+                return None
+        elif models is None or abs(gamma - centre) > 0.5 * LOCAL_WINDOW:
             window = (max(gamma - LOCAL_WINDOW, 0.5 * gamma), gamma + LOCAL_WINDOW)
             try:
                 models = [ShiftedImpedance(st.linearisation, window) for st in states.states]
             except RuntimeError:                 # A + s0 B exactly singular
                 return None
             centre = gamma
-        points = (gamma - SLOPE_STEP, gamma, gamma + SLOPE_STEP)
-        if not all(m.converge(points[1:2]).all() for m in models):   # ±1e-6 with it
-            return None
+        if not direct and not all(m.converge(points[1:2]).all() for m in models):
+            return None                          # ±1e-6 converge with it
         roots = [_local_roots(rotor, states, models, g) for g in points]
         # the branch: the root whose shape q̂ is nearest the previous one's (the largest
         # mass-weighted MAC), not the nearest ν: near γ = 1/2 two forward modes cross the

@@ -64,6 +64,12 @@ SECANT_STEPS = 12
 #: a coarse inertia margin |μ_c − 1| below this is checked on the fine grid [-] (module doc)
 COARSE_MARGIN = 0.15
 
+#: a secant step of at most this from the latest speed, in ln N, starts the mode's crossing
+#: by the direct search (:func:`_predicted`): its whirl ratio then moves by ~|dγ/d ln N| ×
+#: this ≤ 1e-6 (dγ/d ln N ≈ 2e-3–4e-3 measured on the blower's forward modes), within the
+#: reach of one direct LU's Taylor series [-]
+DIRECT_DISTANCE = 1e-4
+
 #: d ln μ_c / d ln N when the coarse grid gives no slope: the inertia terms grow as N² [-]
 NOMINAL_SLOPE = -2.0
 
@@ -207,11 +213,15 @@ def _onset_secant(line, label: str, a: float, b: float, p0: tuple, p1: tuple,
     returned.  None when not converged.  Each step follows the mode from the latest
     crossing (``near`` at first: :func:`_follow`)."""
     state = {"whirl": whirl, "near": near}
+    seen = [(math.exp(p1[0]), near)] if near is not None else []
 
     def g(speed: float, full: bool = False) -> float:
-        c = _follow(line, speed, label, state["whirl"], state["near"])
+        start, direct = (_predicted(seen, speed) if hasattr(line, "follow_from")
+                         else (None, False))
+        c = _follow(line, speed, label, state["whirl"], start or state["near"], direct)
         if c is not None:
             state["whirl"], state["near"] = c.whirl_ratio, c
+            seen.append((speed, c))
         return _log_scale(c)
 
     found = secant_root(g, math.exp(a), math.exp(b), SECANT_TOLERANCE, start=[p0, p1],
@@ -221,11 +231,31 @@ def _onset_secant(line, label: str, a: float, b: float, p0: tuple, p1: tuple,
     return math.exp(found[0]), found[1]
 
 
-def _follow(line, speed: float, label: str, whirl: float, near):
+def _predicted(seen: list, speed: float) -> tuple:
+    """(start, direct) of the crossing at ``speed`` from the crossings ``seen`` ((speed,
+    crossing), in order): when the latest lies within :data:`DIRECT_DISTANCE` of it in ln N,
+    that crossing with its whirl ratio extrapolated linearly in ln N through the one before
+    (the error of the two distances' product, ~1e-9: the secant's last step) and True (the
+    direct search, :func:`gfbopt.rotor.matched_whirl.local_crossing`); (None, False)
+    otherwise."""
+    if not seen or abs(math.log(speed / seen[-1][0])) > DIRECT_DISTANCE:
+        return None, False
+    (s1, c1), gamma = seen[-1], seen[-1][1].whirl_ratio
+    if len(seen) > 1 and seen[-2][0] != s1:
+        s0, c0 = seen[-2]
+        gamma += (gamma - c0.whirl_ratio) * math.log(speed / s1) / math.log(s1 / s0)
+    return replace(c1, whirl_ratio=gamma), True
+
+
+def _follow(line, speed: float, label: str, whirl: float, near, direct: bool = False):
     """The mode's crossing at ``speed`` followed from ``near`` (:meth:`gfbopt.rotor.system.
-    SpeedLine.follow_from`), or by ``follow`` alone on a line without that search."""
+    SpeedLine.follow_from`, first by its direct search with ``direct``), or by ``follow``
+    alone on a line without that search."""
     local = getattr(line, "follow_from", None)
-    return local(speed, label, whirl, near) if local else line.follow(speed, label, whirl)
+    if not local:
+        return line.follow(speed, label, whirl)
+    return local(speed, label, whirl, near, direct) if direct else local(speed, label, whirl,
+                                                                         near)
 
 
 def guided_onset(fine, coarse, speeds: list, label: str, tol: float,
@@ -281,6 +311,22 @@ def guided_onset(fine, coarse, speeds: list, label: str, tol: float,
         return _refined(fine, label, stable, unstable, tol, "secant", margin, seed=seed)
     except ValueError:                       # Brent's fallback found no fine bracket
         return None
+
+
+def _fine_row(line, speed: float, coarse, lowest: float):
+    """The fine crossing continuing the coarse crossing ``coarse`` at ``speed`` (a check of
+    :func:`guided_onset`): the local crossing of its branch (:meth:`~gfbopt.rotor.system.
+    SpeedLine.follow_from`, from the coarse crossing at the same speed) when it keeps the label
+    and is unstable (μ_c ≤ 1: the mode is unstable there whatever the other crossings, as
+    the one-bearing search settles its check above the onset), else every crossing at the
+    speed and the one :func:`~gfbopt.rotor.modes.continuing` it (always at the ``lowest``
+    speed, whose every crossing the search needs)."""
+    if speed != lowest and coarse is not None and getattr(line, "local", False):
+        found = line.follow_from(speed, coarse.label, coarse.whirl_ratio, coarse)
+        if (found is not None and found.label == coarse.label
+                and found.inertia_scale <= 1.0 and not line.computed(speed)):
+            return found
+    return continuing(line, speed, coarse)
 
 
 def _follow_label(rows: list) -> str:
@@ -410,7 +456,7 @@ def track_onsets(line, guide, speeds: list, tol: float, method: str,
                     any(rows is e for e in extra):
                 return track_onset(line, rows, tol, method)
             found = guided_onset(line, guide, below, None, tol, rows=rows,
-                                 fine_row=lambda s, c: continuing(line, s, c))
+                                 fine_row=lambda s, c: _fine_row(line, s, c, below[0]))
             return found if found is not None else fine_alone(rows)
 
         out = refined(coarse + extra, guided)

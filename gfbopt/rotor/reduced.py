@@ -194,3 +194,38 @@ class ReducedImpedance:
                     return done
             if not self.model.extend():
                 return done
+
+
+class TaylorImpedance:
+    """Z̄(iγ) near one whirl ratio γ0 from one direct LU of M = A + iγ0 B: the Taylor series
+    Z̄(iγ0 + σ) = Σ σᵏ F Xₖ, X₀ = M⁻¹ C_ξ, Xₖ₊₁ = −M⁻¹ B Xₖ (``order`` + 1 terms, one
+    triangular solve each), for a Newton step on the whirl ratio whose start is already
+    within ~1e-6 of the crossing (:func:`gfbopt.rotor.matched_whirl.local_crossing` with
+    ``direct``: the secant's last step, 1e-6–1e-5 in speed from the step before).  A value is
+    accepted when the last term is at most :data:`~gfbopt.linear.krylov.TOLERANCE` (1e-11)
+    of Z̄ (the terms fall by |σ|/r a step, r the distance to the nearest pole of Z̄, so the
+    ones dropped are smaller still), as a Krylov value is by its residual; the same
+    foundation of the upper half plane as :class:`ShiftedImpedance`."""
+
+    def __init__(self, lin, whirl_ratio: float, order: int = 4, tol: float = TOLERANCE):
+        from ..sparse_lu import factor
+        s0 = 1j * float(whirl_ratio)
+        a, b = lin.system(s0)
+        lu = factor((a + s0 * b).astype(complex), lin.factoriser)
+        b = b.tocsr()
+        x = lu.solve(lin.c_xi.astype(complex))
+        terms = [lin.force @ x]
+        for _ in range(order):
+            x = -lu.solve(b @ x)
+            terms.append(lin.force @ x)
+        self.centre, self.tol = float(whirl_ratio), tol
+        self._terms = np.array(terms)
+        self._sizes = np.abs(self._terms).max(axis=(1, 2))
+
+    def evaluate(self, gamma: float) -> tuple[np.ndarray, bool]:
+        """(Z̄(iγ), accepted)."""
+        sigma = 1j * (float(gamma) - self.centre)
+        powers = sigma ** np.arange(len(self._terms))
+        z = np.tensordot(powers, self._terms, axes=1)
+        last = abs(powers[-1]) * self._sizes[-1]
+        return z, bool(last <= self.tol * np.abs(z).max())

@@ -174,17 +174,25 @@ class SpeedLine:
                                       if st.ok else None)
         return self._crossings[speed]
 
+    def computed(self, speed: float) -> bool:
+        """True when every crossing at ``speed`` has been computed (not only local ones)."""
+        return speed in self._crossings
+
     def follow_from(self, speed: float, label: str, whirl: float,
-                    near: Optional[ModeCrossing]) -> Optional[ModeCrossing]:
+                    near: Optional[ModeCrossing], direct: bool = False
+                    ) -> Optional[ModeCrossing]:
         """:meth:`follow` from ``near`` (the mode's crossing at a nearby speed or on another
         grid): with ``local``, where every crossing at ``speed`` has not been computed, the
         crossing of the branch through ``near`` alone when it has the label and lies within
-        :data:`~gfbopt.rotor.matched_whirl.LOCAL_WINDOW` of ``whirl``."""
+        :data:`~gfbopt.rotor.matched_whirl.LOCAL_WINDOW` of ``whirl``; ``direct``: first by
+        the direct search (``near`` within ~1e-6 of it: ``local_crossing(direct=True)``)."""
         key = (speed, label)
         if (near is not None and self.local and speed not in self._crossings
                 and key not in self._local):
             st = self.states(speed)
-            found = local_crossing(self.rotor, st, near) if st.ok else None
+            found = local_crossing(self.rotor, st, near, direct=True) if (
+                direct and st.ok) else None
+            found = found or (local_crossing(self.rotor, st, near) if st.ok else None)
             if (found is not None and found.label == label
                     and abs(found.whirl_ratio - whirl) <= LOCAL_WINDOW):
                 self._local[key] = found
