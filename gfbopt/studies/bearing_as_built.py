@@ -26,7 +26,6 @@ from .base import (
     Study,
     StudyResult,
     frame,
-    load_geometry,
     load_running_geometry,
 )
 from .spec import GRID, opt, req
@@ -101,7 +100,7 @@ def _pads(count: int, first_deg: float) -> tuple:
 
 def plan_onset_as_built(study: Study) -> dict:
     spec = study.spec
-    bearing = load_geometry(study)
+    bearing, running = load_running_geometry(study)       # [journal]/[thermal] read
     low, high = spec["speed_range_rpm"]
     if not 0 < low < high:
         raise study.where("speed_range_rpm").error([low, high], "must be [low, high] with 0 < "
@@ -134,7 +133,25 @@ def plan_onset_as_built(study: Study) -> dict:
         points.append({**common, "bearing": built})
         tags.append({"variant": "pads", "preload_depth_um": 0.0, "preload_ratio": 0.0,
                      "n_pads": int(count)})
-    return {"points": points, "tags": tags, "bearing": bearing}
+    return {"points": points, "tags": tags, "bearing": bearing,
+            **_at_running_condition(study, bearing, running, points)}
+
+
+def _at_running_condition(study: Study, bearing, running, points: list) -> dict:
+    """With ``[journal]``/``[thermal]``: each onset at the running condition of each speed
+    (``running`` added to every point, :func:`.running_points.running_onset_row`) and the
+    model named ({"thermal_model": …}); else {} (today's points)."""
+    from ..thermal.running import ISOTHERMAL
+
+    if running.model_name == ISOTHERMAL:
+        return {}
+    from ..inputs.rotor_limits import check_surface_speed
+
+    check_surface_speed(bearing, list(study.spec["speed_range_rpm"]),
+                        f"{study.file}: speed_range_rpm")
+    for point in points:
+        point["running"] = running
+    return {"thermal_model": running.model_name}
 
 
 def run_onset_as_built(study: Study, plan: dict, ctx: RunContext) -> StudyResult:
@@ -187,8 +204,14 @@ def run_onset_as_built(study: Study, plan: dict, ctx: RunContext) -> StudyResult
                "deflection_law": "mean", "loss_factor": 0.0, "bore": spec["bore"],
                "n_shims": spec["n_shims"], "shim_width_deg": spec["shim_width_deg"],
                "shim_offset_deg": spec["shim_offset_deg"]}
+    answer = {}
+    if plan.get("thermal_model"):                # the clearance at speed, named
+        from .running_points import running_notes
+
+        options["thermal_model"] = answer["thermal_model"] = plan["thermal_model"]
+        notes += running_notes(plan["thermal_model"], spec["bearing"])
     return StudyResult(study, tables={"onset.csv": table}, figures=figures, checks=found,
-                       options=options, notes=notes)
+                       options=options, notes=notes, answer=answer)
 
 
 def _describe(table, x: str, unit: str, reference: float) -> str:

@@ -1,6 +1,7 @@
 """Studies on a bearing file with [journal]/[thermal]: ``onset_conventions`` evaluates each
 onset at the running condition through the functions ``gfbopt stability`` and gfbopt.api
-call, ``load_sweep``, ``linear_coefficients`` and ``drag_power`` each (speed, load) as
+call (``onset_as_built`` too, per preload and pad count), ``load_sweep``,
+``linear_coefficients`` and ``drag_power`` each (speed, load) as
 ``gfbopt static`` and ``gfbopt linear`` do (one answer whatever the route), naming the model in summary.json and the README; kinds that do not read the tables
 refuse the file in one line naming the kind, before any solve."""
 import json
@@ -57,10 +58,10 @@ def heated(tmp_path_factory):
 
 
 def test_the_study_kinds_reading_the_tables_are_listed_in_the_routes():
-    assert RUNNING_STUDY_KINDS == ("onset_conventions", "load_sweep", "linear_coefficients",
-                                   "drag_power")
-    for route in ("`onset_conventions`", "`load_sweep`", "`linear_coefficients`",
-                  "`drag_power`", "`gfbopt orbit`"):
+    assert RUNNING_STUDY_KINDS == ("onset_conventions", "onset_as_built", "load_sweep",
+                                   "linear_coefficients", "drag_power")
+    for route in ("`onset_conventions`", "`onset_as_built`", "`load_sweep`",
+                  "`linear_coefficients`", "`drag_power`", "`gfbopt orbit`"):
         assert route in RUNNING_ROUTES
 
 
@@ -139,7 +140,7 @@ def no_solver(monkeypatch):
 
 @pytest.mark.parametrize("problem, kind", [
     ("loss_factor", "loss_factor_map"),
-    ("ruscitto_pitch_design", "pitch_design"), ("ruscitto_preload", "onset_as_built")])
+    ("ruscitto_pitch_design", "pitch_design")])
 def test_kinds_that_do_not_read_the_tables_refuse_in_one_line(tmp_path, no_solver, problem,
                                                                kind):
     text = (PROBLEMS / f"{problem}.toml").read_text()
@@ -152,7 +153,8 @@ def test_kinds_that_do_not_read_the_tables_refuse_in_one_line(tmp_path, no_solve
     assert len(line.splitlines()) == 1
     assert f"the study kind '{kind}' does not read" in line
     assert re.search(r"states \[journal\] and \[thermal\]", line)
-    assert "`onset_conventions`, `load_sweep`, `linear_coefficients`, `drag_power`" in line
+    assert ("`onset_conventions`, `onset_as_built`, `load_sweep`, `linear_coefficients`, "
+            "`drag_power`") in line
     assert "`gfbopt stability`" in line
     assert not (tmp_path / "results").exists() or not any((tmp_path / "results").iterdir())
 
@@ -339,3 +341,51 @@ def test_a_drag_row_is_the_static_commands_drag(tmp_path):
                                                                          rel=1e-9)
     # a hot film (more viscous) in a closed-down clearance: 64.0 W against 50.7 W cold
     assert row["film_temperature_c"] > 60.0 and row["running_clearance_um"] < 17.0
+
+
+AS_BUILT = f"""
+name = "heated_preload"
+kind = "onset_as_built"
+title = "Onset against preload at the running condition"
+source = "gfbopt"
+grid = "{GRID}"
+bearing = "bearings/BEARING"
+rotor_mass_kg = 2.0
+load_newton = 20.0
+speed_range_rpm = [3000.0, 120000.0]
+seam_angle_deg = 180.0
+bore = "shims"
+n_shims = 3
+shim_width_deg = 60.0
+shim_offset_deg = 0.0
+preload_depths_um = [0.0, 4.0]
+n_pads = [2.0]
+"""
+#: the same bearings as built, stated in the file: 3 shims 4 µm deep; two 180° pads
+AS_FILES = {("preload", 4.0): '[bore]\nkind = "shims"\ncount = 3\npreload_depth = 4e-6\n'
+                              'width_deg = 60.0\noffset_deg = 0.0\n',
+            ("pads", 0.0): "[[pads]]\nleading_end_deg = 180.0\narc_deg = 180.0\n"
+                           "[[pads]]\nleading_end_deg = 0.0\narc_deg = 180.0\n"}
+
+
+def test_an_as_built_onset_row_is_the_stability_commands(tmp_path):
+    result = compute(load_study(_study(tmp_path, text=AS_BUILT)))
+    assert result.answer == {"thermal_model": HEAT_BALANCE} and result.checks_hold
+    table = result.tables["onset.csv"]
+    for (variant, depth), tables in AS_FILES.items():
+        row = table[(table["variant"] == variant)
+                    & (table["preload_depth_um"] == depth)].iloc[0]
+        built = tmp_path / f"{variant}.toml"
+        built.write_text(THERMAL.read_text() + "\n" + tables)
+        cli = run_cli("stability", "--bearing", built, "--rotor-mass-kg", "2",
+                      "--load-newton", "20", "--speed-range", "3000", "120000", "--grid",
+                      GRID, "--json")
+        assert cli.returncode == 0, cli.stderr
+        out = json.loads(cli.stdout)
+        assert row["onset_status"] == "onset", variant
+        assert row["onset_speed_rpm"] == pytest.approx(out["onset_speed_rpm"], rel=1e-9)
+        for key in RUNNING:
+            assert row[key] == pytest.approx(out[key], rel=1e-9), (variant, key)
+    # the preload still raises the onset at the running condition (13,219 → 16,226 rpm)
+    preload = table[table["variant"] == "preload"].set_index("preload_depth_um")
+    assert preload.loc[4.0, "onset_speed_rpm"] > 1.15 * preload.loc[0.0, "onset_speed_rpm"]
