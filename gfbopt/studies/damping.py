@@ -23,7 +23,7 @@ from .base import (
     StudyResult,
     build_model,
     frame,
-    load_geometry,
+    load_running_geometry,
 )
 from .spec import GRID, opt, req
 from .stability import (confirmation_point, onset_point, reference_load, threshold_point,
@@ -125,8 +125,9 @@ def plan_loss_factor_map(study: Study) -> dict:
         o = spec["onset"]
         from ..design.stability_design import bearing_with_compliance
 
-        geometry = load_geometry(Study(study.file, study.name, study.kind, o,
-                                       study.directory))
+        # [journal]/[thermal] read: each onset at the running condition of each speed
+        geometry, running = load_running_geometry(Study(study.file, study.name, study.kind,
+                                                        o, study.directory))
         speed_range = _speed_range(study, ("onset", "speed_range_rpm"), o["speed_range_rpm"])
         svalues = spec["onset_compliances"] or spec["compliances"]
         film = base.get("film", "seam")
@@ -146,8 +147,27 @@ def plan_loss_factor_map(study: Study) -> dict:
                                    {**common, "bearing": bearing_with_compliance(geometry, s),
                                     "foil": "simple", "deflection_law": law,
                                     "loss_factor": float(eta)}))
-        onset = {"geometry": geometry, "points": points, "speed_range": speed_range}
+        onset = {"geometry": geometry, "points": points, "speed_range": speed_range,
+                 **_at_running_condition(study, geometry, running, points, speed_range)}
     return {"cases": cases, "confirmations": confirmations, "onset": onset, "base": base}
+
+
+def _at_running_condition(study: Study, geometry, running, points: list,
+                          speed_range) -> dict:
+    """With ``[journal]``/``[thermal]`` in the onset's bearing file: ``running`` added to
+    every onset point (:func:`.running_points.running_onset_row`) and the model named
+    ({"thermal_model": …}); else {} (today's points).  The critical-mass map is
+    non-dimensional: no clearance at speed enters it."""
+    from ..thermal.running import ISOTHERMAL
+
+    if running.model_name == ISOTHERMAL:
+        return {}
+    from ..inputs.rotor_limits import check_surface_speed
+
+    check_surface_speed(geometry, list(speed_range), f"{study.file}: onset.speed_range_rpm")
+    for _, point in points:
+        point["running"] = running
+    return {"thermal_model": running.model_name}
 
 
 def _beats_rigid(table, value: str, group: str) -> list:
@@ -328,8 +348,17 @@ def run_loss_factor_map(study: Study, plan: dict, ctx: RunContext) -> StudyResul
                "grid": str(grid), "loss_factors": spec["loss_factors"],
                "compliances": spec["compliances"], "method": spec["method"],
                "critical_mass_tolerance": spec["critical_mass_tolerance"]}
+    answer = {}
+    if plan["onset"] and plan["onset"].get("thermal_model"):    # the onset's model named
+        from .running_points import running_notes
+
+        name = options["thermal_model"] = answer["thermal_model"] = \
+            plan["onset"]["thermal_model"]
+        notes += running_notes(name, spec["onset"]["bearing"])
+        notes.append("The critical-mass map is non-dimensional (Λ, S, W̄ given): only the "
+                     "onset part (onset.csv) is at the running condition.")
     return StudyResult(study, tables=tables, figures=figures, checks=found, options=options,
-                       notes=notes)
+                       notes=notes, answer=answer)
 
 
 KINDS = {"loss_factor_map": Kind(plan_loss_factor_map, run_loss_factor_map, parallel=True)}

@@ -1,6 +1,7 @@
 """Studies on a bearing file with [journal]/[thermal]: ``onset_conventions`` evaluates each
 onset at the running condition through the functions ``gfbopt stability`` and gfbopt.api
-call (``onset_as_built`` too, per preload and pad count), ``load_sweep``,
+call (``onset_as_built`` too, per preload and pad count, and ``loss_factor_map``'s onset
+part, per S and η), ``load_sweep``,
 ``linear_coefficients`` and ``drag_power`` each (speed, load) as
 ``gfbopt static`` and ``gfbopt linear`` do (one answer whatever the route), naming the model in summary.json and the README; kinds that do not read the tables
 refuse the file in one line naming the kind, before any solve."""
@@ -58,10 +59,10 @@ def heated(tmp_path_factory):
 
 
 def test_the_study_kinds_reading_the_tables_are_listed_in_the_routes():
-    assert RUNNING_STUDY_KINDS == ("onset_conventions", "onset_as_built", "load_sweep",
-                                   "linear_coefficients", "drag_power")
-    for route in ("`onset_conventions`", "`onset_as_built`", "`load_sweep`",
-                  "`linear_coefficients`", "`drag_power`", "`gfbopt orbit`"):
+    assert RUNNING_STUDY_KINDS == ("onset_conventions", "onset_as_built", "loss_factor_map",
+                                   "load_sweep", "linear_coefficients", "drag_power")
+    for route in ("`onset_conventions`", "`onset_as_built`", "`loss_factor_map`",
+                  "`load_sweep`", "`linear_coefficients`", "`drag_power`", "`gfbopt orbit`"):
         assert route in RUNNING_ROUTES
 
 
@@ -138,9 +139,7 @@ def no_solver(monkeypatch):
     monkeypatch.setattr(StaticSolver, "__init__", refuse)
 
 
-@pytest.mark.parametrize("problem, kind", [
-    ("loss_factor", "loss_factor_map"),
-    ("ruscitto_pitch_design", "pitch_design")])
+@pytest.mark.parametrize("problem, kind", [("ruscitto_pitch_design", "pitch_design")])
 def test_kinds_that_do_not_read_the_tables_refuse_in_one_line(tmp_path, no_solver, problem,
                                                                kind):
     text = (PROBLEMS / f"{problem}.toml").read_text()
@@ -153,8 +152,8 @@ def test_kinds_that_do_not_read_the_tables_refuse_in_one_line(tmp_path, no_solve
     assert len(line.splitlines()) == 1
     assert f"the study kind '{kind}' does not read" in line
     assert re.search(r"states \[journal\] and \[thermal\]", line)
-    assert ("`onset_conventions`, `onset_as_built`, `load_sweep`, `linear_coefficients`, "
-            "`drag_power`") in line
+    assert ("`onset_conventions`, `onset_as_built`, `loss_factor_map`, `load_sweep`, "
+            "`linear_coefficients`, `drag_power`") in line
     assert "`gfbopt stability`" in line
     assert not (tmp_path / "results").exists() or not any((tmp_path / "results").iterdir())
 
@@ -389,3 +388,53 @@ def test_an_as_built_onset_row_is_the_stability_commands(tmp_path):
     # the preload still raises the onset at the running condition (13,219 → 16,226 rpm)
     preload = table[table["variant"] == "preload"].set_index("preload_depth_um")
     assert preload.loc[4.0, "onset_speed_rpm"] > 1.15 * preload.loc[0.0, "onset_speed_rpm"]
+
+
+LOSS_FACTOR = f"""
+name = "heated_loss_factor"
+kind = "loss_factor_map"
+title = "Onset against S and η at the running condition"
+source = "gfbopt"
+grid = "{GRID}"
+loss_factors = [0.3]
+compliances = [1.0]
+deflection_laws = ["mean"]
+[model]
+film = "seam"
+seam_angle_deg = 180.0
+[[cases]]
+label = "L2"
+bearing_number = 2.0
+eccentricity = 0.4
+[onset]
+bearing = "bearings/BEARING"
+rotor_mass_kg = 2.0
+load_newton = 20.0
+speed_range_rpm = [5000.0, 60000.0]
+"""
+
+
+def test_a_loss_factor_onset_row_is_the_stability_commands(tmp_path):
+    from gfbopt.design.stability_design import bearing_with_compliance
+
+    result = compute(load_study(_study(tmp_path, text=LOSS_FACTOR)))
+    assert result.answer == {"thermal_model": HEAT_BALANCE} and result.checks_hold
+    onset = result.tables["onset.csv"].set_index("deflection_law")
+    assert "thermal_model" not in result.tables["critical_mass.csv"]   # non-dimensional
+    # S = 1 by the bump thickness (bearing_with_compliance), stated in a file for the command
+    bearing = bearing_with_compliance(load_bearing(THERMAL, running=True), 1.0)
+    src = re.sub(r"bump_thickness = [^#\n]*", f"bump_thickness = {bearing.bump_thickness!r} ",
+                 THERMAL.read_text())
+    assert src.count(repr(bearing.bump_thickness)) == 1
+    (tmp_path / "s1.toml").write_text(src)
+    for law, flags, path in (("rigid", ("--foil", "rigid", "--film", "seam", "--seam-angle",
+                                        "180"), THERMAL),
+                             ("mean", ("--loss-factor", "0.3"), tmp_path / "s1.toml")):
+        cli = run_cli("stability", "--bearing", path, "--rotor-mass-kg", "2", "--load-newton",
+                      "20", "--speed-range", "5000", "60000", *flags, "--grid", GRID, "--json")
+        assert cli.returncode == 0, cli.stderr
+        out = json.loads(cli.stdout)
+        assert onset.loc[law, "onset_speed_rpm"] == pytest.approx(out["onset_speed_rpm"],
+                                                                  rel=1e-9), law
+        assert onset.loc[law, "running_clearance_um"] == pytest.approx(
+            out["running_clearance_um"], rel=1e-9), law
