@@ -334,10 +334,11 @@ for _name, _entry in {
     "damping_ratio": ("-", "damping ratio ζ = −Re s/|s| of the mode"),
     "growth_rate_per_s": ("1/s", "growth rate of the mode (> 0 unstable)"),
     "reference_whirl_ratio": ("-", "ν_ref of the Kelvin–Voigt foil states (empty: η = 0)"),
-    "node_position_m": ("m", "axial position (the rotor file's) where the straight line "
-                        "through the mode's whirl at the bearings is least — the rigid body's "
-                        "node; it may lie off the rotor, and a shaft's bending mode departs "
-                        "from that line (bending_share)"),
+    "node_position_m": ("m", "axial position (the rotor file's) where the mode's dominant "
+                        "whirl is least along the rotor's axis: a shaft's from its shape "
+                        "along the shaft (always on it); the rigid body's where its straight "
+                        "axis whirls least, which may lie off the rotor (node_location says "
+                        "where); empty when the axis translates (no node)"),
     "phase_b_from_a_deg": ("deg", "phase of the dominant whirl at bearing B from bearing A "
                            "(0 cylindrical, ±180 conical)"),
     "amplitude_um": ("µm", "synchronous amplitude: major semi-axis of the 1× orbit ellipse, "

@@ -86,7 +86,8 @@ class RotorAnalysis:
                                                         if len(table) else None),
                                "tracks": self.campbell.tracks(),
                                "load_capacity_exceeded": self.campbell.capacity,
-                               "frequency_limit_hz": self.campbell.frequency_limit_hz}
+                               "frequency_limit_hz": self.campbell.frequency_limit_hz,
+                               "dropped_roots": list(self.campbell.dropped)}
         if self.imbalance is not None:
             above = self.imbalance.unstable_from_rpm
             out["imbalance_response"] = {**self.imbalance.to_dict(),
@@ -144,6 +145,8 @@ def imbalance_note(unstable_from_rpm: float) -> str:
 
 def _shape_columns(shape: dict) -> dict:
     out = {"node_position_m": shape["node_position_m"],
+           "node_location": shape["node_location"],
+           "node_relative_whirl": shape["node_relative_whirl"],
            "phase_b_from_a_deg": shape["phase_b_from_a_deg"]}
     if "bending_share" in shape:          # a shaft's mode: how much it bends (as in the JSON)
         out["bending_share"] = shape["bending_share"]
