@@ -16,13 +16,18 @@ module                 commands
 :mod:`.common`         operating-point options, refusal of ignored options, JSON output
 :mod:`.si`             a bearing file's [model] options merged with the command line
 :mod:`.size`           the memory and time estimate of a command (gfbopt.guard)
+:mod:`.csv_context`    the context file beside every CSV (provenance, column units)
+:mod:`.flags`          each option by its flag as typed, in refusals and provenance
 =====================  =================================================================
 
-Bad input prints one line naming the parameter, its value and the rule, and exits with
-status 2, before anything is solved (output paths that cannot be written included, and a
-run whose estimated memory or time is above ``--max-memory-gb`` or ``--max-minutes``).  A solve
+Bad input prints one line naming the parameter (by the flag as typed, :mod:`.flags`), its
+value and the rule, and exits with status 2, before anything is solved (output paths that
+cannot be written included, and a run whose estimated memory or time is above
+``--max-memory-gb`` or ``--max-minutes``).  A solve
 that does not converge (:class:`~gfbopt.errors.ConvergenceError`) exits with status 1 and says
-why, with the solver's status and residual.  Every JSON output carries a ``provenance`` block (version, source commit, options).
+why, with the solver's status and residual.  Every JSON output carries a ``provenance`` block
+(version, source commit, options), and every CSV its context file ``FILE.csv.json`` with the
+same block and its columns' units (:mod:`.csv_context`, docs/cli_outputs.md).
 """
 from __future__ import annotations
 
@@ -38,6 +43,8 @@ from . import design, formats, linear, run, stability, static, transient
 from . import rotor
 from . import capacity, export_ross
 from .common import Parser
+from .csv_context import sidecar_path
+from .flags import as_typed, option_flags
 from .size import GUARDED, add_limits, check_command
 
 COMMANDS = (static, linear, stability, transient, design, run, rotor, formats)
@@ -53,6 +60,8 @@ def build_parser() -> Parser:
         module.register(sub)
     for name in GUARDED:                  # one memory and time guard (gfbopt.guard)
         add_limits(sub.choices[name])
+    for command in sub.choices.values():  # each option's flag as typed (CSV context, errors)
+        command.set_defaults(option_flags=option_flags(command))
     return parser
 
 
@@ -110,6 +119,19 @@ def _check_file(key: str, value) -> None:
             raise ParameterError(f"--{key}", value, f"exists and cannot be overwritten "
                                  f"({exc.strerror or exc})") from None
     _probe(parent, key, value)
+    if key == "csv":             # its context FILE.csv.json is written beside it (csv_context)
+        side = sidecar_path(path)
+        if side.is_dir():
+            raise ParameterError(f"--{key}", value, f"cannot be written: its context file "
+                                 f"{str(side)!r} is a directory")
+        if side.exists():
+            try:
+                with open(side, "ab"):
+                    pass
+            except OSError as exc:
+                raise ParameterError(f"--{key}", value, f"its context file {str(side)!r} "
+                                     f"exists and cannot be overwritten "
+                                     f"({exc.strerror or exc})") from None
 
 
 def _check_folder(key: str, value) -> None:
@@ -164,7 +186,9 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
     """Run one command; exit status 0 done, 1 a solver that did not converge (the message
     says why, with its status and residual), 2 bad input (one line, before any solve),
     130 interrupted."""
+    argv = list(sys.argv[1:] if argv is None else argv)
     args = build_parser().parse_args(argv)
+    args.command_line = ("gfbopt", *map(str, argv))
     _limit_threads()
     try:
         check_outputs(args)
@@ -173,6 +197,9 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
     except ConvergenceError as exc:
         print(f"gfbopt: error: the solver did not converge: {exc}", file=sys.stderr)
         return 1
+    except ParameterError as exc:     # named by the flag as typed (gfbopt.cli.flags)
+        print(f"gfbopt: error: {as_typed(exc, args)}", file=sys.stderr)
+        return 2
     except GfboptError as exc:
         print(f"gfbopt: error: {exc}", file=sys.stderr)
         return 2

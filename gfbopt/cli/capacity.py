@@ -6,7 +6,8 @@ minimum-film limit (SI, per bearing)::
 
 A thin layer over :func:`gfbopt.rotor.capacity.load_capacity` and
 :func:`~gfbopt.rotor.capacity.lift_off_speed`.  ``--figure FILE`` draws the curve
-(h_min against load or speed, the limit and the answer); ``--csv FILE`` writes it.  The
+(h_min against load or speed, the limit and the answer); ``--csv FILE`` writes it, with its
+context ``FILE.json`` beside it (:mod:`.csv_context`).  The
 formulation comes from the bearing file's ``[model]`` table and the options given here; the
 bore, pads and zones from its ``[bore]``, ``[[pads]]`` and ``[[zones]]`` tables.  With
 ``[journal]``/``[thermal]`` the search runs at the running condition of its answer
@@ -22,6 +23,7 @@ import sys
 from ..errors import ParameterError
 from ..inputs.grid import DEFAULT_GRID
 from .common import emit, number
+from .csv_context import HELP as CSV_HELP, context_options, write_csv
 from .si import seam_angle_text, stated_options
 
 
@@ -51,7 +53,7 @@ def register(subparsers) -> None:
     sub.add_argument("--grid", default=str(DEFAULT_GRID),
                      help=f"NTHETAxNZ (default {DEFAULT_GRID})")
     sub.add_argument("--figure", default=None, help="draw the curve to this file (png, pdf)")
-    sub.add_argument("--csv", default=None, help="write the curve to this CSV")
+    sub.add_argument("--csv", default=None, help="write the curve to this CSV" + CSV_HELP)
     sub.add_argument("--json", action="store_true", help="print one JSON object")
     sub.set_defaults(handler=run)
 
@@ -99,16 +101,17 @@ def run(args) -> int:
                                       options=options, grid=grid)
     result = _Found(found)
     out = {"bearing": bearing.name, **found}
+    options = context_options(args, command="capacity", **out["conventions"])
     if args.csv:
         import pandas as pd
 
-        pd.DataFrame(result.curve).to_csv(args.csv, index=False)
+        write_csv(pd.DataFrame(result.curve), args.csv, options, float_format=None)
     if args.figure:
         from ..plotting.bearing import plot_capacity_curve
         from ..plotting.core import save_figure
 
         save_figure(plot_capacity_curve(out).figure, args.figure)
-    emit(out, args.json, lambda: _report(out), out["conventions"])
+    emit(out, args.json, lambda: _report(out), options)
     if not result.success and "no lift-off" not in result.message:
         print(f"gfbopt: {result.message}", file=sys.stderr)
     return 0 if result.success or "no lift-off" in result.message else 1

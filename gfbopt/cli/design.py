@@ -15,6 +15,7 @@ from ..design.materials import MATERIALS, get_material
 from ..errors import ParameterError
 from ..provenance import jsonable as _jsonable
 from .common import number
+from .csv_context import context_options
 
 __all__ = ["register", "run"]
 
@@ -108,7 +109,7 @@ def _target(values):
         return values[0]
     if len(values) == 2:
         return tuple(values)
-    raise ParameterError("target-compliance", values, "give one value S or a band LOW HIGH")
+    raise ParameterError("--target-compliance", values, "give one value S or a band LOW HIGH")
 
 
 def _output(design, spec) -> dict:
@@ -199,7 +200,7 @@ def run(args: argparse.Namespace) -> int:
     design = design_bump_foil(spec, _target(args.target_compliance))
     out = _jsonable(_output(design, spec))
     if args.json:
-        out["provenance"] = provenance(command="design", objective=args.objective,
-                                       material=args.material)
+        out["provenance"] = provenance(**context_options(
+            args, command="design", objective=args.objective, material=args.material))
     print(json.dumps(out) if args.json else _report(out))
     return 0 if design.success else 1

@@ -20,6 +20,8 @@ for coefficients beyond the table's speed and frequency span — e.g. at the run
 alone instead of the whirl frequency — extrapolated kxx 35–48 % too high in a trial (shared
 design notes).  The command states the span; keep ROSS's analysis (``run_modal(speed,
 matched_whirl=True)``) inside it.  Default frequencies: from 0.1 × LOW/60 to 1.5 × HIGH/60 Hz.
+Beside each file its context ``bearing_NAME.toml.json`` (:mod:`.csv_context`): version,
+source commit, command line and options.
 """
 from __future__ import annotations
 
@@ -30,6 +32,7 @@ import numpy as np
 
 from ..errors import ParameterError
 from .common import add_grid, emit, grid_of, number
+from .csv_context import context_options, sidecar_path, write_context
 
 #: default number of speeds and of whirl frequencies of a table
 SPEEDS = 8
@@ -53,7 +56,8 @@ def register(subparsers) -> None:
     sub.add_argument("--frequencies", type=int, default=FREQUENCIES,
                      help=f"number of whirl frequencies, evenly spaced (default {FREQUENCIES})")
     sub.add_argument("--out", required=True, metavar="DIR", help="folder for the files "
-                     "(created if missing)")
+                     "(created if missing); beside each its context FILE.json (version, "
+                     "source commit, options; docs/cli_outputs.md)")
     sub.add_argument("--json-format", action="store_true", help="write .json files (ROSS "
                      "reads both; default .toml)")
     add_grid(sub)
@@ -107,6 +111,7 @@ def run(args) -> int:
     from ..rotor.ross_bridge import ROSS_MIN_AXIS_POINTS, bearing_tables, write_ross_table
     from ..rotor.supports import resolve_rotor
     from ..rotor.system import SpeedLine
+    from ..provenance import source_state
     from ..version import __version__
 
     speeds = _axis("speed", *args.speed_range, args.speeds)
@@ -128,16 +133,23 @@ def run(args) -> int:
     span = (f"speeds {low:g}–{high:g} rpm ({len(speeds)}), whirl frequencies "
             f"{f_range[0]:.6g}–{f_range[1]:.6g} Hz ({len(freqs)})")
     files = []
+    options = context_options(args, command="export-ross", grid=str(grid))
+    state = source_state()
+    commit = (state["commit"] or state["source"]) + (" with uncommitted changes"
+                                                     if state["dirty"] else "")
     for k, (support, node) in enumerate(zip(system.bearings, nodes)):
         tables = bearing_tables(line, k, speeds, freqs)
         header = (f"gfbopt {__version__} export-ross: bearing {support.name} of "
                   f"{args.rotor_file}, grid {grid}",
+                  f"source commit {commit}; command, options and provenance in "
+                  f"{sidecar_path(folder / f'bearing_{support.name}{suffix}').name}",
                   "ROSS 3.x BearingElement coefficient table (load: "
                   "ross.BearingElement.load(path)); SI: speed, frequency rad/s, k N/m, c N s/m",
                   f"table span: {span}; ROSS extrapolates linearly outside it",
                   FRAME)
         path = write_ross_table(folder / f"bearing_{support.name}{suffix}", tables, node,
                                 support.name, support.geometry.radial_clearance, header)
+        write_context(path, None, options, read_with="ross.BearingElement.load(path)")
         files.append({"bearing": support.name, "file": str(path), "node": node,
                       "position_m": support.position})
     out = {"rotor_file": args.rotor_file, "grid": str(grid), "files": files,
@@ -146,8 +158,7 @@ def run(args) -> int:
            "extrapolation": "ROSS extrapolates linearly outside the table's speed and "
                             "frequency span: keep its analysis inside it",
            "few_points": min(len(speeds), len(freqs)) < ROSS_MIN_AXIS_POINTS, "frame": FRAME}
-    emit(out, args.json, lambda: _report(out, span), {"command": "export-ross",
-                                                       "grid": str(grid)})
+    emit(out, args.json, lambda: _report(out, span), options)
     return 0
 
 

@@ -16,6 +16,7 @@ import time
 
 from ..errors import ParameterError
 from .common import add_operating_point, describe, emit, number, operating_point
+from .csv_context import context_options
 
 
 #: largest whirl ratio of a K, C table [-]
@@ -116,5 +117,5 @@ def run(args) -> int:
             lines.extend(running_lines(out["running"]))
         return "\n".join(lines)
 
-    emit(out, args.json, report, describe(op, frame=args.frame))
+    emit(out, args.json, report, context_options(args, **describe(op, frame=args.frame)))
     return 0 if out["success"] else 1

@@ -24,6 +24,8 @@ one name per mode in the text, JSON, CSV and figures, :mod:`gfbopt.rotor.trackin
 ``campbell.frequency_limit_hz``: a shaft's modes are followed up to it),
 ``imbalance_response`` (``unstable_from_rpm``; each peak's ``above_first_onset``: the linear
 response there is not physical), ``imbalance_planes``, ``conventions`` and ``provenance``.
+``--csv DIR`` adds ``csv`` (the files written) and changes nothing else in the JSON; each CSV
+has its context ``FILE.csv.json`` beside it (:mod:`.csv_context`).
 
 Speed ranges: HIGH/LOW ≤ 1000, and speeds every bearing can run at (surface speed and bearing
 number, :func:`gfbopt.rotor.analyse.check_speed_span`).
@@ -38,6 +40,7 @@ from ..errors import ParameterError
 from ..inputs.grid import DEFAULT_GRID
 from . import rotor_time
 from .common import emit, number
+from .csv_context import HELP as CSV_HELP, context_options, write_csv
 
 
 def register(subparsers) -> None:
@@ -63,7 +66,8 @@ def register(subparsers) -> None:
                      help=f"NTHETAxNZ (default {DEFAULT_GRID})")
     sub.add_argument("--json", action="store_true", help="print one JSON object")
     sub.add_argument("--csv", default=None, metavar="DIR", help="write the tables as CSV "
-                     "files in DIR")
+                     "files in DIR (the JSON is the same with or without it, plus the list "
+                     "'csv' of the files)" + CSV_HELP)
     sub.add_argument("--plot", default=None, metavar="DIR", help="write the figures (PNG) "
                      "in DIR")
     rotor_time.add_arguments(sub)      # --orbit, --run-up, --coast-down
@@ -128,25 +132,17 @@ def run(args) -> int:
              "position_m": p.position,
              "source": "rotor file" if planes is None else "command line"}
             for p in system.imbalance]
-    for key in ("scan", "equilibria"):       # in the CSV files; the JSON keeps the answers
-        out[key] = out[key] if not args.csv else f"{key}.csv"
-    if args.csv and "imbalance_response" in out:    # its table is imbalance_response.csv
-        out["imbalance_response"]["table"] = "imbalance_response.csv"
-    if args.csv:
+    options = context_options(args, command="rotor", grid=str(grid),
+                              rotor_file=args.rotor_file)
+    if args.csv:        # the JSON is the same with or without --csv, plus this list
         folder = Path(args.csv)
         folder.mkdir(parents=True, exist_ok=True)
-        out["csv"] = [str(_write(frame, folder / f"{name}.csv"))
+        out["csv"] = [str(write_csv(frame, folder / f"{name}.csv", options))
                       for name, frame in result.tables().items()]
     if args.plot:
         out["figures"] = _figures(result, Path(args.plot), args.speed_range[1])
-    emit(out, args.json, lambda: _report(out), {"command": "rotor", "grid": str(grid),
-                                                "rotor_file": args.rotor_file})
+    emit(out, args.json, lambda: _report(out), options)
     return 0
-
-
-def _write(frame, path: Path) -> Path:
-    frame.to_csv(path, index=False, float_format="%.9g")
-    return path
 
 
 def _figures(result, folder: Path, top: float) -> list:

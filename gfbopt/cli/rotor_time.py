@@ -24,6 +24,7 @@ import math
 from pathlib import Path
 
 from .common import number
+from .csv_context import context_options, write_csv
 
 #: defaults of --kick [clearances per rad] and --window-revolutions [revolutions]
 KICK, WINDOW_REVOLUTIONS = 1e-3, 20.0
@@ -160,6 +161,9 @@ def _rotor_path(args) -> str:
     raise ParameterError("ROTOR.toml", None, "a rotor file is required")
 
 
+#: the speed ramp's names (gfbopt.transient.rotor_analysis.ramp_profile) → the metavars
+#: of --run-up/--coast-down A B
+RAMP_ENDS = {"start_rpm": "A", "end_rpm": "B"}
 #: the rotor command's options that a transient does not use (refused, not ignored)
 NOT_USED = {"speed_range": "--speed-range", "campbell": "--campbell",
             "imbalance_response": "--imbalance-response", "half_mass": "--half-mass"}
@@ -203,7 +207,13 @@ def check_profile(args):
     if args.speed_rpm is not None:
         raise ParameterError("--speed-rpm", args.speed_rpm, f"is used by --orbit only (the "
                              f"{kind} gives its speeds)")
-    profile = ramp_profile(start, end, args.rate, kind, args.force)
+    try:                 # the ramp's own names (start_rpm, end_rpm) are A and B of --KIND
+        profile = ramp_profile(start, end, args.rate, kind, args.force)
+    except ParameterError as exc:
+        if exc.name not in RAMP_ENDS:
+            raise
+        raise ParameterError(f"--{kind}", [start, end], f"{RAMP_ENDS[exc.name]} = "
+                             f"{exc.value:g}: {exc.rule}") from None
     if not profile.revolutions >= MIN_RUN_REVOLUTIONS:
         raise ParameterError("--rate", args.rate, f"ramps {start:g} → {end:g} rpm in "
                              f"{profile.revolutions:.3g} shaft revolutions, fewer than "
@@ -235,6 +245,11 @@ def _check_numbers(args, profile):
             raise ParameterError("--window-revolutions", window, f"{room}: a window of at least "
                                  f"one revolution and at most {WINDOW_SHARE[profile.kind]:g} of "
                                  f"the {profile.kind}'s {profile.revolutions:.4g} revolutions")
+    for option, value, means in (
+            ("--reference-whirl-ratio", args.reference_whirl_ratio, "a whirl ratio ν_ref"),
+            ("--subsync-threshold-um", args.subsync_threshold_um, "an amplitude [µm]")):
+        if value is not None and not value > 0:
+            raise ParameterError(option, value, f"must be > 0 ({means})")
     travel = args.foil_travel_um
     if travel is not None and not travel >= MIN_FOIL_TRAVEL_UM:
         raise ParameterError("--foil-travel-um", travel, f"must be >= {MIN_FOIL_TRAVEL_UM:g} µm "
@@ -287,6 +302,11 @@ def handle(args) -> int:
         raise ParameterError("--stages", args.stages, "applies to --method rkc only")
     grid = Grid.parse(args.grid)
     system = load_rotor(_rotor_path(args), running=True)   # an orbit holds its speed's condition
+    if args.reference_whirl_ratio is not None and not any(
+            (b.options.loss_factor or 0.0) > 0 for b in system.bearings):
+        raise ParameterError("--reference-whirl-ratio", args.reference_whirl_ratio, "is used "
+                             "only with structural damping: no bearing of the rotor file "
+                             "states loss_factor > 0 (as gfbopt orbit without --loss-factor)")
     planes = imbalance_planes(args, system, profile.top_rpm)
     if planes is not None:
         system = replace(system, imbalance=planes)
@@ -306,14 +326,15 @@ def handle(args) -> int:
                                 else args.window_revolutions),
             subsync_threshold_um=args.subsync_threshold_um)
     out = result.to_dict()
-    if args.csv:
+    options = context_options(args, **result.settings)
+    if args.csv:        # the JSON is the same with or without --csv, plus this list
         folder = Path(args.csv)
         folder.mkdir(parents=True, exist_ok=True)
-        for name, table in result.tables().items():
-            table.to_csv(folder / name, index=False, float_format="%.8g")
+        out["csv"] = [str(write_csv(table, folder / name, options, float_format="%.8g"))
+                      for name, table in result.tables().items()]
     if args.plot:
         _figures(result, Path(args.plot))
-    _emit(out, args.json, result)
+    _emit(out, args.json, options, result)
     return 0 if result.success else 1
 
 
@@ -363,14 +384,14 @@ def _whirl(b: dict, whirl_words) -> str:
     return whirl_words({**b, "limit_cycle_settled": True})[:-1] + ", not settled)"
 
 
-def _emit(out: dict, as_json: bool, result) -> None:
+def _emit(out: dict, as_json: bool, options: dict, result) -> None:
     import json
 
     from ..provenance import jsonable, provenance
     from ..transient.rotor_result import whirl_words
 
     if as_json:
-        print(json.dumps(jsonable({**out, "provenance": provenance(**result.settings)})))
+        print(json.dumps(jsonable({**out, "provenance": provenance(**options)})))
         return
     p = result.profile
     lines = [f"gfbopt rotor — {p.kind} {p.start_rpm:,.0f}"
@@ -418,4 +439,6 @@ def _emit(out: dict, as_json: bool, result) -> None:
                      "the record up to there is kept")
     if not out["success"]:
         lines.append(f"  ** FAILED: {out['message']}")
+    if out.get("csv"):
+        lines.append(f"  csv: {', '.join(out['csv'])}")
     print("\n".join(lines))

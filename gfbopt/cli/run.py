@@ -51,7 +51,10 @@ def _default_workers() -> int:
 
 
 def _positive(name: str):
+    """argparse type: an integer >= 1, named by its flag ``--name`` in the error."""
     import argparse
+
+    name = f"--{name}"
 
     def parse(text: str) -> int:
         try:

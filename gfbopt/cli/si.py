@@ -30,10 +30,11 @@ def seam_angle_text(text: str):
     try:
         value = float(text)
     except ValueError:
-        raise argparse.ArgumentTypeError(f"seam-angle = {text!r}: must be a number of degrees "
+        raise argparse.ArgumentTypeError(f"--seam-angle = {text!r}: must be a number of degrees "
                                          "or 'max_film'") from None
     if not math.isfinite(value):
-        raise argparse.ArgumentTypeError(f"seam-angle = {text!r}: must be finite (not NaN)")
+        raise argparse.ArgumentTypeError(f"--seam-angle = {text!r}: must be finite "
+                                         "(not NaN)")
     return value
 
 

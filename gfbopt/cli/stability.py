@@ -29,6 +29,7 @@ import sys
 
 from ..errors import ParameterError
 from .common import add_grid, emit, number
+from .csv_context import HELP as CSV_HELP, context_options, write_context
 from .si import seam_angle_text, stated_options
 
 #: --onset without --speed-range searches (N/4, 2N) around the operating speed N [rpm]
@@ -71,7 +72,8 @@ def register(subparsers) -> None:
                      help="excitation frequencies of the K, C table [Hz] (default: 0.1 … 1.0 "
                      "times the shaft frequency, plus the matched whirl)")
     sub.add_argument("--csv", default=None, help="write K [N/m], C [N s/m] against frequency "
-                     "to this CSV (columns kxx_N_per_m … cyy_Ns_per_m, gfbopt.glossary)")
+                     "to this CSV (columns kxx_N_per_m … cyy_Ns_per_m, gfbopt.glossary)"
+                     + CSV_HELP)
     add_grid(sub)
     sub.add_argument("--json", action="store_true", help="print one JSON object (the same "
                      "fields whatever the flags; null when not computed)")
@@ -108,6 +110,11 @@ def _check(args) -> None:
         if not 0 < low < high:
             raise ParameterError("--speed-range", args.speed_range,
                                  "must be two speeds 0 < LOW < HIGH [rpm]")
+
+
+def _provenance_options(args, grid, options) -> dict:
+    """The options of the provenance block of --json and of the CSV's context file."""
+    return context_options(args, command="stability", grid=str(grid), **options.to_dict())
 
 
 #: the fields of the operating-point answer (StabilityResult.to_dict without conventions)
@@ -195,7 +202,10 @@ def run(args) -> int:
                                       args.frequency_hz, result.threshold_whirl_ratio)
             out["coefficients"] = table.to_dict()
             if args.csv:
-                table.write_csv(args.csv)
+                from ..rotor.coefficients import COLUMNS
+
+                write_context(table.write_csv(args.csv), COLUMNS,
+                              _provenance_options(args, grid, options))
                 out["csv"] = str(args.csv)
             bar.update(1)
             bar.close()
@@ -222,7 +232,7 @@ def run(args) -> int:
     out["success"] = success
     out["message"] = "; ".join(r.message for r in done if r.message)
     emit(out, args.json, lambda: _report(out, result, onset, table, args.csv),
-         {"command": "stability", "grid": str(grid), **options.to_dict()})
+         _provenance_options(args, grid, options))
     if not success:
         print("gfbopt: the stability analysis did not complete: "
               f"{(result and result.message) or (onset and onset.message)}", file=sys.stderr)

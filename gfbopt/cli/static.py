@@ -12,6 +12,7 @@ import sys
 
 from ..errors import ParameterError
 from .common import add_operating_point, describe, emit, number, operating_point
+from .csv_context import context_options
 
 #: default CPU-time budget of one IPOPT solve [s] (``--time-limit``); the iteration budget is
 #: IPOPT's max_iter of gfbopt.static.build.default_ipopt_options (60 per solve)
@@ -58,7 +59,7 @@ def run(args) -> int:
             sol.torque_ratio, op.model.bearing_number, op.geometry)
     if point is not None:
         out.update(running_fields(point))
-    emit(out, args.json, lambda: _report(out), describe(op))
+    emit(out, args.json, lambda: _report(out), context_options(args, **describe(op)))
     if not sol.success:
         print(f"gfbopt: solve did not converge: {sol.message} (status {sol.status}, residual "
               f"{sol.residual:.3g}; {budget})", file=sys.stderr)
