@@ -1,6 +1,6 @@
-"""``gfbopt static``, ``gfbopt linear`` and ``gfbopt orbit`` on a bearing file with
+"""``gfbopt static``, ``linear``, ``orbit`` and ``critical-mass`` on a bearing file with
 ``[journal]``/``[thermal]``: the operating point at the running condition of the file's speed
-(the orbit: the bearing held at that condition, constant speed, for the whole transient).
+(the transients: the bearing held at that condition, constant speed, throughout).
 
 The running point (:func:`gfbopt.thermal.running.running_point`: the centrifugal growth, and
 with ``[thermal]`` the heat balance's fixed point of temperatures, growths, μ(T) and clearance
@@ -21,8 +21,8 @@ from typing import Callable, Optional
 from ..errors import ParameterError
 from ..thermal.running import HEAT_BALANCE, ISOTHERMAL, RunningPoint
 
-#: the clearance at speed's fields added to ``gfbopt static/linear/orbit --json`` for such a
-#: file
+#: the clearance at speed's fields added to ``gfbopt static/linear/orbit/critical-mass
+#: --json`` for such a file
 RUNNING_FIELDS = ("thermal_model", "cold_clearance_um", "running_clearance_um",
                   "centrifugal_growth_um", "thermal_growth_um", "film_temperature_c",
                   "viscosity_pa_s", "running")

@@ -15,6 +15,13 @@ deflection becomes a Kelvin–Voigt state, τ_f dW/dτ + W = S q with τ_f = η/
 bearing unless ``--reference-whirl-ratio`` gives it, and both are printed.  Supported by rkc
 and rk4 for both deflection laws, by bdf for the axial-mean law; refused for the beam foil
 and for a foil without bumps (rigid, S = 0), in one line before anything is solved.
+
+A bearing file with ``[journal]``/``[thermal]``: the bearing held at its running condition at
+``--speed-rpm`` for the whole transient (constant speed, the temperatures taken as settled),
+exactly as ``gfbopt static`` holds it (:mod:`gfbopt.cli.running_point`: the running clearance,
+μ(T) and the model; ``--eccentricity`` refused with the heat balance); the output names the
+model (``thermal_model``) and gives the running point's fields.  A file without the tables:
+today's output.
 """
 from __future__ import annotations
 
@@ -192,10 +199,10 @@ def _operating_point(args):
     return op
 
 
-def _orbit_point(args):
-    """(OperatingPoint or None, RunningPoint or None, solver or None) of ``gfbopt orbit``: a
-    bearing file with ``[journal]``/``[thermal]`` held at its running condition at
-    ``--speed-rpm`` exactly as ``gfbopt static`` holds it
+def _held_point(args):
+    """(OperatingPoint or None, RunningPoint or None, solver or None) of ``gfbopt orbit`` and
+    ``critical-mass``: a bearing file with ``[journal]``/``[thermal]`` held at its running
+    condition at ``--speed-rpm`` exactly as ``gfbopt static`` holds it
     (:func:`gfbopt.cli.running_point.running_operating_point`; the damping and method checked
     on the cold model before the heat balance is solved); else today's operating point."""
     from .running_point import running_operating_point
@@ -279,7 +286,7 @@ def run_orbit(args) -> int:
 
     _refuse_method_options(args)
     _check_orbit_mass(args)
-    op, point, solver = _orbit_point(args)
+    op, point, solver = _held_point(args)
     if op is None:                               # thermal runaway or closure at the speed
         from .running_point import no_running_state
 
@@ -312,28 +319,17 @@ def run_orbit(args) -> int:
                         rotor_mass_kg=args.rotor_mass_kg)
     out = {**settings, **orbit.to_dict(0), "eccentricity": sol.eccentricity,
            "load": sol.load, "attitude_angle_deg": sol.attitude_angle_deg}
-    if point is not None:                        # the clearance at speed (RUNNING_FIELDS)
-        from .running_point import running_fields
-
-        out.update(running_fields(point))
-    emit(out, args.json, lambda: _orbit_text(out, args, mass, orbit), settings)
+    out.update(_running(point))                  # the clearance at speed (RUNNING_FIELDS)
+    emit(out, args.json, lambda: _with_running(
+        f"gfbopt orbit — M̄ = {mass:.6g}"
+        + (f" ({args.rotor_mass_kg:g} kg)" if args.mass is None else "")
+        + f": {out['verdict']}, growth rate "
+        f"{out['growth_rate']:.3g} per rad, whirl ratio {out['whirl_ratio']:.4g}, "
+        f"min film {out['min_film']:.4g}, {out['revolutions']:.1f} revolutions "
+        f"({args.method}, Δτ = {orbit.time_step:.3g}) in {orbit.wall_time_s:.1f} s"
+        + _damping_text(orbit)
+        + ("" if orbit.success else f"  ** FAILED: {orbit.message}"), out), settings)
     return 0 if orbit.success else 1
-
-
-def _orbit_text(out: dict, args, mass: float, orbit) -> str:
-    text = (f"gfbopt orbit — M̄ = {mass:.6g}"
-            + (f" ({args.rotor_mass_kg:g} kg)" if args.mass is None else "")
-            + f": {out['verdict']}, growth rate "
-            f"{out['growth_rate']:.3g} per rad, whirl ratio {out['whirl_ratio']:.4g}, "
-            f"min film {out['min_film']:.4g}, {out['revolutions']:.1f} revolutions "
-            f"({args.method}, Δτ = {orbit.time_step:.3g}) in {orbit.wall_time_s:.1f} s"
-            + _damping_text(orbit)
-            + ("" if orbit.success else f"  ** FAILED: {orbit.message}"))
-    if not out.get("running"):
-        return text
-    from .stability import running_lines
-
-    return "\n".join([text] + running_lines(out["running"]))
 
 
 def run_critical_mass(args) -> int:
@@ -356,12 +352,16 @@ def run_critical_mass(args) -> int:
                              f"with --tolerance {args.tolerance:g}: (batch − 1) × tolerance "
                              "must be < 1 so that every mass is > 0")
     check_run_length(args)
-    op = _operating_point(args)
-    solver, sol = _solve(op)
+    op, point, solver = _held_point(args)       # a heated file: at its running condition
+    if op is None:                               # thermal runaway or closure at the speed
+        from .running_point import no_running_state
+
+        return no_running_state(point, "critical-mass", args.json)
+    solver, sol = _solve(op, solver)
     lin = linearise(sol, solver)
     linear = linear_threshold(lin)
     if linear.critical_mass == 0.0:
-        return _unstable_at_any_mass(args, op, sol, linear)
+        return _unstable_at_any_mass(args, op, sol, linear, point)
     tm = transient_model(sol, args.reference_whirl_ratio, solver, threshold=linear)
     usable = math.isfinite(linear.critical_mass)
     estimate = None if args.no_linear_start or not usable else linear.critical_mass
@@ -381,8 +381,8 @@ def run_critical_mass(args) -> int:
            "linear_critical_mass": linear.critical_mass,
            "linear_whirl_ratio": linear.whirl_ratio, "eccentricity": sol.eccentricity,
            "load": sol.load, "attitude_angle_deg": sol.attitude_angle_deg,
-           "history": list(result.history)}
-    emit(out, args.json, lambda: (
+           "history": list(result.history), **_running(point)}
+    emit(out, args.json, lambda: _with_running(
         f"gfbopt critical-mass — M̄_crit = {result.critical_mass:.5g} (bracket "
         f"{result.bracket[0]:.5g}–{result.bracket[1]:.5g}), whirl ratio "
         f"{result.whirl_ratio:.4g}; linear {linear.critical_mass:.5g} at "
@@ -390,11 +390,30 @@ def run_critical_mass(args) -> int:
         f"{result.rotor_revolutions / max(result.transients, 1):.3g} revolutions "
         f"({args.method}, start: {result.start}), {result.wall_time_s:.1f} s"
         + _damping_text(result)
-        + ("" if result.success else f"  ** FAILED: {result.message}")), settings)
+        + ("" if result.success else f"  ** FAILED: {result.message}"), out), settings)
     return 0 if result.success else 1
 
 
-def _unstable_at_any_mass(args, op, sol, linear) -> int:
+def _running(point) -> dict:
+    """The clearance at speed's fields (RUNNING_FIELDS) of a heated file's answer; {} for a
+    file without the tables (today's output)."""
+    if point is None:
+        return {}
+    from .running_point import running_fields
+
+    return running_fields(point)
+
+
+def _with_running(text: str, out: dict) -> str:
+    """The answer's line, then the running point's lines for a heated file."""
+    if not out.get("running"):
+        return text
+    from .stability import running_lines
+
+    return "\n".join([text] + running_lines(out["running"]))
+
+
+def _unstable_at_any_mass(args, op, sol, linear, point=None) -> int:
     """A linear threshold of 0: the massless journal already whirls, so every rotor mass is
     unstable (an answer, not an error): reported without a transient search, exit 0."""
     settings = describe(op, method=args.method, tolerance=args.tolerance,
@@ -405,8 +424,8 @@ def _unstable_at_any_mass(args, op, sol, linear) -> int:
            "success": True, "message": linear.message, "linear_critical_mass": 0.0,
            "linear_whirl_ratio": linear.whirl_ratio, "eccentricity": sol.eccentricity,
            "load": sol.load, "attitude_angle_deg": sol.attitude_angle_deg,
-           "history": [], "verdict": "unstable at every rotor mass"}
-    emit(out, args.json, lambda: (
+           "history": [], "verdict": "unstable at every rotor mass", **_running(point)}
+    emit(out, args.json, lambda: _with_running(
         f"gfbopt critical-mass — unstable at every rotor mass: M̄_crit = 0 (linear threshold "
-        f"0: {linear.message}); no transient search"), settings)
+        f"0: {linear.message}); no transient search", out), settings)
     return 0

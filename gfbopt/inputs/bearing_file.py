@@ -55,8 +55,9 @@ from .thermal_tables import RUNNING_EXAMPLE, RUNNING_TABLES
 RUNNING_STUDY_KINDS = ("onset_conventions", "onset_as_built", "loss_factor_map", "load_sweep",
                        "linear_coefficients", "drag_power")
 #: the commands that read [journal] and [thermal]; other routes refuse a file stating them
-RUNNING_ROUTES = ("`gfbopt stability`, `gfbopt capacity`, `gfbopt static`, `gfbopt linear` "
-                  "and `gfbopt orbit` (gfbopt.thermal.files), gfbopt.api's stability, "
+RUNNING_ROUTES = ("`gfbopt stability`, `gfbopt capacity`, `gfbopt static`, `gfbopt linear`, "
+                  "`gfbopt orbit` and `gfbopt critical-mass` (gfbopt.thermal.files), "
+                  "gfbopt.api's stability, "
                   "onset_speed, load_capacity and lift_off_speed given the file's path, the "
                   "analyses of `gfbopt rotor` (load_rotor(..., running=True)) and the study "
                   "kinds " + ", ".join(f"`{k}`" for k in RUNNING_STUDY_KINDS)

@@ -1,7 +1,7 @@
-"""``gfbopt orbit --bearing FILE`` on a file with [journal]/[thermal]: the bearing held at its
-running condition at --speed-rpm exactly as ``gfbopt static`` holds it (the same running
-clearance, viscosity and model), its output naming the thermal model; a file without the
-tables gives today's orbit."""
+"""``gfbopt orbit --bearing FILE`` (and ``gfbopt critical-mass``) on a file with
+[journal]/[thermal]: the bearing held at its running condition at --speed-rpm exactly as
+``gfbopt static`` holds it (the same running clearance, viscosity and model), its output
+naming the thermal model; a file without the tables gives today's orbit."""
 import json
 import math
 from pathlib import Path
@@ -128,3 +128,19 @@ def test_a_file_without_the_tables_gives_todays_orbit():
     assert out["eccentricity"] == sol.eccentricity
     assert out["mass"] == mass_parameter(1.0, 20e-6, rpm_to_rad_per_s(45000.0), 20.0)
     assert math.isfinite(out["min_film"]) and out["success"] is True
+
+
+def test_the_critical_mass_of_a_heated_file_is_at_the_linear_commands_point():
+    crit = _json("critical-mass", "--bearing", THERMAL, *POINT)
+    linear = _json("linear", "--bearing", THERMAL, *POINT)
+    assert crit["thermal_model"] == linear["thermal_model"] == HEAT_BALANCE
+    for key in ("running_clearance_um", "viscosity_pa_s", "film_temperature_c"):
+        assert crit[key] == pytest.approx(linear[key], rel=1e-12, abs=0.0), key
+    # the transient search is centred on the warm bearing's linear threshold
+    assert crit["linear_critical_mass"] == pytest.approx(linear["critical_mass"], rel=1e-9)
+    assert crit["success"] and abs(crit["critical_mass"] / crit["linear_critical_mass"]
+                                   - 1) < 0.01
+    text = run_cli("critical-mass", "--bearing", THERMAL, *POINT).stdout
+    assert "clearance model: heat balance + growth; running clearance" in text
+    cold = _json("critical-mass", "--bearing", BEARINGS / "ruscitto.toml", *POINT)
+    assert not set(cold) & set(RUNNING_FIELDS) and cold["radial_clearance_m"] == 20e-6

@@ -62,7 +62,8 @@ def test_the_study_kinds_reading_the_tables_are_listed_in_the_routes():
     assert RUNNING_STUDY_KINDS == ("onset_conventions", "onset_as_built", "loss_factor_map",
                                    "load_sweep", "linear_coefficients", "drag_power")
     for route in ("`onset_conventions`", "`onset_as_built`", "`loss_factor_map`",
-                  "`load_sweep`", "`linear_coefficients`", "`drag_power`", "`gfbopt orbit`"):
+                  "`load_sweep`", "`linear_coefficients`", "`drag_power`", "`gfbopt orbit`",
+                  "`gfbopt critical-mass`"):
         assert route in RUNNING_ROUTES
 
 
