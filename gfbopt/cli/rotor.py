@@ -223,6 +223,12 @@ def _report(out: dict) -> str:
                                            f"{t['track_zero_rpm']:,.0f} rpm)"
                                            if _finite(t["track_zero_rpm"]) else "")
             for t in out["campbell"]["tracks"]))
+        lost = out["campbell"].get("dropped_roots") or []
+        if lost:
+            lines.append(f"    {len(lost)} root(s) found at one speed only, left out of the "
+                         "diagram: " + "; ".join(
+                             f"{d['whirl_frequency_hz']:,.1f} Hz at {d['speed_rpm']:,.0f} rpm "
+                             f"({d['reason']})" for d in lost))
     for warning in out["warnings"]:
         lines.append(f"  warning: {warning}")
     for key in ("csv", "figures"):

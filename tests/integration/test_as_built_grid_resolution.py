@@ -38,4 +38,4 @@ def test_the_command_refuses_before_solving(lobed):
                   "20", "--grid", "24x8", cwd=REPO)
     assert out.returncode == 2 and out.stdout == ""
     err = out.stderr.strip()
-    assert err.startswith("gfbopt: error: grid n_theta = 24") and "\n" not in err
+    assert err.startswith("gfbopt: error: --grid n_theta = 24") and "\n" not in err

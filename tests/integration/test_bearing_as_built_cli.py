@@ -168,7 +168,7 @@ def test_capacity_command_contract(tmp_path):
 
 
 @pytest.mark.parametrize("args, name", [
-    (["--min-film-um", "25", "--speed-rpm", "30000"], "min_film_um"),
+    (["--min-film-um", "25", "--speed-rpm", "30000"], "--min-film-um"),
     (["--min-film-um", "5"], "--speed-rpm"),
     (["--min-film-um", "5", "--lift-off"], "--load-newton"),
     (["--min-film-um", "5", "--speed-rpm", "3e4", "--load-newton", "20"], "--load-newton")])

@@ -29,12 +29,12 @@ def no_solve(monkeypatch):
 
 
 @pytest.mark.parametrize("args, name, rule", [
-    (["--speed-rpm", "30000", "--min-film-um", "1e-300"], "min_film_um",
+    (["--speed-rpm", "30000", "--min-film-um", "1e-300"], "--min-film-um",
      f">= {MIN_FILM_LIMIT_UM:g} µm"),
-    (["--speed-rpm", "1e-300", "--min-film-um", "5"], "speed_rpm", "bearing number"),
+    (["--speed-rpm", "1e-300", "--min-film-um", "5"], "--speed-rpm", "bearing number"),
     (["--lift-off", "--load-newton", "20", "--min-film-um", "5", "--max-speed-rpm", "1e-300"],
-     "max_speed_rpm", "bearing number"),
-    (["--lift-off", "--load-newton", "1e9", "--min-film-um", "5"], "load_newton", "p_a L D")])
+     "--max-speed-rpm", "bearing number"),
+    (["--lift-off", "--load-newton", "1e9", "--min-film-um", "5"], "--load-newton", "p_a L D")])
 def test_impossible_capacity_input_is_one_line_exit_2(capsys, no_solve, args, name, rule):
     from gfbopt.cli import main
 

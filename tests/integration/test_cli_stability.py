@@ -138,9 +138,9 @@ def test_a_damped_bearing_file_reaches_the_transient_with_its_loss_factor(tmp_pa
     (["--rotor-mass-kg", "2", "--speed-range", "3000", "1000"],
      "--speed-range = [3000.0, 1000.0]: must be two speeds 0 < LOW < HIGH"),
     (["--rotor-mass-kg", "2", "--foil", "rigid", "--loss-factor", "0.2"],
-     "loss_factor = 0.2: must be 0 with foil='rigid'"),
+     "--loss-factor = 0.2: must be 0 with foil='rigid'"),
     (["--rotor-mass-kg", "2", "--film", "periodic", "--seam-angle", "90"],
-     "seam_angle_deg = 90.0: is not used with a periodic film"),
+     "--seam-angle = 90.0: is not used with a periodic film"),
     (["--rotor-mass-kg", "2", "--seam-angle", "north"], "must be a number of degrees"),
 ])
 def test_bad_stability_input_is_one_line_exit_2(args, message):

@@ -98,7 +98,7 @@ def test_below_the_onset_there_is_no_subsynchronous_whirl(orbit):
 def test_the_rotor_commands_json_carries_the_linear_response_table(tmp_path, capsys):
     """``gfbopt rotor --imbalance-response --json`` gives the amplitude table itself (one
     record per speed and station, the CSV's names and numbers), not the peaks only; with
-    ``--csv`` the JSON names the file that holds it."""
+    ``--csv`` the same table, and the JSON's ``csv`` lists the file that holds it too."""
     from pathlib import Path
 
     blower = str(Path(__file__).resolve().parents[2] / "problems" / "rotors" / "blower.toml")
@@ -107,9 +107,10 @@ def test_the_rotor_commands_json_carries_the_linear_response_table(tmp_path, cap
     assert main(args) == 0
     table = json.loads(capsys.readouterr().out)["imbalance_response"]["table"]
     assert main(args + ["--csv", str(tmp_path)]) == 0
-    named = json.loads(capsys.readouterr().out)["imbalance_response"]["table"]
-    assert named == "imbalance_response.csv"
-    csv = pd.read_csv(tmp_path / named)
+    with_csv = json.loads(capsys.readouterr().out)
+    assert with_csv["imbalance_response"]["table"] == table      # --csv changes no answer
+    assert str(tmp_path / "imbalance_response.csv") in with_csv["csv"]
+    csv = pd.read_csv(tmp_path / "imbalance_response.csv")
     assert len(table) == len(csv) > 0
     json_frame = pd.DataFrame(table)[list(csv.columns)]
     for column in csv.columns:

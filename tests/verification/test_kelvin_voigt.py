@@ -417,11 +417,11 @@ def test_cli_critical_mass_with_loss_factor_states_eta_and_reference():
 
 @pytest.mark.parametrize("args, message", [
     (["--foil", "rigid", "--loss-factor", "0.3"],
-     ("loss_factor = 0.3: must be 0 with foil='rigid' (a rigid bearing has no bump "
+     ("--loss-factor = 0.3: must be 0 with foil='rigid' (a rigid bearing has no bump "
       "foundation to damp)")),
     (["--compliance", "1", "--foil", "beam", "--top-foil-coefficient", "1", "--loss-factor",
       "0.3"],
-     ("loss_factor = 0.3: structural damping of the bumps is not modelled by the transient "
+     ("--loss-factor = 0.3: structural damping of the bumps is not modelled by the transient "
       "engines for the beam foil law")),
     (["--compliance", "1", "--reference-whirl-ratio", "0.5"],
      ("--reference-whirl-ratio = 0.5: is used only with structural damping: add "
