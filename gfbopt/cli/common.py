@@ -5,6 +5,7 @@ from __future__ import annotations
 import argparse
 import json
 import math
+import re
 import sys
 from dataclasses import dataclass
 from typing import Callable, Optional
@@ -17,15 +18,30 @@ from ..provenance import jsonable as _jsonable, provenance
 from .si import fill_model_options, seam_angle_text
 
 
+#: a negative number, also in scientific notation (-30e-6): a value, never an option
+NEGATIVE_NUMBER = re.compile(r"^-(\d+\.?\d*|\.\d+)([eE][+-]?\d+)?$")
+
+
 class Parser(argparse.ArgumentParser):
-    """An argument parser whose errors are one line and exit 2 (no traceback)."""
+    """An argument parser whose errors are one line and exit 2 (no traceback), naming the
+    option by its flag once (``--grid = 'abc': …``, not ``argument --grid: grid = …``)."""
+
+    def __init__(self, *args, **kwargs):
+        super().__init__(*args, **kwargs)
+        # argparse takes "-30e-6" for an option ("expected one argument"): a number it is
+        self._negative_number_matcher = NEGATIVE_NUMBER
 
     def error(self, message: str) -> None:
+        head, sep, rest = message.partition(": ")
+        if sep and head.startswith("argument ") and rest.startswith(head[9:] + " = "):
+            message = rest                      # the type's own message names the flag
         self.exit(2, f"gfbopt: error: {message}\n")
 
 
 def number(name: str) -> Callable[[str], float]:
-    """argparse type: a finite float, with the option's name in the error."""
+    """argparse type: a finite float, with the option's flag ``--name`` in the error."""
+    name = f"--{name}"
+
     def parse(text: str) -> float:
         try:
             value = float(text)

@@ -29,6 +29,7 @@ import math
 
 from .common import (FractionProgress, add_operating_point, describe, emit, number,
                      operating_point)
+from .csv_context import HELP as CSV_HELP, context_options, write_csv
 
 #: One line of evidence for the default method (benchmarks/bench_critical_mass.py).
 METHOD_EVIDENCE = ("At the default 144×36 grid (ε = 0.4, Λ = 2, S = 1, one core) the same "
@@ -88,7 +89,7 @@ def register(subparsers) -> None:
                      "for the step, Δτ·ρ ≤ 0.9 × 0.65 s²)")
     orb.add_argument("--plot", default=None, help="write the polar orbit plot to this PNG")
     orb.add_argument("--method", default="rkc", choices=METHODS, help=METHOD_HELP)
-    orb.add_argument("--csv", default=None, help="write the orbit table to this CSV")
+    orb.add_argument("--csv", default=None, help="write the orbit table to this CSV" + CSV_HELP)
     orb.add_argument("--max-steps", type=number("max-steps"), default=MAX_STEPS,
                      help=f"largest number of time steps a run may take (default "
                      f"{MAX_STEPS:.0e}; estimated from --revolutions and --time-step, or the "
@@ -302,8 +303,6 @@ def run_orbit(args) -> int:
                                  progress=bar, method=args.method,
                                  **{k: v for k, v in options.items() if v is not None})
     table = orbit.to_frame(0)
-    if args.csv:
-        table.to_csv(args.csv, index=False, float_format="%.8g")
     if args.plot:
         from ..plotting import plot_orbits, save_figure
 
@@ -320,6 +319,9 @@ def run_orbit(args) -> int:
     out = {**settings, **orbit.to_dict(0), "eccentricity": sol.eccentricity,
            "load": sol.load, "attitude_angle_deg": sol.attitude_angle_deg}
     out.update(_running(point))                  # the clearance at speed (RUNNING_FIELDS)
+    context = context_options(args, command="orbit", **settings)
+    if args.csv:                    # with its context FILE.csv.json (gfbopt.cli.csv_context)
+        out["csv"] = str(write_csv(table, args.csv, context, float_format="%.8g"))
     emit(out, args.json, lambda: _with_running(
         f"gfbopt orbit — M̄ = {mass:.6g}"
         + (f" ({args.rotor_mass_kg:g} kg)" if args.mass is None else "")
@@ -328,7 +330,7 @@ def run_orbit(args) -> int:
         f"min film {out['min_film']:.4g}, {out['revolutions']:.1f} revolutions "
         f"({args.method}, Δτ = {orbit.time_step:.3g}) in {orbit.wall_time_s:.1f} s"
         + _damping_text(orbit)
-        + ("" if orbit.success else f"  ** FAILED: {orbit.message}"), out), settings)
+        + ("" if orbit.success else f"  ** FAILED: {orbit.message}"), out), context)
     return 0 if orbit.success else 1
 
 

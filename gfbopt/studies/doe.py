@@ -219,13 +219,12 @@ def plan_sweep(study: Study) -> SweepPlan:
         if spec["bearing"] is None:
             raise study.where("bearing").error(None, f"is required by analysis "
                                                f"'{analysis.name}'")
-        from ..inputs import load_bearing_file
+        from .base import load_geometry
 
-        try:
-            bearing, options = load_bearing_file(study.directory / spec["bearing"])
-        except ParameterError as exc:
-            raise study.where("bearing").error(spec["bearing"], f"{exc.name}: {exc.rule}") \
-                from None
+        # the file checked as every study kind checks it: [journal]/[thermal] refused in one
+        # line naming this kind and the kinds and commands that read them
+        bearing = load_geometry(study)
+        options = bearing.options
         for need in ("rotor_mass_kg", "speed_low_rpm", "speed_high_rpm"):
             if need not in names:
                 raise study.where("fixed", need).error(None, f"is required by analysis "

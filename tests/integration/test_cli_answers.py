@@ -100,7 +100,7 @@ def test_orbit_takes_the_rotor_in_kg_with_a_bearing(capsys):
      "grid = '2000x2000': 4,004,001 nodes: estimated 40.1 GB of memory"),
     (["static", "--eccentricity", "0.4", "--bearing-number", "2", "--foil", "beam",
       "--compliance", "1", "--top-foil-coefficient", "1e308"],
-     "top_foil_coefficient = 1e+308: must be <= 10000"),
+     "--top-foil-coefficient = 1e+308: must be <= 10000"),
     (["static", "--eccentricity", "0.4", "--bearing-number", "2", "--json", "--grid", "24x8",
       "--compliance", "1"] + ["--max-memory-gb", "-1"], "--max-memory-gb = -1.0: must be > 0"),
 ])
