@@ -403,13 +403,11 @@ def local_crossing(rotor: RotorCase, states: SpeedStates, near: ModeCrossing,
     ~1e-10 in γ and μ_c, for one LU and a few block steps per bearing instead of a converged
     space over the whole whirl range, the scan's refinements and the probe.
 
-    ``direct``: for a start already within ~1e-6 of the crossing (``near`` a crossing
-    extrapolated from the secant's last two speeds to one a step of at most
-    :data:`~gfbopt.rotor.mode_search.DIRECT_DISTANCE` away), each bearing's Z̄ from one
-    direct LU at the start and its Taylor series (:class:`~gfbopt.rotor.reduced.
-    TaylorImpedance`: four more solves instead of a Krylov space's blocks), accepted at every
-    γ used by its last term (≤ 1e-11 of Z̄); None when a point is beyond its reach (the
-    caller then makes the Krylov search)."""
+    ``direct``: each bearing's Z̄ from one direct LU at the start and its Taylor series
+    instead (:class:`~gfbopt.rotor.reduced.TaylorImpedance`: a few solves where a Krylov
+    space takes 6–7 block steps; the refinement's own search, :meth:`gfbopt.rotor.system.
+    SpeedLine.follow_from`), accepted at every γ used by its last terms (≤ 1e-11 of Z̄);
+    None when a point is beyond its reach (the caller then makes the Krylov search)."""
     if not (near.inertia_scale > 0 and states.ok):
         return None
     low, high = states.states[0].whirl_range

@@ -32,7 +32,9 @@ grid is solved where the answer needs it:
   below :data:`COARSE_MARGIN` (and at the lowest speed, which decides "unstable at the lowest
   speed"): a fine sign change there is the bracket instead;
 * at the bracket's unstable end unless its coarse margin is below −:data:`COARSE_MARGIN` (it
-  must be unstable on the fine grid too, else the scan goes on from there);
+  must be unstable on the fine grid too, else the scan goes on from there); each check above
+  the lowest speed by the local crossing from the coarse one when it is unstable there
+  (:func:`_fine_row`), else by every fine crossing;
 * inside the bracket, the secant refinement on the fine grid starts from the coarse onset
   with the coarse slope (2–3 fine speeds).
 
@@ -65,10 +67,8 @@ SECANT_STEPS = 12
 COARSE_MARGIN = 0.15
 
 #: a secant step of at most this from the latest speed, in ln N, starts the mode's crossing
-#: by the direct search (:func:`_predicted`): its whirl ratio then moves by ~|dγ/d ln N| ×
-#: this ≤ 1e-6 (dγ/d ln N ≈ 2e-3–4e-3 measured on the blower's forward modes), within the
-#: reach of one direct LU's Taylor series [-]
-DIRECT_DISTANCE = 1e-4
+#: from the whirl ratio extrapolated through the two latest (:func:`_predicted`) [-]
+PREDICT_DISTANCE = 1e-4
 
 #: d ln μ_c / d ln N when the coarse grid gives no slope: the inertia terms grow as N² [-]
 NOMINAL_SLOPE = -2.0
@@ -216,9 +216,8 @@ def _onset_secant(line, label: str, a: float, b: float, p0: tuple, p1: tuple,
     seen = [(math.exp(p1[0]), near)] if near is not None else []
 
     def g(speed: float, full: bool = False) -> float:
-        start, direct = (_predicted(seen, speed) if hasattr(line, "follow_from")
-                         else (None, False))
-        c = _follow(line, speed, label, state["whirl"], start or state["near"], direct)
+        start = _predicted(seen, speed) if hasattr(line, "follow_from") else None
+        c = _follow(line, speed, label, state["whirl"], start or state["near"])
         if c is not None:
             state["whirl"], state["near"] = c.whirl_ratio, c
             seen.append((speed, c))
@@ -231,31 +230,26 @@ def _onset_secant(line, label: str, a: float, b: float, p0: tuple, p1: tuple,
     return math.exp(found[0]), found[1]
 
 
-def _predicted(seen: list, speed: float) -> tuple:
-    """(start, direct) of the crossing at ``speed`` from the crossings ``seen`` ((speed,
-    crossing), in order): when the latest lies within :data:`DIRECT_DISTANCE` of it in ln N,
-    that crossing with its whirl ratio extrapolated linearly in ln N through the one before
-    (the error of the two distances' product, ~1e-9: the secant's last step) and True (the
-    direct search, :func:`gfbopt.rotor.matched_whirl.local_crossing`); (None, False)
-    otherwise."""
-    if not seen or abs(math.log(speed / seen[-1][0])) > DIRECT_DISTANCE:
-        return None, False
+def _predicted(seen: list, speed: float):
+    """The start of the crossing at ``speed`` from the crossings ``seen`` ((speed, crossing),
+    in order) when the latest lies within :data:`PREDICT_DISTANCE` of it in ln N: that
+    crossing with its whirl ratio extrapolated linearly in ln N through the one before (its
+    error of the order of the two distances' product: ~1e-9 at the secant's last step, a
+    Newton step on the whirl ratio fewer); None otherwise (the latest crossing starts it)."""
+    if not seen or abs(math.log(speed / seen[-1][0])) > PREDICT_DISTANCE:
+        return None
     (s1, c1), gamma = seen[-1], seen[-1][1].whirl_ratio
     if len(seen) > 1 and seen[-2][0] != s1:
         s0, c0 = seen[-2]
         gamma += (gamma - c0.whirl_ratio) * math.log(speed / s1) / math.log(s1 / s0)
-    return replace(c1, whirl_ratio=gamma), True
+    return replace(c1, whirl_ratio=gamma)
 
 
-def _follow(line, speed: float, label: str, whirl: float, near, direct: bool = False):
+def _follow(line, speed: float, label: str, whirl: float, near):
     """The mode's crossing at ``speed`` followed from ``near`` (:meth:`gfbopt.rotor.system.
-    SpeedLine.follow_from`, first by its direct search with ``direct``), or by ``follow``
-    alone on a line without that search."""
+    SpeedLine.follow_from`), or by ``follow`` alone on a line without that search."""
     local = getattr(line, "follow_from", None)
-    if not local:
-        return line.follow(speed, label, whirl)
-    return local(speed, label, whirl, near, direct) if direct else local(speed, label, whirl,
-                                                                         near)
+    return local(speed, label, whirl, near) if local else line.follow(speed, label, whirl)
 
 
 def guided_onset(fine, coarse, speeds: list, label: str, tol: float,

@@ -22,9 +22,10 @@ nearest whirl ratio) inside the bracket:
   onset; 2–3 speeds per mode); Brent's method as below if it has not converged in
   :data:`SECANT_STEPS` steps.  Each secant speed computes that mode's crossing alone, by
   Newton's method on the whirl ratio from the previous step's crossing
-  (:func:`~gfbopt.rotor.matched_whirl.local_crossing`: one LU and a few block steps per
-  bearing on a narrow window, instead of every crossing over the whole whirl range and the
-  probe), accepted when it keeps the mode's label and lies within ±0.05 of its whirl ratio
+  (:func:`~gfbopt.rotor.matched_whirl.local_crossing`: one LU per bearing at the start and
+  a few solves of its Taylor series, or when that is refused a Krylov space on a narrow
+  window, instead of every crossing over the whole whirl range and the probe; the start's
+  whirl ratio extrapolated from the two latest steps when the step is short), accepted when it keeps the mode's label and lies within ±0.05 of its whirl ratio
   (else every crossing there, as the scan); it is the scan's crossing to ~1e-10, and the
   onsets equal those of every crossing at every speed (``SpeedLine(local=False)``) to 1e-9
   (a test; measured 1e-14).  The scan rows of those speeds list that mode only.  On a fine
@@ -179,19 +180,18 @@ class SpeedLine:
         return speed in self._crossings
 
     def follow_from(self, speed: float, label: str, whirl: float,
-                    near: Optional[ModeCrossing], direct: bool = False
-                    ) -> Optional[ModeCrossing]:
+                    near: Optional[ModeCrossing]) -> Optional[ModeCrossing]:
         """:meth:`follow` from ``near`` (the mode's crossing at a nearby speed or on another
         grid): with ``local``, where every crossing at ``speed`` has not been computed, the
         crossing of the branch through ``near`` alone when it has the label and lies within
-        :data:`~gfbopt.rotor.matched_whirl.LOCAL_WINDOW` of ``whirl``; ``direct``: first by
-        the direct search (``near`` within ~1e-6 of it: ``local_crossing(direct=True)``)."""
+        :data:`~gfbopt.rotor.matched_whirl.LOCAL_WINDOW` of ``whirl``: by the direct search
+        (``local_crossing(direct=True)``: one LU per bearing and its Taylor series), by the
+        Krylov one when that is refused."""
         key = (speed, label)
         if (near is not None and self.local and speed not in self._crossings
                 and key not in self._local):
             st = self.states(speed)
-            found = local_crossing(self.rotor, st, near, direct=True) if (
-                direct and st.ok) else None
+            found = local_crossing(self.rotor, st, near, direct=True) if st.ok else None
             found = found or (local_crossing(self.rotor, st, near) if st.ok else None)
             if (found is not None and found.label == label
                     and abs(found.whirl_ratio - whirl) <= LOCAL_WINDOW):

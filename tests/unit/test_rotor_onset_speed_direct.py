@@ -29,14 +29,17 @@ def rotor():
 
 
 def test_taylor_impedance_is_the_direct_one_within_its_reach(rotor):
-    """Z̄(iγ) 1e-6 from the LU's whirl ratio equals a direct LU there to 1e-10 (accepted:
-    its last term ≤ 1e-11 of Z̄); 0.05 away it is refused (the search then uses Krylov)."""
+    """Z̄(iγ) 1e-6 and 2e-3 from the LU's whirl ratio (a secant step; the coarse grid's
+    crossing against the fine one) equals a direct LU there to 1e-10 (accepted: its last
+    terms ≤ 1e-11 of Z̄); 0.5 away, beyond the nearest pole (r ≈ 0.6), it is refused (the
+    search then uses a Krylov space)."""
     lin = support_states(rotor, 12000.0).states[0].linearisation
     model = TaylorImpedance(lin, 0.5)
-    z, ok = model.evaluate(0.5 + 1e-6)
-    exact = impedance(lin, 1j * (0.5 + 1e-6))
-    assert ok and np.abs(z - exact).max() <= 1e-10 * np.abs(exact).max()
-    assert not model.evaluate(0.55)[1]
+    for gamma in (0.5 + 1e-6, 0.5 - 2e-3):
+        z, ok = model.evaluate(gamma)
+        exact = impedance(lin, 1j * gamma)
+        assert ok and np.abs(z - exact).max() <= 1e-10 * np.abs(exact).max()
+    assert not model.evaluate(1.0)[1]
 
 
 def test_direct_crossing_is_the_krylov_one(rotor):
@@ -82,3 +85,20 @@ def test_onsets_with_the_direct_step_equal_the_reference_line(rotor, monkeypatch
         got = fast.mode(m.label)
         assert got.onset_speed_rpm == pytest.approx(m.onset_speed_rpm, rel=1e-9)
         assert got.whirl_ratio == pytest.approx(m.whirl_ratio, rel=1e-9)
+
+
+def test_a_refused_direct_search_falls_back_to_krylov(rotor, monkeypatch):
+    """With the series cut at two terms the direct search from a start 2e-3 off (the coarse
+    crossing) is refused (None), and the speed line's search still finds the crossing, by
+    a Krylov space: the full scan's to 1e-9."""
+    speed = 12000.0
+    here = by_mode(crossings(rotor, support_states(rotor, speed)))["forward conical"]
+    start = dataclasses.replace(here, whirl_ratio=here.whirl_ratio - 2e-3)
+    monkeypatch.setattr(TaylorImpedance, "MAX_TERMS", 2)
+    states = support_states(rotor, speed)
+    assert local_crossing(rotor, states, start, direct=True) is None
+    line = SpeedLine(rotor)
+    found = line.follow_from(speed, "forward conical", start.whirl_ratio, start)
+    assert found is not None and not line.computed(speed)
+    assert found.inertia_scale == pytest.approx(here.inertia_scale, rel=1e-9)
+    assert found.whirl_ratio == pytest.approx(here.whirl_ratio, rel=1e-9)
