@@ -18,6 +18,10 @@ bearing's own geometry), and confirms the chosen design with the nonlinear trans
 A stiffness change at fixed geometry ranges is made by the bump thickness alone when a trial S
 is evaluated (t_b ∝ S^(−1/3) at fixed pitch and half length): the bearing's dynamics see only S,
 so which geometry realises a trial S does not change its onset speed.
+
+A bearing file stating ``[journal]``/``[thermal]`` (``running``) has every trial S evaluated
+at the running clearance and viscosity of each speed, the baseline and the nonlinear check
+too, through the functions ``gfbopt stability`` calls (:mod:`.running_evaluation`).
 """
 from __future__ import annotations
 
@@ -63,6 +67,9 @@ class StabilityDesignSpec:
     options : film convention and foil options (:class:`~gfbopt.inputs.options.ModelOptions`)
     grid : finite-difference grid of every analysis
     n_scan : scan points of S per (law, η) before refinement
+    running : the bearing file's :class:`~gfbopt.thermal.running.RunningSpec` when it states
+        ``[journal]``/``[thermal]``: every S evaluated at the running condition of each
+        speed (:mod:`.running_evaluation`); None (or the isothermal spec): the cold clearance
     """
 
     bearing: BearingGeometry
@@ -77,8 +84,13 @@ class StabilityDesignSpec:
     options: ModelOptions = field(default_factory=ModelOptions)
     grid: Grid = field(default_factory=lambda: Grid(72, 20))
     n_scan: int = 7
+    running: Optional[object] = None
 
     def __post_init__(self) -> None:
+        from .running_evaluation import heated
+
+        if not heated(self.running):        # the isothermal spec is today's route
+            object.__setattr__(self, "running", None)
         low, high = self.speed_range_rpm
         if not 0 < low < high:
             raise ParameterError("speed_range_rpm", self.speed_range_rpm,
@@ -136,6 +148,16 @@ def evaluate_compliance(spec: StabilityDesignSpec, compliance: float, law: str, 
     opts = dataclasses.replace(spec.options, deflection_law=law, loss_factor=eta,
                                foil=spec.options.foil or "simple")
     row = {"compliance": compliance, "deflection_law": law, "loss_factor": eta}
+    if spec.running is not None:         # at the running condition of each speed
+        from .running_evaluation import evaluate_running
+        try:
+            found = evaluate_running(spec, bearing, opts, cache)
+        except ParameterError as exc:
+            return {**row, "onset_speed_rpm": math.nan, "min_film_thickness_um": math.nan,
+                    "success": False, "message": str(exc),
+                    "wall_time_s": time.perf_counter() - t0}
+        return {**row, **geometry_columns(spec.geometry, compliance), **found,
+                "wall_time_s": time.perf_counter() - t0}
     try:
         onset = onset_speed(bearing, spec.rotor, spec.load_newton, spec.speed_range_rpm,
                             options=opts, grid=spec.grid, cache=cache)
@@ -329,8 +351,15 @@ def confirm_with_transient(spec: StabilityDesignSpec, compliance: float, law: st
     opts = dataclasses.replace(spec.options, deflection_law=law, loss_factor=eta,
                                foil=spec.options.foil or "simple")
     try:
-        res = stability(bearing, spec.rotor, OperatingPoint(speed_rpm, spec.load_newton),
-                        options=opts, grid=spec.grid, cache=cache)
+        if spec.running is not None:       # the warm bearing at the speed's running condition
+            from .running_evaluation import running_confirmation_case
+
+            res, why = running_confirmation_case(spec, bearing, opts, speed_rpm, cache)
+            if res is None:
+                return {"success": False, "message": why}
+        else:
+            res = stability(bearing, spec.rotor, OperatingPoint(speed_rpm, spec.load_newton),
+                            options=opts, grid=spec.grid, cache=cache)
         lin = res.linearisation
         mc = res.critical_mass_parameter
         if not math.isfinite(mc) or mc <= 0:

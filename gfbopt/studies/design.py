@@ -8,6 +8,9 @@ results are the recommendation (a plain-language summary at the top of the READM
 optimum of every (law, η) as a band of S with the baseline beside it, the trade-off table of
 every evaluated S (geometry, stress, onset speed, minimum film, binding limits), the nonlinear
 confirmation and a figure of onset speed against S and against pitch with the limits drawn.
+A bearing file stating ``[journal]``/``[thermal]`` has every S evaluated at the running
+condition of each speed (:mod:`gfbopt.design.running_evaluation`, the functions of ``gfbopt
+stability``); summary.json and the README name the thermal model.
 """
 from __future__ import annotations
 
@@ -20,7 +23,7 @@ from ..inputs import Grid
 from ..inputs.options import ModelOptions, merge_options
 from ..inputs.rotor import Rotor
 from ..parallel import run_points
-from .base import Kind, RunContext, Study, StudyResult, load_geometry
+from .base import Kind, RunContext, Study, StudyResult, load_running_geometry
 from .checks import check
 from .spec import GRID, UNSET, opt, req
 
@@ -62,9 +65,18 @@ SCHEMAS = {
 
 
 def plan_pitch_design(study: Study) -> StabilityDesignSpec:
-    """The design specification, validated before any solve (errors name the file)."""
+    """The design specification, validated before any solve (errors name the file).  A
+    bearing file stating ``[journal]``/``[thermal]`` gives the running condition every trial
+    S is evaluated at (:mod:`gfbopt.design.running_evaluation`)."""
+    from ..design.running_evaluation import heated
+
     s = study.spec
-    bearing = load_geometry(study)
+    bearing, running = load_running_geometry(study)     # [journal]/[thermal] read
+    if heated(running):
+        from ..inputs.rotor_limits import check_surface_speed
+
+        check_surface_speed(bearing, list(s["speed_range_rpm"]),
+                            f"{study.file}: speed_range_rpm")
     try:
         geometry = BumpDesignSpec(
             radial_clearance=bearing.radial_clearance, radius=bearing.radius,
@@ -90,7 +102,8 @@ def plan_pitch_design(study: Study) -> StabilityDesignSpec:
             loss_factors=tuple(s["loss_factors"]),
             deflection_laws=tuple(s["deflection_laws"]),
             options=merge_options(stated, bearing.options),
-            grid=Grid.parse(s["grid"]), n_scan=s["scan_points"])
+            grid=Grid.parse(s["grid"]), n_scan=s["scan_points"],
+            running=running if heated(running) else None)
     except Exception as exc:          # ParameterError from any input: name the file
         name = getattr(exc, "name", "design")
         raise study.where(name).error(getattr(exc, "value", None),
@@ -212,8 +225,24 @@ def run_pitch_design(study: Study, spec: StabilityDesignSpec,
                                        "deflection_laws": list(spec.deflection_laws),
                                        "loss_factors": list(spec.loss_factors)}},
                "grid": str(spec.grid), "method": "linear onset search; rkc confirmation"}
+    notes, answer = _summary(spec, result), {}
+    if spec.running is not None:                 # the clearance at speed, named
+        options["thermal_model"] = answer["thermal_model"] = spec.running.model_name
+        notes.append(running_design_note(spec.running.model_name, study.spec["bearing"]))
     return StudyResult(study, tables=tables, figures=figures, checks=checks, options=options,
-                       notes=_summary(spec, result), wall_time_s=time.perf_counter() - t0)
+                       notes=notes, answer=answer, wall_time_s=time.perf_counter() - t0)
+
+
+def running_design_note(thermal_model: str, bearing_file: str) -> str:
+    """The README/summary note of a design at the running condition (its model named)."""
+    return (f"Clearance at speed: the bearing file {bearing_file} states the running "
+            f"condition ({thermal_model}); every trial S, the original foil and the nonlinear "
+            "check are evaluated at the running clearance and viscosity of each speed, "
+            "through the functions `gfbopt stability` calls (gfbopt.rotor.running_bearing), "
+            "so an onset of the trade-off table equals `gfbopt stability --bearing FILE "
+            "--speed-range LOW HIGH` on a file with that row's S (its bump foil); the minimum "
+            "film is that of the film-check speed's own running clearance, and the columns "
+            "thermal_model … viscosity_pa_s give the running point at the onset.")
 
 
 KINDS = {"pitch_design": Kind(plan_pitch_design, run_pitch_design, parallel=True)}
