@@ -10,6 +10,7 @@ module                         what it holds
                                (cvxpy geometric program), infeasibility diagnosis
 :mod:`.gp_parts`               the geometric program's variables, monomials and constraints
 :mod:`.stability_design`       the compliance S that maximises the onset, and its bump geometry
+:mod:`.running_evaluation`     one trial S at the running condition ([journal]/[thermal])
 :mod:`.outer_search`           a bounded 1-D search of an expensive figure of merit
 *the bearing pair of a rotor*
 :mod:`.problem`                variables with ranges, objectives, constraints

@@ -53,7 +53,7 @@ from .thermal_tables import RUNNING_EXAMPLE, RUNNING_TABLES
 #: the study kinds (``gfbopt run``) that read [journal] and [thermal]: each point at its
 #: running condition (gfbopt.studies.base.load_running_geometry); other kinds refuse the file
 RUNNING_STUDY_KINDS = ("onset_conventions", "onset_as_built", "loss_factor_map", "load_sweep",
-                       "linear_coefficients", "drag_power")
+                       "linear_coefficients", "drag_power", "pitch_design")
 #: the commands that read [journal] and [thermal]; other routes refuse a file stating them
 RUNNING_ROUTES = ("`gfbopt stability`, `gfbopt capacity`, `gfbopt static`, `gfbopt linear`, "
                   "`gfbopt orbit` and `gfbopt critical-mass` (gfbopt.thermal.files), "

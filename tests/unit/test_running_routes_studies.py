@@ -3,8 +3,9 @@ onset at the running condition through the functions ``gfbopt stability`` and gf
 call (``onset_as_built`` too, per preload and pad count, and ``loss_factor_map``'s onset
 part, per S and η), ``load_sweep``,
 ``linear_coefficients`` and ``drag_power`` each (speed, load) as
-``gfbopt static`` and ``gfbopt linear`` do (one answer whatever the route), naming the model in summary.json and the README; kinds that do not read the tables
-refuse the file in one line naming the kind, before any solve."""
+``gfbopt static`` and ``gfbopt linear`` do (one answer whatever the route), naming the model in summary.json and the README (``pitch_design``: test_running_routes_pitch.py); the
+kind that does not read the tables (the DOE ``sweep``) refuses the file in one line naming
+the kind, before any solve."""
 import json
 import math
 import re
@@ -60,10 +61,11 @@ def heated(tmp_path_factory):
 
 def test_the_study_kinds_reading_the_tables_are_listed_in_the_routes():
     assert RUNNING_STUDY_KINDS == ("onset_conventions", "onset_as_built", "loss_factor_map",
-                                   "load_sweep", "linear_coefficients", "drag_power")
+                                   "load_sweep", "linear_coefficients", "drag_power",
+                                   "pitch_design")
     for route in ("`onset_conventions`", "`onset_as_built`", "`loss_factor_map`",
-                  "`load_sweep`", "`linear_coefficients`", "`drag_power`", "`gfbopt orbit`",
-                  "`gfbopt critical-mass`"):
+                  "`load_sweep`", "`linear_coefficients`", "`drag_power`", "`pitch_design`",
+                  "`gfbopt orbit`", "`gfbopt critical-mass`"):
         assert route in RUNNING_ROUTES
 
 
@@ -140,7 +142,7 @@ def no_solver(monkeypatch):
     monkeypatch.setattr(StaticSolver, "__init__", refuse)
 
 
-@pytest.mark.parametrize("problem, kind", [("ruscitto_pitch_design", "pitch_design")])
+@pytest.mark.parametrize("problem, kind", [("ruscitto_tolerances", "sweep")])
 def test_kinds_that_do_not_read_the_tables_refuse_in_one_line(tmp_path, no_solver, problem,
                                                                kind):
     text = (PROBLEMS / f"{problem}.toml").read_text()
@@ -154,7 +156,7 @@ def test_kinds_that_do_not_read_the_tables_refuse_in_one_line(tmp_path, no_solve
     assert f"the study kind '{kind}' does not read" in line
     assert re.search(r"states \[journal\] and \[thermal\]", line)
     assert ("`onset_conventions`, `onset_as_built`, `loss_factor_map`, `load_sweep`, "
-            "`linear_coefficients`, `drag_power`") in line
+            "`linear_coefficients`, `drag_power`, `pitch_design`") in line
     assert "`gfbopt stability`" in line
     assert not (tmp_path / "results").exists() or not any((tmp_path / "results").iterdir())
 
