@@ -242,7 +242,9 @@ for _name, _entry in {
                    "the load line)"),
     "onset_status": ("text", "how the onset search ended: onset (found in the range), "
                      "unstable at every mass (M̄c = 0 at the lowest speed), unstable at the "
-                     "lowest speed, stable over the range, load exceeds capacity, failed"),
+                     "lowest speed, unstable where its shape first appears (a rotor's mode "
+                     "first found inside the range), stable over the range, load exceeds "
+                     "capacity, failed"),
     "smallest_mass_margin": ("-", "smallest M_crit/M − 1 over the speeds evaluated by the "
                              "onset search"),
     "critical_mass_kg_at_low_speed": ("kg", "critical rotor mass per bearing at the lowest "
@@ -326,7 +328,6 @@ for _name, _entry in {
                        "interpolated between the diagram's speeds (empty: it does not)"),
     "note": ("text", "why the mode is unstable for every inertia scale (μ_c = 0: the "
              "massless journal whirls), else empty"),
-    "status": ("text", "onset, unstable at the lowest speed, or stable over the range"),
     "inertia_scale": ("-", "μ_c: the rotor whirls in this mode when its inertias are μ_c "
                       "times the real ones (> 1 stable)"),
     "smallest_inertia_margin": ("-", "least μ_c − 1 of the mode over the speeds scanned"),

@@ -183,14 +183,14 @@ def _report(out: dict) -> str:
                      f"{out['onset_speed_rpm']:,.0f} rpm at {out['onset_whirl_frequency_hz']:.4g}"
                      " Hz")
     else:
-        low = [m["label"] for m in out["modes"] if m["status"] == UNSTABLE_LOW]
+        low = [m["label"] for m in out["modes"] if m["onset_status"] == UNSTABLE_LOW]
         lines.append(f"  onset: none — {out['onset_reason']}" if not low else
                      f"  onset: none — unstable already at {out['speed_range_rpm'][0]:,.0f} "
                      f"rpm, the lowest speed, in {', '.join(low)}: the onset lies below the "
                      "range (why: under the mode)")
     for m in out["modes"]:
         speed = (f"{m['onset_speed_rpm']:,.0f} rpm" if math.isfinite(m["onset_speed_rpm"])
-                 else m["status"])
+                 else m["onset_status"])
         whirl = (f"whirl {m['whirl_frequency_hz']:.4g} Hz" if _finite(m["whirl_frequency_hz"])
                  else f"least μ_c {m['smallest_inertia_margin'] + 1:.3g}")   # no whirl of its own
         lines.append(f"    {m['label']:<22} {speed:>28}, {whirl}, B/A phase "

@@ -113,7 +113,7 @@ class ModeOnset:
     def to_dict(self) -> dict:
         return {"label": self.label, "onset_speed_rpm": self.onset_speed_rpm,
                 "whirl_ratio": self.whirl_ratio,
-                "whirl_frequency_hz": self.whirl_frequency_hz, "status": self.status,
+                "whirl_frequency_hz": self.whirl_frequency_hz, "onset_status": self.status,
                 "smallest_inertia_margin": self.smallest_inertia_margin, "shape": self.shape,
                 "note": self.note,
                 "threshold_whirl_frequency_hz": self.threshold_whirl_frequency_hz}

@@ -78,7 +78,7 @@ def run_rotor(study: Study, plan: dict, ctx: RunContext) -> StudyResult:
     out = result.to_dict()
     tables = {f"{k}.csv": v for k, v in result.tables().items()}
     rows = [{"label": m.label, "onset_speed_rpm": m.onset_speed_rpm,
-             "whirl_frequency_hz": m.whirl_frequency_hz, "status": m.status}
+             "whirl_frequency_hz": m.whirl_frequency_hz, "onset_status": m.status}
             for m in plain.modes]
     tables["modes_without_gyroscopics.csv"] = pd.DataFrame(rows)
     top = spec["top_speed_rpm"]

@@ -100,7 +100,7 @@ def test_a_bearing_pulled_upwards_is_said_plainly(tmp_path):
             "now in the loaded arc")
     assert said in text and said in out["bearing_notes"][0]
     # the mode it makes whirl at every speed: one short line, its reason once, under the mode
-    low = [m for m in out["modes"] if m["status"] == "unstable at the lowest speed"]
+    low = [m for m in out["modes"] if m["onset_status"] == "unstable at the lowest speed"]
     onset_line = [ln for ln in text.splitlines() if "onset: none" in ln][0]
     assert low and onset_line == (f"  onset: none — unstable already at 5,000 rpm, the lowest "
                                   f"speed, in {low[0]['label']}: the onset lies below the "

@@ -86,7 +86,7 @@ def test_every_output_gives_each_mode_one_label(flexible):
     # both forward rigid-body modes have an onset of their own (one was "unstable where its
     # shape first appears" before), no mode is left without a bracket
     assert len(onsets) == 2
-    assert not [m for m in modes if m["status"] == "unstable where its shape first appears"]
+    assert not [m for m in modes if m["onset_status"] == "unstable where its shape first appears"]
     assert f"first to whirl: {out['first_mode']} from {out['onset_speed_rpm']:,.0f} rpm" in text
     # threshold_scan.csv: every crossing is one mode's, by its name (its shape class at that
     # speed apart, shape_label); at its onset the mode's crossing has μ_c = 1
@@ -98,7 +98,7 @@ def test_every_output_gives_each_mode_one_label(flexible):
         assert len(at) == 1 and at["inertia_scale"].iloc[0] == pytest.approx(1.0, abs=1e-5)
     for m in modes:                                                     # the text's lines
         shown = (f"{m['onset_speed_rpm']:,.0f} rpm" if _finite(m["onset_speed_rpm"])
-                 else m["status"])
+                 else m["onset_status"])
         assert re.search(rf"^\s+{re.escape(m['label'])}\s+{re.escape(shown)},", text, re.M), m
     # Campbell: one name per track, no two alike, the same in the CSV, JSON, legend and text
     names = table.groupby("mode")["track_label"].agg(set)
@@ -136,7 +136,7 @@ def test_bending_modes_are_one_mode_in_the_list_and_the_diagram(flexible):
     assert limit == pytest.approx(3.0 * HIGH / 60.0)                  # the stated limit
     assert table["whirl_frequency_hz"].max() <= limit
     bending = [m for m in out["modes"] if " bending" in m["label"]]
-    assert bending and all(m["status"] == "stable over the range" for m in bending)
+    assert bending and all(m["onset_status"] == "stable over the range" for m in bending)
     for m in bending:
         # no whirl of its own in the range: the threshold's (a rotor μ_c times heavier,
         # near half the speed) is kept apart
