@@ -265,9 +265,11 @@ def describing_function_whirl(designed, settings, bearings: list) -> dict:
         return {**out, "describing_function_verdict": f"no describing-function answer: {exc}",
                 "describing_function_bounded": False}
     amplitude = dict(zip(orbit.bearings, orbit.amplitude_um))
-    for b in bearings:
-        b.update(settled_orbit_um=float(amplitude.get(b["bearing"], math.nan)),
-                 settled_whirl_hz=float(orbit.whirl_frequency_hz),
-                 settled_min_film_um=float(orbit.min_film_um))
+    for b in bearings:                   # no settled orbit: nothing settled to state
+        b.update(settled_orbit_um=float(amplitude.get(b["bearing"], math.nan))
+                 if orbit.bounded else math.nan,
+                 settled_whirl_hz=float(orbit.whirl_frequency_hz)
+                 if orbit.bounded else math.nan,
+                 settled_min_film_um=float(orbit.min_film_um) if orbit.bounded else math.nan)
     return {**out, "describing_function_verdict": orbit.verdict,
             "describing_function_bounded": bool(orbit.bounded)}

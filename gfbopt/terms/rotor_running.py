@@ -23,10 +23,11 @@ TERMS: dict[str, tuple[str, str]] = {
     "max_static_solves": ("count", "the largest number of static solves of one fixed point"),
     "limit_rpm": ("rpm", "the speed from which the bearing's running condition fails "
                   "(thermal runaway or closure)"),
-    "last_running_rpm": ("rpm", "the highest speed below limit_rpm at which the bearing's "
-                         "running condition was solved"),
-    "first_failing_rpm": ("rpm", "the lowest speed solved at which the bearing's running "
-                          "condition failed"),
+    "last_running_rpm": ("rpm", "the highest of the analysis's own speeds below limit_rpm at "
+                         "which the bearing's running condition was solved (limit_rpm is "
+                         "bracketed between it and first_failing_rpm)"),
+    "first_failing_rpm": ("rpm", "the lowest of the analysis's own speeds at which the "
+                          "bearing's running condition failed"),
     "kind": ("text", "why a speed was skipped: 'thermal runaway' or 'closure' (a load beyond "
              "capacity has no kind)"),
 }

@@ -67,7 +67,10 @@ def test_at_60000_rpm_the_rubbing_rotor_closes_the_film_at_b(friction_rotor):
     assert whirl["describing_function_model"] == MODEL
     assert whirl["describing_function_verdict"] == "no bounded orbit inside the film"
     assert whirl["describing_function_bounded"] is False
-    assert all(math.isnan(b["settled_orbit_um"]) for b in whirl["bearings"])
+    # no settled orbit: no settled whirl frequency or film either (the reviewer found the
+    # threshold's 366.9 Hz stated as settled_whirl_hz on such rows)
+    assert all(math.isnan(b[k]) for b in whirl["bearings"]
+               for k in ("settled_orbit_um", "settled_whirl_hz", "settled_min_film_um"))
     text = whirl_text(whirl, 60000.0)
     assert text.startswith("at 60,000 rpm contact at bearing B after 7.38 ms (by the rotor "
                            "transient with sliders (")
