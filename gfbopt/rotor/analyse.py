@@ -102,9 +102,10 @@ class RotorAnalysis:
                                            else math.nan),
                 "note": "each bearing alone with its share of the mass and of the load, "
                         "cylindrical whirl (gfbopt stability --onset)" + (
-                            "; at the cold clearance and stated viscosity (the "
-                            "approximation does not use the running condition)"
-                            if self.running is not None else "")}
+                            "; each bearing with [journal]/[thermal] at its running "
+                            "condition of each speed, as gfbopt stability --bearing FILE "
+                            "--speed-range LOW HIGH (gfbopt.rotor.running_bearing."
+                            "running_onset)" if self.running is not None else "")}
         return out
 
     def tables(self) -> dict:

@@ -280,18 +280,60 @@ def imbalance_response(line: SpeedLine, speeds, show_progress: bool = True,
 def half_mass_onsets(line: SpeedLine, speed_range, show_progress: bool = False) -> list:
     """Each bearing alone with its share of mass and load (module docstring): one dict per
     bearing (bearing, mass_share_kg, load_newton, onset_speed_rpm, whirl_frequency_hz,
-    answer)."""
+    answer).  A rotor loaded with its bearings' running condition (``rotor.running``: a
+    bearing file with ``[journal]``/``[thermal]``) gives each such bearing's onset at the
+    running condition of each speed, by the function ``gfbopt stability --bearing FILE
+    --speed-range LOW HIGH`` calls (:func:`gfbopt.rotor.running_bearing.running_onset`,
+    searched from the geometric mean of the range), with the running point at the onset
+    (``thermal_model`` and :data:`~gfbopt.rotor.running_bearing.RUNNING_KEYS`); a thermal
+    runaway before the onset is the answer (NaN onset, the message)."""
     rotor = line.rotor
+    running = getattr(rotor, "running", None)
     out = []
-    for case, load, share in zip(rotor.cases, rotor.loads, rotor.mass_share_kg):
+    for k, (case, load, share) in enumerate(zip(rotor.cases, rotor.loads,
+                                                rotor.mass_share_kg)):
+        row = {"bearing": load.name, "mass_share_kg": share, "load_newton": load.magnitude}
+        spec = None if running is None else running.specs[k]
         try:
-            res = onset_speed(case.bearing, case.rotor, case.load_newton, speed_range,
-                              options=case.options, grid=case.grid, cache=case.cache)
-            out.append({"bearing": load.name, "mass_share_kg": share,
-                        "load_newton": load.magnitude, "onset_speed_rpm": res.onset_speed_rpm,
-                        "whirl_frequency_hz": res.whirl_frequency_hz, "answer": res.answer})
+            if spec is not None:
+                row.update(_running_half_mass(case, spec, speed_range))
+            else:
+                res = onset_speed(case.bearing, case.rotor, case.load_newton, speed_range,
+                                  options=case.options, grid=case.grid, cache=case.cache)
+                row.update(onset_speed_rpm=res.onset_speed_rpm,
+                           whirl_frequency_hz=res.whirl_frequency_hz, answer=res.answer)
+                if running is not None:
+                    row.update(_cold_running_columns(case))
         except ParameterError as exc:
-            out.append({"bearing": load.name, "mass_share_kg": share,
-                        "load_newton": load.magnitude, "onset_speed_rpm": math.nan,
-                        "whirl_frequency_hz": math.nan, "answer": str(exc)})
+            row.update(onset_speed_rpm=math.nan, whirl_frequency_hz=math.nan,
+                       answer=str(exc))
+        out.append(row)
     return out
+
+
+def _running_half_mass(case, spec, speed_range) -> dict:
+    """One bearing's half-mass onset at the running condition (:func:`half_mass_onsets`)."""
+    from .running_bearing import RUNNING_KEYS, running_onset
+
+    found = running_onset(case.bearing, spec, case.rotor, case.load_newton,
+                          tuple(speed_range), options=case.options, grid=case.grid,
+                          cache=case.cache)
+    point = found.get("running") or {}
+    return {"onset_speed_rpm": found.get("onset_speed_rpm", math.nan),
+            "whirl_frequency_hz": found.get("whirl_frequency_hz", math.nan),
+            "answer": found.get("answer") or found.get("message", ""),
+            "thermal_model": spec.model_name,
+            **{key: point.get(key, math.nan) for key in RUNNING_KEYS[1:]}}
+
+
+def _cold_running_columns(case) -> dict:
+    """The running columns of a bearing with neither table in a rotor whose other bearing
+    states them: the cold clearance, no heat."""
+    from ..thermal.running import ISOTHERMAL
+    from .running_bearing import RUNNING_KEYS
+
+    return {"thermal_model": ISOTHERMAL,
+            **dict.fromkeys(RUNNING_KEYS[1:], math.nan),
+            "running_clearance_um": case.bearing.radial_clearance * 1e6,
+            "centrifugal_growth_um": 0.0, "thermal_growth_um": 0.0,
+            "viscosity_pa_s": case.bearing.viscosity}
