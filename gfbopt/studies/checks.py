@@ -32,10 +32,42 @@ def comparison(what: str, reference: str, value: float, limit: float) -> dict:
             "agrees": bool(math.isfinite(value) and abs(value) <= limit)}
 
 
+#: ``thermal_status`` of a row with no running state (gfbopt.thermal.running): a thermal
+#: runaway or a closed clearance is an answer (docs/thermal.md), not a failed solve
+NO_RUNNING_STATE = ("runaway", "closure")
+
+
+def no_running_state(table: pd.DataFrame) -> pd.Series:
+    """True on the rows whose running condition has no state (``thermal_status`` in
+    :data:`NO_RUNNING_STATE`); all False on a table without the column."""
+    if "thermal_status" not in table:
+        return pd.Series(False, index=table.index)
+    return table["thermal_status"].isin(NO_RUNNING_STATE)
+
+
 def all_converged(table: pd.DataFrame, what: str = "all solves converged") -> dict:
-    """Count of rows whose ``success`` is False (limit 0)."""
-    failures = float((~table["success"].astype(bool)).sum())
-    return check(f"{what} (count of failures)", failures, 0)
+    """Count of rows whose ``success`` is False (limit 0), solver failures only: a row with
+    no running state (thermal runaway, closure: :func:`no_running_state`) is an answer and
+    is not counted; the check's text states those rows apart (speed and load)."""
+    limited = no_running_state(table)
+    failures = float((~table["success"].astype(bool) & ~limited).sum())
+    extra = (f"; not counted, answers: {running_limits_text(table[limited])}"
+             if limited.any() else "")
+    return check(f"{what} (count of failures{extra})", failures, 0)
+
+
+def running_limits_text(rows: pd.DataFrame) -> str:
+    """"N row(s) with no running state: thermal runaway at S rpm under W N; ..."."""
+    where = []
+    for _, row in rows.iterrows():
+        kind = "closure" if row["thermal_status"] == "closure" else "thermal runaway"
+        at = " under ".join(part for part in (
+            f"{row['speed_rpm']:,.0f} rpm" if "speed_rpm" in row else "",
+            f"{row['load_newton']:g} N" if "load_newton" in row else "") if part)
+        where.append(f"{kind} at {at}" if at else kind)
+    count = len(where)
+    return (f"{count} row{'s' if count != 1 else ''} with no running state: "
+            f"{'; '.join(where)}")
 
 
 def add_published_columns(table: pd.DataFrame, published: list, references: tuple
@@ -72,8 +104,10 @@ def published_comparisons(table: pd.DataFrame, comparisons: list) -> list:
 def monotone(table: pd.DataFrame, column: str, along: str, rising: bool, by: list,
              what: str) -> list:
     """Per group of ``by``: the largest step of ``column`` against the required direction
-    as ``along`` increases (limit 0)."""
+    as ``along`` increases (limit 0), over the rows with a running state (a thermal
+    runaway's row has no figures to follow: :func:`no_running_state`)."""
     out = []
+    table = table[~no_running_state(table)]     # no running state: no trend to follow
     for key, sub in table.groupby(by, sort=False):
         steps = np.diff(sub.sort_values(along)[column].to_numpy())
         worst = float(max(-steps.min() if rising else steps.max(), 0.0)) if steps.size else 0.0

@@ -191,7 +191,6 @@ def run_linear_coefficients(study: Study, plan: tuple, ctx: RunContext) -> Study
         plot_coefficients(sub, "stiffness", ax=left, title=f"Stiffness: {where}")
         plot_coefficients(sub, "damping", ax=right, title=f"Damping: {where}")
         figures[f"coefficients_{stem}.png"] = left.figure
-    found = [checks.check("all static solves and thresholds converged (count of failures)",
-                          float((~table["success"].astype(bool)).sum()), 0)]
+    found = [checks.all_converged(table, "all static solves and thresholds converged")]
     return StudyResult(study, tables=tables, figures=figures, checks=found,
                        **_named(study, models, running))
