@@ -18,6 +18,15 @@ read through the structure's stations, S(z_k) q, for any structure),
 s_pred the track's prediction (per second). A match costing more than :data:`MAX_COST` starts a
 new track instead.
 
+Whirl direction.  A track keeps its whirl direction (forward or backward, the shape's:
+:func:`whirl_direction`) at every speed: a root whirling the other way is never its
+continuation, nor its nearest root, nor a join of :func:`stitch` (its cost is inf).  Without
+this the shape term (1 − MAC ≤ 1) alone could not keep the ways apart: the flexible rotor's
+forward conical root at 10,000 rpm (153.1 Hz, log decrement 2.63, 24x8) continued the backward
+conical track at 12,632 rpm (161.8 Hz, 1.21) at cost 1.474 ≤ :data:`MAX_COST` (1 − MAC =
+0.65 of the elliptical orbits, 4 × 0.206 the eigenvalue's move, mostly its damping), its
+forward candidate (248.6 Hz) costing 2.05; now it is dropped (join cost 2.14, stated).
+
 Gaps (:func:`stitch`, after the last speed).  A step of a coarse diagram can change a mode's
 damping by more than its frequency: the blower rotor's forward modes on the half-speed line
 go from log decrement 3.1 at 4,000 rpm to −0.05 at 13,333 rpm (7 speeds), so the eigenvalue's
@@ -93,6 +102,8 @@ SAME_FREQUENCY = 0.05
 #: a track and an onset-list mode are one mode (rule 1b) when the MAC of their shapes is at
 #: least this [-]
 SAME_SHAPE = 0.8
+#: the assignment's stand-in for a forbidden pair (a change of whirl direction) [-]
+FORBIDDEN = 1e9
 #: statuses of a matched-whirl mode that a track losing (or without) damping carries
 _UNSTABLE = (ONSET, UNSTABLE_LOW)
 
@@ -103,6 +114,23 @@ def orbit_vector(mode, positions, structure=None) -> np.ndarray:
     if structure is None:
         return np.concatenate([station_matrix(z) @ mode.vector for z in positions])
     return np.concatenate([structure.station(z) @ mode.vector for z in positions])
+
+
+def whirl_direction(mode, positions, structure=None) -> str:
+    """"forward" or "backward": the mode's shape's (:func:`gfbopt.rotor.modes.shape`), else by
+    that rule from its orbits at the bearings (Σ|X + iY|² ≥ Σ|X − iY|²: forward)."""
+    found = (getattr(mode, "shape", None) or {}).get("direction")
+    if found is not None:
+        return found
+    d = orbit_vector(mode, positions, structure).reshape(-1, 2)
+    forward = float(np.sum(np.abs(d[:, 0] + 1j * d[:, 1]) ** 2))
+    backward = float(np.sum(np.abs(d[:, 0] - 1j * d[:, 1]) ** 2))
+    return "forward" if forward >= backward else "backward"
+
+
+def _finite(matrix: np.ndarray) -> np.ndarray:
+    """``matrix`` with every forbidden pair (inf) at :data:`FORBIDDEN`, for the assignment."""
+    return np.where(np.isfinite(matrix), matrix, FORBIDDEN)
 
 
 def predicted(track: list, speed: float, omega: float) -> list:
@@ -123,7 +151,11 @@ def cost(track: list, mode, speed: float, omega: float, positions, structure=Non
     """(1 − MAC with the track's last mode) + :data:`FREQUENCY_WEIGHT` × the distance of the
     mode's eigenvalue from the track's (nearest) prediction, relative (module docstring);
     ``frequency_only``: the distance of the damped natural frequencies alone (Im s ω), as
-    :func:`stitch` measures it."""
+    :func:`stitch` measures it.  inf when the mode whirls the other way than the track's
+    last mode (:func:`whirl_direction`): a track keeps its whirl direction."""
+    if (whirl_direction(mode, positions, structure)
+            != whirl_direction(track[-1][1], positions, structure)):
+        return math.inf
     if frequency_only:
         jump = min(abs((mode.eigenvalue * omega).imag - g.imag) / abs(g.imag)
                    for g in predicted(track, speed, omega))
@@ -149,16 +181,21 @@ def assign(tracks: list, active: list, speed: float, omega: float, modes: list,
     """Append each of ``modes`` to its track (or a new one); the new list of active tracks.
     ``tracks``: lists of (speed, mode, omega); ``starts``: the active tracks' guesses
     (:func:`guesses`).  A track of two points or more whose guess has a root nearest it
-    (within :data:`NEAR` of it, and nearest no other track's guess) continues there — the
-    continuation; the others
+    (within :data:`NEAR` of it, and nearest no other track's guess; roots whirling the
+    track's way only) continues there — the continuation; the others
     are matched by the optimal assignment on :func:`cost` (module docstring)."""
     new_active, used = [], set()
     linked = {}
     if len(starts) >= len(active) and modes:
         roots = np.array([m.eigenvalue for m in modes])
-        nearest = [int(np.argmin(np.abs(roots - g))) for g in starts[:len(active)]]
+        ways = [whirl_direction(m, positions, structure) for m in modes]
+        nearest = []
+        for r, g in enumerate(starts[:len(active)]):     # the nearest root whirling its way
+            way = whirl_direction(tracks[active[r]][-1][1], positions, structure)
+            gap = np.where([w == way for w in ways], np.abs(roots - g), math.inf)
+            nearest.append(int(np.argmin(gap)) if np.isfinite(gap).any() else -1)
         for r, (g, c) in enumerate(zip(starts, nearest)):
-            if (len(tracks[active[r]]) > 1 and nearest.count(c) == 1
+            if (c >= 0 and len(tracks[active[r]]) > 1 and nearest.count(c) == 1
                     and abs(roots[c] - g) <= NEAR * abs(g)):
                 linked[r] = c
     for r, c in linked.items():
@@ -169,7 +206,7 @@ def assign(tracks: list, active: list, speed: float, omega: float, modes: list,
     free = [c for c in range(len(modes)) if c not in used]
     matrix = np.array([[cost(tracks[active[r]], modes[c], speed, omega, positions, structure)
                         for c in free] for r in rest])
-    rows, cols = linear_sum_assignment(matrix) if matrix.size else ((), ())
+    rows, cols = linear_sum_assignment(_finite(matrix)) if matrix.size else ((), ())
     for i, j in zip(rows, cols):
         if matrix[i, j] <= MAX_COST:
             tracks[active[rest[i]]].append((speed, modes[free[j]], omega))
@@ -200,7 +237,7 @@ def stitch(tracks: list, speeds, positions, structure=None) -> tuple[list, list]
     :func:`join_cost`, a pair joined when it costs at most :data:`MAX_COST` — and then every
     track still shorter than :data:`MIN_POINTS` taken out: ``dropped``, (track, the least
     :func:`join_cost` to a kept track ending at the speed before it or starting at the one
-    after; inf when there is none) (module docstring, "Gaps")."""
+    after; inf when there is none, or none whirling its way) (module docstring, "Gaps")."""
     speeds = sorted(set(float(s) for s in speeds))
     out = [list(t) for t in tracks]
     for a, b in zip(speeds, speeds[1:]):
@@ -210,7 +247,7 @@ def stitch(tracks: list, speeds, positions, structure=None) -> tuple[list, list]
             continue
         matrix = np.array([[join_cost(out[i], out[j], positions, structure) for j in starts]
                            for i in ends])
-        for r, c in zip(*linear_sum_assignment(matrix)):
+        for r, c in zip(*linear_sum_assignment(_finite(matrix))):
             if matrix[r, c] <= MAX_COST:
                 out[ends[r]].extend(out[starts[c]])
                 out[starts[c]] = []
