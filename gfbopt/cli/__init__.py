@@ -44,7 +44,7 @@ from . import rotor
 from . import capacity, export_ross
 from .common import Parser
 from .csv_context import sidecar_path
-from .flags import as_typed, option_flags
+from .flags import option_flags, refusal_line
 from .size import GUARDED, add_limits, check_command
 
 COMMANDS = (static, linear, stability, transient, design, run, rotor, formats)
@@ -198,7 +198,7 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
         print(f"gfbopt: error: the solver did not converge: {exc}", file=sys.stderr)
         return 1
     except ParameterError as exc:     # named by the flag as typed (gfbopt.cli.flags)
-        print(f"gfbopt: error: {as_typed(exc, args)}", file=sys.stderr)
+        print(f"gfbopt: error: {refusal_line(exc, args)}", file=sys.stderr)
         return 2
     except GfboptError as exc:
         print(f"gfbopt: error: {exc}", file=sys.stderr)

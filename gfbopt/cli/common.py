@@ -47,8 +47,9 @@ def number(name: str) -> Callable[[str], float]:
             value = float(text)
         except ValueError:
             raise argparse.ArgumentTypeError(f"{name} = {text!r}: must be a number") from None
-        if not math.isfinite(value):
-            raise argparse.ArgumentTypeError(f"{name} = {text!r}: must be finite (not NaN)")
+        if not math.isfinite(value):         # inf is a number, just not a finite one
+            raise argparse.ArgumentTypeError(f"{name} = {text!r}: must be finite" + (
+                " (not NaN)" if math.isnan(value) else ""))
         return value
     return parse
 

@@ -127,13 +127,16 @@ def run(args) -> int:
         check_file_name_part(b.name, f"{args.rotor_file}: bearing name",
                              "export-ross writes bearing_NAME.toml")
     nodes = bearing_nodes(system)
-    line = SpeedLine(resolve_rotor(system, grid))
+    case = resolve_rotor(system, grid)
+    line = SpeedLine(case)
+    conventions = case.conventions()      # each bearing's film, foil, friction, hardening
     folder.mkdir(parents=True, exist_ok=True)
     suffix = ".json" if args.json_format else ".toml"
     span = (f"speeds {low:g}–{high:g} rpm ({len(speeds)}), whirl frequencies "
             f"{f_range[0]:.6g}–{f_range[1]:.6g} Hz ({len(freqs)})")
     files = []
-    options = context_options(args, command="export-ross", grid=str(grid))
+    options = context_options(args, command="export-ross", grid=str(grid),
+                              conventions=conventions)
     state = source_state()
     commit = (state["commit"] or state["source"]) + (" with uncommitted changes"
                                                      if state["dirty"] else "")
@@ -146,6 +149,7 @@ def run(args) -> int:
                   "ROSS 3.x BearingElement coefficient table (load: "
                   "ross.BearingElement.load(path)); SI: speed, frequency rad/s, k N/m, c N s/m",
                   f"table span: {span}; ROSS extrapolates linearly outside it",
+                  f"model: {_model_line(conventions['bearings'][support.name])}",
                   FRAME)
         path = write_ross_table(folder / f"bearing_{support.name}{suffix}", tables, node,
                                 support.name, support.geometry.radial_clearance, header)
@@ -153,6 +157,7 @@ def run(args) -> int:
         files.append({"bearing": support.name, "file": str(path), "node": node,
                       "position_m": support.position})
     out = {"rotor_file": args.rotor_file, "grid": str(grid), "files": files,
+           "conventions": conventions,
            "speed_range_rpm": [low, high], "speeds": len(speeds),
            "frequency_range_hz": list(f_range), "frequencies": len(freqs),
            "extrapolation": "ROSS extrapolates linearly outside the table's speed and "
@@ -169,10 +174,19 @@ FRAME = ("the rotor file's x–y (gravity at gravity_direction_deg from +x, 0 by
          "gravity along −y) needs the tables rotated into its frame")
 
 
+def _model_line(conv: dict) -> str:
+    """One bearing's model in words: film convention; foil, law, η, friction; clearance."""
+    from .model_text import model_words
+
+    return (f"{conv['film_convention']}; {model_words(conv)}; "
+            f"{conv.get('thermal_model', 'isothermal, cold clearance')}")
+
+
 def _report(out: dict, span: str) -> str:
     lines = [f"gfbopt export-ross — {out['rotor_file']}, grid {out['grid']}"]
     lines += [f"  bearing {f['bearing']} (node {f['node']}, z = {f['position_m']:g} m): "
-              f"{f['file']}" for f in out["files"]]
+              f"{f['file']}; {_model_line(out['conventions']['bearings'][f['bearing']])}"
+              for f in out["files"]]
     lines += [f"Table span: {span}.",
               "ROSS extrapolates linearly outside this span (coefficients asked for at the "
               "running speed alone extrapolated kxx 35–48 % too high in a trial): keep "

@@ -23,6 +23,13 @@ ALIASES = {"balance_grade": "imbalance_grade",          # gfbopt.transient.rotor
            "target compliance band": "target_compliance"}
 #: names that say which file (their value is the path an option was given)
 FILE_NAMES = ("file", "path")
+#: a bearing file's key refused because of an option's choice: the key → (a word of the rule
+#: that names the choice, the option's dest).  ``friction_coefficient = 0.5: is not carried by
+#: the beam foil model`` after ``--foil beam`` reads ``--foil = 'beam': FILE's
+#: friction_coefficient = 0.5 is not carried …`` (the user typed --foil, not the key)
+CHOICES = {key: (("engine", "method"), ("foil model", "foil"))
+           for key in ("friction_coefficient", "friction_stiffness_ratio",
+                       "hardening_exponent", "hardening_limit")}
 
 
 def option_flags(parser) -> dict:
@@ -84,6 +91,10 @@ def as_typed(exc: ParameterError, args) -> ParameterError:
     if not name or name.startswith("--") or not flags:
         return exc
     flag = _flag_of(name, exc.value, args, flags)
+    if flag is None and name in CHOICES:        # a file's value refused for a flag's choice
+        choice = _choice(exc, args, flags)
+        if choice is not None:
+            return choice
     if flag is None and " " in name:            # a part of an option's value
         head, rest = name.split(" ", 1)
         dest = head.replace("-", "_")
@@ -95,3 +106,36 @@ def as_typed(exc: ParameterError, args) -> ParameterError:
     new = ParameterError(flag, exc.value, exc.rule)
     new.__cause__ = exc.__cause__
     return new
+
+
+def _choice(exc: ParameterError, args, flags: dict) -> Optional[ParameterError]:
+    """``exc`` (a bearing file's bump key refused by the model or an engine) as the refusal of
+    the option whose choice the rule names (:data:`CHOICES`), when that option was given."""
+    for word, dest in CHOICES[exc.name]:
+        given = getattr(args, dest, None)
+        if word in exc.rule and given is not None and dest in flags \
+                and _typed(args, flags[dest]) and (word != "engine" or str(given) in exc.rule):
+            source = getattr(args, "bearing", None)
+            where = f"{source}: " if isinstance(source, str) else ""
+            rule = exc.rule[3:] if exc.rule.startswith("is ") else exc.rule
+            new = ParameterError(flags[dest], given, f"{where}{exc.name} = {exc.value!r}: "
+                                 f"{'is ' if exc.rule.startswith('is ') else ''}{rule}")
+            new.__cause__ = exc.__cause__
+            return new
+    return None
+
+
+def _typed(args, flag: str) -> bool:
+    """``flag`` is on the command line as typed (not a value filled in from a file)."""
+    line = getattr(args, "command_line", None)
+    return line is None or any(w == flag or w.startswith(flag + "=") for w in line)
+
+
+def refusal_line(exc: ParameterError, args) -> str:
+    """The one line of a refusal after ``gfbopt: error:``: ``PARAMETER = VALUE: RULE`` with
+    the parameter as typed (:func:`as_typed`), or ``PARAMETER (not given): RULE`` for a value
+    that is missing (never ``--speed-rpm = None``, which reads as a value typed)."""
+    typed = as_typed(exc, args)
+    if typed.value is None and isinstance(typed.name, str) and typed.name:
+        return f"{typed.name} (not given): {typed.rule}"
+    return str(typed)

@@ -41,6 +41,7 @@ from ..inputs.grid import DEFAULT_GRID
 from . import rotor_time
 from .common import emit, number
 from .csv_context import HELP as CSV_HELP, context_options, write_csv
+from .model_text import model_words
 
 
 def register(subparsers) -> None:
@@ -132,8 +133,10 @@ def run(args) -> int:
              "position_m": p.position,
              "source": "rotor file" if planes is None else "command line"}
             for p in system.imbalance]
+    # the conventions block of the JSON (each bearing's film, foil, friction, hardening and
+    # clearance model) in the provenance too, so every CSV's context file names the model
     options = context_options(args, command="rotor", grid=str(grid),
-                              rotor_file=args.rotor_file)
+                              rotor_file=args.rotor_file, conventions=out["conventions"])
     if args.csv:        # the JSON is the same with or without --csv, plus this list
         folder = Path(args.csv)
         folder.mkdir(parents=True, exist_ok=True)
@@ -175,9 +178,8 @@ def _report(out: dict) -> str:
              f"  bearing loads: {loads}"]
     lines += [f"  {note}" for note in out["bearing_notes"]]
     for name, conv in out["conventions"]["bearings"].items():
-        lines.append(f"  bearing {name}: {conv['film_convention']}; {conv['foil']} foil, "
-                     f"{conv['deflection_law']} law, loss factor {conv['loss_factor']:g}; "
-                     f"{out['thermal_models'][name]}")
+        lines.append(f"  bearing {name}: {conv['film_convention']}; "
+                     f"{model_words(conv, law='law')}; {out['thermal_models'][name]}")
     if _finite(out["onset_speed_rpm"]):
         lines.append(f"  first to whirl: {out['first_mode']} from "
                      f"{out['onset_speed_rpm']:,.0f} rpm at {out['onset_whirl_frequency_hz']:.4g}"
@@ -198,6 +200,8 @@ def _report(out: dict) -> str:
         if m.get("note"):
             lines.append(f"      {m['note']}")
     lines += _running_lines(out)
+    if out.get("at_speed"):
+        lines += _at_speed_lines(out["at_speed"])
     for c in out["load_capacity_exceeded"]:
         if c.get("kind"):          # thermal runaway or closure at that speed
             lines.append(f"  {c['message']}")
@@ -275,4 +279,36 @@ def _imbalance_lines(ir: dict) -> list:
         lines.append(f"    above {ir['unstable_from_rpm']:,.0f} rpm the rotor is unstable: the "
                      "linear response there is not an orbit that would be observed (shaded in "
                      "the figure)")
+    return lines
+
+
+def _at_speed_lines(at: dict) -> list:
+    """The text of ``--speed-rpm N`` (the JSON's ``at_speed``): each bearing's equilibrium
+    (with its running clearance when heated), each mode's whirl and log decrement, and each
+    mode's threshold (the inertia scale at which it is neutral)."""
+    lines = [f"  at {at['speed_rpm']:,.0f} rpm (--speed-rpm):"]
+    for b in at["bearings"]:
+        text = (f"    bearing {b['bearing']}: load {b['load_newton']:.4g} N, ε = "
+                f"{b['eccentricity']:.4f}, attitude {b['attitude_angle_deg']:.2f}°, minimum "
+                f"film {b['min_film_thickness_um']:.3g} µm")
+        if _finite(b.get("running_clearance_um")):
+            text += (f"; running clearance {b['running_clearance_um']:.4g} µm (cold "
+                     f"{b['cold_clearance_um']:.4g})")
+            if _finite(b.get("film_temperature_c")):
+                text += f", film {b['film_temperature_c']:.4g} °C"
+        elif b.get("thermal_status") not in (None, "running"):
+            text += f"; {b['thermal_status']}"
+        if b.get("load_exceeds_capacity"):
+            text += "; load above the rule-of-thumb capacity"
+        lines.append(text)
+    for m in at["modes"]:
+        verdict = "unstable" if m["log_decrement"] < 0 else "stable"
+        lines.append(f"    mode {m['shape_label']:<22} whirl {m['whirl_frequency_hz']:.4g} Hz "
+                     f"(ratio {m['whirl_ratio']:.3f}), log decrement "
+                     f"{m['log_decrement']:+.3g}: {verdict}")
+    for t in at.get("thresholds") or []:
+        lines.append(f"    threshold of {t['shape_label']}: whirl {t['whirl_frequency_hz']:.4g}"
+                     f" Hz (ratio {t['whirl_ratio']:.3f}) at {t['inertia_scale']:.3g} × the "
+                     f"rotor's inertia (margin {t['inertia_margin']:+.1%})"
+                     + (f"; {t['note']}" if t.get("note") else ""))
     return lines

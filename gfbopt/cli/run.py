@@ -152,8 +152,29 @@ def _load(path: str, args):
                                                 ("--max-points", args.max_points))
              if value is not None]
     options = " ".join(f"{flag} {shlex.quote(str(value))}" for flag, value in typed)
-    return study_from_dict(data, name=Path(path).stem, file=str(path),
-                           directory=Path(path).parent, limits=limits(args), options=options)
+    try:
+        return study_from_dict(data, name=Path(path).stem, file=str(path),
+                               directory=Path(path).parent, limits=limits(args),
+                               options=options)
+    except ParameterError as exc:
+        raise _overridden(exc, str(path), args) from None
+
+
+#: a study file's key that a flag of ``gfbopt run`` sets for the run → the flag
+OVERRIDES = {"grid": "--grid", "max_points": "--max-points"}
+
+
+def _overridden(exc, path: str, args):
+    """A study's refusal of a key the command line set (``FILE: grid = '24x8'`` after
+    ``--grid 24x8``) named by the flag typed, the file kept in the rule; else ``exc``."""
+    from ..errors import ParameterError
+
+    for key, flag in OVERRIDES.items():
+        given = getattr(args, key, None)
+        if given is not None and exc.name == f"{path}: {key}" and exc.value == given:
+            return ParameterError(flag, given, f"{exc.rule} (set for {path}, whose {key} it "
+                                  "replaces)")
+    return exc
 
 
 def _no_tqdm_monitor() -> None:

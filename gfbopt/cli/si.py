@@ -33,8 +33,8 @@ def seam_angle_text(text: str):
         raise argparse.ArgumentTypeError(f"--seam-angle = {text!r}: must be a number of degrees "
                                          "or 'max_film'") from None
     if not math.isfinite(value):
-        raise argparse.ArgumentTypeError(f"--seam-angle = {text!r}: must be finite "
-                                         "(not NaN)")
+        raise argparse.ArgumentTypeError(f"--seam-angle = {text!r}: must be finite" + (
+            " (not NaN)" if math.isnan(value) else ""))
     return value
 
 

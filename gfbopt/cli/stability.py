@@ -30,6 +30,7 @@ import sys
 from ..errors import ParameterError
 from .common import add_grid, emit, number
 from .csv_context import HELP as CSV_HELP, context_options, write_context
+from .model_text import model_words
 from .si import seam_angle_text, stated_options
 
 #: --onset without --speed-range searches (N/4, 2N) around the operating speed N [rpm]
@@ -112,18 +113,26 @@ def _check(args) -> None:
                                  "must be two speeds 0 < LOW < HIGH [rpm]")
 
 
-def _provenance_options(args, grid, options) -> dict:
-    """The options of the provenance block of --json and of the CSV's context file."""
-    return context_options(args, command="stability", grid=str(grid), **options.to_dict())
+def _provenance_options(args, grid, options, out: dict) -> dict:
+    """The options of the provenance block of --json and of the CSV's context file: the
+    formulation (friction and hardening when stated), the clearance model and, once the
+    operating point is solved, its running clearance."""
+    running = {k: out.get(k) for k in RUNNING_FIELDS[:-1]}
+    return context_options(args, command="stability", grid=str(grid), **options.to_dict(),
+                           **running)
 
 
 #: the fields of the operating-point answer (StabilityResult.to_dict without conventions)
 POINT_FIELDS = (
     "stable", "verdict", "critical_mass_kg", "mass_margin", "whirl_frequency_hz",
     "growth_rate_per_s", "log_decrement", "threshold_whirl_frequency_hz", "eccentricity",
-    "attitude_angle_deg", "min_film_thickness_um", "bearing_number", "load_parameter",
-    "mass_parameter", "critical_mass_parameter", "threshold_whirl_ratio", "mode_whirl_ratio",
-    "growth_rate", "speed_rpm", "load_newton", "wall_time_s")
+    "attitude_angle_deg", "min_film_thickness_um", "bearing_number", "load", "mass",
+    "critical_mass", "threshold_whirl_ratio", "mode_whirl_ratio", "growth_rate", "speed_rpm",
+    "load_newton", "wall_time_s")
+#: the glossary's names of the non-dimensional groups (``load``, ``mass``, ``critical_mass``
+#: as critical-mass, static and linear print them) → StabilityResult's attribute names
+RESULT_NAMES = {"load": "load_parameter", "mass": "mass_parameter",
+                "critical_mass": "critical_mass_parameter"}
 #: one JSON schema for ``gfbopt stability --json``, whatever the flags: every field present,
 #: null when not computed (the operating point without --speed-rpm, the onset without
 #: --onset/--speed-range, the CSV path without --csv)
@@ -194,7 +203,8 @@ def run(args) -> int:
             bar.close()
         else:
             answer = result.to_dict()
-            out.update({k: answer[k] for k in POINT_FIELDS}, conventions=result.conventions,
+            out.update({k: answer[RESULT_NAMES.get(k, k)] for k in POINT_FIELDS},
+                       conventions=result.conventions,
                        warnings=list(result.warnings))
             bar.update(1)
             bar.set_postfix_str("K and C against frequency")
@@ -205,7 +215,7 @@ def run(args) -> int:
                 from ..rotor.coefficients import COLUMNS
 
                 write_context(table.write_csv(args.csv), COLUMNS,
-                              _provenance_options(args, grid, options))
+                              _provenance_options(args, grid, options, out))
                 out["csv"] = str(args.csv)
             bar.update(1)
             bar.close()
@@ -232,7 +242,7 @@ def run(args) -> int:
     out["success"] = success
     out["message"] = "; ".join(r.message for r in done if r.message)
     emit(out, args.json, lambda: _report(out, result, onset, table, args.csv),
-         _provenance_options(args, grid, options))
+         _provenance_options(args, grid, options, out))
     if not success:
         print("gfbopt: the stability analysis did not complete: "
               f"{(result and result.message) or (onset and onset.message)}", file=sys.stderr)
@@ -296,8 +306,7 @@ def _report(out, result, onset, table, csv) -> str:
     conv = out["conventions"]
     lines = [f"gfbopt stability — {out['bearing']}, rotor {out['rotor_mass_kg']:.4g} kg per "
              f"bearing, grid {out['grid']}",
-             f"  conventions: {conv['film_convention']}; {conv['foil']} foil, "
-             f"{conv['deflection_law']} deflection law, loss factor {conv['loss_factor']:g}"]
+             f"  conventions: {conv['film_convention']}; {model_words(conv)}"]
     if out.get("running"):
         lines += running_lines(out["running"])
     else:

@@ -68,7 +68,11 @@ def run(args) -> int:
 
 
 def _report(out: dict) -> str:
-    lines = [f"gfbopt static — {out['foil']} foil, {out['film']} film, grid {out['grid']}",
+    from .model_text import foil_words, friction_words
+
+    friction = friction_words(out)
+    lines = [f"gfbopt static — {foil_words(out)}, {out['film']} film"
+             + (f", {friction}" if friction else "") + f", grid {out['grid']}",
              f"  Λ = {out['bearing_number']:.4g}, S = {out['compliance']:.4g}, "
              f"L/D = {out['length_ratio']:.4g}, C = {out['top_foil_coefficient']:.4g}",
              f"  eccentricity ε          {out['eccentricity']:.5f}",

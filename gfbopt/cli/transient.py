@@ -309,8 +309,13 @@ def run_orbit(args) -> int:
         model = op.model
         label = (f"M = {args.rotor_mass_kg:g} kg (M̄ = {mass:.4g})" if args.mass is None
                  else f"M̄ = {mass:g}")
+        from .model_text import foil_words, friction_words
+
+        friction = friction_words(model.options())
         ax = plot_orbits({f"{label}: {orbit.verdict[0]}": table},
-                         title=f"{model.foil} foil, ε0 = {sol.eccentricity:.3g}, "
+                         title=f"{foil_words(model.options())}"
+                         + (f", {friction}" if friction else "")
+                         + f", ε0 = {sol.eccentricity:.3g}, "
                          f"Λ = {model.bearing_number:.4g}, S = {model.compliance:.4g}",
                          clearance=True)
         save_figure(ax.figure, args.plot)
@@ -325,13 +330,30 @@ def run_orbit(args) -> int:
     emit(out, args.json, lambda: _with_running(
         f"gfbopt orbit — M̄ = {mass:.6g}"
         + (f" ({args.rotor_mass_kg:g} kg)" if args.mass is None else "")
-        + f": {out['verdict']}, growth rate "
-        f"{out['growth_rate']:.3g} per rad, whirl ratio {out['whirl_ratio']:.4g}, "
-        f"min film {out['min_film']:.4g}, {out['revolutions']:.1f} revolutions "
+        + f": {out['verdict']}, {_orbit_numbers(out, op)}, {out['revolutions']:.1f} revolutions "
         f"({args.method}, Δτ = {orbit.time_step:.3g}) in {orbit.wall_time_s:.1f} s"
         + _damping_text(orbit)
         + ("" if orbit.success else f"  ** FAILED: {orbit.message}"), out), context)
     return 0 if orbit.success else 1
+
+
+def _measured(value, text: str) -> str:
+    """``text`` formatted with ``value``, or 'not measured' (the JSON's null: NaN, inf)."""
+    return text.format(value) if value is not None and math.isfinite(value) \
+        else "not measured"
+
+
+def _orbit_numbers(out: dict, op) -> str:
+    """'growth rate …, whirl ratio …, min film …' of the orbit's text: 'not measured' where
+    the JSON has null, the minimum film in µm with --bearing (h/c without)."""
+    film = out["min_film"]
+    if op.geometry is not None:
+        film_text = _measured(None if film is None else film * op.geometry.radial_clearance
+                              * 1e6, "{:.4g} µm")
+    else:
+        film_text = _measured(film, "{:.4g} (h/c)")
+    return (f"growth rate {_measured(out['growth_rate'], '{:.3g} per rad')}, whirl ratio "
+            f"{_measured(out['whirl_ratio'], '{:.4g}')}, min film {film_text}")
 
 
 def run_critical_mass(args) -> int:

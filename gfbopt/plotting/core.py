@@ -225,6 +225,8 @@ def plot_orbits(orbits: dict, ax=None, title: str = "", clearance: bool = False)
     for label, table in orbits.items():
         ax.plot(np.radians(table["attitude_angle_deg"]), table["eccentricity"], lw=0.8,
                 label=label)
+    # the radial axis: ε = e/c, the journal's displacement in radial clearances [-]
+    ax.set_ylabel("eccentricity ε = e/c [-]", labelpad=34, fontsize=8)
     set_title(ax, title, fontsize=8.5)
     ax.title.set_y(1.08)             # above the 90° tick label
     ax.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.06), ncol=1)

@@ -126,7 +126,7 @@ def test_readable_report():
     (["--bearing", "nope.toml", "--speed-rpm", "1000", "--load-newton", "10"],
      "must be an existing TOML file"),
     (["--bearing", "problems/bearings/ruscitto.toml", "--load-newton", "10"],
-     "--speed-rpm = None: is required with --bearing"),
+     "--speed-rpm (not given): is required with --bearing"),
 ])
 def test_bad_input_is_one_line_exit_2(args, message):
     out = gfbopt("static", *args)

@@ -34,8 +34,8 @@ def test_stability_json_and_csv_contract(tmp_path):
     data = _json("stability", *POINT, "--rotor-mass-kg", "2", "--csv", str(csv))
     for key in ("stable", "verdict", "critical_mass_kg", "mass_margin", "whirl_frequency_hz",
                 "growth_rate_per_s", "log_decrement", "eccentricity", "attitude_angle_deg",
-                "min_film_thickness_um", "bearing_number", "mass_parameter",
-                "critical_mass_parameter", "threshold_whirl_frequency_hz", "conventions",
+                "min_film_thickness_um", "bearing_number", "mass",
+                "critical_mass", "threshold_whirl_frequency_hz", "conventions",
                 "coefficients", "success", "message", "wall_time_s", "provenance"):
         assert key in data, key
     assert data["stable"] is False and data["verdict"] == "unstable" and data["success"]
@@ -65,7 +65,7 @@ def test_si_answer_equals_the_nondimensional_path():
     assert stab["critical_mass_kg"] == pytest.approx(
         linear["critical_mass"] * 20.0 / (20e-6 * omega**2), rel=1e-9)
     mbar = 2.0 * 20e-6 * omega**2 / 20.0
-    assert stab["mass_parameter"] == pytest.approx(mbar, rel=1e-12)
+    assert stab["mass"] == pytest.approx(mbar, rel=1e-12)
     by_mbar = _json("stability", *POINT, "--mass", repr(mbar))
     assert by_mbar["rotor_mass_kg"] == pytest.approx(2.0, rel=1e-12)
     assert by_mbar["critical_mass_kg"] == pytest.approx(stab["critical_mass_kg"], rel=1e-9)
@@ -134,7 +134,7 @@ def test_a_damped_bearing_file_reaches_the_transient_with_its_loss_factor(tmp_pa
     (["--rotor-mass-kg", "2", "--seam-angle", "-5"], "--seam-angle = -5.0: must lie in [0, 360)"),
     (["--rotor-mass-kg", "2", "--mass", "3"], "--mass = 3.0: contradicts --rotor-mass-kg"),
     (["--mass", "3"], "--mass = 3.0: needs --load-newton and --speed-rpm"),
-    ([], "--rotor-mass-kg = None: is required"),
+    ([], "--rotor-mass-kg (not given): is required"),
     (["--rotor-mass-kg", "2", "--speed-range", "3000", "1000"],
      "--speed-range = [3000.0, 1000.0]: must be two speeds 0 < LOW < HIGH"),
     (["--rotor-mass-kg", "2", "--foil", "rigid", "--loss-factor", "0.2"],

@@ -41,7 +41,7 @@ _BEARING = '[[bearings]]\nfile = "{f}"\nposition = {z}\n'
     (_ROTOR.format(m=3) + _BEARING.format(f="missing.toml", z=-0.03)
      + _BEARING.format(f=BEARING, z=0.03), "bearings[1].file = 'missing.toml'"),
     (_ROTOR.format(m=3) + _BEARING.format(f=BEARING, z=-0.03) + _BEARING.format(f=BEARING, z=0.03)
-     + "[[imbalance]]\nposition = 0.1\n", "imbalance[1].amount_kg_m = None: is required"),
+     + "[[imbalance]]\nposition = 0.1\n", "imbalance[1].amount_kg_m (not given): is required"),
 ])
 def test_bad_rotor_file_exits_2_with_one_line(tmp_path, capsys, text, expect):
     code = main(["rotor", _file(tmp_path, text), "--speed-range", "5000", "10000"])
