@@ -155,8 +155,9 @@ def _dropped(track: list, least: float) -> dict:
     speed, m, _ = track[0]
     why = f"found at {speed:,.0f} rpm only: "
     if not math.isfinite(least):
-        why += ("no track ends at the speed before it or starts at the one after, so it "
-                "continues none")
+        way = m.shape.get("direction", "its") if isinstance(m.shape, dict) else "its"
+        why += (f"no track whirling {way} (a track keeps its whirl direction) ends at the "
+                "speed before it or starts at the one after, so it continues none")
     elif least > MAX_COST:
         why += (f"it continues no track (least join cost {least:.3g} > {MAX_COST:g}: "
                 "gfbopt.rotor.tracking.stitch)")
