@@ -288,6 +288,10 @@ def _at_speed_lines(at: dict) -> list:
     mode's threshold (the inertia scale at which it is neutral)."""
     lines = [f"  at {at['speed_rpm']:,.0f} rpm (--speed-rpm):"]
     for b in at["bearings"]:
+        if not _finite(b.get("eccentricity")):      # thermal runaway or closure: no state
+            lines.append(f"    bearing {b['bearing']}: no equilibrium "
+                         f"({b.get('thermal_status') or 'not solved'})")
+            continue
         text = (f"    bearing {b['bearing']}: load {b['load_newton']:.4g} N, ε = "
                 f"{b['eccentricity']:.4f}, attitude {b['attitude_angle_deg']:.2f}°, minimum "
                 f"film {b['min_film_thickness_um']:.3g} µm")
@@ -302,6 +306,8 @@ def _at_speed_lines(at: dict) -> list:
             text += "; load above the rule-of-thumb capacity"
         lines.append(text)
     for m in at["modes"]:
+        if not _finite(m.get("log_decrement")):
+            continue
         verdict = "unstable" if m["log_decrement"] < 0 else "stable"
         lines.append(f"    mode {m['shape_label']:<22} whirl {m['whirl_frequency_hz']:.4g} Hz "
                      f"(ratio {m['whirl_ratio']:.3f}), log decrement "
