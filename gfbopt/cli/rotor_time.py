@@ -294,7 +294,7 @@ def handle(args) -> int:
     from ..inputs import Grid
     from ..inputs.rotor_system import load_rotor
     from ..progress import progress
-    from ..transient.rotor_analysis import progress_units, run_profile
+    from ..transient.rotor_analysis import check_running_friction, progress_units, run_profile
 
     profile = check_profile(args)
     method = args.method or "rkc"
@@ -302,6 +302,10 @@ def handle(args) -> int:
         raise ParameterError("--stages", args.stages, "applies to --method rkc only")
     grid = Grid.parse(args.grid)
     system = load_rotor(_rotor_path(args), running=True)   # an orbit holds its speed's condition
+    if profile.kind != "orbit":     # refused before any work (the running line, progress)
+        flag = "--run-up" if args.run_up else "--coast-down"
+        check_running_friction(system, profile, name=flag,
+                               value=" ".join(f"{v:g}" for v in (args.run_up or args.coast_down)))
     if args.reference_whirl_ratio is not None and not any(
             (b.options.loss_factor or 0.0) > 0 for b in system.bearings):
         raise ParameterError("--reference-whirl-ratio", args.reference_whirl_ratio, "is used "
@@ -344,8 +348,8 @@ def _figures(result, folder: Path) -> None:
 
     folder.mkdir(parents=True, exist_ok=True)
     p = result.profile
-    what = (f"orbit at {p.start_rpm:,.0f} rpm" if p.kind == "orbit" else
-            f"{p.kind} {p.start_rpm:,.0f} → {p.end_rpm:,.0f} rpm at {p.rate_rpm_per_s:,.0f} rpm/s")
+    what = result.run_words()
+    contact = result.contacts[0] if result.contacts[0]["contact"] else None
     c_um = result.run.model.bearings[0].clearance * 1e6
     ax = plot_journal_orbits(result.orbit_frame(), result.names, clearance_um=c_um,
                              title=f"Journal orbits, {what}")
@@ -359,14 +363,14 @@ def _figures(result, folder: Path) -> None:
         ax = plot_waterfall(w, bearing=name, linear_onset_rpm=lin,
                             appearance_rpm=result.onset.get(f"subsync_appearance_{name}_rpm",
                                                             math.nan),
-                            title=f"Waterfall at bearing {name}, {what}")
+                            contact=contact, title=f"Waterfall at bearing {name}, {what}")
         save_figure(ax.figure, folder / f"waterfall_{name}.png")
         if w.time_s.size:
             tables[name] = w.table()
     if tables:
         axes = plot_components(tables, linear_onset_rpm=lin,
                                threshold_um=result.onset.get("subsync_threshold_um", math.nan),
-                               title=f"1× and subsynchronous components, {what}")
+                               contact=contact, title=f"1× and subsynchronous components, {what}")
         save_figure(axes[0].figure, folder / "components.png")
 
 
@@ -394,10 +398,9 @@ def _emit(out: dict, as_json: bool, options: dict, result) -> None:
         print(json.dumps(jsonable({**out, "provenance": provenance(**options)})))
         return
     p = result.profile
-    lines = [f"gfbopt rotor — {p.kind} {p.start_rpm:,.0f}"
-             + (f" → {p.end_rpm:,.0f} rpm at {p.rate_rpm_per_s:,.0f} rpm/s" if p.kind != "orbit"
-                else " rpm") + f", {out['revolutions_integrated']:.1f} revolutions "
-             f"({out['method']}, grid {out['grid']}) in {out['wall_time_s']:.1f} s"]
+    lines = [f"gfbopt rotor — {result.run_words()}, {out['revolutions_integrated']:.1f} "
+             f"revolutions ({out['method']}, grid {out['grid']}) in "
+             f"{out['wall_time_s']:.1f} s"]
     for b in out["bearings"]:
         text = (f"  bearing {b['bearing']}: load {b['load_newton']:.4g} N, min film "
                 f"{b['min_film_um']:.3g} µm at {b['min_film_speed_rpm']:,.0f} rpm "
@@ -407,15 +410,15 @@ def _emit(out: dict, as_json: bool, options: dict, result) -> None:
         if b.get("peak_amplitude_um") is not None:
             text += (f"; 1× peak {b['peak_amplitude_um']:.3g} µm at "
                      f"{b['peak_speed_rpm']:,.0f} rpm")
-        if "limit_cycle_status" in b:
-            text += "; " + _whirl(b, whirl_words)
+        if "limit_cycle_status" in b and "friction_orbit_verdict" not in b:
+            text += "; " + _whirl(b, whirl_words)      # bumps that rub: their line below
         lines.append(text)
     if out.get("bump_friction"):
         lines.append(f"  {out['bump_friction']}")
         for b in out["bearings"]:
             if "friction_orbit_verdict" in b:
                 lines.append(f"  bearing {b['bearing']} with friction: "
-                             f"{b['friction_orbit_verdict']}")
+                             f"{b['friction_orbit_verdict']}")   # = its limit_cycle_status
     if out.get("clearance_model"):
         lines.append(f"  clearance model: {out['clearance_model']}")
     for name in dict.fromkeys(r["bearing"] for r in out.get("running_line", [])):
@@ -427,7 +430,7 @@ def _emit(out: dict, as_json: bool, options: dict, result) -> None:
                      f"{b['running_clearance_um']:.4g} µm, {b['film_temperature_c']:.4g} °C, "
                      f"{b['viscosity_pa_s']:.4g} Pa s at {b['speed_rpm']:,.0f} rpm")
     if out.get("running_end"):
-        lines.append(f"  RAMP ENDS at {out['end_speed_rpm']:,.0f} rpm (asked "
+        lines.append(f"  RAMP ENDS at {p.end_rpm:,.0f} rpm (asked "
                      f"{out['requested_end_rpm']:,.0f}): {out['running_end']}")
     if p.kind != "orbit":
         lines.append(f"  subsynchronous line (≥ {out['subsync_threshold_um']:.3g} µm) appears "

@@ -13,12 +13,21 @@ import numpy as np
 from .core import new_axes, set_title
 
 
+def contact_label(contact: Optional[dict]) -> str:
+    """The legend entry of a contact ``{contact_bearing, contact_speed_rpm, contact_time_s}``
+    (a run's JSON keys): 'contact at B, 15,528 rpm, t = 0.2764 s'."""
+    return (f"contact at {contact['contact_bearing']}, {contact['contact_speed_rpm']:,.0f} "
+            f"rpm, t = {contact['contact_time_s']:.4g} s")
+
+
 def plot_waterfall(waterfall, ax=None, title: str = "", bearing: str = "",
                    floor_um: Optional[float] = None, linear_onset_rpm: float = math.nan,
-                   appearance_rpm: float = math.nan):
+                   appearance_rpm: float = math.nan, contact: Optional[dict] = None):
     """Amplitude spectrum of a bearing's whirl [µm, log colour] against frequency [Hz]
     (positive: forward whirl) and shaft speed [rpm], with the 1× and ½× lines, the linear
-    onset (dashed) and the speed where the subsynchronous line appears (dotted)."""
+    onset (dashed), the speed where the subsynchronous line appears (dotted) and, for a run
+    that ended in ``contact`` (its JSON keys, :func:`contact_label`), the contact speed
+    (solid black; the speed axis reaches it)."""
     ax = new_axes(figsize=(7.0, 5.0)) if ax is None else ax
     w = waterfall
     if not w.time_s.size:
@@ -43,6 +52,11 @@ def plot_waterfall(waterfall, ax=None, title: str = "", bearing: str = "",
     if math.isfinite(appearance_rpm):
         ax.axhline(appearance_rpm, color="orange", ls=":", lw=1.5,
                    label=f"subsynchronous line appears {appearance_rpm:,.0f} rpm")
+    if contact is not None:
+        speed = contact["contact_speed_rpm"]
+        ax.axhline(speed, color="k", ls="-", lw=1.5, label=contact_label(contact))
+        low, high = ax.get_ylim()
+        ax.set_ylim(min(low, speed), max(high, speed))
     ax.set_xlim(0.0, float(w.frequency_hz.max()))
     ax.set_xlabel("frequency [Hz] (forward whirl)")
     ax.set_ylabel("shaft speed [rpm]")
@@ -52,12 +66,14 @@ def plot_waterfall(waterfall, ax=None, title: str = "", bearing: str = "",
 
 
 def plot_components(tables: dict, axes=None, title: str = "",
-                    linear_onset_rpm: float = math.nan, threshold_um: float = math.nan):
+                    linear_onset_rpm: float = math.nan, threshold_um: float = math.nan,
+                    contact: Optional[dict] = None):
     """Synchronous amplitude (the 1× orbit's major semi-axis, ``sync_amplitude_um``, as in
     the JSON and the linear imbalance response), its x and y amplitudes, and the
     subsynchronous amplitude [µm] against speed (top) and the subsynchronous whirl ratio
     (bottom), one colour per bearing (``tables``: bearing → components table of
-    :meth:`~gfbopt.transient.spectra.Waterfall.table`)."""
+    :meth:`~gfbopt.transient.spectra.Waterfall.table`); a run that ended in ``contact`` has
+    its contact speed marked (solid black, :func:`contact_label`)."""
     axes = new_axes(figsize=(6.6, 6.4), nrows=2, sharex=True) if axes is None else axes
     top, bottom = axes
     for name, t in tables.items():
@@ -74,6 +90,9 @@ def plot_components(tables: dict, axes=None, title: str = "",
     for ax in axes:
         if math.isfinite(linear_onset_rpm):
             ax.axvline(linear_onset_rpm, color="r", ls="--", lw=1, label="linear onset")
+        if contact is not None:
+            ax.axvline(contact["contact_speed_rpm"], color="k", ls="-", lw=1.5,
+                       label=contact_label(contact))
         ax.grid(alpha=0.3, which="both")
     if math.isfinite(threshold_um):
         top.axhline(threshold_um, color="grey", lw=0.8, label="appearance threshold")

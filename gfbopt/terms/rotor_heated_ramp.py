@@ -1,5 +1,6 @@
-"""Glossary entries of a heated rotor's run-up or coast-down (gfbopt.transient.rotor_running,
-rotor_heated; issue 28): the running line each bearing follows, quasi-steady in temperature.
+"""Glossary entries of a rotor's run-up or coast-down (where it ended, what was asked) and of
+a heated rotor's (gfbopt.transient.rotor_running, rotor_heated; issue 28): the running line
+each bearing follows, quasi-steady in temperature.
 Merged into :data:`gfbopt.glossary.GLOSSARY` once listed in :data:`gfbopt.terms._PARTS`.  The
 per-speed columns of ``running_line`` (running_clearance_um, film_temperature_c,
 viscosity_pa_s) are gfbopt/terms/thermal.py's."""
@@ -27,5 +28,15 @@ TERMS: dict[str, tuple[str, str]] = {
                     "closure, bracketed to 1 %), null when it does not"),
     "requested_end_rpm": ("rpm", "the end speed asked for (end_speed_rpm: where the ramp "
                           "ended)"),
+    "end_speed_rpm": ("rpm", "where the ramp ended: its requested end, or the speed where "
+                      "contact, the integration's stop or the running line's end "
+                      "(end_cause) cut it short"),
+    "duration_s": ("s", "simulated time of the run, to where it ended (a ramp cut short: "
+                   "to its contact or stop)"),
+    "requested_duration_s": ("s", "the ramp's duration asked for: |requested_end_rpm − "
+                             "start_speed_rpm| / rate_rpm_per_s"),
+    "end_cause": ("text", "why a ramp ended before requested_end_rpm: 'contact at bearing "
+                  "B', 'the integration stopped' or 'the running line ends (running_end)'; "
+                  "null when it reached it"),
     "running_step_rpm": ("rpm", "the coarsest spacing of the running line's speeds"),
 }

@@ -43,7 +43,6 @@ from .rotor_io import rotor_input
 from .rotor_result import RotorTransientResult, summarise
 from .rotor_run import CONTACT_FILM, integrate_rotor
 from .rotor_setup import RotorInput, build_model, equilibrium_states, set_station_velocities
-from .rotor_friction import rubbing
 from .rotor_running import STEP_RPM
 from .rotor_system import runs
 
@@ -168,6 +167,7 @@ def run_profile(rotor: Union[RotorSystem, RotorInput], profile: SpeedProfile, *,
         raise ParameterError("perturbation", perturbation,
                              f"must be one of {', '.join(PERTURBATIONS)}")
     grid = as_grid(grid)
+    check_running_friction(rotor, profile, running_path)
     cache = cache if cache is not None else SolverCache(grid)
     requested = profile
     rotor, running, plan = _at_running_condition(rotor, profile, grid, cache, running_path,
@@ -248,6 +248,26 @@ def run_profile(rotor: Union[RotorSystem, RotorInput], profile: SpeedProfile, *,
     return heated_result(result, plan)
 
 
+def check_running_friction(rotor, profile: SpeedProfile, running_path: str = "frozen",
+                           name: str = "profile", value=None) -> None:
+    """Refuse, before any work, a run on the running line (a ramp, or an orbit with
+    ``running_path`` 'line') of a rotor whose bearings state both [journal]/[thermal] and
+    the bumps' friction: the sliders' play operator has no film offset.  ``name``/``value``:
+    what the caller calls the run (the command line: its flag)."""
+    if profile.kind == "orbit" and running_path != "line":
+        return
+    both = [b for b in getattr(rotor, "bearings", ()) if getattr(b, "running_tables", ())
+            and (getattr(b.options, "friction_coefficient", None) or 0.0) > 0]
+    if both:
+        where = "; ".join(f"bearing {b.name} ({b.file}) friction_coefficient = "
+                          f"{b.options.friction_coefficient:g}" for b in both)
+        raise ParameterError(name, profile.kind if value is None else value,
+                             f"{where} with [journal]/[thermal]: a run-up or coast-down on "
+                             "the running line with bump friction is not modelled (the "
+                             "sliders' play operator has no film offset); state no "
+                             "friction_coefficient, or hold one speed (--orbit)")
+
+
 def _to_end(profile: SpeedProfile, plan, force: bool) -> SpeedProfile:
     """The profile ending where the running line ends (a failure above, on a run-up)."""
     if plan.end_rpm == profile.end_rpm or profile.kind == "orbit":
@@ -267,11 +287,6 @@ def _on_running_line(model, inp, rotor, plan, profile, grid, cache, reference_wh
     warm = rotor_input(frozen_start(rotor, plan))
     warm_solutions, _ = bearing_equilibria(warm, profile.start_rpm, grid, cache)
     model = heated_model(model, plan)
-    if rubbing(model):
-        raise ParameterError("rotor", "[journal]/[thermal]", "a run-up or coast-down at the "
-                             "running condition with bump friction is not modelled: the "
-                             "sliders' play operator has no film offset (state no "
-                             "friction_coefficient, or hold one speed: an orbit)")
     z, cold = start_states(model, 1, warm_solutions, plan)
     return model, cold, z
 

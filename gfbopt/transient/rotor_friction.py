@@ -34,15 +34,23 @@ first harmonic at that journal, over the last ``periods`` whirl periods, within
 amplitude [µm] and the whirl frequency [Hz] — the measure of
 :func:`.friction_orbit.orbit_axes` (the describing function's orbit amplitude), with the
 imbalance's 1× removed by least squares when the run has an imbalance.
+
+That measure is the orbit's one limit cycle (:func:`limit_cycle_of`): a rubbing rotor's
+``limit_cycle_*`` fields carry the same amplitude, window and settled test (``limit_cycle_
+measure`` 'first harmonic'), so that its status and ``friction_orbit_kind`` are one verdict
+in two forms; where the spectral test of :func:`.spectra.limit_cycle` finds no
+subsynchronous whirl at all, both say so.
 """
 from __future__ import annotations
 
+import dataclasses
 import math
 from typing import Optional
 
 import numpy as np
 
 from ..errors import ParameterError
+from . import spectra
 from .friction_foil import slider_after_step
 from .system import rigid_film
 
@@ -248,3 +256,43 @@ def bearing_outcomes(run, b: int = 0, periods: int = PERIODS,
                                                     + stopped)
         out.append(entry)
     return out
+
+
+#: the limit cycle's measure at a rubbing rotor (``limit_cycle_measure``)
+MEASURE = "first harmonic"
+
+
+def limit_cycle_of(entry: dict, spectral, periods: int = PERIODS,
+                   tolerance: float = TOLERANCE) -> tuple:
+    """(limit cycle, outcome) of one bearing of a rubbing orbit: the :func:`bearing_outcomes`
+    ``entry``'s amplitude, window and settled test as a :class:`.spectra.LimitCycle`
+    (measure 'first harmonic'; status 'limit cycle' exactly where the entry's kind is
+    'settled limit cycle', else growing/decaying by the entry's own change; the frequency
+    signed as the spectral whirl's), or, where ``spectral`` (:func:`.spectra.limit_cycle` on
+    the same record) finds no subsynchronous whirl, its 'none' with the entry's kind 'end of
+    run' saying so.  ``spectral`` None (the run ended in contact): (None, entry)."""
+    if spectral is None:
+        return None, entry
+    if spectral.status == spectra.NO_WHIRL:
+        none = dataclasses.replace(spectral, tolerance=tolerance, measure=MEASURE)
+        return none, {**entry, "kind": "end of run",
+                      "verdict": f"end of run: {spectral.reason}"}
+    amp, prev, hz = (entry["amplitude_um"], entry["previous_amplitude_um"],
+                     entry["whirl_frequency_hz"])
+    settled = entry["kind"] == "settled limit cycle"
+    measured = math.isfinite(amp) and math.isfinite(prev) and prev > 0
+    change = amp / prev - 1.0 if measured else math.nan
+    if settled:
+        status = spectra.LIMIT_CYCLE
+    else:
+        status = spectra.GROWING if (change > 0 if measured else spectral.change > 0) \
+            else spectra.DECAYING
+    words = (f"{100 * change:+.2g} % over the last {periods} whirl periods against the "
+             f"{periods} before (first harmonic)" if measured else
+             f"the record is shorter than two windows of {periods} whirl periods")
+    lc = spectra.LimitCycle(
+        status, ("settled: " if settled else "not settled: ") + words, amp, prev,
+        math.copysign(hz, spectral.frequency_hz) if math.isfinite(hz) else math.nan,
+        entry["whirl_ratio"], settled, change, tolerance, spectral.threshold_um,
+        periods / hz if math.isfinite(hz) and hz > 0 else math.nan, MEASURE)
+    return lc, entry

@@ -85,10 +85,56 @@ class RotorTransientResult:
                 out[f"components_{name}.csv"] = w.table()
         return out
 
+    def ramp_end(self, run: int = 0) -> Optional[dict]:
+        """Where a ramp cut short ended (contact, or the integration stopped): end_speed_rpm,
+        duration_s and revolutions of the record up to there, and the end asked for
+        (requested_end_rpm, requested_duration_s); None for an orbit or a ramp that reached
+        its requested end.  (A heated ramp whose running line ends early was already cut
+        to that end: its requested_end_rpm is the settings'.)"""
+        r, p = self.run, self.profile
+        if p.kind == "orbit" or not r.tau.size or (r.success and not r.contact[run]):
+            return None
+        tau = float(r.contact_tau[run]) if r.contact[run] else float(r.tau[-1])
+        angle = r.runs.speed[run] * tau + 0.5 * r.runs.ramp[run] * tau ** 2
+        return {"end_speed_rpm": float(r.speed_rpm(run, tau)),
+                "duration_s": tau / r.model.reference_speed,
+                "revolutions": float(angle / (2 * math.pi)),
+                "end_cause": (f"contact at bearing {self.names[int(r.contact_bearing[run])]}"
+                              if r.contact[run] else "the integration stopped"),
+                **self.requested()}
+
+    def requested(self) -> dict:
+        """A ramp's asked end: requested_end_rpm and requested_duration_s."""
+        p = self.profile
+        end = float(self.settings.get("requested_end_rpm", p.end_rpm))
+        return {"requested_end_rpm": end,
+                "requested_duration_s": abs(end - p.start_rpm) / p.rate_rpm_per_s}
+
+    def run_words(self, run: int = 0) -> str:
+        """What was run, for titles: 'orbit at N rpm', or 'run-up A → E rpm at R rpm/s' with,
+        for a ramp cut short, '(asked → F rpm; contact at bearing B at E rpm, t = T s)'."""
+        p = self.profile
+        if p.kind == "orbit":
+            return f"orbit at {p.start_rpm:,.0f} rpm"
+        end = self.ramp_end(run)
+        ended = p.end_rpm if end is None else end["end_speed_rpm"]
+        words = (f"{p.kind} {p.start_rpm:,.0f} → {ended:,.0f} rpm at "
+                 f"{p.rate_rpm_per_s:,.0f} rpm/s")
+        asked = self.requested()["requested_end_rpm"]
+        if end is not None:
+            return words + (f" (asked → {asked:,.0f} rpm; {end['end_cause']} at "
+                            f"{ended:,.0f} rpm, t = {end['duration_s']:.4g} s)")
+        return words + (f" (asked → {asked:,.0f} rpm)" if asked != p.end_rpm else "")
+
     def to_dict(self, run: int = 0) -> dict:
-        """Scalar results of one run, JSON-ready."""
+        """Scalar results of one run, JSON-ready; a ramp's end_speed_rpm and duration_s are
+        where it ended, requested_end_rpm and requested_duration_s what was asked."""
         r = self.run
-        out = {**self.profile.to_dict(), **self.settings,
+        ramp = {} if self.profile.kind == "orbit" else {
+            **self.requested(), "end_cause": ("the running line ends (running_end)"
+                                              if self.settings.get("running_end") else None)}
+        out = {**self.profile.to_dict(), **self.settings, **ramp,
+               **(self.ramp_end(run) or {}),
                "success": r.success, "message": r.message, "method": r.method,
                "time_step_rad": r.time_step, "step_rule": r.options.get("step_rule", ""),
                "rkc_stages": list(r.stages),
@@ -255,12 +301,20 @@ def summarise(run: RotorRun, profile, rotor, solutions, settings: dict, *, syste
         settings = {**settings, "bump_friction": rotor_friction.model_words(model)}
         notes.append("Bumps that rub: " + settings["bump_friction"] + "; " + (
             "per bearing, how the orbit ended (friction_orbit_kind: settled limit cycle, "
-            "contact or end of run): the semi-major axis of the whirl's first harmonic over the last "
-            f"{rotor_friction.PERIODS} whirl periods against the {rotor_friction.PERIODS} "
-            f"before (settled within {rotor_friction.TOLERANCE:g}), 1× removed"
+            "contact or end of run): the semi-major axis of the whirl's first harmonic over "
+            f"the last {rotor_friction.PERIODS} whirl periods against the "
+            f"{rotor_friction.PERIODS} before (settled within {rotor_friction.TOLERANCE:g}), "
+            "1× removed; the limit cycle's own measure and settled test here (limit_cycle_"
+            f"measure '{rotor_friction.MEASURE}', replacing the largest distance over "
+            f"{settle_periods:g} periods above), so limit_cycle_status and "
+            "friction_orbit_kind are one verdict"
             if profile.kind == "orbit" else "a ramp states no limit cycle"))
-        if profile.kind == "orbit":
-            friction = [rotor_friction.bearing_outcomes(run, b) for b in range(run.runs.size)]
+        if profile.kind == "orbit":      # the orbit's one limit cycle: the sliders' measure
+            for b in range(run.runs.size):
+                pairs = [rotor_friction.limit_cycle_of(e, lc) for e, lc in
+                         zip(rotor_friction.bearing_outcomes(run, b), cycles[b])]
+                cycles[b] = [lc for lc, _ in pairs]
+                friction.append([e for _, e in pairs])
     description = dict(rotor.description)
     description["bearing_frames_deg"] = [math.degrees(b.frame_angle) for b in model.bearings]
     return RotorTransientResult(run, profile, names, equilibria, films, contacts, falls,

@@ -272,7 +272,9 @@ class LimitCycle:
     orbit from its centre, last window [µm]; previous_amplitude_um : the same over the
     window before; frequency_hz (signed) and whirl_ratio (inside the band); settled :
     |change| ≤ tolerance; change : relative change between the two windows; threshold_um :
-    the smallest subsynchronous peak counted as a whirl [µm]; window_s [s]."""
+    the smallest subsynchronous peak counted as a whirl [µm]; window_s [s]; measure : how
+    the amplitude and its settling were measured ('largest distance' here; a rotor whose
+    bumps rub: gfbopt.transient.rotor_friction.limit_cycle_of)."""
 
     status: str
     reason: str
@@ -285,6 +287,7 @@ class LimitCycle:
     tolerance: float
     threshold_um: float
     window_s: float
+    measure: str = "largest distance"
 
     def to_dict(self, prefix: str = "") -> dict:
         return {f"{prefix}{k}": getattr(self, k) for k in self.__dataclass_fields__}
