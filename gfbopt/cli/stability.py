@@ -229,7 +229,8 @@ def run(args) -> int:
             found = running_onset(bearing, spec, rotor, args.load_newton, span,
                                   guess_rpm=args.speed_rpm, progress=True, **common)
             onset = _Answered(found)
-        out["onset"] = {k: v for k, v in found.items() if k != "conventions"}
+        out["onset"] = {k: _glossary_rows(v) if k in ("scan", "coarse_scan") else v
+                        for k, v in found.items() if k != "conventions"}
         out["onset_speed_rpm"] = found["onset_speed_rpm"]
         out["onset_whirl_frequency_hz"] = found.get("whirl_frequency_hz")
         if result is None and "conventions" in found:
@@ -248,6 +249,16 @@ def run(args) -> int:
               f"{(result and result.message) or (onset and onset.message)}", file=sys.stderr)
         return 1
     return 0
+
+
+def _glossary_rows(rows):
+    """The onset scan's rows with the glossary's names of the groups (``mass``,
+    ``critical_mass``, ``load``: :data:`RESULT_NAMES`), as at the operating point."""
+    if not isinstance(rows, list):
+        return rows
+    back = {v: k for k, v in RESULT_NAMES.items()}
+    return [{back.get(k, k): v for k, v in row.items()} if isinstance(row, dict) else row
+            for row in rows]
 
 
 class _Answered:

@@ -91,3 +91,19 @@ def test_stability_json_uses_the_glossary_names():
     assert data["load"] == pytest.approx(20 / (1e5 * 19.05e-3 ** 2), rel=1e-12)
     assert data["critical_mass_kg"] == pytest.approx(
         data["critical_mass"] * 20 / (20e-6 * omega ** 2), rel=1e-9)
+
+
+def test_stability_onset_scan_uses_the_glossary_names():
+    """The onset search's scan rows name M̄ and M̄c as the operating point does; a row at
+    30,000 rpm has M̄ = 2 × 20e-6 × (π 1000)²/20 (the rotor and load of the run)."""
+    import math
+
+    data = json.loads(_ok(*STABILITY, "--bearing", str(B / "ruscitto.toml"), "--onset",
+                          "--json"))
+    rows = data["onset"]["scan"]
+    assert rows
+    for row in rows:
+        assert "mass_parameter" not in row and "critical_mass_parameter" not in row
+        omega = row["speed_rpm"] * 2 * math.pi / 60
+        assert row["mass"] == pytest.approx(2 * 20e-6 * omega ** 2 / 20, rel=1e-9)
+        assert "critical_mass" in row
