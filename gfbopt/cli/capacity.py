@@ -10,10 +10,12 @@ A thin layer over :func:`gfbopt.rotor.capacity.load_capacity` and
 context ``FILE.json`` beside it (:mod:`.csv_context`).  The
 formulation comes from the bearing file's ``[model]`` table and the options given here; the
 bore, pads and zones from its ``[bore]``, ``[[pads]]`` and ``[[zones]]`` tables.  With
-``[journal]``/``[thermal]`` the search runs at the running condition of its answer
-(:mod:`gfbopt.rotor.running_bearing`) and the output names the clearance model and reports
+``[journal]``/``[thermal]`` every point of the search is at its own running condition
+(:mod:`gfbopt.rotor.running_bearing`): the output names the clearance model and reports
 running_clearance_um, centrifugal_growth_um, thermal_growth_um, film_temperature_c and
-viscosity_pa_s.
+viscosity_pa_s at the answer, each CSV row carries its own running point (a row with no
+running state, e.g. a thermal runaway, has NaN figures and its thermal_status), the CSV's
+context names ``thermal_model`` and the figure's title says so.
 """
 from __future__ import annotations
 
@@ -138,6 +140,10 @@ def _report(out: dict) -> str:
                      f"{conv.get('pads_leading_end_deg')}, zones {conv.get('zones')}")
     if out["success"] and out["curve"]:
         answered = math.isfinite(out.get("load_capacity_newton", out.get("lift_off_speed_rpm")))
-        lines.append(f"  {'at the answer' if answered else 'at the load ceiling'}: h_min = {out['min_film_thickness_um']:.6g} µm "
-                     f"({len(out['curve'])} equilibria solved, {out['wall_time_s']:.2f} s)")
+        solved = f"({len(out['curve'])} equilibria solved, {out['wall_time_s']:.2f} s)"
+        if math.isfinite(out["min_film_thickness_um"]):
+            lines.append(f"  {'at the answer' if answered else 'at the load ceiling'}: "
+                         f"h_min = {out['min_film_thickness_um']:.6g} µm {solved}")
+        else:                                   # stopped where the running state is lost
+            lines.append(f"  searched: {solved}")
     return "\n".join(lines)

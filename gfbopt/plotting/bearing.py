@@ -12,16 +12,27 @@ from .core import new_axes, set_title
 def plot_capacity_curve(result: dict, ax=None, title: str = ""):
     """Minimum film [µm] against load [N] (capacity) or speed [rpm] (lift-off) along the
     continuation, with the film limit and the answer drawn.  ``result``: the ``to_dict()``
-    of :class:`gfbopt.rotor.capacity.CurveResult`.  Returns the Axes."""
+    of :class:`gfbopt.rotor.capacity.CurveResult` (at the running condition, with
+    ``thermal_model``: the title says each point is at its own running condition, and the
+    points with no running state are drawn apart).  Returns the Axes."""
     ax = new_axes() if ax is None else ax
     capacity = result["kind"] == "capacity"
     x = "load_newton" if capacity else "speed_rpm"
     rows = sorted((r for r in result["curve"] if r["success"]), key=lambda r: r[x])
+    model = result.get("thermal_model") or result.get("conventions", {}).get("thermal_model")
+    heated = bool(model) and model != "isothermal, cold clearance"
     ax.plot([r[x] for r in rows], [r["min_film_thickness_um"] for r in rows], "o-", ms=3,
-            label="gfbopt (continuation, warm starts)")
-    failed = [r[x] for r in result["curve"] if not r["success"]]
+            label="gfbopt (continuation, warm starts)" + (
+                ", each point at its running condition" if heated else ""))
+    stateless = [r[x] for r in result["curve"]
+                 if r.get("thermal_status") in ("runaway", "closure")]
+    failed = [r[x] for r in result["curve"] if not r["success"]
+              and r.get("thermal_status") not in ("runaway", "closure")]
     if failed:
         ax.plot(failed, np.zeros(len(failed)), "rx", label="no equilibrium (film closes)")
+    if stateless:
+        ax.plot(stateless, np.zeros(len(stateless)), "m^",
+                label="no running state (thermal runaway or closure)")
     limit = result["min_film_limit_um"]
     ax.axhline(limit, color="k", ls="--", lw=1.0, label=f"film limit {limit:.4g} µm")
     value = result["load_capacity_newton" if capacity else "lift_off_speed_rpm"]
@@ -38,8 +49,9 @@ def plot_capacity_curve(result: dict, ax=None, title: str = ""):
              else f"under {result['load_newton']:.4g} N")
     found = ((f"{value:.4g} N" if capacity else f"{value:,.0f} rpm") if math.isfinite(value)
              else result["answer"])
+    where = f"; each point at its own running condition ({model})" if heated else ""
     set_title(ax, title or ("Load capacity " if capacity else "Lift-off speed ") + fixed
-              + f" for h_min ≥ {limit:.4g} µm: {found} ({result.get('bearing', '')})")
+              + f" for h_min ≥ {limit:.4g} µm: {found} ({result.get('bearing', '')}{where})")
     return ax
 
 

@@ -17,13 +17,25 @@ crossed; the crossing is then refined by Brent's method to |h_min/H − 1| ≤
 :data:`FILM_TOLERANCE`.  A solve that fails in the continuation (the film cannot carry the
 load) counts as below the limit.  Every evaluated point is kept as the curve (plotted by
 :func:`gfbopt.plotting.bearing.capacity_curve`).
+
+**At the running condition** (``condition``: a bearing file with ``[journal]``/``[thermal]``,
+:func:`gfbopt.rotor.running_bearing.running_load_capacity` / ``running_lift_off``) every
+point of the search is the bearing at its own running condition: ``condition(speed, load,
+near)`` gives the warm bearing there (:class:`Condition`: the running clearance and μ(T_f)
+of the heat balance under that load at that speed), whose equilibrium is then solved from
+the fixed point's last film.  The root is then the answer at its own running condition (no
+outer iteration), and each curve row carries its running point's columns.  A point with no
+running state (thermal runaway, closure) is a row of NaN figures with its
+``thermal_status``: the search stops there and the answer says so (an answer, not a failure;
+a lift-off search whose top speed has none steps down to the first speed that has one).
 """
 from __future__ import annotations
 
+import dataclasses
 import math
 import time
 from dataclasses import dataclass, field
-from typing import Optional
+from typing import Callable, Optional
 
 from scipy.optimize import brentq
 
@@ -44,9 +56,29 @@ SPEED_STEP = 1.25
 FILM_TOLERANCE = 1e-7
 #: lightest load of the capacity continuation, as W/(p_a L D) [-]
 FIRST_LOAD = 0.01
+#: a search that meets a point with no running state brackets where it is lost to this
+#: relative width [-] (as the running condition's own limit speed, gfbopt.thermal.running)
+STATE_BRACKET = 0.005
 #: smallest minimum-film limit [µm]: a film of 10 nm is thinner than any real surface's
 #: roughness (a polished journal's is about 0.1 µm), so a smaller limit is no limit
 MIN_FILM_LIMIT_UM = 0.01
+
+
+@dataclass(frozen=True)
+class Condition:
+    """One point's running condition (module docstring): ``bearing`` the warm bearing (SI;
+    None: no running state there), ``columns`` the running point's columns of the curve row,
+    ``initial`` a StaticSolution near the warm equilibrium (the fixed point's last film, or
+    None), ``message`` why there is no running state."""
+
+    bearing: Optional[BearingGeometry]
+    columns: dict = field(default_factory=dict)
+    initial: Optional[StaticSolution] = field(default=None, repr=False)
+    message: str = ""
+
+
+#: (speed [rpm], load [N], the nearest equilibrium solved or None) → Condition
+ConditionFunction = Callable[[float, float, Optional[StaticSolution]], Condition]
 
 
 @dataclass(frozen=True)
@@ -99,50 +131,70 @@ class CurveResult:
 
 class _Curve:
     """Static equilibria of one bearing along a speed or load, warm-started from the nearest
-    point already solved; ``h(x)`` is h_min − H [µm] (−H when the solve fails)."""
+    point already solved; ``h(x)`` is h_min − H [µm] (−H when the solve fails or there is no
+    running state; ``stopped`` holds the x of the latter).  ``condition``: each point at its
+    own running condition (module docstring)."""
 
-    def __init__(self, bearing, options, grid, cache, limit_um, *, speed=None, load=None):
+    def __init__(self, bearing, options, grid, cache, limit_um, *, speed=None, load=None,
+                 condition: Optional[ConditionFunction] = None):
         self.bearing, self.options, self.grid = bearing, options, grid
         self.cache = cache if cache is not None else SolverCache(grid)
         self.limit = limit_um
         self.speed, self.load = speed, load
+        self.condition = condition
         self.rows: list[dict] = []
+        self.stopped: dict = {}          # x -> why there is no running state there
         self._solved: dict = {}
         self._values: dict = {}
+        self._clearance: dict = {}       # x -> the radial clearance solved there [m]
 
     def solve(self, x: float) -> Optional[StaticSolution]:
         speed = self.speed if self.speed is not None else x
         load = self.load if self.load is not None else x
-        model = self.bearing.model(speed, **self.options.model_kwargs())
-        solver = self.cache(model, self.grid)
         near = min(self._solved, key=lambda v: abs(math.log(v / x)), default=None)
         initial = self._solved.get(near)
-        w = self.bearing.nondimensional_load(load)
-        sol = solve_static(model, load=w, solver=solver, initial=initial,
-                           continuation=initial is None)
-        if not sol.success and initial is not None:
-            sol = solve_static(model, load=w, solver=solver)
-        row = {"speed_rpm": speed, "load_newton": load, "success": bool(sol.success),
+        bearing, extra, fast = self.bearing, {}, False
+        row = {"speed_rpm": speed, "load_newton": load, "success": False,
                "min_film_thickness_um": math.nan, "eccentricity": math.nan,
                "attitude_angle_deg": math.nan, "torque_ratio": math.nan,
                "drag_torque_nm": math.nan, "power_loss_w": math.nan}
+        if self.condition is not None:
+            found = self.condition(speed, load, initial)
+            extra = dict(found.columns)
+            if found.bearing is None:                 # no running state: the curve stops
+                self.stopped[x] = found.message
+                self.rows.append({**row, **extra})
+                return None
+            bearing = found.bearing
+            if found.initial is not None:             # the fixed point's last film
+                initial, fast = found.initial, True
+        model = bearing.model(speed, **self.options.model_kwargs())
+        solver = self.cache(model, self.grid)
+        w = bearing.nondimensional_load(load)
+        sol = solve_static(model, load=w, solver=solver, initial=initial,
+                           continuation=initial is None, fast_path=fast)
+        if not sol.success and initial is not None:
+            sol = solve_static(model, load=w, solver=solver)
+        row["success"] = bool(sol.success)
         if sol.success:
             torque, power = drag_torque_and_power(sol.torque_ratio, model.bearing_number,
-                                                  self.bearing)
-            row.update(min_film_thickness_um=sol.min_film * self.bearing.radial_clearance * 1e6,
+                                                  bearing)
+            row.update(min_film_thickness_um=sol.min_film * bearing.radial_clearance * 1e6,
                        eccentricity=sol.eccentricity,
                        attitude_angle_deg=sol.attitude_angle_deg,
                        torque_ratio=sol.torque_ratio, drag_torque_nm=torque, power_loss_w=power)
             self._solved[x] = sol
-        self.rows.append(row)
+            self._clearance[x] = bearing.radial_clearance
+        self.rows.append({**row, **extra})
         return sol if sol.success else None
 
     def h(self, x: float) -> float:
-        """h_min − H [µm] at ``x`` (−H when the film cannot carry the load there)."""
+        """h_min − H [µm] at ``x`` (−H when the film cannot carry the load there, or there
+        is no running state)."""
         if x not in self._values:
             sol = self.solve(x)
             self._values[x] = (-self.limit if sol is None else
-                               sol.min_film * self.bearing.radial_clearance * 1e6 - self.limit)
+                               sol.min_film * self._clearance[x] * 1e6 - self.limit)
         return self._values[x]
 
     def refine(self, good: float, bad: float) -> float:
@@ -161,7 +213,7 @@ class _Curve:
     def final(self, x: float) -> float:
         """h_min [µm] at ``x`` (solved again if needed)."""
         sol = self._solved.get(x) or self.solve(x)
-        return math.nan if sol is None else sol.min_film * self.bearing.radial_clearance * 1e6
+        return math.nan if sol is None else sol.min_film * self._clearance[x] * 1e6
 
 
 def _not_at_limit(film: float, limit: float, what: str) -> str:
@@ -176,14 +228,39 @@ def _not_at_limit(film: float, limit: float, what: str) -> str:
 
 def _march(line: _Curve, start: float, factor: float, end: float) -> tuple:
     """Step x by ``factor`` from ``start`` (h ≥ 0 there) towards ``end`` (never past it)
-    until h < 0; then refine the crossing.  Returns (root or None, the last x with h ≥ 0)."""
+    until h < 0; then refine the crossing.  Returns (root or None, the last x with h ≥ 0,
+    the x with no running state where the march stopped or None)."""
     good = start
     while (good < end) if factor > 1 else (good > end):
         trial = min(good * factor, end) if factor > 1 else max(good * factor, end)
         if line.h(trial) < 0:
-            return line.refine(good, trial), good
+            if trial in line.stopped:
+                return _bracket_state(line, good, trial)
+            return line.refine(good, trial), good, None
         good = trial
-    return None, good
+    return None, good, None
+
+
+def _bracket_state(line: _Curve, good: float, bad: float) -> tuple:
+    """The march met a point with no running state (``bad``) after ``good`` (h ≥ 0):
+    geometric bisection until the two are :data:`STATE_BRACKET` apart, refining the root
+    instead where a point between has a state and h < 0 (the film reaches the limit before
+    the running state is lost).  Returns as :func:`_march`."""
+    while abs(bad / good - 1.0) > STATE_BRACKET:
+        middle = math.sqrt(good * bad)
+        if line.h(middle) >= 0:
+            good = middle
+        elif middle in line.stopped:
+            bad = middle
+        else:
+            return line.refine(good, middle), good, None
+    return None, good, bad
+
+
+def _no_state(line: _Curve, x: float, where: str) -> str:
+    """The answer's words when the search stops at ``x`` with no running state."""
+    why = line.stopped.get(x) or "no running state"
+    return f"no running state {where}: {why}"
 
 
 def _resolve(bearing, options, min_film_um, grid):
@@ -225,79 +302,126 @@ def _conventions(resolved, bearing, grid) -> dict:
     return {**resolved.to_dict(), "compliance": bearing.compliance, "grid": str(grid), **built}
 
 
+def _first_state(line: _Curve, start: float, factor: float, end: float) -> tuple:
+    """(the first x from ``start`` stepped by ``factor`` towards ``end`` that has a running
+    state (or ``end``), the x skipped on the way with none)."""
+    x, skipped = start, []
+    while line.h(x) < 0 and x in line.stopped and ((x < end) if factor > 1 else (x > end)):
+        skipped.append(x)
+        x = min(x * factor, end) if factor > 1 else max(x * factor, end)
+    return x, skipped
+
+
+def _noted(result: CurveResult, line: _Curve, skipped: list, unit: str) -> CurveResult:
+    """The result with the start of the search that had no running state stated."""
+    if not skipped:
+        return result
+    low, high = min(skipped), max(skipped)
+    which = "lighter loads" if unit == "N" else "higher speeds"
+    span = f"{low:.6g} {unit}" if low == high else f"{low:.6g}–{high:.6g} {unit}"
+    note = _no_state(line, skipped[0], f"at the {which} searched ({span})")
+    return dataclasses.replace(result, message=f"{result.message or result.answer}; {note}")
+
+
 def load_capacity(bearing: BearingGeometry, speed_rpm: float, min_film_um: float, *,
                   options: Optional[ModelOptions] = None, grid: Grid = DEFAULT_GRID,
-                  cache: Optional[SolverCache] = None) -> CurveResult:
+                  cache: Optional[SolverCache] = None,
+                  condition: Optional[ConditionFunction] = None) -> CurveResult:
     """The largest load [N] with h_min ≥ ``min_film_um`` [µm] at ``speed_rpm`` [rpm].
 
     options : the formulation (e.g. a bearing file's [model] table; defaults otherwise).
+    condition : each load at its own running condition (module docstring); light loads
+    with no running state are stepped over (× :data:`LOAD_STEP`) to the first that has one.
     The answer's h_min equals the limit to :data:`FILM_TOLERANCE` (relative).
     """
     t0 = time.perf_counter()
     limit, resolved = _resolve(bearing, options, min_film_um, grid)
     speed = _check_speed(bearing, "speed_rpm", speed_rpm)
-    line = _Curve(bearing, resolved, grid, cache, limit, speed=speed)
+    line = _Curve(bearing, resolved, grid, cache, limit, speed=speed, condition=condition)
     area = bearing.ambient_pressure * bearing.length * 2 * bearing.radius
-    load = FIRST_LOAD * area
     common = dict(speed_rpm=speed, min_film_limit_um=limit, conventions=_conventions(
         resolved, bearing, grid))
-    if line.h(load) < 0:
-        return CurveResult("capacity", math.nan, load_newton=load, min_film_thickness_um=math.nan,
-                           curve=line.rows, success=False, wall_time_s=time.perf_counter() - t0,
-                           message=f"h_min < {limit:.4g} µm already at {load:.3g} N "
-                           f"({speed:.6g} rpm): no load capacity above it", **common)
     ceiling = (MAX_SPECIFIC_LOAD_RATIO * bearing.ambient_pressure * bearing.length * 2
                * bearing.radius)                 # as BearingGeometry.nondimensional_load
-    root, good = _march(line, load, LOAD_STEP, min(load * LOAD_STEP ** 40, ceiling))
+    first = FIRST_LOAD * area
+    end = min(first * LOAD_STEP ** 40, ceiling)
+    load, skipped = _first_state(line, first, LOAD_STEP, end)
+
+    def result(value, load_newton, film, message, success=True, noted=True):
+        found = CurveResult("capacity", value, load_newton=load_newton,
+                            min_film_thickness_um=film, curve=line.rows, success=success,
+                            wall_time_s=time.perf_counter() - t0, message=message, **common)
+        return _noted(found, line, skipped if noted else [], "N")
+
+    if load in line.stopped:                    # no running state at any load searched
+        return result(math.nan, load, math.nan, _no_state(
+            line, load, f"at {speed:.6g} rpm under {first:.3g} to {load:.4g} N"),
+            noted=False)
+    if line.h(load) < 0:
+        return result(math.nan, load, math.nan, f"h_min < {limit:.4g} µm already at "
+                      f"{load:.3g} N ({speed:.6g} rpm): no load capacity above it", False)
+    root, good, stop = _march(line, load, LOAD_STEP, end)
+    if stop is not None:             # a thermal runaway before the film reaches the limit
+        return result(math.nan, stop, math.nan, _no_state(
+            line, stop, f"at {speed:.6g} rpm from {good:.5g}–{stop:.5g} N, before h_min "
+            f"reaches {limit:.4g} µm (h_min = {line.final(good):.4g} µm under {good:.5g} N)"))
     if root is not None:
         film = line.final(root)
-        return CurveResult("capacity", root, load_newton=root, min_film_thickness_um=film,
-                           curve=line.rows, wall_time_s=time.perf_counter() - t0,
-                           message=_not_at_limit(film, limit, f"the film cannot carry more than "
-                                                 f"{root:.5g} N at {speed:.6g} rpm"), **common)
+        return result(root, root, film, _not_at_limit(
+            film, limit, f"the film cannot carry more than {root:.5g} N at {speed:.6g} rpm"))
     if good >= ceiling:
-        return CurveResult("capacity", math.nan, load_newton=good,
-                           min_film_thickness_um=line.final(good), curve=line.rows,
-                           wall_time_s=time.perf_counter() - t0,
-                           message=f"capacity above the load ceiling of {ceiling:.4g} N "
-                           f"({MAX_SPECIFIC_LOAD_RATIO:g} p_a L D): h_min stays above "
-                           f"{limit:.4g} µm up to it at {speed:.6g} rpm", **common)
-    return CurveResult("capacity", math.nan, load_newton=good, min_film_thickness_um=math.nan,
-                       curve=line.rows, success=False, wall_time_s=time.perf_counter() - t0,
-                       message=f"h_min stays above {limit:.4g} µm up to {good:.4g} N", **common)
+        return result(math.nan, good, line.final(good), f"capacity above the load ceiling "
+                      f"of {ceiling:.4g} N ({MAX_SPECIFIC_LOAD_RATIO:g} p_a L D): h_min stays "
+                      f"above {limit:.4g} µm up to it at {speed:.6g} rpm")
+    return result(math.nan, good, math.nan, f"h_min stays above {limit:.4g} µm up to "
+                  f"{good:.4g} N", False)
 
 
 def lift_off_speed(bearing: BearingGeometry, load_newton: float, min_film_um: float, *,
                    max_speed_rpm: float = 100_000.0, options: Optional[ModelOptions] = None,
-                   grid: Grid = DEFAULT_GRID,
-                   cache: Optional[SolverCache] = None) -> CurveResult:
+                   grid: Grid = DEFAULT_GRID, cache: Optional[SolverCache] = None,
+                   condition: Optional[ConditionFunction] = None) -> CurveResult:
     """The lowest speed [rpm] at which ``load_newton`` [N] is carried with h_min ≥
     ``min_film_um`` [µm], searched below ``max_speed_rpm`` [rpm] (down to 1/1000 of it).
 
     No lift-off below ``max_speed_rpm`` is an answer ("no lift-off below N rpm",
     ``success`` False).  The answer's h_min equals the limit to :data:`FILM_TOLERANCE`.
+    condition : each speed at its own running condition (module docstring); high speeds
+    with no running state are stepped over (÷ :data:`SPEED_STEP`) to the first that has
+    one, and a speed with none below it ends the search.
     """
     t0 = time.perf_counter()
     load = check_positive("load_newton", load_newton)
     limit, resolved = _resolve(bearing, options, min_film_um, grid)
     bearing.nondimensional_load(load)            # the load's own range, before any solve
     top = _check_speed(bearing, "max_speed_rpm", max_speed_rpm)
-    line = _Curve(bearing, resolved, grid, cache, limit, load=load)
+    floor = max(top / 1000, _slowest_speed(bearing))
+    line = _Curve(bearing, resolved, grid, cache, limit, load=load, condition=condition)
     common = dict(load_newton=load, min_film_limit_um=limit,
                   conventions=_conventions(resolved, bearing, grid))
-    if line.h(top) < 0:
-        return CurveResult("lift_off", math.nan, speed_rpm=top, min_film_thickness_um=math.nan,
-                           curve=line.rows, success=False, wall_time_s=time.perf_counter() - t0,
-                           message=f"no lift-off below {top:.6g} rpm (h_min < {limit:.4g} µm "
-                           f"under {load:.5g} N)", **common)
-    root, good = _march(line, top, 1.0 / SPEED_STEP, max(top / 1000, _slowest_speed(bearing)))
+    start, skipped = _first_state(line, top, 1.0 / SPEED_STEP, floor)
+
+    def result(value, speed, film, message, success=True, noted=True):
+        found = CurveResult("lift_off", value, speed_rpm=speed, min_film_thickness_um=film,
+                            curve=line.rows, success=success,
+                            wall_time_s=time.perf_counter() - t0, message=message, **common)
+        return _noted(found, line, skipped if noted else [], "rpm")
+
+    if start in line.stopped:                   # no running state at any speed searched
+        return result(math.nan, start, math.nan, "no lift-off: " + _no_state(
+            line, start, f"from {top:.6g} down to {start:.6g} rpm under {load:.5g} N"), False,
+            noted=False)
+    if line.h(start) < 0:
+        return result(math.nan, start, math.nan, f"no lift-off below {start:.6g} rpm (h_min < "
+                      f"{limit:.4g} µm under {load:.5g} N)", False)
+    root, good, stop = _march(line, start, 1.0 / SPEED_STEP, floor)
+    if stop is not None:
+        return result(math.nan, stop, math.nan, "no lift-off found: " + _no_state(
+            line, stop, f"from {good:.6g}–{stop:.6g} rpm under {load:.5g} N, before h_min "
+            f"falls to {limit:.4g} µm"), False)
     if root is not None:
         film = line.final(root)
-        return CurveResult("lift_off", root, speed_rpm=root, min_film_thickness_um=film,
-                           curve=line.rows, wall_time_s=time.perf_counter() - t0,
-                           message=_not_at_limit(film, limit, f"the film first carries "
-                                                 f"{load:.5g} N at {root:.6g} rpm"), **common)
-    return CurveResult("lift_off", math.nan, speed_rpm=good, min_film_thickness_um=math.nan,
-                       curve=line.rows, success=False, wall_time_s=time.perf_counter() - t0,
-                       message=f"h_min stays above {limit:.4g} µm down to {good:.4g} rpm",
-                       **common)
+        return result(root, root, film, _not_at_limit(
+            film, limit, f"the film first carries {load:.5g} N at {root:.6g} rpm"))
+    return result(math.nan, good, math.nan, f"h_min stays above {limit:.4g} µm down to "
+                  f"{good:.4g} rpm", False)

@@ -19,9 +19,12 @@ once on the bearing as given.
   secant method on the mass margin at the running condition of each speed, until the next
   step is below ``tolerance`` (relative): that step's speed is the onset, and the running
   point reported is the last one evaluated (at most ``tolerance`` away in speed);
-- :func:`running_load_capacity` / :func:`running_lift_off`: the search repeated on the
-  bearing at the running condition of the previous answer (load or speed) until the answer
-  moves by less than ``tolerance``.
+- :func:`running_load_capacity` / :func:`running_lift_off`: one search with every point
+  at its own running condition (:class:`_Conditions`, the ``condition`` of
+  :mod:`gfbopt.rotor.capacity`: the fixed point under that load at that speed as ``gfbopt
+  static`` solves it, then the warm bearing's equilibrium), so the root is the answer at its
+  own running condition and each curve row carries its running point
+  (:data:`CURVE_COLUMNS`); a point with no running state is a NaN row with its status.
 """
 from __future__ import annotations
 
@@ -248,41 +251,97 @@ def _limited(spec, film, low, failing_rpm, margin) -> dict:
 
 
 # ------------------------------------------------------------------ capacity, lift-off
-def _answer(result, point: RunningPoint, iterations: int, solves: int) -> dict:
+#: the running point's columns of each capacity or lift-off curve row (glossary:
+#: gfbopt/terms/thermal.py)
+CURVE_COLUMNS = ("thermal_model", "thermal_status", "thermal_message", "running_clearance_um",
+                 "centrifugal_growth_um", "thermal_growth_um", "film_temperature_c",
+                 "viscosity_pa_s", "thermal_static_solves")
+
+
+def _answer(result, point: RunningPoint, solves: int) -> dict:
     d = point.to_dict()
-    return {**result.to_dict(), "running": d, "thermal_iterations": iterations,
-            "thermal_static_solves": solves, **{k: d[k] for k in RUNNING_KEYS}}
+    return {**result.to_dict(), "running": d, "thermal_static_solves": solves,
+            **{k: d[k] for k in RUNNING_KEYS}}
 
 
-def _failed(result, point, iterations, solves, key, limit_rpm=None) -> dict:
-    """No running state at the answer (runaway, closure): the answer says so, and every
-    figure of the search (its value, its load or speed, its film and curve) is null -- a
-    search on another clearance (cold, or the previous iteration's) is not this answer."""
-    out = _answer(result, point, iterations, solves)
+def _failed(result, point, solves, key) -> dict:
+    """No running state at the speed of a load-capacity search (closure by the centrifugal
+    growth alone, in closed form): the answer says so, and every figure of the search (its
+    value, its load, its film and curve) is null."""
+    out = _answer(result, point, solves)
     message = point.message
-    answer = (f"no load capacity at {result.speed_rpm:,.0f} rpm: {message}"
-              if key == "load_capacity_newton" else f"no lift-off found: {message}")
-    searched = ("load_newton",) if key == "load_capacity_newton" else ("speed_rpm",)
     out.update({key: math.nan, "min_film_thickness_um": math.nan, "curve": [],
-                **dict.fromkeys(searched, math.nan), "success": True, "answer": answer,
+                "load_newton": math.nan, "success": True,
+                "answer": f"no load capacity at {result.speed_rpm:,.0f} rpm: {message}",
                 "message": message})
     return out
 
 
-def _film(bearing, options, grid, cache, load_newton):
-    from ..static import SolverCache
+class _Conditions:
+    """The ``condition`` of a search at the running condition
+    (:class:`gfbopt.rotor.capacity.Condition`): the running point of each (speed, load) as
+    ``gfbopt static --bearing FILE --speed-rpm N --load-newton F`` solves it (the fixed point
+    of :func:`~gfbopt.thermal.running.running_point` under that load, no prior; the heat
+    balance's first static solve warm-started from the search's nearest equilibrium, else
+    :func:`coarse_start`), the centrifugal growth alone without ``[thermal]``.  Keeps every
+    point (``points``) and counts the fixed points' static solves (``solves``)."""
 
-    _, film = _case(bearing, Rotor(1.0), load_newton, options, grid,
-                    cache or SolverCache(grid))
-    return film
+    def __init__(self, bearing, spec: RunningSpec, options, grid, cache):
+        from ..inputs.options import ModelOptions, merge_options
+
+        self.bearing, self.spec, self.grid, self.cache = bearing, spec, grid, cache
+        # the search's own resolution (gfbopt.rotor.capacity._resolve): one model
+        self.options = merge_options(options or ModelOptions(), ModelOptions())
+        self.points: dict = {}
+        self.solves = 0
+
+    def __call__(self, speed, load, near):
+        from ..rotor.capacity import Condition
+
+        initial = None
+        if self.spec.model_name == HEAT_BALANCE:
+            film = FilmCase(self.bearing, self.options, self.grid, self.cache, load)
+            start = ((lambda model, solver, w: near) if near is not None
+                     else coarse_start(self.grid, self.cache))
+            drag = FilmDrag(film, start=start)
+            point = running_point(self.spec, speed, drag)
+            self.solves += drag.solves
+            initial = drag.last
+        else:
+            point = without_heat(self.spec, speed)
+        warm = None
+        if point.converged:
+            try:
+                warm = warm_bearing(self.bearing, point)
+            except ParameterError as exc:
+                point = dataclasses.replace(point, status="runaway", message=(
+                    f"the running clearance {point.running_clearance * 1e6:.3g} µm cannot "
+                    f"be analysed ({exc})"))
+        self.points[(speed, load)] = point
+        d = point.to_dict()
+        return Condition(warm, {k: d[k] for k in CURVE_COLUMNS}, initial if warm else None,
+                         point.message or "no running state")
+
+    def at(self, result) -> RunningPoint:
+        """The running point at the search's answer (its speed and load), else the last
+        point evaluated."""
+        key = (result.speed_rpm, result.load_newton)
+        return self.points.get(key) or list(self.points.values())[-1]
+
+
+def _with_model(result, spec) -> object:
+    """The search's conventions with the clearance model named (the CSV context, --json)."""
+    return dataclasses.replace(result, conventions={**result.conventions,
+                                                    "thermal_model": spec.model_name})
 
 
 def running_load_capacity(bearing, spec: RunningSpec, speed_rpm, min_film_um, *,
-                          options=None, grid: Grid = DEFAULT_GRID, cache=None,
-                          tolerance=1e-3, max_steps=6) -> dict:
-    """The load capacity [N] at ``speed_rpm`` with the running clearance of the answer's
-    load: :meth:`CurveResult.to_dict` plus ``running`` and the clearance at speed's fields
-    (``thermal_iterations`` searches, ``thermal_static_solves`` of the fixed points)."""
+                          options=None, grid: Grid = DEFAULT_GRID, cache=None) -> dict:
+    """The load capacity [N] at ``speed_rpm``, every load of the search at its own running
+    condition (:class:`_Conditions`): :meth:`CurveResult.to_dict` plus ``running`` (the
+    running point at the answer), the clearance at speed's fields and
+    ``thermal_static_solves`` (the fixed points' static solves); each curve row carries
+    :data:`CURVE_COLUMNS`."""
     from ..rotor.capacity import load_capacity
     from ..static import SolverCache
 
@@ -291,53 +350,12 @@ def running_load_capacity(bearing, spec: RunningSpec, speed_rpm, min_film_um, *,
     point = without_heat(spec, speed_rpm)                  # the centrifugal growth only
     if not point.converged:                                # closed form: no search at all
         return _failed(_no_search(bearing, speed_rpm, min_film_um, options, grid), point,
-                       0, 0, "load_capacity_newton")
-    result = load_capacity(warm_bearing(bearing, point), speed_rpm, min_film_um, **kw)
-    if spec.model_name != HEAT_BALANCE:
-        return _answer(result, point, 1, 0)
-
-    def running_at(load):                    # the heat balance under the answer's load
-        drag = FilmDrag(_film(bearing, options, grid, cache, load),
-                        start=coarse_start(grid, cache))
-        found = running_point(spec, speed_rpm, drag)
-        return (found if found.converged else _under_load(found, load)), drag.solves
-
-    return _iterate(result, point, running_at,
-                    lambda p: load_capacity(warm_bearing(bearing, p), speed_rpm, min_film_um,
-                                            **kw),
-                    "load_capacity_newton", tolerance, max_steps)
-
-
-def _iterate(result, point, running_at, search, key, tolerance, max_steps) -> dict:
-    """The search's fixed point with its running condition: the running point at the
-    previous answer (``running_at(value) -> (point, static solves)``), the search again on
-    that warm bearing (``search(point)``), until the answer moves by ≤ ``tolerance``
-    (relative) or is not finite; a failing running point ends it as :func:`_failed`."""
-    iterations, solves = 1, 0
-    for _ in range(max_steps):
-        if not math.isfinite(result.value):
-            break
-        previous = result.value
-        point, used = running_at(previous)
-        solves += used
-        if not point.converged:
-            return _failed(result, point, iterations, solves, key)
-        result = search(point)
-        iterations += 1
-        if not math.isfinite(result.value) or \
-                abs(result.value - previous) <= tolerance * previous:
-            break
-    return _answer(result, point, iterations, solves)
-
-
-def _under_load(point, load_newton):
-    """The failing point's message with the load it failed under: the heat balance's
-    runaway depends on the load (the drag does), so it is stated at the speed and load of
-    the search, not bracketed in speed (a bracket under a search's heavy load costs
-    minutes of failing static solves)."""
-    return dataclasses.replace(point, message=f"{point.message} under {load_newton:.4g} N "
-                               "(the load of the search's previous answer; not bracketed "
-                               "in speed)")
+                       0, "load_capacity_newton")
+    if spec.model_name == ISOTHERMAL:
+        return _answer(load_capacity(bearing, speed_rpm, min_film_um, **kw), point, 0)
+    conditions = _Conditions(bearing, spec, options, grid, cache)
+    result = load_capacity(bearing, speed_rpm, min_film_um, condition=conditions, **kw)
+    return _answer(_with_model(result, spec), conditions.at(result), conditions.solves)
 
 
 def _no_search(bearing, speed_rpm, min_film_um, options, grid):
@@ -352,27 +370,19 @@ def _no_search(bearing, speed_rpm, min_film_um, options, grid):
 
 def running_lift_off(bearing, spec: RunningSpec, load_newton, min_film_um, *,
                      max_speed_rpm=100_000.0, options=None, grid: Grid = DEFAULT_GRID,
-                     cache=None, tolerance=1e-3, max_steps=6) -> dict:
-    """The lift-off speed [rpm] under ``load_newton`` with the running clearance of the
-    answer's speed (module docstring)."""
+                     cache=None) -> dict:
+    """The lift-off speed [rpm] under ``load_newton``, every speed of the search at its own
+    running condition (as :func:`running_load_capacity`; a speed with no running state ends
+    the search there, a top speed with none starts it at the first speed below that has
+    one)."""
     from ..rotor.capacity import lift_off_speed
     from ..static import SolverCache
 
     cache = cache or SolverCache(grid)
     kw = dict(options=options, grid=grid, cache=cache, max_speed_rpm=max_speed_rpm)
-    result = lift_off_speed(bearing, load_newton, min_film_um, **kw)
-    point = without_heat(spec, result.value if math.isfinite(result.value)
-                         else max_speed_rpm)
     if spec.model_name == ISOTHERMAL:
-        return _answer(result, point, 1, 0)
-    film = _film(bearing, options, grid, cache, load_newton)
-
-    def running_at(speed):                   # the running point at the answer's speed
-        drag = FilmDrag(film, start=coarse_start(grid, cache))
-        found = running_point(spec, speed, drag)
-        return (found if found.converged else _under_load(found, load_newton)), drag.solves
-
-    return _iterate(result, point, running_at,
-                    lambda p: lift_off_speed(warm_bearing(bearing, p), load_newton,
-                                             min_film_um, **kw),
-                    "lift_off_speed_rpm", tolerance, max_steps)
+        result = lift_off_speed(bearing, load_newton, min_film_um, **kw)
+        return _answer(result, without_heat(spec, result.speed_rpm), 0)
+    conditions = _Conditions(bearing, spec, options, grid, cache)
+    result = lift_off_speed(bearing, load_newton, min_film_um, condition=conditions, **kw)
+    return _answer(_with_model(result, spec), conditions.at(result), conditions.solves)

@@ -64,7 +64,8 @@ def running_limits_text(rows: pd.DataFrame) -> str:
         at = " under ".join(part for part in (
             f"{row['speed_rpm']:,.0f} rpm" if "speed_rpm" in row else "",
             f"{row['load_newton']:g} N" if "load_newton" in row else "") if part)
-        where.append(f"{kind} at {at}" if at else kind)
+        label = f" ({row['variant']})" if "variant" in row else ""
+        where.append((f"{kind} at {at}" if at else kind) + label)
     count = len(where)
     return (f"{count} row{'s' if count != 1 else ''} with no running state: "
             f"{'; '.join(where)}")
