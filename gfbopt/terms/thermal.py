@@ -44,8 +44,6 @@ TERMS: dict[str, tuple[str, str]] = {
                               "took"),
     "thermal_evaluations": ("-", "running-condition stability evaluations of the onset's "
                             "secant search"),
-    "thermal_iterations": ("-", "capacity or lift-off searches repeated at the running "
-                           "condition of the previous answer"),
     "frozen_onset_speed_rpm": ("rpm", "onset of the bearing frozen at the running condition "
                                "of the guess speed (the running onset's first step)"),
     "frozen_at_rpm": ("rpm", "the guess speed whose running condition was frozen"),

@@ -250,7 +250,12 @@ def test_no_running_state_is_a_row_saying_so(tmp_path):
     row = result.tables["table.csv"].iloc[0]
     assert row["thermal_status"] == "runaway" and "thermal runaway" in row["message"]
     assert math.isnan(row["min_film_thickness_um"]) and math.isnan(row["eccentricity"])
-    assert not bool(row["success"]) and not result.checks_hold   # no equilibrium: exit 1
+    # no equilibrium solved (success False), but a runaway is an answer, not a failed
+    # solve: the check counts solver failures only and states the row apart
+    assert not bool(row["success"]) and result.checks_hold
+    assert "not counted, answers: 2 rows with no running state: thermal runaway at 60,000 " \
+        "rpm under 20 N (simple); thermal runaway at 60,000 rpm under 20 N (beam)" in \
+        result.checks[0]["what"]
     # the command says the same: no running state, exit 1
     cli = run_cli("static", "--bearing", tmp_path / "bearings" / "hot.toml", "--speed-rpm",
                   "60000", "--load-newton", "20", "--seam-angle", "max_film", "--grid", GRID,
