@@ -129,10 +129,6 @@ POINT_FIELDS = (
     "attitude_angle_deg", "min_film_thickness_um", "bearing_number", "load", "mass",
     "critical_mass", "threshold_whirl_ratio", "mode_whirl_ratio", "growth_rate", "speed_rpm",
     "load_newton", "wall_time_s")
-#: the glossary's names of the non-dimensional groups (``load``, ``mass``, ``critical_mass``
-#: as critical-mass, static and linear print them) → StabilityResult's attribute names
-RESULT_NAMES = {"load": "load_parameter", "mass": "mass_parameter",
-                "critical_mass": "critical_mass_parameter"}
 #: one JSON schema for ``gfbopt stability --json``, whatever the flags: every field present,
 #: null when not computed (the operating point without --speed-rpm, the onset without
 #: --onset/--speed-range, the CSV path without --csv)
@@ -203,7 +199,7 @@ def run(args) -> int:
             bar.close()
         else:
             answer = result.to_dict()
-            out.update({k: answer[RESULT_NAMES.get(k, k)] for k in POINT_FIELDS},
+            out.update({k: answer[k] for k in POINT_FIELDS},
                        conventions=result.conventions,
                        warnings=list(result.warnings))
             bar.update(1)
@@ -229,8 +225,7 @@ def run(args) -> int:
             found = running_onset(bearing, spec, rotor, args.load_newton, span,
                                   guess_rpm=args.speed_rpm, progress=True, **common)
             onset = _Answered(found)
-        out["onset"] = {k: _glossary_rows(v) if k in ("scan", "coarse_scan") else v
-                        for k, v in found.items() if k != "conventions"}
+        out["onset"] = {k: v for k, v in found.items() if k != "conventions"}
         out["onset_speed_rpm"] = found["onset_speed_rpm"]
         out["onset_whirl_frequency_hz"] = found.get("whirl_frequency_hz")
         if result is None and "conventions" in found:
@@ -249,16 +244,6 @@ def run(args) -> int:
               f"{(result and result.message) or (onset and onset.message)}", file=sys.stderr)
         return 1
     return 0
-
-
-def _glossary_rows(rows):
-    """The onset scan's rows with the glossary's names of the groups (``mass``,
-    ``critical_mass``, ``load``: :data:`RESULT_NAMES`), as at the operating point."""
-    if not isinstance(rows, list):
-        return rows
-    back = {v: k for k, v in RESULT_NAMES.items()}
-    return [{back.get(k, k): v for k, v in row.items()} if isinstance(row, dict) else row
-            for row in rows]
 
 
 class _Answered:

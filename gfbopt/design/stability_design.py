@@ -205,7 +205,7 @@ def _first_row(onset) -> _FilmCheck:
     first = onset.scan[0]
     margin = first["mass_margin"]
     return _FilmCheck(first["min_film_thickness_um"],
-                      margin if math.isfinite(first["critical_mass_parameter"]) else math.inf,
+                      margin if math.isfinite(first["critical_mass"]) else math.inf,
                       True, first["message"])
 
 

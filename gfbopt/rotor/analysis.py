@@ -165,6 +165,11 @@ def threshold_at(case: Case, speed_rpm: float, initial: Optional[StaticSolution]
 
 
 # ---------------------------------------------------------------------------- result
+#: the result's attribute → its name in every dict/JSON/CSV edge (gfbopt.glossary)
+GLOSSARY_NAMES = {"load_parameter": "load", "mass_parameter": "mass",
+                  "critical_mass_parameter": "critical_mass"}
+
+
 @dataclass(frozen=True)
 class StabilityResult:
     """The linear stability of a rigid rotor at one operating point (SI, per bearing).
@@ -221,8 +226,12 @@ class StabilityResult:
         return "stable" if self.stable else "unstable"
 
     def to_dict(self) -> dict:
-        """Every field but the linearisation, plus ``verdict`` (JSON-ready; inf stays inf)."""
-        out = {k: getattr(self, k) for k in self.__dataclass_fields__ if k != "linearisation"}
+        """Every field but the linearisation, plus ``verdict`` (JSON-ready; inf stays inf),
+        the non-dimensional groups under the glossary's names (``load``, ``mass``,
+        ``critical_mass``: :data:`GLOSSARY_NAMES`), as the command line's JSON and the
+        studies' tables name them."""
+        out = {GLOSSARY_NAMES.get(k, k): getattr(self, k) for k in self.__dataclass_fields__
+               if k != "linearisation"}
         out["verdict"] = self.verdict
         out["warnings"] = list(self.warnings)
         return out

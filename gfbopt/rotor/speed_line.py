@@ -189,7 +189,7 @@ class BearingLine:
         f = 1.0 if math.isinf(mcrit) else (mcrit - mbar) / (mcrit + mbar)
         g = (math.inf if math.isinf(mcrit) else -math.inf if mcrit <= 0
              else math.log(mcrit / mbar))
-        row = {"speed_rpm": speed, "mass_parameter": mbar, "critical_mass_parameter": mcrit,
+        row = {"speed_rpm": speed, "mass": mbar, "critical_mass": mcrit,
                "mass_margin": mcrit / mbar - 1.0, "whirl_ratio": whirl,
                "bearing_number": sol.model.bearing_number, "eccentricity": sol.eccentricity,
                "min_film_thickness_um": film_thickness_um(

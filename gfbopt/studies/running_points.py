@@ -92,7 +92,7 @@ def running_onset_row(bearing, running, rotor_mass_kg: float, load_newton: float
         status = CLOSURE if found["thermal_limit_kind"] == "closure" else THERMAL_RUNAWAY
     elif found.get("unstable_at_lower_end"):
         first = found["scan"][0]
-        status = UNSTABLE_ALL if first["critical_mass_parameter"] == 0 else UNSTABLE_LOW
+        status = UNSTABLE_ALL if first["critical_mass"] == 0 else UNSTABLE_LOW
     elif found.get("stable_over_range"):
         status = STABLE
     else:

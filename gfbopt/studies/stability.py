@@ -109,7 +109,7 @@ def onset_point(bearing, rotor_mass_kg: float, load_newton: float, speed_range, 
                 "message": str(exc), "wall_time_s": time.perf_counter() - t0}
     first = res.scan[0]
     if res.unstable_at_lower_end:
-        status = UNSTABLE_ALL if first["critical_mass_parameter"] == 0 else UNSTABLE_LOW
+        status = UNSTABLE_ALL if first["critical_mass"] == 0 else UNSTABLE_LOW
     elif res.stable_over_range:
         status = STABLE
     else:

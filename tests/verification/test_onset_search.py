@@ -54,8 +54,8 @@ def assert_same(new, old):
         assert new.whirl_frequency_hz == pytest.approx(old.whirl_frequency_hz, rel=SAME)
     # the first row (the lowest speed) is on the same grid with a full threshold in both
     assert new.scan[0]["speed_rpm"] == old.scan[0]["speed_rpm"]
-    assert new.scan[0]["critical_mass_parameter"] == pytest.approx(
-        old.scan[0]["critical_mass_parameter"], rel=1e-8)
+    assert new.scan[0]["critical_mass"] == pytest.approx(
+        old.scan[0]["critical_mass"], rel=1e-8)
     # the smallest margin is at a scan speed both evaluate in full (statics ≤ 1e-10 apart)
     assert new.smallest_margin == pytest.approx(old.smallest_margin, rel=1e-7, abs=1e-9)
 
@@ -130,8 +130,8 @@ def test_a_wrong_guide_does_not_change_the_answer(monkeypatch, plain_48x12, fact
     guided = onset_speed(BEARING, Rotor(2.0), 20.0, span, coarse_grid=guide_grid, **common)
     assert kind(guided) == kind(plain) == "onset"
     assert guided.onset_speed_rpm == pytest.approx(plain.onset_speed_rpm, rel=SAME)
-    assert guided.scan[0]["critical_mass_parameter"] == pytest.approx(
-        plain.scan[0]["critical_mass_parameter"], rel=1e-8)
+    assert guided.scan[0]["critical_mass"] == pytest.approx(
+        plain.scan[0]["critical_mass"], rel=1e-8)
 
 
 def test_a_guide_that_cannot_carry_the_load_is_dropped(monkeypatch, plain_48x12):
@@ -172,7 +172,7 @@ def test_message_is_empty_on_success_and_remarks_are_notes(cache):
     result = onset_speed(BEARING, Rotor(2.0), 40.0, (3000.0, 4000.0), film="periodic",
                          options=OPTIONS, grid=COARSE, cache=cache)
     assert result.success and kind(result) == "stable"
-    assert math.isinf(result.scan[0]["critical_mass_parameter"])
+    assert math.isinf(result.scan[0]["critical_mass"])
     assert result.message == ""
     assert "stable for every rotor mass" in result.notes
     row = onset_point(BEARING, 2.0, 40.0, (3000.0, 4000.0), film="periodic",
@@ -247,7 +247,7 @@ def test_periodic_film_stable_for_every_mass_at_the_low_end(monkeypatch, cache):
     common = dict(options=OPTIONS, grid=COARSE, cache=cache, film="periodic")
     old = reference(monkeypatch, BEARING, Rotor(2.0), 40.0, (3000.0, 45000.0), **common)
     new = onset_speed(BEARING, Rotor(2.0), 40.0, (3000.0, 45000.0), **common)
-    assert math.isinf(new.scan[0]["critical_mass_parameter"])
+    assert math.isinf(new.scan[0]["critical_mass"])
     assert_same(new, old)
 
 
@@ -286,10 +286,10 @@ def test_fifty_random_cases_at_72x20(monkeypatch):
             compared += 1
             continue
         fine, coarse = guided.scan[0], guided.coarse_scan[0]
-        if math.isfinite(fine["critical_mass_parameter"]) and fine[
-                "critical_mass_parameter"] > 0:
-            guide_error = max(guide_error, abs(coarse["critical_mass_parameter"]
-                                               / fine["critical_mass_parameter"] - 1))
+        if math.isfinite(fine["critical_mass"]) and fine[
+                "critical_mass"] > 0:
+            guide_error = max(guide_error, abs(coarse["critical_mass"]
+                                               / fine["critical_mass"] - 1))
         compared += 1
     assert compared == 50 and math.isfinite(guide_error)
 
