@@ -35,7 +35,8 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..errors import ParameterError
-from .checks import check_finite, check_positive
+from .checks import (FRICTION_COEFFICIENT_BELOW, WHY_FRICTION, check_finite,
+                     check_positive)
 
 BORE_KINDS = ("round", "shims", "lobes", "table")
 TWO_PI = 2.0 * math.pi
@@ -429,9 +430,9 @@ def check_as_built(model) -> None:
         for k, z in enumerate(ab.zones):
             if z.friction_coefficient is not None:
                 mu = check_finite(f"zones[{k}].friction_coefficient", z.friction_coefficient)
-                if not 0.0 <= mu <= 2.0:
+                if not 0.0 <= mu < FRICTION_COEFFICIENT_BELOW:
                     raise ParameterError(f"zones[{k}].friction_coefficient", mu, "must lie in "
-                                         "[0, 2] (dry metal contacts lie near 0.1–1)")
+                                         f"[0, {FRICTION_COEFFICIENT_BELOW:g}) ({WHY_FRICTION})")
         mean = ab.mean_compliance()
         if not math.isclose(model.compliance, mean, rel_tol=1e-12):
             raise ParameterError("compliance", model.compliance, "with foundation zones S is "

@@ -33,6 +33,13 @@ def check_nonnegative(name: str, value: float) -> float:
     return v
 
 
+#: friction coefficients μ_f [-] accepted are 0 <= μ_f < this bound, by every route (file
+#: schema, zones, BearingModel; the transients' slipping balance needs it)
+FRICTION_COEFFICIENT_BELOW = 1.0
+WHY_FRICTION = ("the slipping foil's balance W = S(1 − μ_f) q needs it: at μ_f >= 1 friction "
+                "alone would carry the pressure; dry metal contacts lie near 0.1–1")
+
+
 #: largest magnitude of a stated direction or phase [deg]: a turn either way (1e300° has no
 #: direction left once wrapped)
 MAX_ANGLE_DEG = 360.0

@@ -27,8 +27,11 @@ from dataclasses import dataclass, replace
 from typing import Any, Optional
 
 from ..errors import ParameterError
+from .bearing_example import BEARING_EXAMPLE
 from .bore import BORE_KINDS, END_RANGE_DEG, MAX_FEATURES, MAX_ZONES, START_RANGE_DEG
-from .model import DEFLECTION_LAWS, FILM_MODELS, FOIL_MODELS
+from .checks import FRICTION_COEFFICIENT_BELOW, WHY_FRICTION
+from .model import (DEFLECTION_LAWS, FILM_MODELS, FOIL_MODELS, MAX_HARDENING_EXPONENT,
+                    MIN_HARDENING_EXPONENT)
 
 #: default of a required field
 REQUIRED = object()
@@ -51,8 +54,10 @@ class Field:
 
     name, kind (:data:`KINDS`), unit ("m", "Pa", "deg", "-", "text"), doc (meaning);
     default (:data:`REQUIRED`: must be given; None: not stated); choices (kind "choice");
-    low / high: inclusive bounds of a number, or ``positive`` for > 0; why: the reason of the
-    bounds (shown in refusals and docs); table: the :class:`Table` a field of kind "table"
+    low / high: inclusive bounds of a number, or ``positive`` for > 0; below: an exclusive
+    upper bound; off: one value allowed outside the bounds, meaning "off" (e.g. 0 of an
+    exponent whose other values lie in [1, 10]); why: the reason of the bounds (shown in
+    refusals and docs); table: the :class:`Table` a field of kind "table"
     or "tables" is checked against; length: the exact length of a list; values: the
     :class:`Field` every value of a "mapping" is checked against.  ``choices`` of a
     "string" (or of the items of a list) restrict it too, and may be a callable returning
@@ -69,6 +74,8 @@ class Field:
     high: Optional[float] = None
     positive: bool = False
     why: str = ""
+    below: Optional[float] = None
+    off: Optional[float] = None
     table: Any = None
     length: Optional[int] = None
     values: Any = None
@@ -121,8 +128,11 @@ class Field:
             parts.append(f">= {self.low:g}")
         if self.high is not None:
             parts.append(f"<= {self.high:g}")
+        if self.below is not None:
+            parts.append(f"< {self.below:g}")
         noun = "a whole number" if self.kind in ("integer", "count") else "a finite number"
-        return noun + (f", {' and '.join(parts)}" if parts else "")
+        off = "" if self.off is None else f" {self.off:g} (off) or"
+        return noun + (f",{off} {' and '.join(parts)}" if parts else "")
 
 
 @dataclass(frozen=True)
@@ -214,8 +224,7 @@ def check_value(f: Field, value, where: str):
             raise refuse(f"must be {f.rule()} ({f.doc})")
         if f.length is not None and len(value) != f.length:
             raise refuse(f"must have {f.length} entries ({f.doc})")
-        item = Field(f.name, "number", f.unit, f.doc, low=f.low, high=f.high,
-                     positive=f.positive, why=f.why)
+        item = replace(f, kind="number", length=None)
         return [check_value(item, v, f"{where}[{k}]") for k, v in enumerate(value)]
     if f.kind in ("integer", "count") and (isinstance(value, bool)
                                            or not isinstance(value, int)):
@@ -235,13 +244,18 @@ def check_value(f: Field, value, where: str):
                          "of rotation, or be \"max_film\"")
         return number
     why = f" ({f.why})" if f.why else ""
+    if f.off is not None and number == f.off:
+        return number
     if f.positive and number <= 0:
         raise refuse(f"must be > 0{why}")
     unit = "" if f.unit in ("-", "text") else f" {f.unit}"
+    off = "" if f.off is None else f"{f.off:g} (off) or "
     if f.low is not None and number < f.low:
-        raise refuse(f"must be >= {f.low:g}{unit}{why}")
+        raise refuse(f"must be {off}>= {f.low:g}{unit}{why}")
     if f.high is not None and number > f.high:
-        raise refuse(f"must be <= {f.high:g}{unit}{why}")
+        raise refuse(f"must be {off}<= {f.high:g}{unit}{why}")
+    if f.below is not None and number >= f.below:
+        raise refuse(f"must be < {f.below:g}{unit}{why}")
     return value if f.kind == "count" else number
 
 
@@ -367,7 +381,7 @@ BUMP_FIELDS = (
     Field("friction_coefficient", "number", "-", "Coulomb friction coefficient μ_f of the "
           "slider beside each bump (spring–slider element; slip force per unit area μ_f "
           "times the local gauge pressure); default 0: no friction", default=None, low=0.0,
-          high=2.0, why="dry metal contacts lie near 0.1–1"),
+          below=FRICTION_COEFFICIENT_BELOW, why=WHY_FRICTION),
     Field("friction_stiffness_ratio", "number", "-", "stiffness of the friction element's "
           "spring over the bump's, κ = k_f/k_b (the stuck foundation is k_b (1 + κ)); "
           "default 1", default=None, positive=True, high=1e3, why="k_f/k_b"),
@@ -377,8 +391,9 @@ BUMP_FIELDS = (
           "k0/(1 − δ/δ_lim)^n is flat; <= bump_height; default bump_height", default=None,
           positive=True),
     Field("hardening_exponent", "number", "-", "exponent n of the hardening bump "
-          "k0/(1 − δ/δ_lim)^n; default 0: off (the linear bump)", default=None, low=0.0,
-          high=10.0, why="n = 1–3 covers a gentle to an abrupt stiffening"),
+          "k0/(1 − δ/δ_lim)^n; default 0: off (the linear bump)", default=None, off=0.0,
+          low=MIN_HARDENING_EXPONENT, high=MAX_HARDENING_EXPONENT, why="n < 1 flattens the "
+          "bump at a finite load; n = 1–3 covers a gentle to an abrupt stiffening"),
 )
 
 #: the optional ``[model]`` table: the formulation the bearing is analysed with
@@ -457,31 +472,6 @@ ZONES = Table("zones", "bump zones with their own bump geometry, covering 360° 
 #: the tables of a bearing file; adding a table is one entry here (module docstring)
 BEARING_TABLES = (BEARING, MODEL, BORE, PADS, ZONES)
 
-BEARING_EXAMPLE = '''\
-source = "Ruscitto, D., McCormick, J. & Gray, S. (1978), NASA CR-135368"
-
-[bearing]
-name = "Ruscitto et al. (1978)"
-radius = 19.05e-3              # R [m]
-length = 38.1e-3               # L [m]
-radial_clearance = 20e-6       # c [m]
-top_foil_thickness = 101.6e-6  # t_t [m]
-bump_thickness = 101.6e-6      # t_b [m]
-bump_pitch = 4.572e-3          # s [m]
-bump_half_length = 1.778e-3    # l0 [m]
-bump_youngs_modulus = 214e9    # E_b [Pa]
-top_foil_youngs_modulus = 214e9  # E_t [Pa]
-poisson_ratio = 0.29           # nu [-]
-ambient_pressure = 1.0e5       # p_a [Pa]
-viscosity = 2.98e-5            # mu [Pa s]
-
-[model]
-film = "seam"
-seam_angle_deg = 180.0
-foil = "simple"
-deflection_law = "mean"
-loss_factor = 0.0
-'''
 
 #: the bearing file (``problems/bearings/*.toml``, ``--bearing FILE``)
 BEARING_FILE = FileFormat(

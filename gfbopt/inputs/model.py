@@ -7,8 +7,9 @@ from typing import Optional
 
 from ..errors import ParameterError
 from .bore import AsBuilt, check_as_built
-from .checks import (check_choice, check_flag, check_loss_factor, check_nonnegative,
-                     check_positive, check_seam_angle_deg, refuse_radian_seam_angle)
+from .checks import (FRICTION_COEFFICIENT_BELOW, WHY_FRICTION, check_choice, check_flag,
+                     check_loss_factor, check_nonnegative, check_positive,
+                     check_seam_angle_deg, refuse_radian_seam_angle)
 
 FOIL_MODELS = ("rigid", "simple", "beam")
 FILM_MODELS = ("periodic", "seam")
@@ -21,14 +22,14 @@ MAX_TOP_FOIL_COEFFICIENT = 1e4
 MAX_BEARING_NUMBER = 1e4
 #: largest compliance S [-] accepted: a foundation 1000 times softer than the thesis's S = 1
 MAX_COMPLIANCE = 1e3
-#: largest friction coefficient μ_f [-] accepted: dry metal contacts lie near 0.1–1
-MAX_FRICTION_COEFFICIENT = 2.0
 #: largest stuck friction-element stiffness over the bump's, k_f/k_b [-] accepted
 MAX_FRICTION_STIFFNESS_RATIO = 1e3
 #: foil models whose bump foundation carries the friction element (the rigid surface has no
 #: bumps; the beam's foundation has no per-unit factor yet, see physics/friction.py)
 FRICTION_FOILS = ("simple",)
-#: largest exponent n of the hardening bump k0/(1 − δ/δ_lim)^n accepted [-]
+#: exponents n of the hardening bump k0/(1 − δ/δ_lim)^n accepted [-]: 0 (off) or in
+#: [MIN, MAX] (n < 1 flattens the bump at a finite load; the file schema states the same)
+MIN_HARDENING_EXPONENT = 1.0
 MAX_HARDENING_EXPONENT = 10.0
 
 
@@ -117,7 +118,7 @@ class BearingModel:
         depend on it) and needs a foundation: η > 0 is refused with foil='rigid' or S = 0.
         The linear analysis supports it (:mod:`gfbopt.linear`); an engine that does not is
         refused a damped model by :func:`gfbopt.physics.foil_laws.foil_law`.
-    friction_coefficient : μ_f [-], 0 ≤ μ_f ≤ 2, of the Coulomb slider beside each bump
+    friction_coefficient : μ_f [-], 0 ≤ μ_f < 1, of the Coulomb slider beside each bump
         (default 0: no friction, today's elastic foundation exactly).  Each foil unit (θ row,
         or node for the local law) has a spring–slider (Jenkins) element in parallel with its
         bump (:mod:`gfbopt.physics.friction`): spring k_f = κ k_b, slip force per unit area
@@ -137,7 +138,9 @@ class BearingModel:
         hardened law, the linear analysis its tangent at the static deflection.
     hardening_limit : W_lim = δ_lim/c [-], the deflection at which the bump is flat, in
         radial clearances (δ_lim ≤ the bump height h_b, checked where h_b is known: the
-        bearing file's [model]); needed when n > 0.
+        bearing file's [model]); needed when n > 0.  Outputs state it as
+        ``hardening_limit_ratio`` (:meth:`options`): ``hardening_limit`` is δ_lim in metres
+        in the files and the glossary.
     as_built : the bearing as built (:class:`gfbopt.inputs.bore.AsBuilt`: bore profile,
         pads, bump zones), or None for a round bore, one top foil and a uniform foundation.
     """
@@ -210,10 +213,9 @@ class BearingModel:
 
     def _check_friction(self) -> None:
         mu = check_nonnegative("friction_coefficient", self.friction_coefficient)
-        if mu > MAX_FRICTION_COEFFICIENT:
+        if mu >= FRICTION_COEFFICIENT_BELOW:
             raise ParameterError("friction_coefficient", self.friction_coefficient,
-                                 f"must be <= {MAX_FRICTION_COEFFICIENT:g} (dry metal contacts "
-                                 "lie near 0.1–1)")
+                                 f"must be < {FRICTION_COEFFICIENT_BELOW:g} ({WHY_FRICTION})")
         kappa = check_positive("friction_stiffness_ratio", self.friction_stiffness_ratio)
         if kappa > MAX_FRICTION_STIFFNESS_RATIO:
             raise ParameterError("friction_stiffness_ratio", self.friction_stiffness_ratio,
@@ -238,10 +240,11 @@ class BearingModel:
         object.__setattr__(self, "hardening_exponent", n)
         if n == 0.0:
             return
-        if not 1.0 <= n <= MAX_HARDENING_EXPONENT:
+        if not MIN_HARDENING_EXPONENT <= n <= MAX_HARDENING_EXPONENT:
             raise ParameterError("hardening_exponent", self.hardening_exponent,
-                                 f"must be 0 (off) or in [1, {MAX_HARDENING_EXPONENT:g}] (n < 1 "
-                                 "flattens the bump at a finite load)")
+                                 f"must be 0 (off) or in [{MIN_HARDENING_EXPONENT:g}, "
+                                 f"{MAX_HARDENING_EXPONENT:g}] (n < 1 flattens the bump at a "
+                                 "finite load)")
         object.__setattr__(self, "hardening_limit",
                            check_positive("hardening_limit", self.hardening_limit))
         if self.is_rigid or self.foil != "simple" or self.deflection_law != "mean":
@@ -299,7 +302,7 @@ class BearingModel:
                     "friction_stiffness_ratio": self.friction_stiffness_ratio}),
                 **({} if self.hardening_exponent == 0.0 else {
                     "hardening_exponent": self.hardening_exponent,
-                    "hardening_limit": self.hardening_limit}),
+                    "hardening_limit_ratio": self.hardening_limit}),
                 **({} if self.as_built is None else self.as_built.describe())}
 
     def groups(self) -> dict:

@@ -24,7 +24,7 @@ seam on the maximum-film line          the thesis's convention (Mohan 2010): the
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Optional, Union
 
 from ..errors import ParameterError
@@ -176,18 +176,47 @@ def merge_options(stated: ModelOptions, base: ModelOptions) -> ModelOptions:
     """``stated`` options (e.g. the command line or function arguments) over ``base`` (e.g. a
     bearing file's ``[model]`` table), then the defaults: complete options.
 
-    An option stated wins; ``base`` fills what is not stated, except that a stated film other
-    than the base's drops the base's seam angle too (it belonged to the base's convention),
-    and a stated ``foil='rigid'`` drops ``base`` altogether (its film seam, deflection law and
-    structural damping describe a bump foil, which a rigid comparison has not).
+    An option stated replaces that option only; ``base`` fills what is not stated, except
+    that a stated film other than the base's drops the base's seam angle too (it belonged to
+    the base's convention).  A stated foil other than the base's keeps the base's film and
+    seam (a rigid bearing has a film convention too: ``--foil rigid`` on a seamed file is a
+    rigid bearing with that seam; state ``film='periodic'`` for the plain 360° bearing), and
+    the defaults apply as :func:`resolve_model_options` says (a rigid bearing whose film
+    nobody states: periodic).  The base's bump options do not pass to a foil that has none:
+    with foil 'rigid' the base's deflection law is dropped (nothing deflects, so it changes
+    no answer), and a base's loss_factor, friction_coefficient or hardening_exponent > 0
+    (rigid), or friction_coefficient or hardening_exponent > 0 (beam), not overridden by
+    ``stated`` is refused in one line naming the foil and the base's key — as the same
+    combination stated in one file is (:class:`~gfbopt.inputs.model.BearingModel`).
     """
-    if stated.foil == "rigid":
-        return resolve_model_options(stated)
     if stated.film is not None and stated.film != base.film:
         base = ModelOptions(foil=base.foil, deflection_law=base.deflection_law,
                             loss_factor=base.loss_factor,
                             **{key: getattr(base, key) for key in BUMP_OPTION_NAMES})
+    if stated.foil is not None and stated.foil != (base.foil or "simple"):
+        _refuse_bump_options(stated, base)
+        if stated.foil == "rigid":
+            base = replace(base, deflection_law=None)
     return resolve_model_options(stated.over(base))
+
+
+#: the base's options a stated foil cannot carry: {foil: (key, ...)} (each refused when > 0)
+_NOT_CARRIED = {"rigid": ("loss_factor", "friction_coefficient", "hardening_exponent"),
+                "beam": ("friction_coefficient", "hardening_exponent")}
+
+
+def _refuse_bump_options(stated: ModelOptions, base: ModelOptions) -> None:
+    """A stated foil that cannot carry a bump option the base states > 0: ParameterError
+    naming the foil (``--foil`` on the command line) and the base's key."""
+    for key in _NOT_CARRIED.get(stated.foil, ()):
+        value = getattr(base, key)
+        if getattr(stated, key) is None and (value or 0.0) > 0.0:
+            what = ("has no bumps" if stated.foil == "rigid" else
+                    "does not carry it (its foundation has no per-unit element yet)")
+            raise ParameterError("foil", stated.foil, f"cannot keep the bearing file's "
+                                 f"model.{key} = {value!r}: the {stated.foil} foil {what}; "
+                                 f"remove {key} from the file or keep its foil "
+                                 f"{base.foil or 'simple'!r}")
 
 
 def resolve_model_options(stated: Optional[ModelOptions] = None) -> ModelOptions:
@@ -199,8 +228,10 @@ def resolve_model_options(stated: Optional[ModelOptions] = None) -> ModelOptions
     (a seam angle with a periodic film and no beam) are refused.
 
     **Film default: a seam at a fixed housing angle, the top foil's welded end 180° from the
-    load line (opposite the static load).**  A rigid bearing (foil='rigid') has no top foil
-    and gets the periodic film of a plain 360° gas bearing.  Why this default:
+    load line (opposite the static load).**  A rigid bearing (foil='rigid') whose film nobody
+    states has no top foil and gets the periodic film of a plain 360° gas bearing (a stated
+    film, the command line's or the file's, is kept: :func:`merge_options`).  Why this
+    default:
 
     * *A seam, not a periodic film.*  A bump-foil bearing has one top foil, welded at one end
       and free at the other; the gap between the ends is open to ambient pressure.  The

@@ -11,7 +11,13 @@ from __future__ import annotations
 
 from .file_schema import Field, Table
 
-_WHY_T = "an absolute temperature: below 0 K is not a temperature"
+#: lowest temperature [K] a [thermal] key accepts: the bottom of the range over which
+#: Sutherland's law gives the viscosity of air within ±2 % (170–1900 K; White, F. M.,
+#: *Viscous Fluid Flow*, 3rd ed., 2006, Table 1-2; gfbopt.thermal.network's top,
+#: SUTHERLAND_AIR_MAX_K).  A value below it is almost surely degrees Celsius typed as kelvin.
+SUTHERLAND_AIR_MIN_K = 170.0
+_WHY_T = ("the unit is kelvin: 20 °C is 293.15 K; Sutherland's law for air holds from 170 K, "
+          "White 2006 Table 1-2")
 _WHY_G = "a conductance: a negative one would carry heat against the temperature difference"
 
 #: the ``[journal]`` table: the journal's material and bore
@@ -46,11 +52,13 @@ THERMAL = Table("thermal", "the lumped thermal network of the bearing (film, jou
           "sleeve (bearing housing bore) α_s", low=0.0, high=1e-3,
           why="solids: 0 to 1e-3 1/K"),
     Field("ambient_temperature", "number", "K", "ambient temperature T_a",
-          default=293.15, positive=True, why=_WHY_T),
+          default=293.15, low=SUTHERLAND_AIR_MIN_K, why=_WHY_T),
     Field("reference_temperature", "number", "K", "temperature at which radial_clearance is "
-          "stated (default: ambient_temperature)", default=None, positive=True, why=_WHY_T),
+          "stated (default: ambient_temperature)", default=None, low=SUTHERLAND_AIR_MIN_K,
+          why=_WHY_T),
     Field("viscosity_temperature", "number", "K", "temperature at which [bearing] viscosity "
-          "holds (default: ambient_temperature)", default=None, positive=True, why=_WHY_T),
+          "holds (default: ambient_temperature)", default=None, low=SUTHERLAND_AIR_MIN_K,
+          why=_WHY_T),
     Field("film_to_journal", "number", "W/K", "conductance film → journal g_fj (default: "
           "gas conduction across half the film, k 2πRL/(c/2))", default=None, low=0.0,
           why=_WHY_G),
@@ -60,7 +68,8 @@ THERMAL = Table("thermal", "the lumped thermal network of the bearing (film, jou
     Field("cooling_mass_flow", "number", "kg/s", "cooling flow ṁ through the bump channels",
           default=0.0, low=0.0, why="a mass flow"),
     Field("cooling_inlet_temperature", "number", "K", "cooling flow inlet temperature T_in "
-          "(default: ambient_temperature)", default=None, positive=True, why=_WHY_T),
+          "(default: ambient_temperature)", default=None, low=SUTHERLAND_AIR_MIN_K,
+          why=_WHY_T),
     Field("cooling_conductance", "number", "W/K", "hA of the bump channels: effectiveness "
           "1 − exp(−hA/(ṁ c_p)) (default: the flow leaves fully mixed at the foil "
           "temperature)", default=None, low=0.0, why=_WHY_G),
@@ -78,7 +87,7 @@ THERMAL = Table("thermal", "the lumped thermal network of the bearing (film, jou
     Field("max_film_temperature", "number", "K", "highest film temperature with a valid "
           "state, e.g. the foil's material limit (not stated: 1900 K, the top of Sutherland's "
           "range for air, White 2006 Table 1-2); above it the answer is thermal runaway",
-          default=None, positive=True),
+          default=None, low=SUTHERLAND_AIR_MIN_K, why=_WHY_T),
 ), rules=("needs a [journal] table with expansion_coefficient",
           "every node (film, journal, foil, sleeve) has a path of conductances > 0 to the "
           "ambient"))

@@ -16,5 +16,7 @@ TERMS = {
     "hardening_exponent": ("-", "exponent n of the hardening bump k0/(1 − δ/δ_lim)^n (0: off)"),
     "hardening_limit": ("m", "deflection δ_lim at which the hardening bump is flat (<= the "
                         "bump height)"),
+    "hardening_limit_ratio": ("-", "the hardening limit in radial clearances, W_lim = δ_lim/c "
+                              "(the non-dimensional model's; hardening_limit is δ_lim in m)"),
     "bump_height": ("m", "bump height h_b, the hard limit of the hardening bump"),
 }
