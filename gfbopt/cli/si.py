@@ -5,13 +5,16 @@ Rule for a bearing file's ``[model]`` table (film, seam_angle_deg, foil, deflect
 loss_factor; :func:`gfbopt.inputs.options.merge_options`): an option given on the command line
 wins; an option the file states fills what the command line left out; what neither states
 takes the default of :func:`gfbopt.inputs.options.resolve_model_options` (for a bump-foil
-bearing, a seam with the welded end 180° from the load).  Two cases keep the file's options
-apart:
+bearing, a seam with the welded end 180° from the load).  A flag replaces only what it
+names:
 
 * ``--film`` different from the file's film drops the file's seam angle too (it belonged to
   the file's film convention);
-* ``--foil rigid`` drops the whole ``[model]`` table: it describes the bearing's bump foil
-  (its film seam, deflection law and structural damping), which a rigid comparison has not.
+* ``--foil rigid`` (or ``beam``) keeps the file's film and seam (a rigid bearing with the
+  file's seam; add ``--film periodic`` for the plain 360° bearing) and drops the file's
+  deflection law with rigid (nothing deflects); a file's ``loss_factor``,
+  ``friction_coefficient`` or ``hardening_exponent`` > 0 that the foil cannot carry is
+  refused in one line naming ``--foil`` and the file key.
 
 Without ``--bearing`` (non-dimensional input) the defaults stay those of the non-dimensional
 model: periodic film, axial-mean law, no structural damping.

@@ -23,8 +23,9 @@ def _case(**changes):
 def test_hardened_model_and_its_refusals():
     model, _ = _case(hardening_exponent=2.0, hardening_limit=2.0)
     assert model.foil_law == "hardened"
-    assert model.options()["hardening_limit"] == 2.0
-    assert _case()[0].foil_law == "simple" and "hardening_limit" not in _case()[0].options()
+    assert model.options()["hardening_limit_ratio"] == 2.0   # δ_lim/c; hardening_limit is m
+    assert "hardening_limit" not in model.options()
+    assert _case()[0].foil_law == "simple" and "hardening_limit_ratio" not in _case()[0].options()
     for kw, rule in ((dict(hardening_exponent=0.5, hardening_limit=1.0), "n < 1"),
                      (dict(hardening_exponent=2.0), "hardening_limit = inf: must be finite"),
                      (dict(hardening_exponent=2.0, hardening_limit=1.0, deflection_law="local"),
