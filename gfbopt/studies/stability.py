@@ -221,14 +221,16 @@ def plan_onset_conventions(study: Study) -> dict:
     from ..inputs.options import BUMP_OPTION_NAMES, ModelOptions, merge_options
 
     file_options = bearing.options
-    resolved = merge_options(ModelOptions(foil=spec["model"].get("foil"),
-                                          deflection_law=spec["model"].get("deflection_law"),
-                                          loss_factor=spec["model"].get("loss_factor")),
-                             ModelOptions(foil=file_options.foil,
-                                          deflection_law=file_options.deflection_law,
-                                          loss_factor=file_options.loss_factor,
-                                          **{key: getattr(file_options, key)
-                                             for key in BUMP_OPTION_NAMES}))
+    try:                      # a study foil the file's bumps cannot keep: name the study key
+        resolved = merge_options(
+            ModelOptions(foil=spec["model"].get("foil"),
+                         deflection_law=spec["model"].get("deflection_law"),
+                         loss_factor=spec["model"].get("loss_factor")),
+            ModelOptions(foil=file_options.foil, deflection_law=file_options.deflection_law,
+                         loss_factor=file_options.loss_factor,
+                         **{key: getattr(file_options, key) for key in BUMP_OPTION_NAMES}))
+    except ParameterError as exc:
+        raise study.where("model", exc.name).error(exc.value, exc.rule) from None
     model = {"foil": resolved.foil, "deflection_law": resolved.deflection_law,
              "loss_factor": resolved.loss_factor}
     # the bearing file's bumps (friction, hardening): each onset point resolves them from
