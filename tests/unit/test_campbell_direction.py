@@ -17,7 +17,6 @@ from __future__ import annotations
 import json
 import math
 from pathlib import Path
-from types import SimpleNamespace
 
 import numpy as np
 import pandas as pd
@@ -34,6 +33,7 @@ from gfbopt.rotor.tracking import (
     whirl_direction,
 )
 from tests.cli_inprocess import run_cli
+from tests.unit.test_campbell_tracks_stitch import _mode, _omega, _track
 
 ROOT = Path(__file__).resolve().parents[2]
 POSITIONS = (-0.035, 0.065)
@@ -42,18 +42,6 @@ FORWARD = np.array([-0.015, 0.015j, 1.0, -1j]) * 20
 BACKWARD = np.conj(FORWARD)
 
 
-def _mode(whirl_ratio: float, log_decrement: float, vector) -> SimpleNamespace:
-    s = complex(-log_decrement * whirl_ratio / (2 * math.pi), whirl_ratio)
-    return SimpleNamespace(eigenvalue=s, vector=vector, log_decrement=log_decrement,
-                           label="x", whirl_frequency_hz=math.nan)
-
-
-def _omega(rpm: float) -> float:
-    return rpm * math.pi / 30
-
-
-def _track(points) -> list:
-    return [(s, _mode(r, d, v), _omega(s)) for s, r, d, v in points]
 
 
 def test_the_direction_is_the_shape_rule():

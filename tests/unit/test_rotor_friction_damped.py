@@ -30,7 +30,8 @@ from gfbopt.transient.system import flux_residual, pressure_and_film, rigid_film
 
 sys.path.insert(0, str(Path(__file__).parent))
 from test_rotor_friction_transient import (CLEARANCE, GRID, MBAR, ROTORS, SPEED,  # noqa: E402
-                                           _kicked, _symmetric_system, _zero_friction)
+                                           _kicked, _symmetric_runs, _symmetric_system,
+                                           _zero_friction)
 
 
 def _damped(system, eta):
@@ -112,14 +113,7 @@ def symmetric():
     """(system, model, rotor run, one-bearing run) of the symmetric rotor with μ_f = 0.05,
     κ = 2 and η = 0.1: 80 revolutions, rkc at Δτ = 0.1 (both drivers), cylindrical kick
     0.03 at both journals (≈ 7 s)."""
-    system = _damped(_symmetric_system(), 0.1)
-    model, _ = build_model(rotor_input(system), SPEED, GRID)
-    duration, kick = 2 * math.pi * 80, 0.03
-    run = integrate_rotor(model, runs(1), duration, _kicked(model, kick=kick), method="rkc",
-                          time_step=0.1)
-    one = integrate_friction_orbits(model.bearings[0].tm, [MBAR], 80.0, kick=kick,
-                                    method="rkc", time_step=0.1)
-    return system, model, run, one
+    return _symmetric_runs(_damped(_symmetric_system(), 0.1))
 
 
 def test_symmetric_damped_rotor_reproduces_the_one_bearing_orbit(symmetric):

@@ -156,11 +156,9 @@ def _symmetric_system(mu=0.05):
         for b in system.bearings))
 
 
-@pytest.fixture(scope="module")
-def symmetric():
-    """(system, model, rotor run, one-bearing run): 80 revolutions, rkc at Δτ = 0.1 (both
-    drivers), cylindrical kick 0.03 at both journals."""
-    system = _symmetric_system()
+def _symmetric_runs(system):
+    """(system, model, rotor run, one-bearing run) of a symmetric rotor: 80 revolutions, rkc
+    at Δτ = 0.1 (both drivers), cylindrical kick 0.03 at both journals."""
     model, _ = build_model(rotor_input(system), SPEED, GRID)
     duration, kick = 2 * math.pi * 80, 0.03
     run = integrate_rotor(model, runs(1), duration, _kicked(model, kick=kick), method="rkc",
@@ -168,6 +166,12 @@ def symmetric():
     one = integrate_friction_orbits(model.bearings[0].tm, [MBAR], 80.0, kick=kick,
                                     method="rkc", time_step=0.1)
     return system, model, run, one
+
+
+@pytest.fixture(scope="module")
+def symmetric():
+    """The symmetric rotor's two runs (:func:`_symmetric_runs`) on bare friction."""
+    return _symmetric_runs(_symmetric_system())
 
 
 def test_symmetric_rotor_reproduces_the_one_bearing_friction_orbit(symmetric):
