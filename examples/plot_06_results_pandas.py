@@ -78,7 +78,7 @@ print(f"{len(store)} rows in the store")
 # ----------------------------------
 blower = ROOT / "results" / "rotor_blower"
 modes = pd.read_csv(blower / "modes.csv")
-print(modes[["label", "onset_speed_rpm", "whirl_frequency_hz", "status"]].to_string(index=False))
+print(modes[["label", "onset_speed_rpm", "whirl_frequency_hz", "onset_status"]].to_string(index=False))
 campbell = pd.read_csv(blower / "campbell.csv")
 fig, ax = plt.subplots(layout="constrained", figsize=(6.8, 4.4))
 for label, part in campbell.groupby("track_label"):
