@@ -66,3 +66,34 @@ def test_onset_speed_is_the_symmetric_rotors_onset(symmetric):
         con.onset_speed_rpm, rel=SECANT_TOLERANCE)
     assert flat.mode("forward conical").whirl_ratio == pytest.approx(con.whirl_ratio,
                                                                        rel=1e-6)
+
+
+def test_the_onset_is_the_same_root_to_1e_9(symmetric):
+    """The two searches stop differently (above: within SECANT_TOLERANCE), but they seek the
+    same root of the same function: ln μ_c(N) of the rotor's forward cylindrical mode and
+    ln(M̄c/M̄) of one bearing carrying half the mass, each solved by Brent to 1e-12 relative in
+    N inside the one-bearing search's bracket, agree to 1e-9 (the function agrees to 1e-9
+    at every speed, test above; so its root does where the slope is O(1) in ln N). Measured:
+    12,915.137814 rpm both, 1.4e-11 apart (blower-like rotor on Ruscitto bearings, 36x10)."""
+    import math
+
+    from scipy.optimize import brentq
+
+    b = symmetric.bearings[0]
+    line = SpeedLine(resolve_rotor(symmetric, GRID), local=False)
+
+    def rotor_g(speed):
+        cyl = [c for c in line.crossings(speed) if c.label == "forward cylindrical"]
+        return math.log(cyl[0].inertia_scale)
+
+    def one_g(speed):
+        one = stability(b.geometry, Rotor(MASS / 2), OperatingPoint(speed, LOAD),
+                        options=b.options, grid=GRID)
+        return math.log(one.critical_mass_parameter / one.mass_parameter)
+
+    guess = onset_speed(b.geometry, Rotor(MASS / 2), LOAD, SPAN, options=b.options,
+                        grid=GRID).onset_speed_rpm
+    low, high = guess * (1 - 2e-3), guess * (1 + 2e-3)
+    roots = [brentq(g, low, high, xtol=1e-12 * guess, rtol=1e-14) for g in (rotor_g, one_g)]
+    assert roots[0] == pytest.approx(roots[1], rel=1e-9)
+    assert roots[0] == pytest.approx(guess, rel=SECANT_TOLERANCE)
