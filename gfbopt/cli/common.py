@@ -54,6 +54,24 @@ def number(name: str) -> Callable[[str], float]:
     return parse
 
 
+def integer(name: str, minimum: Optional[int] = None) -> Callable[[str], int]:
+    """argparse type: an integer (``minimum`` or more when given), with the option's flag
+    ``--name`` in the error — the form of :func:`number` (``--name = 'abc': must be an
+    integer``), never argparse's own ``invalid int value``."""
+    name = f"--{name}"
+
+    def parse(text: str) -> int:
+        try:
+            value = int(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"{name} = {text!r}: must be an integer") \
+                from None
+        if minimum is not None and value < minimum:
+            raise argparse.ArgumentTypeError(f"{name} = {value}: must be >= {minimum}")
+        return value
+    return parse
+
+
 def add_operating_point(sub: argparse.ArgumentParser) -> None:
     """Options that define the bearing, its formulation and the operating point."""
     target = sub.add_mutually_exclusive_group()

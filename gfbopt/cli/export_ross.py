@@ -31,7 +31,7 @@ from pathlib import Path
 import numpy as np
 
 from ..errors import ParameterError
-from .common import add_grid, emit, grid_of, number
+from .common import add_grid, emit, grid_of, integer, number
 from .csv_context import context_options, sidecar_path, write_context
 
 #: default number of speeds and of whirl frequencies of a table
@@ -48,12 +48,12 @@ def register(subparsers) -> None:
                      "docs/formats/rotor_file.md)")
     sub.add_argument("--speed-range", type=number("speed-range"), nargs=2, required=True,
                      metavar=("LOW", "HIGH"), help="speeds of the table [rpm]")
-    sub.add_argument("--speeds", type=int, default=SPEEDS,
+    sub.add_argument("--speeds", type=integer("speeds"), default=SPEEDS,
                      help=f"number of speeds, evenly spaced (default {SPEEDS})")
     sub.add_argument("--frequency-range", type=number("frequency-range"), nargs=2,
                      default=None, metavar=("F_LOW", "F_HIGH"), help="whirl frequencies of "
                      "the table [Hz] (default: 0.1 × LOW/60 to 1.5 × HIGH/60)")
-    sub.add_argument("--frequencies", type=int, default=FREQUENCIES,
+    sub.add_argument("--frequencies", type=integer("frequencies"), default=FREQUENCIES,
                      help=f"number of whirl frequencies, evenly spaced (default {FREQUENCIES})")
     sub.add_argument("--out", required=True, metavar="DIR", help="folder for the files "
                      "(created if missing); beside each its context FILE.json (version, "

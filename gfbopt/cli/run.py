@@ -52,20 +52,9 @@ def _default_workers() -> int:
 
 def _positive(name: str):
     """argparse type: an integer >= 1, named by its flag ``--name`` in the error."""
-    import argparse
+    from .common import integer
 
-    name = f"--{name}"
-
-    def parse(text: str) -> int:
-        try:
-            value = int(text)
-        except ValueError:
-            raise argparse.ArgumentTypeError(f"{name} = {text!r}: must be an integer") \
-                from None
-        if value < 1:
-            raise argparse.ArgumentTypeError(f"{name} = {value}: must be >= 1")
-        return value
-    return parse
+    return integer(name, minimum=1)
 
 
 def register(subparsers) -> None:
