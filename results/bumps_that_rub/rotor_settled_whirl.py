@@ -2,12 +2,20 @@
 gfbopt.rotor.friction_onset.settled_whirl), 36 x 10:
 
 * the blower rotor (problems/rotors/blower_friction.toml) at speeds just above its stuck onset
-  and at its top speed 60,000 rpm, for three friction settings (μ_f, κ);
+  and at its top speed 60,000 rpm, for three friction settings (μ_f, κ) = (0.2, 1), (0.5, 2),
+  (0.9, 5). The largest is μ_f = 0.9, not 1: the model needs 0 ≤ μ_f < 1 (the slipping foil's
+  balance W = S(1 − μ_f) q; at μ_f ≥ 1 friction alone would carry the pressure), and gfbopt
+  refuses μ_f ≥ 1 at file read and in BearingModel;
 * the planted symmetric rotor of tests/verification/test_rotor_friction_orbit.py (two S = 3
   bearings, μ_f = 0.5, κ = 2, 20 N each, 15,000 rpm, M̄ = 4.145 per bearing) beside the
   one-bearing describing function it must reproduce.
 
-Run: python results/bumps_that_rub/rotor_settled_whirl.py  (writes rotor_settled_whirl.csv)
+Where the describing function finds no bounded orbit (bounded False) the row leaves
+settled_orbit_um, settled_whirl_hz and settled_min_film_um empty (NaN), as
+gfbopt.design.robustness does.
+
+Run: OMP_NUM_THREADS=1 PYTHONPATH=. python results/bumps_that_rub/rotor_settled_whirl.py
+(writes rotor_settled_whirl.csv next to this file)
 """
 import math
 import sys
@@ -30,12 +38,13 @@ GRID = Grid(36, 10)
 
 
 def rows_of(case, out, cpu):
-    return [{**case, "bearing": b, "settled_orbit_um": a,
-             "settled_whirl_hz": out.whirl_frequency_hz,
-             "settled_min_film_um": out.min_film_um,
+    bounded = bool(out.bounded)
+    return [{**case, "bearing": b, "settled_orbit_um": float(a) if bounded else math.nan,
+             "settled_whirl_hz": float(out.whirl_frequency_hz) if bounded else math.nan,
+             "settled_min_film_um": float(out.min_film_um) if bounded else math.nan,
              "small_motion_inertia_scale": float(out.small_motion_inertia_scale),
              "settled_inertia_scale": float(out.inertia_scale), "film_share": out.film_share,
-             "bounded": out.bounded, "friction_verdict": out.verdict,
+             "bounded": bounded, "friction_verdict": out.verdict,
              "friction_model": out.model, "cpu_s": cpu}
             for b, a in zip(out.bearings, out.amplitude_um)]
 
@@ -43,7 +52,7 @@ def rows_of(case, out, cpu):
 def main():
     rows = []
     blower = load_rotor(ROOT / "problems" / "rotors" / "blower_friction.toml")
-    for mu, kappa in ((0.2, 1.0), (0.5, 2.0), (1.0, 5.0)):
+    for mu, kappa in ((0.2, 1.0), (0.5, 2.0), (0.9, 5.0)):
         system = replace(blower, bearings=tuple(replace(b, options=replace(
             b.options, friction_coefficient=mu, friction_stiffness_ratio=kappa))
             for b in blower.bearings))
