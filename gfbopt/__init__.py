@@ -20,8 +20,8 @@ solver calls and given back after each (:mod:`gfbopt.threads`); the command line
 workers pin them for the whole process; nothing is set at import.
 """
 from .errors import ConvergenceError, GfboptError, ParameterError
-from .inputs import (DEFAULT_GRID, BearingGeometry, BearingModel, Grid, OperatingPoint, Rotor,
-                     load_bearing)
+from .inputs import (DEFAULT_GRID, BearingGeometry, BearingModel, Grid, OperatingPoint, Rotor)
+from .inputs.bearing_file import load_bearing_public as load_bearing
 from .inputs.grid import accepts_grid_strings as _accepts_grid_strings
 from .inputs.grid import as_grid
 from .static import SolverCache, StaticSolution, StaticSolver

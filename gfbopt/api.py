@@ -39,7 +39,7 @@ is first used.
 from __future__ import annotations
 
 from .doe import run_doe
-from .inputs import load_bearing
+from .inputs.bearing_file import load_bearing_public as load_bearing
 from .inputs.grid import accepts_grid_strings, as_grid
 from .inputs.rotor_system import load_rotor
 from .rotor import coefficient_table, onset_speed, stability

@@ -287,6 +287,11 @@ def _at_speed_lines(at: dict) -> list:
     (with its running clearance when heated), each mode's whirl and log decrement, and each
     mode's threshold (the inertia scale at which it is neutral)."""
     lines = [f"  at {at['speed_rpm']:,.0f} rpm (--speed-rpm):"]
+    failed = at.get("load_capacity_exceeded")
+    if "bearings" not in at:             # no equilibrium of the rotor there: say why, once
+        why = (failed or {}).get("message") or "no equilibrium at this speed"
+        lines.append(f"    no equilibrium: {why}")
+        return lines
     for b in at["bearings"]:
         if not _finite(b.get("eccentricity")):      # thermal runaway or closure: no state
             lines.append(f"    bearing {b['bearing']}: no equilibrium "

@@ -119,6 +119,16 @@ def read_bearing_file(path: str | Path) -> dict:
     return check_file(read_toml(path), BEARING_FILE_RUNNING, name)
 
 
+def load_bearing_public(path: str | Path) -> BearingGeometry:
+    """The bearing described in the TOML file ``path`` (``gfbopt.load_bearing``): as
+    :func:`load_bearing`, without its ``running`` switch — a file stating ``[journal]`` or
+    ``[thermal]`` is refused in one line: its answers need the running condition, which
+    ``gfbopt.stability``, ``onset_speed``, ``load_capacity`` and ``lift_off_speed`` apply when
+    given the file's path (a geometry loaded past the refusal would answer with the cold
+    clearance, silently)."""
+    return load_bearing(path)
+
+
 def load_bearing(path: str | Path, running: bool = False) -> BearingGeometry:
     """The bearing described in the TOML file ``path`` (``[bearing]``, SI units), carrying
     the options of its ``[model]`` table (``.options``; nothing stated when there is none)

@@ -65,7 +65,9 @@ class Case:
     def conventions(self) -> dict:
         """The options used, as every output states them."""
         built = {} if self.bearing.build is None else self.bearing.build.describe()
-        return {**self.options.to_dict(), "compliance": self.bearing.compliance,
+        # the compliance solved: S = 0 for the rigid foil (BearingGeometry.model's rule)
+        solved = 0.0 if self.options.foil == "rigid" else self.bearing.compliance
+        return {**self.options.to_dict(), "compliance": solved,
                 "length_ratio": self.bearing.length_ratio, "grid": str(self.grid),
                 "load_source": self.load_source, **built}
 

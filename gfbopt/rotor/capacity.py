@@ -299,7 +299,8 @@ def _slowest_speed(bearing) -> float:
 
 def _conventions(resolved, bearing, grid) -> dict:
     built = {} if bearing.build is None else bearing.build.describe()
-    return {**resolved.to_dict(), "compliance": bearing.compliance, "grid": str(grid), **built}
+    compliance = 0.0 if resolved.foil == "rigid" else bearing.compliance   # the S solved
+    return {**resolved.to_dict(), "compliance": compliance, "grid": str(grid), **built}
 
 
 def _first_state(line: _Curve, start: float, factor: float, end: float) -> tuple:

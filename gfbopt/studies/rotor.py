@@ -190,6 +190,10 @@ def _notes(result, plain, out: dict, top: float) -> list:
     notes.append(f"Campbell diagram: least log decrement {least['log_decrement']:.3g} "
                  f"({least['track_label']}, {least['speed_rpm']:,.0f} rpm); "
                  f"{int(np.isfinite(result.campbell.table['log_decrement']).sum())} eigenvalues.")
+    for d in result.campbell.dropped:      # a root that continues no track: stated, not drawn
+        notes.append(f"Campbell diagram: a root of {d['whirl_frequency_hz']:,.1f} Hz "
+                     f"({d['shape_label']}, log decrement {d['log_decrement']:.3g}) at "
+                     f"{d['speed_rpm']:,.0f} rpm is left out of the diagram: {d['reason']}.")
     return notes
 
 
