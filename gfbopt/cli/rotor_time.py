@@ -330,7 +330,7 @@ def handle(args) -> int:
                                 else args.window_revolutions),
             subsync_threshold_um=args.subsync_threshold_um)
     out = result.to_dict()
-    options = context_options(args, **result.settings)
+    options = _context(args, system, grid, profile, result.settings)
     if args.csv:        # the JSON is the same with or without --csv, plus this list
         folder = Path(args.csv)
         folder.mkdir(parents=True, exist_ok=True)
@@ -340,6 +340,34 @@ def handle(args) -> int:
         _figures(result, Path(args.plot))
     _emit(out, args.json, options, result)
     return 0 if result.success else 1
+
+
+#: the settings of a run (gfbopt.transient.rotor_analysis.run_profile) that are its options;
+#: the rest (the running line, its fixed points, solves and misses, where a ramp ended) are
+#: results, in the JSON and the tables, not in the provenance
+RUN_OPTIONS = ("method", "perturbation", "kick", "reference_whirl_ratio", "contact_film",
+               "foil_travel_m", "sample_every_rad", "max_step_rad", "running_step_rpm")
+#: the settings that state the model (into the conventions block, beside each bearing's)
+MODEL_SETTINGS = ("clearance_model", "running_interpolation", "bump_friction")
+
+
+def _context(args, system, grid, profile, settings: dict) -> dict:
+    """The provenance options of the JSON and of every CSV's context file, built as
+    ``gfbopt rotor --speed-range`` builds them (:mod:`gfbopt.cli.rotor`): the command, the
+    rotor file, the grid, the run's options as asked and the conventions block (each
+    bearing's film, foil, friction, hardening and thermal model)."""
+    from ..rotor.supports import resolve_rotor
+
+    conventions = resolve_rotor(system, grid).conventions()
+    conventions.update({k: settings[k] for k in MODEL_SETTINGS if k in settings})
+    asked = {"speed_profile": profile.to_dict(), "time_step": args.time_step,
+             "stages": None if args.stages is None else int(args.stages),
+             "window_revolutions": (WINDOW_REVOLUTIONS if args.window_revolutions is None
+                                    else args.window_revolutions),
+             "subsync_threshold_um": args.subsync_threshold_um,
+             **{k: settings[k] for k in RUN_OPTIONS if k in settings}}
+    return context_options(args, command="rotor", rotor_file=_rotor_path(args),
+                           grid=str(grid), **asked, conventions=conventions)
 
 
 def _figures(result, folder: Path) -> None:
