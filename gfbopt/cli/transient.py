@@ -323,8 +323,12 @@ def run_orbit(args) -> int:
                         rotor_mass_kg=args.rotor_mass_kg)
     out = {**settings, **orbit.to_dict(0), "eccentricity": sol.eccentricity,
            "load": sol.load, "attitude_angle_deg": sol.attitude_angle_deg}
-    out.update(_running(point))                  # the clearance at speed (RUNNING_FIELDS)
-    context = context_options(args, command="orbit", **settings)
+    running = _running(point)                    # the clearance at speed (RUNNING_FIELDS)
+    out.update(running)
+    # its figures in the context too, as gfbopt stability's (the clearance model and the
+    # running clearance the orbit was integrated at), without the nested "running" record
+    context = context_options(args, command="orbit", **settings,
+                              **{k: v for k, v in running.items() if k != "running"})
     if args.csv:                    # with its context FILE.csv.json (gfbopt.cli.csv_context)
         out["csv"] = str(write_csv(table, args.csv, context, float_format="%.8g"))
     emit(out, args.json, lambda: _with_running(

@@ -63,3 +63,22 @@ def test_friction_orbit_context_names_the_friction_model(tmp_path):
         assert b["friction_coefficient"] == 0.5 and b["friction_stiffness_ratio"] == 2.0
         assert b["thermal_model"] == "isothermal, cold clearance"
     assert "bump friction" in options["conventions"]["bump_friction"]
+
+
+def test_heated_orbit_context_carries_the_running_point(tmp_path, capsys):
+    """gfbopt orbit on a heated bearing file: its CSV context has the clearance model and the
+    running point of the JSON (as gfbopt stability's context has), the same values."""
+    csv = tmp_path / "X.csv"
+    assert main(["orbit", "--bearing", "problems/bearings/ruscitto_thermal.toml",
+                 "--speed-rpm", "45000", "--load-newton", "20", "--rotor-mass-kg", "0.2",
+                 "--grid", "24x8", "--revolutions", "5", "--json", "--csv", str(csv)]) == 0
+    out = json.loads(capsys.readouterr().out)
+    options = _options(tmp_path / "X.csv.json")
+    assert options["command"] == "orbit"
+    assert options["thermal_model"] == out["thermal_model"] == "heat balance + growth"
+    # 20 µm cold, grown 1.05 µm (centrifugal) and 2.27 µm (thermal) at 45,000 rpm: 16.67 µm
+    assert options["running_clearance_um"] == pytest.approx(16.674, abs=0.01)
+    for key in ("cold_clearance_um", "running_clearance_um", "centrifugal_growth_um",
+                "thermal_growth_um", "film_temperature_c", "viscosity_pa_s"):
+        assert options[key] == out[key], key
+    assert "running" not in options            # the nested record stays in the JSON
