@@ -39,7 +39,7 @@ from pathlib import Path
 from ..errors import ParameterError
 from ..inputs.grid import DEFAULT_GRID
 from . import rotor_time
-from .common import emit, number
+from .common import emit, integer, number
 from .csv_context import HELP as CSV_HELP, context_options, write_csv
 from .model_text import model_words
 
@@ -57,7 +57,7 @@ def register(subparsers) -> None:
                      "[rpm]")
     sub.add_argument("--campbell", action="store_true", help="Campbell diagram over the "
                      "range (full-system eigenvalues)")
-    sub.add_argument("--campbell-speeds", type=int, default=20,
+    sub.add_argument("--campbell-speeds", type=integer("campbell-speeds"), default=20,
                      help="speeds of the Campbell diagram (default 20)")
     sub.add_argument("--imbalance-response", action="store_true",
                      help="linear imbalance response over the range (needs [[imbalance]])")
