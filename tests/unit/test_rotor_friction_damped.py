@@ -30,7 +30,8 @@ from gfbopt.transient.system import flux_residual, pressure_and_film, rigid_film
 
 sys.path.insert(0, str(Path(__file__).parent))
 from test_rotor_friction_transient import (CLEARANCE, GRID, MBAR, ROTORS, SPEED,  # noqa: E402
-                                           _kicked, _symmetric_runs, _symmetric_system,
+                                           _kicked, _settles_as_predicted, _symmetric_runs,
+                                           _symmetric_system,
                                            _zero_friction)
 
 
@@ -151,15 +152,7 @@ def test_symmetric_damped_rotor_settles_where_the_describing_function_says(symme
     # same rotor and grid: 1.003 µm at γ = 0.3786 (1.108 µm without η); the transient
     # settles 2.2 % below it (0.981 µm) at γ within 0.1 % — the one-bearing damped
     # transient's own agreement (its test: 5 %, 1 %), asserted to the same
-    from gfbopt.rotor.friction_onset import settled_whirl
-    from gfbopt.rotor.supports import resolve_rotor
-
-    system, _, run, _ = symmetric
-    predicted = settled_whirl(resolve_rotor(system, GRID), SPEED)
-    assert predicted.bounded and predicted.label == "forward cylindrical"
-    for out, amp in zip(bearing_outcomes(run), predicted.amplitude_um):
-        assert out["amplitude_um"] == pytest.approx(amp, rel=0.05)
-        assert out["whirl_ratio"] == pytest.approx(predicted.whirl_ratio, rel=0.01)
+    _settles_as_predicted(symmetric)
 
 
 def _local(system, eta):
