@@ -15,7 +15,6 @@ command's output is today's, unchanged.
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
 from typing import Callable, Optional
 
 from ..errors import ParameterError
@@ -26,16 +25,6 @@ from ..thermal.running import HEAT_BALANCE, ISOTHERMAL, RunningPoint
 RUNNING_FIELDS = ("thermal_model", "cold_clearance_um", "running_clearance_um",
                   "centrifugal_growth_um", "thermal_growth_um", "film_temperature_c",
                   "viscosity_pa_s", "running")
-
-
-@dataclass(frozen=True)
-class _Formulation:
-    """The command's model keywords, as a FilmCase's ``options`` (``model_kwargs()``)."""
-
-    kwargs: tuple
-
-    def model_kwargs(self) -> dict:
-        return dict(self.kwargs)
 
 
 class _OneSolver:
@@ -78,8 +67,7 @@ def running_operating_point(args, ipopt_options: Optional[dict] = None,
         return None
     from ..inputs.options import merge_options
     from ..static import solver_for
-    from ..thermal.bearing import FilmCase, FilmDrag, warm_bearing
-    from ..thermal.running import running_point, without_heat
+    from ..thermal.bearing import FilmCase
     from .common import OperatingPoint, _refuse_ignored_options, grid_of
     from .si import MAX_FILM, stated_options
 
@@ -110,21 +98,14 @@ def running_operating_point(args, ipopt_options: Optional[dict] = None,
     solver = solver_for(cold_model, grid, ipopt_options=ipopt_options)
     load_newton = (args.load_newton if args.load_newton is not None else
                    None if args.load is None else bearing.load_newton(args.load))
-    if spec.model_name == HEAT_BALANCE:
-        from ..rotor.running_bearing import coarse_start
+    from ..rotor.running_bearing import Formulation, warm_under_load
 
-        cache = _OneSolver(grid, solver, cold_model)
-        case = FilmCase(bearing, _Formulation(tuple(sorted(kwargs.items()))), grid, cache,
-                        load_newton)
-        point = running_point(spec, speed, FilmDrag(case, start=coarse_start(grid, cache)))
-    else:
-        point = without_heat(spec, speed)
-    if not point.converged:
+    case = FilmCase(bearing, Formulation(tuple(sorted(kwargs.items()))), grid,
+                    _OneSolver(grid, solver, cold_model), load_newton)
+    found = warm_under_load(spec, case, speed)
+    point, warm = found.point, found.warm
+    if warm is None:
         return None, point, solver
-    try:
-        warm = warm_bearing(bearing, point)
-    except ParameterError as exc:
-        return None, _unanalysable(point, exc), solver
     extra = dict(geometry=warm, speed_rpm=speed)
     if args.load_newton is not None:
         extra.update(load=warm.nondimensional_load(args.load_newton),
@@ -142,14 +123,6 @@ def _model(bearing, speed, kwargs, args):
     if args.top_foil_coefficient is not None:
         model = model.replace(top_foil_coefficient=args.top_foil_coefficient)
     return model
-
-
-def _unanalysable(point: RunningPoint, exc) -> RunningPoint:
-    import dataclasses
-
-    return dataclasses.replace(point, status="runaway", message=(
-        f"the running clearance {point.running_clearance * 1e6:.3g} µm cannot be analysed "
-        f"({exc})"))
 
 
 def running_fields(point: RunningPoint) -> dict:

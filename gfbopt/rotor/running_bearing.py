@@ -44,6 +44,51 @@ RUNNING_KEYS = ("thermal_model", "running_clearance_um", "centrifugal_growth_um"
                 "thermal_growth_um", "film_temperature_c", "viscosity_pa_s")
 
 
+@dataclasses.dataclass(frozen=True)
+class Formulation:
+    """Resolved model keywords as a :class:`~gfbopt.thermal.bearing.FilmCase`'s ``options``
+    (``model_kwargs()``), for a route that holds keywords rather than ModelOptions."""
+
+    kwargs: tuple
+
+    def model_kwargs(self) -> dict:
+        return dict(self.kwargs)
+
+
+@dataclasses.dataclass(frozen=True)
+class WarmPoint:
+    """The running condition under a load: the warm bearing (None: no running state), the
+    running point (its status and message say why there is none), the fixed point's static
+    solves and its last film solution (a start for the next solve; None without one)."""
+
+    warm: Optional[object]
+    point: RunningPoint
+    solves: int
+    last: object = None
+
+
+def warm_under_load(spec: RunningSpec, film: FilmCase, speed_rpm: float,
+                    start=None) -> WarmPoint:
+    """The one step every route at the running condition takes: the fixed point of the heat
+    balance under ``film.load_newton`` at ``speed_rpm`` (:func:`running_point` with a
+    :class:`FilmDrag` from ``start``, default :func:`coarse_start`), the centrifugal growth
+    alone without ``[thermal]``, then :func:`warm_bearing`; a running clearance the bearing
+    cannot be analysed at is a point without a state ('runaway', with the reason)."""
+    if spec.model_name == HEAT_BALANCE:
+        drag = FilmDrag(film, start=start or coarse_start(film.grid, film.cache))
+        point, solves, last = running_point(spec, speed_rpm, drag), drag.solves, drag.last
+    else:
+        point, solves, last = without_heat(spec, speed_rpm), 0, None
+    if not point.converged:
+        return WarmPoint(None, point, solves, last)
+    try:
+        return WarmPoint(warm_bearing(film.bearing, point), point, solves, last)
+    except ParameterError as exc:
+        return WarmPoint(None, dataclasses.replace(point, status="runaway", message=(
+            f"the running clearance {point.running_clearance * 1e6:.3g} µm cannot be "
+            f"analysed ({exc})")), solves, last)
+
+
 def _case(bearing, rotor, load_newton, options, grid, cache):
     from ..rotor.analysis import resolve_case
 
@@ -66,19 +111,15 @@ def running_stability(bearing, spec: RunningSpec, rotor: Rotor,
     if spec.model_name == CENTRIFUGAL and not cold.converged:    # closed form, no solve
         return None, cold, bearing
     case, film = _case(bearing, rotor, operating_point.load_newton, options, grid, cache)
-    drag = FilmDrag(film, start=coarse_start(case.grid, case.cache))
-    point = running_point(spec, operating_point.speed_rpm, drag)
+    found = warm_under_load(spec, film, operating_point.speed_rpm)
+    point, warm = found.point, found.warm
     if not point.converged:            # where it happens: bracketed from rest
-        found = limit_on_line(spec, film, 0.0, operating_point.speed_rpm)
-        return None, dataclasses.replace(point, message=found["message"]), bearing
-    try:
-        warm = warm_bearing(bearing, point)
-    except ParameterError as exc:
-        return None, dataclasses.replace(point, status="runaway", message=(
-            f"the running clearance {point.running_clearance * 1e6:.3g} µm cannot be "
-            f"analysed ({exc})")), bearing
+        limit = limit_on_line(spec, film, 0.0, operating_point.speed_rpm)
+        return None, dataclasses.replace(point, message=limit["message"]), bearing
+    if warm is None:                   # a running clearance that cannot be analysed
+        return None, point, bearing
     result = stability(warm, rotor, operating_point, options=case.options, grid=case.grid,
-                       cache=case.cache, initial=drag.last)
+                       cache=case.cache, initial=found.last)
     return result, point, warm
 
 
@@ -298,25 +339,11 @@ class _Conditions:
     def __call__(self, speed, load, near):
         from ..rotor.capacity import Condition
 
-        initial = None
-        if self.spec.model_name == HEAT_BALANCE:
-            film = FilmCase(self.bearing, self.options, self.grid, self.cache, load)
-            start = ((lambda model, solver, w: near) if near is not None
-                     else coarse_start(self.grid, self.cache))
-            drag = FilmDrag(film, start=start)
-            point = running_point(self.spec, speed, drag)
-            self.solves += drag.solves
-            initial = drag.last
-        else:
-            point = without_heat(self.spec, speed)
-        warm = None
-        if point.converged:
-            try:
-                warm = warm_bearing(self.bearing, point)
-            except ParameterError as exc:
-                point = dataclasses.replace(point, status="runaway", message=(
-                    f"the running clearance {point.running_clearance * 1e6:.3g} µm cannot "
-                    f"be analysed ({exc})"))
+        film = FilmCase(self.bearing, self.options, self.grid, self.cache, load)
+        found = warm_under_load(self.spec, film, speed, start=(
+            (lambda model, solver, w: near) if near is not None else None))
+        self.solves += found.solves
+        point, warm, initial = found.point, found.warm, found.last
         self.points[(speed, load)] = point
         d = point.to_dict()
         return Condition(warm, {k: d[k] for k in CURVE_COLUMNS}, initial if warm else None,

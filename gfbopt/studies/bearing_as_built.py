@@ -77,7 +77,8 @@ def drag_point(bearing, speed_rpm: float, load_newton: float, grid, options,
     point's columns."""
     if running is not None:
         from ..inputs import DEFAULT_GRID
-        from .running_points import RUNNING_COLUMNS, Formulation, running_static_row
+        from ..rotor.running_bearing import Formulation
+        from .running_points import RUNNING_COLUMNS, running_static_row
 
         row = running_static_row(bearing, running, Formulation(tuple(sorted(
             options.model_kwargs().items()))), speed_rpm, load_newton,

@@ -22,8 +22,6 @@ from __future__ import annotations
 
 import math
 import time
-from dataclasses import dataclass
-
 from ..errors import ParameterError
 
 #: the clearance at speed's columns of a row (glossary: gfbopt/terms/thermal.py), from the
@@ -120,60 +118,41 @@ def running_notes(thermal_model: str, bearing_file: str) -> list:
             "frozen search's figures are not the running answer).")]
 
 
-@dataclass(frozen=True)
-class Formulation:
-    """A point's resolved model keywords, as a :class:`~gfbopt.thermal.bearing.FilmCase`'s
-    ``options`` (``model_kwargs()``)."""
-
-    kwargs: tuple
-
-    def model_kwargs(self) -> dict:
-        return dict(self.kwargs)
-
-
-def model_keywords(bearing, opts: dict) -> Formulation:
+def model_keywords(bearing, opts: dict):
     """The keywords of :meth:`BearingGeometry.model` that
     :func:`gfbopt.analyses.bearing_model` resolves from a study point's ``opts`` (the
     variant's and the study's keys over the bearing file's ``[model]``, then the defaults;
     ``subambient`` and ``compression_only`` as stated)."""
     named = ("film", "seam_angle_deg", "foil", "deflection_law", "loss_factor")
     resolved = stated_options(bearing, **{key: opts.get(key) for key in named})
+    from ..rotor.running_bearing import Formulation
+
     extra = {key: value for key, value in opts.items() if key not in named}
     return Formulation(tuple(sorted({**resolved.model_kwargs(), **extra}.items())))
 
 
-def warm_at(bearing, running, formulation: Formulation, speed_rpm: float,
+def warm_at(bearing, running, formulation, speed_rpm: float,
             load_newton: float, *, grid, cache):
     """(the warm bearing or None, the running point's columns, why there is none): the fixed
     point under ``load_newton`` at ``speed_rpm`` as ``gfbopt static/linear`` solve it
     (:func:`gfbopt.thermal.running.running_point`, :class:`~gfbopt.thermal.bearing.FilmDrag`
     started by :func:`~gfbopt.rotor.running_bearing.coarse_start`), the centrifugal growth
     alone without ``[thermal]``."""
-    from ..rotor.running_bearing import coarse_start
-    from ..thermal.bearing import FilmCase, FilmDrag, warm_bearing
-    from ..thermal.running import HEAT_BALANCE, running_point, without_heat
+    from ..rotor.running_bearing import warm_under_load
+    from ..thermal.bearing import FilmCase
 
-    solves = 0
-    if running.model_name == HEAT_BALANCE:
-        drag = FilmDrag(FilmCase(bearing, formulation, grid, cache, load_newton),
-                        start=coarse_start(grid, cache))
-        point = running_point(running, speed_rpm, drag)
-        solves = drag.solves
-    else:
-        point = without_heat(running, speed_rpm)
-    d = point.to_dict()
-    found = {"thermal_model": running.model_name,
-             **{key: d[key] for key in RUNNING_COLUMNS[1:]}, "thermal_static_solves": solves}
-    if not point.converged:
-        return None, found, point.message or "no running state"
-    try:
-        return warm_bearing(bearing, point), found, ""
-    except ParameterError as exc:
-        return None, found, (f"the running clearance {point.running_clearance * 1e6:.3g} µm "
-                             f"cannot be analysed ({exc})")
+    found = warm_under_load(running, FilmCase(bearing, formulation, grid, cache, load_newton),
+                            speed_rpm)
+    d = found.point.to_dict()
+    columns = {"thermal_model": running.model_name,
+               **{key: d[key] for key in RUNNING_COLUMNS[1:]},
+               "thermal_static_solves": found.solves}
+    if found.warm is None:
+        return None, columns, found.point.message or "no running state"
+    return found.warm, columns, ""
 
 
-def running_static_row(bearing, running, formulation: Formulation, speed_rpm: float,
+def running_static_row(bearing, running, formulation, speed_rpm: float,
                        load_newton: float, *, grid, cache=None) -> dict:
     """One row of ``load_sweep`` at the running condition of (speed, load): the static row
     of the warm bearing (:func:`gfbopt.analyses.static_row` with the geometry: h_min in µm
@@ -203,7 +182,7 @@ def running_static_row(bearing, running, formulation: Formulation, speed_rpm: fl
             "wall_time_s": time.perf_counter() - t0}
 
 
-def running_coefficient_rows(bearing, running, formulation: Formulation, speed_rpm: float,
+def running_coefficient_rows(bearing, running, formulation, speed_rpm: float,
                              load_newton: float, *, whirl_ratios, grid,
                              cache=None) -> list:
     """The rows of ``linear_coefficients`` at the running condition of (speed, load): K and
