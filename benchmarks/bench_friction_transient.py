@@ -1,5 +1,5 @@
 """Cost per revolution of the one-bearing transient with the bumps' friction against without it
-(issue 29 target: ≤ 2×).  CPU seconds (time.process_time), A/B interleaved, one BLAS thread.
+(target: ≤ 2×).  CPU seconds (time.process_time), A/B interleaved, one BLAS thread.
 
 The same bearing and grid both ways (Ruscitto, 15,000 rpm, 60 N, S = 1, κ = 2; friction run
 μ_f = 0.05, the bare run μ_f = 0), the same fixed step Δτ, the same rotor M̄ = 8 and kick, so the

@@ -1,7 +1,7 @@
 """A slow run-up of the blower, cold (blower.toml) against heated (blower_thermal.toml: each
 bearing on its running line, quasi-steady in temperature): the 1× peak and the speed where
-the subsynchronous line appears, per bearing, and the CPU of each (issue 28, item iii:
-reported, no direction asserted).
+the subsynchronous line appears, per bearing, and the CPU of each (reported, no
+direction asserted).
 
     python benchmarks/bench_heated_rampup.py --grid 36x10 --start 8000 --end 16000 --rate 10000
 """

@@ -1,6 +1,6 @@
 """The main job, ``gfbopt run problems/rotor_bearing_design.toml --workers 2``, end to end:
 wall and CPU time, the share of each stage, evaluations per second and the optimiser's own
-overhead (issue 30: the converged main job ≤ 60 s on 2 idle cores, the optimiser ≤ 2 % of
+overhead (targets: the converged main job ≤ 60 s on 2 idle cores, the optimiser ≤ 2 % of
 an evaluation).
 
 Each run is a fresh process (``--child``) that runs the real command line in-process

@@ -1,4 +1,4 @@
-"""The process pool's driver cost and the store's row conversion, before and after (issue 26).
+"""The process pool's driver cost and the store's row conversion, before and after.
 
 **Driver** (``stream``): ``--sizes`` points of a cheap numpy analysis (bench_dask's short
 bearing, about 0.3 ms a point) in tasks of 4 points (``run_doe``'s default chunk) streamed

@@ -1,6 +1,6 @@
 """The onset of every mode of a flexible rotor (20 Timoshenko shaft elements, condensed on its
 bearings by gfbopt.rotor.condensed) against the rigid rotor of the same mass and inertias, in
-one run: CPU(flexible) / CPU(rigid), target ≤ 1.5 (issue 27).
+one run: CPU(flexible) / CPU(rigid), target ≤ 1.5.
 
 Case: problems/rotors/flexible_rotor.toml over 6,000–60,000 rpm at 72 × 20 (no guide) and
 its rigid twin (the shaft's equivalent body, every position re-measured from its centre of

@@ -1,5 +1,5 @@
-"""The two-bearing rotor's onset search with each bearing at its running condition (issue 28,
-gfbopt.rotor.running) against the isothermal one: the blower (problems/rotors/blower.toml)
+"""The two-bearing rotor's onset search with each bearing at its running condition
+(gfbopt.rotor.running) against the isothermal one: the blower (problems/rotors/blower.toml)
 and its heated twin (blower_thermal.toml, the Ruscitto bearing's [journal] and [thermal]),
 5,000–60,000 rpm, CPU seconds (time.process_time), single-threaded BLAS, A/B interleaved.
 

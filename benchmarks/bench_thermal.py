@@ -1,5 +1,5 @@
 """Cost of the clearance at speed: static solves per running point, and the onset search
-with growth and heat against the isothermal one (issue 28 targets: ≤ 3 warm static solves
+with growth and heat against the isothermal one (targets: ≤ 3 warm static solves
 per operating point; the onset ≤ 2× the isothermal search at 144 × 36).
 
 Case: the Ruscitto et al. (1978) bearing, isothermal (problems/bearings/ruscitto.toml) and

@@ -7,7 +7,7 @@ evaluated as the search evaluates it (gfbopt.design.rotor_objectives.evaluate_ro
 writes results/rotor_bearing_design_reference/grid.csv (one row per design, appended chunk by chunk:
 a killed run continues where it stopped) and reference.json (the commands, the space, the best
 feasible design of everything stored).  Above three variables a grid is coarse, so the
-reference adds many seeds of large-budget searches ("many seeds and a large budget", issue 30):
+reference adds many seeds of large-budget searches (many seeds, a large budget):
 
     nice -n 10 python benchmarks/rotor_design_reference.py --search nsga2 --budget 400 \
         --population 16 --seeds 0 1 2 3

@@ -1,5 +1,5 @@
 """Results study: the Ruscitto bearing with and without growth and heating, over speed and
-cooling flow (issue 28) → results/clearance_at_speed/ (table.csv, summary.json, figure).
+cooling flow → results/clearance_at_speed/ (table.csv, summary.json, figure).
 
 Bearing: problems/bearings/ruscitto_thermal.toml (illustrative steel journal and
 conductances; its [bearing] and [model] are problems/bearings/ruscitto.toml's), 20 N and

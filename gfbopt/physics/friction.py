@@ -3,7 +3,8 @@
 A spring of stiffness k in series with a Coulomb slider of slip force F_s.  The bump keeps its
 own elastic stiffness; this element acts beside it (in parallel), so with F_s = 0 (or k = 0)
 the foundation is today's elastic one and with the slider stuck the stiffness is the bump's
-plus k (``docs/PHYSICS.md``; ``/work/shared/DESIGN_NOTES.md``, "Dry friction in a bump").
+plus k (``docs/PHYSICS.md`` §7a; the spring–slider element of Iwan, W. D. (1966), J. Appl.
+Mech. 33(4):893–900).
 
 State: the slider position z.  Under a displacement x the spring carries f = k (x − z) and
 |f| ≤ F_s; the slider moves only when the spring would carry more, so

@@ -1,5 +1,5 @@
 """Glossary entries of a rotor's run-up or coast-down (where it ended, what was asked) and of
-a heated rotor's (gfbopt.transient.rotor_running, rotor_heated; issue 28): the running line
+a heated rotor's (gfbopt.transient.rotor_running, rotor_heated; the clearance at speed): the running line
 each bearing follows, quasi-steady in temperature.
 Merged into :data:`gfbopt.glossary.GLOSSARY` once listed in :data:`gfbopt.terms._PARTS`.  The
 per-speed columns of ``running_line`` (running_clearance_um, film_temperature_c,

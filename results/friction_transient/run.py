@@ -7,7 +7,7 @@ and the transient answer of each row):
   from the equilibrium (kick 0.03), 80 revolutions, at 24 × 8 (also with Δτ halved, and with
   RKC) and 36 × 10;
 * contact: the shipped bearing at 30,000 rpm, 20 N, μ_f = 0.2, κ = 1, M̄ = 1.3 × the stuck onset;
-* thin margin (helper H6's case): S = 3, κ = 2, μ_f = 0.5 and 0.9, 15,000 rpm, 20 N, M̄ = 4.2
+* thin margin: S = 3, κ = 2, μ_f = 0.5 and 0.9, 15,000 rpm, 20 N, M̄ = 4.2
   (0.13 % above the stuck onset at 24 × 8), kick 0.08, 300 revolutions.
 
     OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1 python results/friction_transient/run.py

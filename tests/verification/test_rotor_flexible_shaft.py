@@ -1,4 +1,4 @@
-"""The two-bearing analyses on H3's flexible shaft (gfbopt.rotor.shaft, condensed by
+"""The two-bearing analyses on the flexible shaft (gfbopt.rotor.shaft, condensed by
 gfbopt.rotor.condensed): a very stiff shaft (Young's modulus × 1e4) is the rigid rotor of the
 same mass and inertias (problems/rotors/flexible_rotor.toml's shaft and disks; the rigid
 rotor has the shaft's equivalent body and every position re-measured from its centre of

@@ -1,7 +1,7 @@
 """The rotor's settled whirl above its small-motion onset when its bumps rub (issue 29,
 gfbopt.rotor.friction_onset) against the one-bearing describing function it generalises.
 
-Planted case (H6's bounded one-bearing case, tests/unit/test_bump_friction_linear.py): the
+Planted case (the bounded one-bearing case of tests/unit/test_bump_friction_linear.py): the
 Ruscitto bearing with bump compliance S = 3 (bump thickness solved for it), μ_f = 0.5, κ = 2,
 20 N per bearing, 15,000 rpm, 36 × 10.  A symmetric rotor (bearings at ±50 mm, no weight, a
 40 N side load at its centre of gravity, no gyroscopics) whose cylindrical mode carries half
@@ -63,7 +63,7 @@ def test_symmetric_rotor_settles_on_the_one_bearing_orbit(planted):
     lin = states.states[0].linearisation
     assert lin.static.model.compliance == pytest.approx(3.0, rel=1e-12)
     one = settled_amplitude(lin, 4.145, samples=10, smallest=1e-2, xtol=1e-4)
-    assert one.bounded and 0.065 < one.amplitude < 0.11           # H6's bracket
+    assert one.bounded and 0.065 < one.amplitude < 0.11           # the one-bearing case's bracket
     orbit = settled_whirl(rotor, SPEED, states=states)
     assert orbit.bounded and orbit.converged and orbit.label == "forward cylindrical"
     assert orbit.small_motion_inertia_scale == pytest.approx(one.small_motion_mass / 4.145,
