@@ -221,7 +221,9 @@ for _name, _entry in {
     "whirl_frequency_hz": ("Hz", "whirl frequency at the onset of instability"),
     "stable_over_range": ("flag", "stable at every speed of the range searched"),
     "unstable_at_lower_end": ("flag", "already unstable at the lowest speed searched"),
-    "smallest_margin": ("-", "smallest M_crit/M − 1 over the speeds evaluated"),
+    "smallest_margin": ("-", "smallest M_crit/M − 1 of the onset search, over its speeds up "
+                        "to the first scan speed above the onset (all of them when it finds "
+                        "none)"),
     "evaluations": ("-", "linear-threshold computations of the onset search"),
     "output": ("text", "the study output whose sensitivity is given"),
     "input": ("text", "the sampled input"),
@@ -245,8 +247,6 @@ for _name, _entry in {
                      "lowest speed, unstable where its shape first appears (a rotor's mode "
                      "first found inside the range), stable over the range, load exceeds "
                      "capacity, failed"),
-    "smallest_mass_margin": ("-", "smallest M_crit/M − 1 over the speeds evaluated by the "
-                             "onset search"),
     "critical_mass_kg_at_low_speed": ("kg", "critical rotor mass per bearing at the lowest "
                                       "speed of the range (0: unstable at every mass)"),
     "loss_factor": ("-", "structural loss factor η of the bump foundation"),

@@ -187,7 +187,8 @@ def running_onset(bearing, spec: RunningSpec, rotor: Rotor, load_newton: Optiona
     """The onset of whirl with the clearance at speed (module docstring): the onset's dict
     (:meth:`~gfbopt.rotor.onset.OnsetResult.to_dict`) with ``onset_speed_rpm`` at the running
     condition, ``frozen_onset_speed_rpm`` (the frozen bearing's), ``running`` (the running
-    point there) and ``thermal_evaluations``/``thermal_static_solves``.  A thermal runaway
+    point there) and ``thermal_evaluations``/``thermal_static_solves``; ``smallest_margin``
+    is null (the frozen search's margins are not the running answer's).  A thermal runaway
     or closure before the onset is the answer instead ("thermal runaway from N rpm")."""
     from ..rotor import onset_speed
 
@@ -206,7 +207,11 @@ def running_onset(bearing, spec: RunningSpec, rotor: Rotor, load_newton: Optiona
     frozen = onset_speed(warm_bearing(bearing, frozen_point), rotor, load_newton, speed_range,
                          options=case.options, grid=case.grid, cache=case.cache,
                          progress=progress)
-    out = {**frozen.to_dict(), "frozen_onset_speed_rpm": frozen.onset_speed_rpm,
+    # the frozen search's smallest margin is not the running answer's (null, as the study
+    # rows leave it empty); its scan rows stay, under the frozen onset they belong to
+    out = {**frozen.to_dict(), "smallest_margin": math.nan,
+           "smallest_margin_speed_rpm": math.nan,
+           "frozen_onset_speed_rpm": frozen.onset_speed_rpm,
            "frozen_at_rpm": guess, "running": frozen_point.to_dict(), **margin.stats()}
     if not math.isfinite(frozen.onset_speed_rpm):
         out["answer"] = f"{frozen.answer} (the running condition frozen at {guess:.6g} rpm)"

@@ -53,7 +53,7 @@ def running_onset_row(bearing, running, rotor_mass_kg: float, load_newton: float
     :func:`~gfbopt.rotor.running_bearing.running_onset` (searched from the geometric mean of
     the range, as the command does without ``--speed-rpm``), the running point at the onset
     (RUNNING_COLUMNS) and the search's figures (SEARCH_COLUMNS).  The frozen search's
-    margins are not the running answer: ``smallest_mass_margin`` and
+    margins are not the running answer: ``smallest_margin`` and
     ``critical_mass_kg_at_low_speed`` are NaN."""
     from ..inputs.rotor import Rotor
     from ..rotor.running_bearing import running_onset
@@ -71,7 +71,7 @@ def running_onset_row(bearing, running, rotor_mass_kg: float, load_newton: float
 
     t0 = time.perf_counter()
     row = {"onset_speed_rpm": math.nan, "whirl_frequency_hz": math.nan,
-           "whirl_ratio": math.nan, "onset_status": FAILED, "smallest_mass_margin": math.nan,
+           "whirl_ratio": math.nan, "onset_status": FAILED, "smallest_margin": math.nan,
            "critical_mass_kg_at_low_speed": math.nan, "thermal_model": running.model_name}
     options = stated_options(bearing, film=film, seam_angle_deg=seam_angle_deg, foil=foil,
                              deflection_law=deflection_law, loss_factor=loss_factor)
@@ -114,7 +114,7 @@ def running_notes(thermal_model: str, bearing_file: str) -> list:
             "and viscosity, through the functions `gfbopt stability` and gfbopt.api call "
             "(gfbopt.rotor.running_bearing), so a row equals the command's answer for the same "
             "inputs. The columns thermal_model … viscosity_pa_s give the running point at the "
-            "answer; smallest_mass_margin and critical_mass_kg_at_low_speed are empty (the "
+            "answer; smallest_margin and critical_mass_kg_at_low_speed are empty (the "
             "frozen search's figures are not the running answer).")]
 
 

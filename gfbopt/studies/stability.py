@@ -96,7 +96,7 @@ def onset_point(bearing, rotor_mass_kg: float, load_newton: float, speed_range, 
 
     t0 = time.perf_counter()
     row = {"onset_speed_rpm": math.nan, "whirl_frequency_hz": math.nan,
-           "whirl_ratio": math.nan, "onset_status": FAILED, "smallest_mass_margin": math.nan,
+           "whirl_ratio": math.nan, "onset_status": FAILED, "smallest_margin": math.nan,
            "critical_mass_kg_at_low_speed": math.nan}
     try:
         res = onset_speed(bearing, Rotor(rotor_mass_kg), load_newton, speed_range, film=film,
@@ -116,7 +116,7 @@ def onset_point(bearing, rotor_mass_kg: float, load_newton: float, speed_range, 
         status = ONSET
     row.update(onset_speed_rpm=res.onset_speed_rpm, whirl_frequency_hz=res.whirl_frequency_hz,
                whirl_ratio=res.whirl_ratio, onset_status=status,
-               smallest_mass_margin=res.smallest_margin,
+               smallest_margin=res.smallest_margin,
                critical_mass_kg_at_low_speed=rotor_mass_kg * (1 + first["mass_margin"]),
                evaluations=res.evaluations, success=True, message=res.message,
                wall_time_s=time.perf_counter() - t0)

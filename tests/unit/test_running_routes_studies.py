@@ -90,6 +90,8 @@ def test_a_study_row_is_the_stability_commands_onset(heated, convention):
     for key in RUNNING:                          # the running point at the onset
         assert row[key] == pytest.approx(out[key], rel=1e-9), key
     assert row["running_clearance_um"] < 20.0 and row["film_temperature_c"] > 20.0
+    # the frozen search's smallest margin is not the running answer's: empty in both
+    assert math.isnan(row["smallest_margin"]) and out["onset"]["smallest_margin"] is None
 
 
 def test_a_study_row_is_the_apis_onset(heated):
