@@ -176,7 +176,7 @@ FRAME = ("the rotor file's x–y (gravity at gravity_direction_deg from +x, 0 by
 
 def _model_line(conv: dict) -> str:
     """One bearing's model in words: film convention; foil, law, η, friction; clearance."""
-    from .model_text import model_words
+    from ..model_text import model_words
 
     return (f"{conv['film_convention']}; {model_words(conv)}; "
             f"{conv.get('thermal_model', 'isothermal, cold clearance')}")

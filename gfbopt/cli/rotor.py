@@ -41,7 +41,7 @@ from ..inputs.grid import DEFAULT_GRID
 from . import rotor_time
 from .common import emit, integer, number
 from .csv_context import HELP as CSV_HELP, context_options, write_csv
-from .model_text import model_words
+from ..model_text import model_words
 
 
 def register(subparsers) -> None:

@@ -30,7 +30,7 @@ import sys
 from ..errors import ParameterError
 from .common import add_grid, emit, number
 from .csv_context import HELP as CSV_HELP, context_options, write_context
-from .model_text import model_words
+from ..model_text import model_words
 from .si import seam_angle_text, stated_options
 
 #: --onset without --speed-range searches (N/4, 2N) around the operating speed N [rpm]

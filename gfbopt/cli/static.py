@@ -68,7 +68,7 @@ def run(args) -> int:
 
 
 def _report(out: dict) -> str:
-    from .model_text import foil_words, friction_words
+    from ..model_text import foil_words, friction_words
 
     friction = friction_words(out)
     lines = [f"gfbopt static — {foil_words(out)}, {out['film']} film"

@@ -309,7 +309,7 @@ def run_orbit(args) -> int:
         model = op.model
         label = (f"M = {args.rotor_mass_kg:g} kg (M̄ = {mass:.4g})" if args.mass is None
                  else f"M̄ = {mass:g}")
-        from .model_text import foil_words, friction_words
+        from ..model_text import foil_words, friction_words
 
         friction = friction_words(model.options())
         ax = plot_orbits({f"{label}: {orbit.verdict[0]}": table},

@@ -11,6 +11,7 @@ import pandas as pd
 
 from ..errors import ParameterError
 from ..inputs import BearingGeometry, BearingModel, Grid, load_bearing
+from ..model_text import foil_words, friction_words, hardened
 from .spec import Where
 
 
@@ -190,10 +191,13 @@ def merged(*tables: dict) -> dict:
 def _foil_text(model: BearingModel) -> str:
     if model.is_rigid:
         return "rigid bearing"
+    bumps = ""
+    if hardened(model.options()):          # the words of every text report (model_text)
+        bumps = foil_words(model.options()).split(" foil", 1)[1]
     if model.foil == "beam":
-        return (f"beam top foil, S = {model.compliance:.3g}, "
+        return (f"beam top foil{bumps}, S = {model.compliance:.3g}, "
                 f"C = {model.top_foil_coefficient:.3g}")
-    return f"simple foil, S = {model.compliance:.3g}"
+    return f"simple foil{bumps}, S = {model.compliance:.3g}"
 
 
 def _parts(model: BearingModel) -> dict:
@@ -208,19 +212,21 @@ def _parts(model: BearingModel) -> dict:
     return {"foil": _foil_text(model), "film": film,
             "force": "Gümbel force" if model.subambient == "gumbel" else "full-film force",
             "law": law, "co": "compression-only bumps" if model.compression_only
-            and not model.is_rigid else ""}
+            and not model.is_rigid else "",
+            "friction": "" if model.is_rigid else friction_words(model.options())}
 
 
 def variant_titles(models: dict) -> dict:
     """label → a description for people ("simple foil, S = 1"), naming only what differs
     between the variants of the study (``models``: label → a representative model)."""
     parts = {label: _parts(m) for label, m in models.items()}
-    keys = ("foil", "film", "force", "law", "co")
+    keys = ("foil", "film", "force", "law", "co", "friction")
     # the foil law and compression-only apply to foil bearings only: a rigid bearing's
     # blank does not make them vary
     compliant = [parts[label] for label, m in models.items() if not m.is_rigid]
     varying = [k for k in keys
-               if len({p[k] for p in (compliant if k in ("law", "co") else parts.values())})
+               if len({p[k] for p in (compliant if k in ("law", "co", "friction")
+                                       else parts.values())})
                > 1] or ["foil"]
     return {label: ", ".join(p[k] for k in varying if p[k]) or label
             for label, p in parts.items()}
