@@ -8,7 +8,6 @@ for rkc (the bare run through gfbopt.transient.orbit.integrate_orbits, today's d
 
     OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1 python benchmarks/bench_friction_transient.py [nθ nZ]
 """
-import math
 import os
 import sys
 import time

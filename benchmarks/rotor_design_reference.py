@@ -98,7 +98,6 @@ def main(argv=None) -> int:
 
 def _searches(plan, args, command: str) -> None:
     """Seeded searches of the same space, every evaluation appended to searches.csv."""
-    import dataclasses
 
     from gfbopt.design.optimiser import executor, optimise
     from gfbopt.design.rotor_objectives import evaluate_rotor_design

@@ -10,7 +10,6 @@ clearance, growths, film temperature and viscosity; a file without them: today's
 """
 from __future__ import annotations
 
-import math
 import sys
 import time
 

@@ -77,8 +77,8 @@ def register(subparsers) -> None:
                      "--speed-rpm; M̄ = M c ω²/W0 is derived with W0 = --load-newton or the "
                      "equilibrium's load, and printed)")
     orb.add_argument("--revolutions", type=number("revolutions"), default=20.0,
-                     help=f"shaft revolutions to integrate (default 20; refused when the "
-                     f"integration would take more than --max-steps steps)")
+                     help="shaft revolutions to integrate (default 20; refused when the "
+                     "integration would take more than --max-steps steps)")
     orb.add_argument("--kick", type=number("kick"), default=1e-3,
                      help="initial journal speed dX/dτ = dY/dτ = kick/√2 (default 1e-3)")
     orb.add_argument("--time-step", type=number("time-step"), default=None,

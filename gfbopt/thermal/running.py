@@ -43,7 +43,7 @@ from typing import Callable, Optional
 import numpy as np
 
 from ..errors import ParameterError
-from .balance import MIN_RUNNING_CLEARANCE, N_SAMPLES, log_bearing_number
+from .balance import MIN_RUNNING_CLEARANCE, log_bearing_number
 from .balance import Balance as _Balance
 from .growth import centrifugal_growth, thermal_growth
 from .network import (Conductances, JournalMaterial, NetworkState, ThermalNetwork,

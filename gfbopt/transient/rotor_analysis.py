@@ -35,7 +35,6 @@ import numpy as np
 
 from ..errors import ParameterError
 from ..inputs.checks import check_positive
-from ..inputs.conversions import rpm_to_rad_per_s
 from ..inputs.grid import Grid, as_grid
 from ..inputs.rotor_system import RotorSystem
 from ..static import SolverCache

@@ -23,7 +23,7 @@ from ..errors import ParameterError
 from ..inputs.bearing import BearingGeometry
 from ..inputs.conversions import rpm_to_rad_per_s
 from ..inputs.grid import Grid
-from ..static import SolverCache, StaticSolution, solve_static
+from ..static import SolverCache, solve_static
 from .rotor_system import (BearingFilm, ImbalancePlane, RotorTransientModel, empty_states,
                            layout, rigid_structure, rotation, station_matrix,
                            structure_transient_model)

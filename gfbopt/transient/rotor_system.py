@@ -58,7 +58,7 @@ q̃ = q/c_ref (c_ref the first bearing's clearance), primes d/dτ.  τ is carrie
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, replace
+from dataclasses import replace
 from typing import Optional
 
 import numpy as np
@@ -75,7 +75,7 @@ from .rotor_model import (DOF, BearingFilm, ImbalancePlane,  # noqa: F401  (re-e
                           rigid_structure, rotation,
                           rotor_transient_model, station_matrix, structure_transient_model)
 from .rotor_layout import Layout, empty_states, layout, stackable  # noqa: F401  (re-exported)
-from .system import (State, TransientModel, film_force, flux_residual, pressure_and_film,
+from .system import (State, film_force, flux_residual, pressure_and_film,
                      stiffness_bound)
 
 # ------------------------------------------------------------------ the system

@@ -11,7 +11,7 @@ from gfbopt import Grid
 from gfbopt.errors import ParameterError
 from gfbopt.inputs import load_bearing
 from gfbopt.inputs.rotor_limits import MAX_SPECIFIC_LOAD_RATIO, MIN_BEARING_NUMBER
-from gfbopt.rotor.capacity import MIN_FILM_LIMIT_UM, lift_off_speed, load_capacity
+from gfbopt.rotor.capacity import MIN_FILM_LIMIT_UM, load_capacity
 import gfbopt.rotor.capacity as capacity
 
 from cli_inprocess import run_cli

@@ -1,5 +1,5 @@
-"""Command-line answers that read the same whatever the flags (issue 14, items 5, 9, 10) and
-bounded, clearly refused work (issue 15, items 12 and 14).  In process through
+"""Command-line answers that read the same whatever the flags and
+bounded, clearly refused work.  In process through
 ``gfbopt.cli.main`` (the console script's entry point) on coarse grids."""
 from __future__ import annotations
 

@@ -1,4 +1,4 @@
-"""Dask (issue 15 item 11, and item 1's lost scheduler): every failure to reach or keep a
+"""Dask (and a lost scheduler): every failure to reach or keep a
 cluster is one line within a stated time, never a hang or a traceback, and a run whose
 scheduler died resumes to completion.  On gfbopt 0.2.0 a port that is not a scheduler hung
 `gfbopt run` for more than 500 s, `--scheduler ""` was ignored, tls:// and ucx:// ended in

@@ -1,4 +1,4 @@
-"""The Python route to a DOE (issue 14 item 3): the worked example docs/examples/doe_onset.py —
+"""The Python route to a DOE: the worked example docs/examples/doe_onset.py —
 a 20-point onset-speed sweep through gfbopt.doe.run_doe — killed with SIGKILL once at least
 half of its points are stored, then run again: every point exactly once, the second run
 computing only the missing ones.  On 0.2.0 the Python route (gfbopt.parallel.run_points)

@@ -1,4 +1,4 @@
-"""Fuzz set of bad inputs for the command line and bearing files (issue 15, item 13): wrong
+"""Fuzz set of bad inputs for the command line and bearing files: wrong
 types, NaN/inf, extremes, unknown tables and keys, impossible geometry, odd paths.
 
 Every input must end in a result (exit 0), a solver failure that says so (exit 1) or one line

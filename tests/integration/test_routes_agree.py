@@ -1,4 +1,4 @@
-"""One answer whatever the route (issue 14, item 1): the same bearing file gives the same
+"""One answer whatever the route: the same bearing file gives the same
 stability answer from the command line, the Python API and a study, for every setting of its
 ``[model]`` table.
 

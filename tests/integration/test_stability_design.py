@@ -1,5 +1,4 @@
 """Stability-driven bump design end to end on a coarse grid (numbers checked independently)."""
-import math
 
 import pytest
 

@@ -1,4 +1,4 @@
-"""Results never lost (issue 15, items 1-3, 7): a worker killed mid-sweep, SIGTERM, a kill -9
+"""Results never lost: a worker killed mid-sweep, SIGTERM, a kill -9
 while a chunk is still in flight, two runs on one folder.  Each test fails on gfbopt 0.2.0
 (BrokenProcessPool rows counted as done; SIGTERM dropped the unwritten buffer; rows were
 written only when a result arrived after 30 s; a second run mixed its rows into the first's).
@@ -60,7 +60,7 @@ def _parts(store: Path) -> int:
     return len(list((store / "parts").glob("part-*.parquet"))) if store.is_dir() else 0
 
 
-# ------------------------------------------------------------------ item 1: a worker dies
+# ------------------------------------------------------------------ a worker dies
 def killer(x, marker):
     """Kills its own worker (SIGKILL, as the OOM killer would) the first time it meets
     x > 0.5; a retry on a fresh pool then computes the point normally."""
@@ -104,7 +104,7 @@ def test_gfbopt_run_completes_every_point_when_a_pool_worker_is_killed(tmp_path)
     assert "Traceback" not in err
 
 
-# ------------------------------------------------------------------ item 2: SIGTERM
+# ------------------------------------------------------------------ SIGTERM
 SIGTERM_SCRIPT = textwrap.dedent("""
     import os, signal, sys
     from gfbopt.doe import run_doe
@@ -163,7 +163,7 @@ def test_gfbopt_run_on_sigterm_keeps_the_rows_and_says_how_to_resume(tmp_path):
     assert 0 < kept < 400
 
 
-# ------------------------------------------------------------------ item 3: the timer
+# ------------------------------------------------------------------ the timer
 TIMER_SCRIPT = textwrap.dedent("""
     import sys, time
     from gfbopt.doe import run_doe
@@ -198,7 +198,7 @@ def test_rows_are_written_on_a_timer_while_a_chunk_is_in_flight(tmp_path):
     assert sorted(frame["x"]) == list(range(1, 12))
 
 
-# ------------------------------------------------------------------ item 7: one writer
+# ------------------------------------------------------------------ one writer
 @pytest.mark.slow  # the command-line variant; the default tier covers the item in-process
 def test_a_second_run_on_the_same_results_folder_is_refused(tmp_path):
     study = _study(tmp_path, n=400, batch=1)

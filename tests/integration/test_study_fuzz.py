@@ -1,4 +1,4 @@
-"""Study-file fuzz set (issue 15 items 12-14): about 125 broken or extreme study files —
+"""Study-file fuzz set: about 125 broken or extreme study files —
 wrong types, NaN/inf, extremes, unknown and misspelt keys, paths, names, sizes, malformed
 TOML — each run through ``gfbopt run`` in this process.  Every one must end as an answer
 (exit 0 or 1) or one ``gfbopt: error:`` line with exit 2; an exception escaping ``main`` (a

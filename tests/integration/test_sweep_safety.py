@@ -1,6 +1,5 @@
-"""Sampled studies never mix or misplace results (issue 15 items 4-6, 9, 10, 12, 14; issue 14
-items 7, 9, 12).  Each test fails on gfbopt 0.2.0: a failed point's sampled eccentricity was
-overwritten with NaN; a foreign summary.json broke every run after computing; the study hash
+"""Sampled studies never mix or misplace results.  Each test fails on gfbopt 0.2.0: a failed
+point's sampled eccentricity was overwritten with NaN; a foreign summary.json broke every run after computing; the study hash
 covered the bearing file's path, not its content, and refused harmless edits; a damaged part
 made the store unreadable; ``name = ".."`` wrote into the parent folder; n = 1e9 or invalid
 fixed inputs were found only point by point; ``gfbopt run`` had no --grid; the README's first
@@ -296,7 +295,7 @@ def test_too_many_workers_and_an_empty_scheduler_are_refused(tmp_path, capsys):
     assert not (tmp_path / "r").exists()
 
 
-# ------------------------------------------------------------------ issue 14 items 7, 9
+# ------------------------------------------------------------------ failed points, foreign files
 def test_grid_option_overrides_the_study_grid_and_is_refused_without_one(tmp_path):
     from argparse import Namespace
 

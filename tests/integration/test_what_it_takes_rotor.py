@@ -69,7 +69,7 @@ def test_the_override_answers_as_an_edited_copy_on_real_physics(tmp_path):
     rotor = tmp_path / "heavy.toml"
     rotor.write_text(blower.read_text().replace("mass = 3.2 ", "mass = 5.0 ").replace(
         '"../bearings/ruscitto.toml"', f'"{ROOT / "problems" / "bearings" / "ruscitto.toml"}"'))
-    base = f"""
+    base = """
 kind = "rotor_bearing_design"
 title = "tiny"
 grid = "24x8"
@@ -89,7 +89,7 @@ budget = 4
 population = 4
 seed = 1
 [what_it_would_take]
-side_load_n = {{low = 0.0, high = 40.0}}
+side_load_n = {low = 0.0, high = 40.0}
 """
     study = tmp_path / "tiny.toml"
     study.write_text(f'rotor = "{blower}"\nspeed_range_rpm = [4000.0, 45000.0]\n' + base)

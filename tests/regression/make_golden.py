@@ -9,7 +9,6 @@ force, compression-only bumps, linear coefficients and thresholds, and short RK4
 from __future__ import annotations
 
 import json
-import math
 from pathlib import Path
 
 import numpy as np

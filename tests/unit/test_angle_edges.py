@@ -1,4 +1,4 @@
-"""Angles at the Python edge are degrees (issue 14, item 2): a static solution's and the
+"""Angles at the Python edge are degrees: a static solution's and the
 linear coefficients' angles are ``*_deg``; radians survive only in fields named ``*_rad``; the
 0.2 radian names (``attitude_angle``, ``seam_angle``, ``min_film_angle``) are refused with the
 conversion, so ``attitude_angle=1.0`` can never silently mean 57.3°.

@@ -1,5 +1,5 @@
 """Bad friction and hardening input in a bearing file: one line naming file, key and rule,
-exit 2 from the command line, before any solve (issue 29)."""
+exit 2 from the command line, before any solve."""
 from pathlib import Path
 
 import pytest

@@ -1,4 +1,4 @@
-"""Bumps that rub (issue 29): Coulomb friction in the foil-law registry and the linear analysis.
+"""Bumps that rub: Coulomb friction in the foil-law registry and the linear analysis.
 
 Friction 0 is today's foundation exactly; friction holds no static deflection; small orbits see
 the stuck foundation; the describing function moves the onset with the orbit amplitude."""

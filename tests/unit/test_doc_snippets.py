@@ -1,4 +1,4 @@
-"""The documented Python snippets run as written (issue 31): every ```python block of the
+"""The documented Python snippets run as written: every ```python block of the
 README and of the Markdown pages under docs/, and the ``.. code-block:: python`` of the docs
 index, each in a fresh interpreter from the repository root.
 

@@ -1,4 +1,4 @@
-"""The Sphinx site reaches every documentation page (issue 31): each Markdown page under docs/
+"""The Sphinx site reaches every documentation page: each Markdown page under docs/
 and docs/formats/ is in a toctree of docs/index.rst, each toctree entry exists, and the
 gallery configuration points at the examples the gallery test runs.  Sphinx is not needed."""
 import re

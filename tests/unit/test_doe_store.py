@@ -92,7 +92,7 @@ def test_kill_9_mid_run_then_resume_has_every_point_exactly_once(tmp_path):
     np.testing.assert_allclose(frame["value"], np.arange(200) * 0.5)
 
 
-# ------------------------------------------------------------------ issue 15, items 7-9
+# ------------------------------------------------------------------ durability
 def test_a_second_holder_of_the_lock_is_refused_naming_the_first(tmp_path):
     """Two runs on one store mixed their rows in 0.2.0; now the second is refused in one
     line that names the running one (its pid)."""

@@ -1,5 +1,5 @@
-"""The user documentation of the input files is generated from the validators' schemas
-(issue 14, item 11): docs/formats/ must be what the schemas generate now."""
+"""The user documentation of the input files is generated from the validators' schemas:
+docs/formats/ must be what the schemas generate now."""
 from __future__ import annotations
 
 import dataclasses

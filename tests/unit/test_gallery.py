@@ -1,6 +1,6 @@
 """Every gallery example (examples/plot_*.py) runs as written, at its own small grid, in a
 fresh interpreter with a non-interactive backend, and writes every figure it promises
-(each ``fig.savefig(OUT / "NAME.png")`` in its source) as a real PNG (issue 31).
+(each ``fig.savefig(OUT / "NAME.png")`` in its source) as a real PNG.
 
 The same scripts are what the Sphinx build executes (docs/conf.py); this test keeps a broken
 example from reaching a build, without Sphinx installed.

@@ -19,7 +19,7 @@ from pathlib import Path
 import pytest
 
 from gfbopt.errors import ParameterError
-from gfbopt.inputs import Grid, OperatingPoint, Rotor
+from gfbopt.inputs import Grid
 from gfbopt.inputs.options import resolve_model_options
 from gfbopt.static import SolverCache
 from gfbopt.thermal.bearing import FilmCase, FilmDrag

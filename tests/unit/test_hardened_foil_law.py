@@ -1,4 +1,4 @@
-"""The hardening bump as a foil law ('hardened', issue 29): statics use the hardened stiffness,
+"""The hardening bump as a foil law ('hardened'): statics use the hardened stiffness,
 the linear analysis its tangent at the static deflection.
 
 The statics and the linear analysis of the law: tests/unit/test_hardened_statics.py."""

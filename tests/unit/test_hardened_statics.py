@@ -1,4 +1,4 @@
-"""Statics with the hardening bump (issue 29), to add as tests/unit/test_hardened_statics.py
+"""Statics with the hardening bump, to add as tests/unit/test_hardened_statics.py
 with static_hardening.diff (the static build then passes the law's n and W_lim)."""
 from pathlib import Path
 

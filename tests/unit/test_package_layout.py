@@ -147,7 +147,8 @@ def test_cycle_detector_finds_a_planted_cycle():
 #: import from its own floor and the floors below, never from above.  Units are gfbopt's
 #: subpackages and top-level modules; a new one must be placed here (the test names it).
 FLOORS = (
-    ("errors", "version", "runtime", "threads", "progress", "terms", "glossary", "provenance"),
+    ("errors", "version", "runtime", "threads", "progress", "terms", "glossary", "provenance",
+     "model_text"),
     ("inputs", "physics", "plotting", "sparse_lu", "pool_stream", "cluster"),
     ("discretisation", "guard"),
     ("static",),

@@ -1,5 +1,5 @@
 """The public API from the top (gfbopt.load_rotor, the rotor analysis, the design entry point)
-and the grid's string form with the command line's one-line message (issue 31)."""
+and the grid's string form with the command line's one-line message."""
 import inspect
 import subprocess
 import sys

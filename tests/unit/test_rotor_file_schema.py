@@ -1,4 +1,4 @@
-"""One schema language for the input files (issue 27): the rotor file is declared in
+"""One schema language for the input files: the rotor file is declared in
 gfbopt.inputs.file_schema's Field/Table/FileFormat, as the bearing file is, and checked by
 its checkers — every bound a field states is the bound the validator applies, every default
 it states is the value the rotor gets, and a misspelt key anywhere gets "did you mean"."""

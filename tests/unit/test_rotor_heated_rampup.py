@@ -1,4 +1,4 @@
-"""Run-ups and coast-downs of a heated rotor (issue 28): each bearing at the running
+"""Run-ups and coast-downs of a heated rotor: each bearing at the running
 condition of the instantaneous speed, quasi-steady in temperature, on the cold-c model
 (gfbopt.transient.rotor_running / rotor_heated; the films' offset and viscosity ratio in
 FusedFilms)."""

@@ -1,5 +1,5 @@
 """gfbopt/rotor/__init__.py's table of modules lists every module of the package, and only
-those (issue 27: 'Maps that are true')."""
+those (maps that are true)."""
 import re
 from pathlib import Path
 

@@ -1,9 +1,8 @@
 """The clearance at speed on the bearing: the bearing file's [journal] and [thermal] tables
 (refusals before any solve), today's answers kept without them, the heat balance closing on
-the real film, and gfbopt stability / capacity reporting it (issue 28)."""
+the real film, and gfbopt stability / capacity reporting it."""
 import json
 import math
-import re
 from pathlib import Path
 
 import pytest

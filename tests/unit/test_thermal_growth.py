@@ -1,5 +1,5 @@
 """Centrifugal growth from the general Lamé solution against the closed forms; thermal growth;
-Sutherland's law (issue 28, DESIGN_NOTES "Clearance at speed: closed forms")."""
+Sutherland's law (DESIGN_NOTES "Clearance at speed: closed forms")."""
 import math
 
 import numpy as np
@@ -20,7 +20,7 @@ def test_solid_disc_matches_closed_form_and_the_issue_number():
     u = centrifugal_growth(OMEGA, B, 0.0, **STEEL)
     closed = solid_disc_growth_closed_form(OMEGA, B, **STEEL)
     assert u == pytest.approx(closed, rel=1e-12)
-    assert 0.9e-6 < u < 1.1e-6                # "about 1.0 µm" (issue 28)
+    assert 0.9e-6 < u < 1.1e-6                # "about 1.0 µm"
 
 
 @pytest.mark.parametrize("ratio", [0.05, 0.3, 0.5, 0.8, 0.95])
@@ -65,7 +65,7 @@ def test_thin_ring_limit():
         gap = (3 + nu) * (ratio**2 - 1) / 4
         # the 2x2 system's conditioning grows like 1/(1 − a/b): 1e-16/1e-5 → 1e-11
         assert u / ring - 1 == pytest.approx(gap, abs=1e-10)
-    assert 5.5e-6 < ring < 6.5e-6             # "about 6 µm" (issue 28)
+    assert 5.5e-6 < ring < 6.5e-6             # "about 6 µm"
 
 
 def test_growth_scales_with_the_square_of_speed():
@@ -76,7 +76,7 @@ def test_growth_scales_with_the_square_of_speed():
 
 
 def test_thermal_growth_issue_number():
-    # 12e-6 × 40 × 19 mm ≈ 9 µm (issue 28)
+    # 12e-6 × 40 × 19 mm ≈ 9 µm
     assert thermal_growth(12e-6, 19e-3, 40.0) == pytest.approx(9.12e-6, rel=1e-12)
 
 

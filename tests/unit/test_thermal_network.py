@@ -1,4 +1,4 @@
-"""The lumped heat balance and its fixed point against hand solutions (issue 28): a linear
+"""The lumped heat balance and its fixed point against hand solutions: a linear
 network with a drag power law P = a ω²/c (solved by hand, a quadratic), its runaway speed,
 the heat balance closing, and the limits (zero speed, very large conductances)."""
 import math

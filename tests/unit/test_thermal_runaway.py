@@ -1,4 +1,4 @@
-"""Thermal runaway and the running onset on the real film (issue 28).
+"""Thermal runaway and the running onset on the real film.
 
 Runaway: a bearing that can shed little heat (conductances to ambient of 0.02 W/K, a sleeve
 that does not grow) has a fixed point at low speed only.  The runaway speed the fixed point
@@ -15,7 +15,7 @@ from gfbopt.cli.running import running_onset, running_stability
 from gfbopt.inputs import Grid, OperatingPoint, Rotor
 from gfbopt.inputs.options import resolve_model_options
 from gfbopt.static import SolverCache
-from gfbopt.thermal.bearing import FilmCase, FilmDrag, warm_bearing
+from gfbopt.thermal.bearing import FilmCase, FilmDrag
 from gfbopt.thermal.files import load_running_bearing
 from gfbopt.thermal.running import MIN_RUNNING_CLEARANCE, _Balance, running_point, speed_line
 from tests.cli_inprocess import run_cli

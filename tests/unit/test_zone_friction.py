@@ -1,4 +1,4 @@
-"""Friction per bump zone ([[zones]] friction_coefficient, issue 29)."""
+"""Friction per bump zone ([[zones]] friction_coefficient)."""
 from pathlib import Path
 
 import numpy as np

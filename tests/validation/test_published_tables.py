@@ -7,7 +7,6 @@ the grid-converged value is ≤ 0.54 % up to ε = 0.6 and ≤ 0.7 % for the Güm
 (results/grid_convergence, docs/literature_table_3_2.md) — inside every tolerance below; the
 paper-resolution run at each study's own grid is marked ``slow``.
 """
-import math
 from pathlib import Path
 
 import pytest

@@ -9,7 +9,6 @@ import math
 import sys
 from pathlib import Path
 
-import numpy as np
 
 from gfbopt.inputs.grid import Grid
 from gfbopt.inputs.rotor_system import load_rotor

@@ -1,4 +1,4 @@
-"""The bearing as built (issue 17): bore profile, pads, bump zones and the drag torque.
+"""The bearing as built: bore profile, pads, bump zones and the drag torque.
 
 Exact checks:
 * a zero preload, one pad at the present seam and uniform zones are today's bearing: the same

@@ -1,4 +1,4 @@
-"""Bumps that rub in the one-bearing transient (issue 29): the sliders Z carried beside the state
+"""Bumps that rub in the one-bearing transient: the sliders Z carried beside the state
 and moved by the play operator after each accepted step (gfbopt.transient.friction_orbit).
 
 Friction 0 is today's transient exactly; the recovery is the foil's balance with the clipped

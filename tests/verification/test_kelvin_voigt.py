@@ -51,7 +51,7 @@ MODELS = {
                                   deflection_law="local", film="seam", seam_angle_deg=180.0,
                                   compression_only=True),
 }
-#: the two agreement points (issue #9): ε = 0.4, Λ = 2, S = 1, η = 0.3
+#: the two agreement points: ε = 0.4, Λ = 2, S = 1, η = 0.3
 AGREEMENT = {
     "mean_periodic": MODELS["simple"],
     "local_seam_180": BearingModel(bearing_number=2.0, compliance=1.0, loss_factor=ETA,

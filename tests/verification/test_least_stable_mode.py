@@ -1,4 +1,4 @@
-"""The least-stable mode is the least-damped root over all rigid-body roots (issue 14, item 4).
+"""The least-stable mode is the least-damped root over all rigid-body roots.
 
 Reference: every finite eigenvalue of the linearised semi-discrete system (pressure and foil
 states + rigid rotor), from a dense generalised eigenvalue computation of the pencil (J, E) —

@@ -4,7 +4,6 @@
 (b) its equilibrium equals gfbopt's CasADi/IPOPT equilibrium for the rigid periodic bearing.
 """
 import importlib.util
-import math
 from pathlib import Path
 
 import numpy as np

@@ -1,5 +1,5 @@
 """The two-bearing rotor's linear analyses when the bearing files state Coulomb friction in the
-bumps (issue 29): the seam re-measured from each bearing's load keeps the bump options, the
+bumps: the seam re-measured from each bearing's load keeps the bump options, the
 Campbell diagram's full system carries the stuck friction springs (the small-motion foundation
 the matched-whirl onset sees), and friction 0 is today's system exactly.  Coarse grid 36 × 10:
 every comparison is between two routes on the same discrete bearing."""

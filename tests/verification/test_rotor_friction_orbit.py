@@ -1,5 +1,5 @@
-"""The rotor's settled whirl above its small-motion onset when its bumps rub (issue 29,
-gfbopt.rotor.friction_onset) against the one-bearing describing function it generalises.
+"""The rotor's settled whirl above its small-motion onset when its bumps rub
+(gfbopt.rotor.friction_onset) against the one-bearing describing function it generalises.
 
 Planted case (the bounded one-bearing case of tests/unit/test_bump_friction_linear.py): the
 Ruscitto bearing with bump compliance S = 3 (bump thickness solved for it), μ_f = 0.5, κ = 2,

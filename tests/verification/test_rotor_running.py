@@ -1,5 +1,5 @@
-"""The two-bearing rotor's linear analyses at each bearing's running condition (issue 28,
-gfbopt.rotor.running): a rotor whose bearing files state no [journal]/[thermal] keeps
+"""The two-bearing rotor's linear analyses at each bearing's running condition
+(gfbopt.rotor.running): a rotor whose bearing files state no [journal]/[thermal] keeps
 today's answers exactly; conductances of 1e15 W/K on a journal too light to grow give them to
 1e-10; the heated blower's onset moves and each bearing's running clearance reported there is
 the one-bearing fixed point at that speed and load (1e-9); a runaway is reported, not
@@ -121,7 +121,7 @@ def test_heated_blower_onset_moves_and_each_bearing_is_its_own_fixed_point():
 
 def test_heated_blower_reports_per_bearing_and_runaway():
     """analyse_rotor's answer: per bearing the model, the running condition at the onset
-    (the JSON keys of issue 28), the fixed points' cost, the Campbell table's
+    (the JSON keys of the running condition), the fixed points' cost, the Campbell table's
     running columns, and the runaway at 60,000 rpm reported with the speed it starts from,
     never raised."""
     result = analyse_rotor(load_rotor(ROTORS / "blower_thermal.toml", running=True), RANGE,

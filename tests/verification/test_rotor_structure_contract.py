@@ -21,12 +21,10 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from gfbopt.inputs.grid import Grid
 from gfbopt.inputs.rotor_system import load_rotor
 from gfbopt.rotor.campbell import system_modes
 from gfbopt.rotor.condensed import condensed
 from gfbopt.rotor.diagrams import campbell_diagram, synchronous_response
-from gfbopt.rotor.matched_whirl import crossings
 from gfbopt.rotor.modes import mode_label, shape
 from gfbopt.rotor.rigid import transformations
 from gfbopt.rotor.structure import RigidStructure, Structure

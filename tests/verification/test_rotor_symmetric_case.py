@@ -1,4 +1,4 @@
-"""The one-bearing answers are the rotor system's symmetric case (issue 27): a symmetric rigid
+"""The one-bearing answers are the rotor system's symmetric case: a symmetric rigid
 rotor (CG midway, z_A = −z_B = −a) on identical bearings decouples exactly — K_b = Σ T_kᵀ Z T_k
 has no translation–tilt terms (z_A Z + z_B Z = 0) and G acts on the tilts alone — so its
 cylindrical block −Ω² μ m + 2 Z = 0 is one bearing carrying half the mass,

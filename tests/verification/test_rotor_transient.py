@@ -24,8 +24,7 @@ from gfbopt.static import SolverCache
 from gfbopt.transient import fit_growth_rate, integrate_orbits
 from gfbopt.transient.rotor_run import integrate_rotor
 from gfbopt.transient.rotor_setup import (RotorBearing, RotorInput, build_model,
-                                          equilibrium_states, imbalance_planes,
-                                          set_station_velocities, static_force_of)
+                                          equilibrium_states, set_station_velocities, static_force_of)
 from gfbopt.transient.rotor_system import rigid_rotor_matrices, runs
 from gfbopt.transient.spectra import synchronous_fit
 

@@ -1,4 +1,4 @@
-"""A rigid rotor on two foil bearings (issue 16): the two-bearing matched-whirl threshold against
+"""A rigid rotor on two foil bearings: the two-bearing matched-whirl threshold against
 the one-bearing analysis it generalises, the rotor matrices against closed forms, and the
 full-system eigenvalues against the matched-whirl threshold.  Coarse grid (36 × 10): every
 comparison is between two routes on the same discrete bearing, so the grid does not enter."""

@@ -17,7 +17,7 @@ import pytest
 
 from gfbopt import BearingModel, Grid, ParameterError, StaticSolver, solve_static
 from gfbopt import discretisation as disc
-from gfbopt.static import PARAMETERS, solver_key
+from gfbopt.static import solver_key
 from gfbopt.static.solution import foil_parameters
 
 CASES = [("periodic", "simple"), ("seam", "simple"), ("periodic", "local"),
