@@ -19,6 +19,9 @@ Where the grid has no coarse guide by default (72 × 20: fewer than GUIDE_FACTOR
 secant path, so its onsets differ from the default's by up to the secant's own error).
 ``--source-commit`` / ``--baseline-commit``: the commits the measured and the baseline trees
 are exports of (``git archive``), recorded as their sources when the trees are not checkouts.
+``coarse_scan_above_every_onset`` (in the breakdown): the guide's CPU at the scan speeds above
+the first one where every mode is unstable — the scan of every mode over the whole range,
+which the one-bearing searches (each stopping at its first unstable speed) do not make.
 ``--roots``: each onset also found by Brent's method on the reference line's full crossings to
 a relative 1e-10 around the answer (the root the secants approach; slow: ~30 full crossings a
 mode), and the distance of each variant's onset from it.
@@ -57,7 +60,7 @@ from scipy.optimize import brentq
 
 from gfbopt.rotor.onset import check_coarse_grid
 from gfbopt.rotor.supports import resolve_rotor
-from gfbopt.rotor.system import SpeedLine, rotor_onsets
+from gfbopt.rotor.system import SpeedLine, rotor_onsets, scan_speeds
 
 ROOT = Path(__file__).resolve().parents[1]
 SPAN = (4000.0, 60000.0)
@@ -85,9 +88,21 @@ def _cpu(function):
     return time.process_time() - c, out
 
 
+def _speed_of(args) -> float:
+    """The speed [rpm] a stage function is called at: support_states(rotor, speed, …),
+    crossings / local_crossing(rotor, states, …)."""
+    first = args[0]
+    return float(getattr(first, "speed_rpm", first))
+
+
 def _breakdown(system, grid: Grid, cache) -> dict:
-    """CPU of one rotor run split by stage and grid (wrapping the stage functions)."""
+    """CPU of one rotor run split by stage and grid (wrapping the stage functions), and the
+    coarse guide's CPU at the scan speeds above the first one where every mode with an onset
+    is unstable (``coarse_scan_above_every_onset``: what the rotor's scan of every mode over
+    the whole range costs beyond the one-bearing searches, which stop at their own first
+    unstable speed)."""
     spent, calls = defaultdict(float), defaultdict(int)
+    per_speed = defaultdict(float)          # (grid, speed) -> CPU of every stage there
     names = [n for n in ("support_states", "crossings", "local_crossing")
              if hasattr(system_module, n)]
     saved = {n: getattr(system_module, n) for n in names}
@@ -101,12 +116,13 @@ def _breakdown(system, grid: Grid, cache) -> dict:
                 key = f"{name}{' direct' if kwargs.get('direct') else ''} {rotor.grid}"
                 spent[key] += time.process_time() - c
                 calls[key] += 1
+                per_speed[(str(rotor.grid), _speed_of(args))] += time.process_time() - c
         return timed
 
     for n in names:
         setattr(system_module, n, wrap(n, saved[n]))
     try:
-        total, _ = _cpu(lambda: rotor_onsets(system, SPAN, line=SpeedLine(
+        total, result = _cpu(lambda: rotor_onsets(system, SPAN, line=SpeedLine(
             resolve_rotor(system, grid, cache)), show_progress=False))
     finally:
         for n, f in saved.items():
@@ -114,6 +130,16 @@ def _breakdown(system, grid: Grid, cache) -> dict:
     out = {k: {"cpu_s": v, "calls": calls[k]} for k, v in sorted(spent.items())}
     out["other_cpu_s"] = total - sum(spent.values())
     out["total_cpu_s"] = total
+    guide = result.conventions.get("coarse_grid") or str(grid)
+    speeds = scan_speeds(*SPAN)
+    onsets = [m.onset_speed_rpm for m in result.modes]
+    if all(m.status == "onset" for m in result.modes) and onsets:
+        above = [s for s in speeds if s > max(onsets)]
+        every = above[0] if above else None
+        later = [s for s in speeds if every is not None and s > every]
+        out["coarse_scan_above_every_onset"] = {
+            "grid": guide, "every_mode_unstable_from_rpm": every, "scan_speeds": len(later),
+            "cpu_s": sum(per_speed[(guide, s)] for s in later)}
     return out
 
 
@@ -300,6 +326,14 @@ def main(argv=None) -> dict:
                   + ", ".join(f"{k} {e:+.1e}" for k, e in v.items() if k != "root_rpm"))
         for k, v in r["rotor_breakdown"].items():
             print(f"    {k}: {v}")
+        above = r["rotor_breakdown"].get("coarse_scan_above_every_onset")
+        if above:
+            rest = r["rotor_breakdown"]["total_cpu_s"] - above["cpu_s"]
+            print(f"  the {above['grid']} scan above {above['every_mode_unstable_from_rpm']:,.0f}"
+                  f" rpm (every mode unstable): {above['scan_speeds']} speeds, "
+                  f"{above['cpu_s']:.2f} s of {r['rotor_breakdown']['total_cpu_s']:.2f} s; "
+                  f"the rest over the two bearings: "
+                  f"{rest / (m['bearing_A'] + m['bearing_B']):.2f}")
         if "baseline" in r:
             b = r["baseline"]
             print(f"  old code ({b['source']['commit'][:8]}): rotor {b['cpu_s_median']['rotor']:.2f}"

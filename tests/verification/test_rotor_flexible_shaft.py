@@ -108,3 +108,28 @@ def test_the_comparison_without_gyroscopics_is_refused_for_a_shaft():
 
     with pytest.raises(ParameterError, match="rigid rotor"):
         without_gyroscopics(_system())
+
+
+def test_a_mode_first_found_above_every_onset_is_reported():
+    """The onset search scans every mode over the whole range: the shaft's second to fourth
+    bending tracks first appear (their μ_c falling below SHAFT_SCALE_LIMIT) at about 17,200,
+    26,200 and 40,000 rpm, above the first scan speed at which both rigid-body (mixed) modes
+    are unstable, and each is reported, stable over the range.  A scan that stopped at the
+    first speed where every mode with an onset is unstable — as each one-bearing search stops
+    at its own first unstable speed — would drop them: why the rotor's search costs more than
+    the two one-bearing searches (benchmarks/bench_rotor_onset_ratio.py,
+    ``coarse_scan_above_every_onset``)."""
+    from gfbopt.rotor.system import ONSET, STABLE, scan_speeds
+
+    _, _, result = _onsets(_system())
+    onsets = [m.onset_speed_rpm for m in result.modes if m.status == ONSET]
+    assert len(onsets) == 2
+    every_unstable = min(s for s in scan_speeds(*RANGE) if s > max(onsets))
+    first = {}
+    for row in result.scan:
+        label = row["track_label"]
+        first[label] = min(first.get(label, math.inf), row["speed_rpm"])
+    late = sorted(label for label, s in first.items() if s > every_unstable)
+    assert late == ["forward bending 2", "forward bending 3", "forward bending 4"]
+    status = {m.label: m.status for m in result.modes}
+    assert all(status[label] == STABLE for label in late)
