@@ -169,6 +169,10 @@ def run(args) -> int:
     check_surface_speed(bearing, [args.speed_rpm], "--speed-rpm")
     check_surface_speed(bearing, list(args.speed_range or ()), "--speed-range")
     options = merge_options(stated_options(args), bearing.options)
+    if args.mass is not None and spec.model_name != ISOTHERMAL:
+        raise ParameterError("--mass", args.mass, "a bearing file with [journal]/[thermal] "
+                             "runs at the clearance of its running condition, so M̄ = M c ω²/W0 "
+                             "names no rotor before that is solved: give --rotor-mass-kg")
     if args.mass is not None:      # M = M̄ W0/(c ω²): the same rotor, in kg
         mass = mass_from_parameter(args.mass, bearing.radial_clearance,
                                    rpm_to_rad_per_s(args.speed_rpm), args.load_newton)
@@ -222,8 +226,10 @@ def run(args) -> int:
                                 progress=True)
             found = onset.to_dict()
         else:
+            # searched from the range's geometric mean whatever --speed-rpm (one answer:
+            # the study rows and gfbopt.api search from there too)
             found = running_onset(bearing, spec, rotor, args.load_newton, span,
-                                  guess_rpm=args.speed_rpm, progress=True, **common)
+                                  progress=True, **common)
             onset = _Answered(found)
         out["onset"] = {k: v for k, v in found.items() if k != "conventions"}
         out["onset_speed_rpm"] = found["onset_speed_rpm"]

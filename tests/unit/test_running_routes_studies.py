@@ -448,3 +448,27 @@ def test_a_loss_factor_onset_row_is_the_stability_commands(tmp_path):
                                                                   rel=1e-9), law
         assert onset.loc[law, "running_clearance_um"] == pytest.approx(
             out["running_clearance_um"], rel=1e-9), law
+
+
+def test_the_commands_onset_does_not_depend_on_the_operating_speed(heated):
+    """With --speed-rpm beside --speed-range the heated onset is the study row's (the search
+    starts from the range's geometric mean whatever the operating speed)."""
+    row = heated[0].tables["onset.csv"].set_index("convention").loc["seam_180"]
+    cli = run_cli("stability", "--bearing", THERMAL, "--rotor-mass-kg", "2", "--load-newton",
+                  "20", "--speed-rpm", "30000", "--speed-range", "3000", "60000",
+                  *FLAGS["seam_180"], "--grid", GRID, "--json")
+    assert cli.returncode == 0, cli.stderr
+    out = json.loads(cli.stdout)
+    assert out["onset_speed_rpm"] == pytest.approx(row["onset_speed_rpm"], rel=1e-12)
+    assert out["onset_whirl_frequency_hz"] == pytest.approx(row["whirl_frequency_hz"],
+                                                            rel=1e-12)
+
+
+def test_a_non_dimensional_mass_is_refused_on_a_heated_file():
+    """M̄ = M c ω²/W0 on a heated file would be converted with one clearance and analysed at
+    another: refused in one line naming the flag, before any solve."""
+    cli = run_cli("stability", "--bearing", THERMAL, "--mass", "18.43", "--load-newton", "20",
+                  "--speed-rpm", "30000", "--grid", GRID)
+    assert cli.returncode == 2
+    lines = cli.stderr.strip().splitlines()
+    assert len(lines) == 1 and "--mass = 18.43" in lines[0] and "--rotor-mass-kg" in lines[0]
