@@ -253,7 +253,7 @@ def coefficients_point(model: BearingModel, *, whirl_ratios: Sequence[float],
 
     Load frame (x along the static load).  Non-dimensional ``kxx`` … ``cyy`` always; with
     ``geometry`` and ``speed_rpm`` [rpm] also ``frequency_hz``, ``kxx_N_per_m`` …
-    ``cyy_Ns_per_m``, ``load_newton`` and ``critical_rotor_mass_kg``.  Each row carries
+    ``cyy_Ns_per_m``, ``load_newton`` and ``critical_mass_kg``.  Each row carries
     the operating point (ε, φ) and the linear threshold (``critical_mass``,
     ``threshold_whirl_ratio``).  A failed static solve is one row with ``success`` False.
     """
@@ -275,7 +275,7 @@ def coefficients_point(model: BearingModel, *, whirl_ratios: Sequence[float],
         table = dimensional.join(table.drop(columns="whirl_ratio"))
         load_newton = geometry.load_newton(sol.load if load is None else load)
         base["load_newton"] = load_newton
-        base["critical_rotor_mass_kg"] = mass_from_parameter(
+        base["critical_mass_kg"] = mass_from_parameter(
             thr.critical_mass, geometry.radial_clearance, rpm_to_rad_per_s(speed_rpm),
             load_newton)
     base.update(critical_mass=thr.critical_mass, threshold_whirl_ratio=thr.whirl_ratio,

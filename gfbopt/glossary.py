@@ -98,7 +98,7 @@ GLOSSARY: dict[str, tuple[str, str]] = {
     "linear_critical_mass": ("-", "linear (small-motion) critical mass M̄"),
     "linear_whirl_ratio": ("-", "whirl ratio at the linear threshold"),
     "threshold_whirl_ratio": ("-", "whirl ratio at the linear threshold"),
-    "critical_rotor_mass_kg": ("kg", "critical rotor mass per bearing M = M̄ W0 / (c ω²)"),
+    "critical_mass_kg": ("kg", "critical rotor mass per bearing M_crit = M̄c W0/(c ω²)"),
     "bracket_low": ("-", "largest rotor mass M̄ found stable by the transients"),
     "bracket_high": ("-", "smallest rotor mass M̄ found unstable by the transients"),
     "transients": ("-", "number of transient runs of the critical-mass search"),
@@ -218,7 +218,10 @@ for _name, _entry in {
     "speed_high_rpm": ("rpm", "high end of the speed range searched for the onset"),
     "onset_speed_rpm": ("rpm", "onset speed of whirl: lowest speed in the range at which the "
                         "rotor is linearly unstable (empty: none in the range)"),
-    "whirl_frequency_hz": ("Hz", "whirl frequency at the onset of instability"),
+    "whirl_frequency_hz": ("Hz", "whirl frequency Ω/2π: at the onset of instability in an "
+                           "onset's row; of the mode (a Campbell row, a stability point's "
+                           "least-damped mode) or of the threshold crossing (a threshold-scan "
+                           "row) at the row's speed"),
     "stable_over_range": ("flag", "stable at every speed of the range searched"),
     "unstable_at_lower_end": ("flag", "already unstable at the lowest speed searched"),
     "smallest_margin": ("-", "smallest M_crit/M − 1 of the onset search, over its speeds up "
@@ -252,7 +255,6 @@ for _name, _entry in {
     "loss_factor": ("-", "structural loss factor η of the bump foundation"),
     "onset_speed_rpm": ("rpm", "onset speed of whirl: lowest speed in the range at which the "
                         "rotor is linearly unstable (empty: none in the range)"),
-    "whirl_frequency_hz": ("Hz", "whirl frequency at the onset of instability"),
     "evaluations": ("-", "linear-threshold computations of the onset search"),
     "load_exceeds_capacity": ("flag", "the static load continuation stopped short of the "
                               "load with the film closing: the bearing cannot carry it"),
@@ -313,7 +315,8 @@ for _name, _entry in {
 for _name, _entry in {
     "bearing": ("text", "name of the bearing of the rotor (A, B, …)"),
     "station": ("text", "axial station of the rotor: a bearing or a named station"),
-    "position_m": ("m", "axial position from the rotor's centre of gravity"),
+    "position_m": ("m", "axial position along the rotor in its frame (conventions.frame): a "
+                   "rigid body's from its centre of gravity, a shaft's from its first end"),
     "mode": ("-", "number of the mode tracked over speed in the Campbell diagram"),
     "track_label": ("text", "the mode's name, the same in the text, JSON, CSV and figures: "
                     "the label of the matched-whirl onset at which the track loses its "

@@ -50,13 +50,13 @@ class CoefficientTable:
     """K [N/m] and C [N s/m] against excitation frequency [Hz] at one operating point.
 
     table : one row per frequency, columns :data:`COLUMNS` (plus whirl_ratio [-]);
-    speed_rpm : the shaft speed [rpm]; matched_whirl_hz : the threshold whirl frequency [Hz]
+    speed_rpm : the shaft speed [rpm]; threshold_whirl_frequency_hz : the threshold whirl frequency [Hz]
     (nan if none), at which the table has a row; frame : the axes and sign convention.
     """
 
     table: pd.DataFrame
     speed_rpm: float
-    matched_whirl_hz: float
+    threshold_whirl_frequency_hz: float
     frame: str = FRAME
 
     def write_csv(self, path) -> Path:
@@ -68,7 +68,7 @@ class CoefficientTable:
     def to_dict(self) -> dict:
         """Column lists, the frame and the matched-whirl frequency (JSON-ready)."""
         return {"frame": self.frame, "speed_rpm": self.speed_rpm,
-                "matched_whirl_hz": self.matched_whirl_hz,
+                "threshold_whirl_frequency_hz": self.threshold_whirl_frequency_hz,
                 "units": {c: describe(c)[0] for c in ("whirl_ratio", *COLUMNS)},
                 **{c: self.table[c].tolist() for c in ("whirl_ratio", *COLUMNS)}}
 

@@ -170,8 +170,8 @@ def test_coefficients_in_si(cache):
     assert row.kxy_N_per_m == pytest.approx(nd.stiffness[0, 0, 1] * scale, rel=1e-12)
     assert row.cyx_Ns_per_m == pytest.approx(nd.damping[0, 1, 0] * scale / omega, rel=1e-12)
     assert row.frequency_hz == pytest.approx(row.whirl_ratio * omega / (2 * math.pi))
-    assert table.matched_whirl_hz == pytest.approx(r.threshold_whirl_frequency_hz)
-    assert (table.table.frequency_hz - table.matched_whirl_hz).abs().min() < 1e-9
+    assert table.threshold_whirl_frequency_hz == pytest.approx(r.threshold_whirl_frequency_hz)
+    assert (table.table.frequency_hz - table.threshold_whirl_frequency_hz).abs().min() < 1e-9
     with pytest.raises(ParameterError, match=r"^frequency_hz = 0.0: must be finite and > 0"):
         coefficient_table(r.linearisation, BEARING, 45000, [0.0, 100.0])
 
