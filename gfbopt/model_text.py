@@ -53,3 +53,34 @@ def model_words(conv: dict, law: str = "deflection law") -> str:
     if friction:
         parts.append(friction)
     return ", ".join(parts)
+
+
+def _zone_words(zone: dict) -> str:
+    extra = [f"{key.replace('_', ' ')} {value:g}" for key, value in zone.items()
+             if key not in ("start_deg", "end_deg") and _number(value)]
+    return (f"{zone.get('start_deg', 0):g}–{zone.get('end_deg', 360):g}°"
+            + (f" ({', '.join(extra)})" if extra else ""))
+
+
+def built_words(conv: dict) -> str:
+    """'3 shims, preload 8 µm, 60° wide; pads at 0, 120, 240°; bump zones 0–180° (friction
+    coefficient 0.3), 180–360°' for a bearing as built (bore, pads, zones), else ''."""
+    parts = []
+    bore = conv.get("bore")
+    if bore and bore != "round":
+        text = f"{conv['bore_count']} {bore}" if _number(conv.get("bore_count")) else f"{bore}"
+        depth, ratio = conv.get("bore_preload_depth_m"), conv.get("bore_preload_ratio")
+        if _number(depth):
+            text += f", preload {depth * 1e6:.3g} µm"
+        elif _number(ratio):
+            text += f", preload {ratio:.3g} c"
+        if _number(conv.get("bore_width_deg")):
+            text += f", {conv['bore_width_deg']:g}° wide"
+        parts.append(text)
+    pads = conv.get("pads_leading_end_deg")
+    if pads:
+        parts.append("pads at " + ", ".join(f"{p:g}" for p in pads) + "°")
+    zones = conv.get("zones")
+    if zones:
+        parts.append("bump zones " + ", ".join(_zone_words(z) for z in zones))
+    return "; ".join(parts)

@@ -128,6 +128,7 @@ class _Found:
 
 
 def _report(out: dict) -> str:
+    from ..model_text import built_words
     from .stability import running_lines
 
     conv = out["conventions"]
@@ -135,9 +136,9 @@ def _report(out: dict) -> str:
              f"  film: {conv['film_convention']}; foil {conv['foil']}, "
              f"{conv['deflection_law']} law; grid {conv['grid']}"]
     lines += running_lines(out["running"])
-    if conv.get("bore") or conv.get("pads_leading_end_deg") or conv.get("zones"):
-        lines.append(f"  as built: bore {conv.get('bore')}, pads "
-                     f"{conv.get('pads_leading_end_deg')}, zones {conv.get('zones')}")
+    built = built_words(conv)
+    if built:
+        lines.append(f"  as built: {built}")
     if out["success"] and out["curve"]:
         answered = math.isfinite(out.get("load_capacity_newton", out.get("lift_off_speed_rpm")))
         solved = f"({len(out['curve'])} equilibria solved, {out['wall_time_s']:.2f} s)"

@@ -16,6 +16,7 @@ import time
 from ..errors import ParameterError
 from .common import add_operating_point, describe, emit, number, operating_point
 from .csv_context import context_options
+from ..model_text import foil_words, friction_words
 
 
 #: largest whirl ratio of a K, C table [-]
@@ -95,7 +96,9 @@ def run(args) -> int:
 
     def report() -> str:
         model = op.model
-        lines = [f"gfbopt linear — {model.foil} foil, {model.film} film, grid {op.grid}",
+        friction = friction_words(model.options())
+        lines = [f"gfbopt linear — {foil_words(model.options())}, {model.film} film"
+                 + (f", {friction}" if friction else "") + f", grid {op.grid}",
                  f"  ε = {sol.eccentricity:.5f}, load W/(p_a R²) = {sol.load:.5f}, "
                  f"attitude {out['attitude_angle_deg']:.3f} deg",
                  (f"  critical mass M̄ = M c ω²/W0 = {threshold.critical_mass:.5g} at whirl "

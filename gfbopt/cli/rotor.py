@@ -41,7 +41,7 @@ from ..inputs.grid import DEFAULT_GRID
 from . import rotor_time
 from .common import emit, integer, number
 from .csv_context import HELP as CSV_HELP, context_options, write_csv
-from ..model_text import model_words
+from ..model_text import built_words, model_words
 
 
 def register(subparsers) -> None:
@@ -178,8 +178,10 @@ def _report(out: dict) -> str:
              f"  bearing loads: {loads}"]
     lines += [f"  {note}" for note in out["bearing_notes"]]
     for name, conv in out["conventions"]["bearings"].items():
+        built = built_words(conv)
         lines.append(f"  bearing {name}: {conv['film_convention']}; "
-                     f"{model_words(conv, law='law')}; {out['thermal_models'][name]}")
+                     f"{model_words(conv, law='law')}; {out['thermal_models'][name]}"
+                     + (f"; as built: {built}" if built else ""))
     if _finite(out["onset_speed_rpm"]):
         lines.append(f"  first to whirl: {out['first_mode']} from "
                      f"{out['onset_speed_rpm']:,.0f} rpm at {out['onset_whirl_frequency_hz']:.4g}"

@@ -30,7 +30,7 @@ import sys
 from ..errors import ParameterError
 from .common import add_grid, emit, number
 from .csv_context import HELP as CSV_HELP, context_options, write_context
-from ..model_text import model_words
+from ..model_text import built_words, model_words
 from .si import seam_angle_text, stated_options
 
 #: --onset without --speed-range searches (N/4, 2N) around the operating speed N [rpm]
@@ -309,6 +309,8 @@ def _report(out, result, onset, table, csv) -> str:
     lines = [f"gfbopt stability — {out['bearing']}, rotor {out['rotor_mass_kg']:.4g} kg per "
              f"bearing, grid {out['grid']}",
              f"  conventions: {conv['film_convention']}; {model_words(conv)}"]
+    if built_words(conv):
+        lines.append(f"  as built: {built_words(conv)}")
     if out.get("running"):
         lines += running_lines(out["running"])
     else:

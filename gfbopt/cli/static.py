@@ -68,7 +68,7 @@ def run(args) -> int:
 
 
 def _report(out: dict) -> str:
-    from ..model_text import foil_words, friction_words
+    from ..model_text import built_words, foil_words, friction_words
 
     friction = friction_words(out)
     lines = [f"gfbopt static — {foil_words(out)}, {out['film']} film"
@@ -90,13 +90,13 @@ def _report(out: dict) -> str:
     lines += [f"  minimum film h/c        {out['min_film']:.5f} at "
               f"{out['min_film_angle_deg']:.1f} deg from the load line",
               f"  drag torque / Petroff's {out['torque_ratio']:.5f}"]
-    if out.get("bore") is not None or out.get("pads_leading_end_deg") or out.get("zones_deg"):
-        lines.append(f"  as built: bore {out.get('bore')}"
-                     + (f", {out['bore_count']} × preload {out['bore_preload_ratio']:.4g} c"
-                        if "bore_count" in out else "")
-                     + (f"; pads at {out['pads_leading_end_deg']} deg"
-                        if out.get("pads_leading_end_deg") else "")
-                     + (f"; {len(out['zones_deg'])} bump zones" if out.get("zones_deg") else ""))
+    zones = [{"start_deg": a, "end_deg": b} | (
+        {"friction_coefficient": out["zones_friction_coefficient"][k]}
+        if out.get("zones_friction_coefficient") else {})
+        for k, (a, b) in enumerate(out.get("zones_deg") or [])]
+    built = built_words({**out, "zones": zones})       # the phrase of every text report
+    if built:
+        lines.append(f"  as built: {built}")
     if "min_film_thickness_um" in out:
         lines.append(f"  minimum film            {out['min_film_thickness_um']:.2f} µm "
                      f"(load {out['load_newton']:.2f} N at {out['speed_rpm']:.0f} rpm)")
