@@ -318,12 +318,12 @@ for _name, _entry in {
     "position_m": ("m", "axial position along the rotor in its frame (conventions.frame): a "
                    "rigid body's from its centre of gravity, a shaft's from its first end"),
     "mode": ("-", "number of the mode tracked over speed in the Campbell diagram"),
-    "track_label": ("text", "the mode's name, the same in the text, JSON, CSV and figures: "
-                    "the label of the matched-whirl onset at which the track loses its "
-                    "damping, or of the onset-list mode of the same shape (MAC ≥ 0.8), else "
-                    "its shape class; ' (2)', ' (3)' when another track has that name "
-                    "(gfbopt.rotor.tracking); in threshold_scan.csv the mode the crossing "
-                    "belongs to (gfbopt.rotor.mode_search)"),
+    "track_label": ("text", "the mode's name, the same in the text, JSON, CSV and figures: the "
+                    "label of the matched-whirl onset at which the track loses its damping, or "
+                    "of the onset-list mode of the same shape (MAC ≥ 0.8), else its shape "
+                    "class; ' (2)', ' (3)' when another track has that name (gfbopt.rotor."
+                    "tracking); in threshold_scan.csv the mode the crossing belongs to; at "
+                    "--speed-rpm the onset-list mode of the same shape (null: none)"),
     "shape_label": ("text", "shape class of the tracked mode at this speed: forward/backward, "
                     "cylindrical/conical/mixed; it may change along a track, whose name is "
                     "track_label"),

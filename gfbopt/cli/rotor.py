@@ -312,16 +312,25 @@ def _at_speed_lines(at: dict) -> list:
         if b.get("load_exceeds_capacity"):
             text += "; load above the rule-of-thumb capacity"
         lines.append(text)
+    def name(row: dict) -> str:         # an onset-list mode's name, else the shape class
+        return row.get("track_label") or f"({row['shape_label']})"
+
+    unnamed = False
     for m in at["modes"]:
         if not _finite(m.get("log_decrement")):
             continue
         verdict = "unstable" if m["log_decrement"] < 0 else "stable"
-        lines.append(f"    mode {m['shape_label']:<22} whirl {m['whirl_frequency_hz']:.4g} Hz "
+        unnamed |= not m.get("track_label")
+        lines.append(f"    mode {name(m):<22} whirl {m['whirl_frequency_hz']:.4g} Hz "
                      f"(ratio {m['whirl_ratio']:.3f}), log decrement "
                      f"{m['log_decrement']:+.3g}: {verdict}")
     for t in at.get("thresholds") or []:
-        lines.append(f"    threshold of {t['shape_label']}: whirl {t['whirl_frequency_hz']:.4g}"
+        unnamed |= not t.get("track_label")
+        lines.append(f"    threshold of {name(t)}: whirl {t['whirl_frequency_hz']:.4g}"
                      f" Hz (ratio {t['whirl_ratio']:.3f}) at {t['inertia_scale']:.3g} × the "
                      f"rotor's inertia (margin {t['inertia_margin']:+.1%})"
                      + (f"; {t['note']}" if t.get("note") else ""))
+    if unnamed:
+        lines.append("    (…): the shape class at this speed; no mode of the onset list has "
+                     "that shape here (MAC < 0.8)")
     return lines

@@ -36,6 +36,7 @@ from .running import ISOTHERMAL, running_summary
 from .supports import resolve_rotor
 from .mode_search import UNSTABLE_LOW
 from .system import RotorOnsets, SpeedLine, rotor_onsets
+from .tracking import names_at_speed
 
 #: the widest speed range analysed at once: HIGH/LOW at most this [-]
 MAX_SPEED_RATIO = 1000.0
@@ -247,29 +248,35 @@ def clearance_warnings(system: RotorSystem, response: Optional[ImbalanceResponse
     return tuple(out)
 
 
-def modes_at_speed(line: SpeedLine, speed_rpm: float) -> dict:
+def modes_at_speed(line: SpeedLine, speed_rpm: float, onsets=()) -> dict:
     """Each bearing's equilibrium and the rotor's modes (full system) at one speed, each with
-    its shape class there (``shape_label``: one speed's eigenvector, not a mode's name), and
-    every matched-whirl threshold μ_c there (``shape_label``: its shape class at this speed;
-    the mode it belongs to is named by the onset search's tracks)."""
+    its shape class there (``shape_label``: one speed's eigenvector), and every matched-whirl
+    threshold μ_c there (``shape_label``: its shape class at this speed); each with the name
+    of the onset-list mode of ``onsets`` of the same shape (``track_label``; null when none
+    has that shape there, :func:`~gfbopt.rotor.tracking.names_at_speed`)."""
     states = line.states(speed_rpm)
     if not states.ok:
         return {"speed_rpm": speed_rpm, "load_capacity_exceeded": states.failure}
     damped = any(c.options.loss_factor for c in line.rotor.cases)
     ref = reference_whirl(line, speed_rpm) if damped else None
     modes = system_modes(line.rotor, states, reference_whirl=ref)
+    crossings = line.crossings(speed_rpm)
+    mode_names = names_at_speed(modes, onsets, line.rotor)
+    crossing_names = names_at_speed(crossings, onsets, line.rotor)
     return {"speed_rpm": speed_rpm, "bearings": [s.summary() for s in states.states],
             "reference_whirl_ratio": ref,
-            "modes": [{"shape_label": m.label, "whirl_frequency_hz": m.whirl_frequency_hz,
+            "modes": [{"track_label": n, "shape_label": m.label,
+                       "whirl_frequency_hz": m.whirl_frequency_hz,
                        "whirl_ratio": m.whirl_ratio, "log_decrement": m.log_decrement,
                        "damping_ratio": m.damping_ratio,
                        "growth_rate_per_s": m.growth_rate_per_s, "shape": m.shape}
-                      for m in modes],
-            "thresholds": [{"shape_label": c.label, "inertia_scale": c.inertia_scale,
+                      for m, n in zip(modes, mode_names)],
+            "thresholds": [{"track_label": n, "shape_label": c.label,
+                            "inertia_scale": c.inertia_scale,
                             "inertia_margin": c.inertia_scale - 1.0,
                             "whirl_frequency_hz": c.whirl_frequency_hz,
                             "whirl_ratio": c.whirl_ratio, "note": c.note}
-                           for c in line.crossings(speed_rpm)]}
+                           for c, n in zip(crossings, crossing_names)]}
 
 
 @single_threaded
@@ -294,7 +301,8 @@ def analyse_rotor(system: RotorSystem, speed_range, *, speed_rpm: Optional[float
                              "there is no imbalance response to compute")
     line = SpeedLine(resolve_rotor(system, grid, cache, options))
     onsets = rotor_onsets(system, (low, high), line=line, show_progress=show_progress)
-    at = modes_at_speed(line, float(speed_rpm)) if speed_rpm is not None else None
+    at = (modes_at_speed(line, float(speed_rpm), onsets.modes) if speed_rpm is not None
+          else None)
     cd = (campbell_diagram(line, list(np.linspace(low, high, campbell_speeds)),
                            show_progress, onsets=onsets.modes) if campbell else None)
     ir = (imbalance_response(line, list(np.linspace(low, high, imbalance_speeds)),

@@ -356,3 +356,22 @@ def name_tracks(tracks: list, onsets=(), rotor=None) -> list:
             names[t] = name
             taken.add(name)
     return [(n, zero) for n, (_, zero) in zip(names, base)]
+
+
+def names_at_speed(items: list, onsets=(), rotor=None) -> list:
+    """The onset-list name of each of ``items`` (one speed's eigenmodes or threshold
+    crossings: a ``vector`` each) at that speed (``gfbopt rotor --speed-rpm``): the mode of
+    ``onsets`` of the same shape (MAC ≥ :data:`SAME_SHAPE`, one to one by the optimal
+    assignment, as rule 1b names a Campbell track); None where no onset-list mode has that
+    shape there (the item is then known by its shape class alone, never by another mode's
+    name)."""
+    onsets = [o for o in onsets if getattr(o, "vector", None) is not None]
+    names: list = [None] * len(items)
+    if items and onsets and rotor is not None:
+        cost = np.array([[1.0 - mac(shape_vector(o.vector, rotor),
+                                    shape_vector(item.vector, rotor)) for o in onsets]
+                         for item in items])
+        for i, k in zip(*linear_sum_assignment(cost)):
+            if cost[i, k] <= 1.0 - SAME_SHAPE:
+                names[i] = onsets[k].label
+    return names

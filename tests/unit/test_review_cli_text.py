@@ -46,10 +46,12 @@ def test_rotor_speed_rpm_prints_the_at_speed_section():
     assert "at 45,000 rpm (--speed-rpm):" in text
     assert f"running clearance {a['running_clearance_um']:.4g} µm" in text
     assert "running clearance 16.68 µm" in text
-    for m in at["modes"]:
-        assert f"mode {m['shape_label']:<22} whirl {m['whirl_frequency_hz']:.4g} Hz" in text
+    for m in at["modes"]:              # the onset list's name, else "(shape class)"
+        name = m["track_label"] or f"({m['shape_label']})"
+        assert f"mode {name:<22} whirl {m['whirl_frequency_hz']:.4g} Hz" in text
     for t in at["thresholds"]:
-        assert f"threshold of {t['shape_label']}: whirl {t['whirl_frequency_hz']:.4g}" in text
+        name = t["track_label"] or f"({t['shape_label']})"
+        assert f"threshold of {name}: whirl {t['whirl_frequency_hz']:.4g}" in text
 
 
 def test_flexible_rotor_at_30000_rpm_in_the_text():
