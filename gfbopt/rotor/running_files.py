@@ -15,10 +15,12 @@ What a file returns (every answer names the clearance model, ``thermal_model``, 
 
 - ``stability``: a :class:`RunningStability` (the StabilityResult's attributes, or None
   figures when there is no running state, plus ``running``);
-- ``onset_speed``, ``load_capacity``, ``lift_off_speed``: the dict of
-  :func:`~gfbopt.rotor.running_bearing.running_onset`,
+- ``onset_speed``, ``load_capacity``, ``lift_off_speed``: a :class:`FileAnswer`, the dict
+  of :func:`~gfbopt.rotor.running_bearing.running_onset`,
   :func:`~gfbopt.rotor.running_bearing.running_load_capacity`,
-  :func:`~gfbopt.rotor.running_bearing.running_lift_off` (the command line's JSON fields).
+  :func:`~gfbopt.rotor.running_bearing.running_lift_off` (the command line's JSON fields)
+  whose keys are also attributes (``.answer``, ``.onset_speed_rpm``, ``.to_dict()``), as a
+  bearing's result reads.
 """
 from __future__ import annotations
 
@@ -74,6 +76,22 @@ class RunningStability:
         return {**out, **{k: d[k] for k in RUNNING_FIELDS}, "running": d}
 
 
+class FileAnswer(dict):
+    """The answer for a bearing file: the command line's JSON fields, each key also an
+    attribute (``found.answer``, ``found.onset_speed_rpm``), ``to_dict()`` a plain copy — so
+    code written for a bearing's result object reads a file's answer unchanged."""
+
+    def __getattr__(self, name):
+        try:
+            return self[name]
+        except KeyError:
+            raise AttributeError(f"{name}: not a field of this answer (its fields: "
+                                 f"{', '.join(sorted(self))})") from None
+
+    def to_dict(self) -> dict:
+        return dict(self)
+
+
 def _resolved(bearing, options, stated: dict):
     """The formulation: the options stated as keywords (``film``, ``seam_angle_deg``,
     ``foil``, ``deflection_law``, ``loss_factor``) over ``options``, else the file's
@@ -101,7 +119,8 @@ def stability_of_file(path, rotor, operating_point, *, options=None,
 
 
 def onset_of_file(path, rotor, load_newton, speed_range, *, guess_rpm=None, options=None,
-                  grid: Grid = DEFAULT_GRID, cache=None, progress=False, **stated) -> dict:
+                  grid: Grid = DEFAULT_GRID, cache=None, progress=False,
+                  **stated) -> FileAnswer:
     """The onset of whirl of the bearing file ``path`` at the running condition of each
     speed (``gfbopt stability --speed-range LOW HIGH``; with ``guess_rpm`` as
     ``--speed-rpm N --onset`` gives it)."""
@@ -110,36 +129,38 @@ def onset_of_file(path, rotor, load_newton, speed_range, *, guess_rpm=None, opti
     from .running_bearing import running_onset
 
     bearing, spec = load_running_bearing(path)
-    return running_onset(bearing, spec, rotor, load_newton, tuple(speed_range),
-                         guess_rpm=guess_rpm, options=_resolved(bearing, options, stated),
-                         grid=grid, cache=cache or SolverCache(grid), progress=progress)
+    return FileAnswer(running_onset(
+        bearing, spec, rotor, load_newton, tuple(speed_range), guess_rpm=guess_rpm,
+        options=_resolved(bearing, options, stated), grid=grid,
+        cache=cache or SolverCache(grid), progress=progress))
 
 
 def load_capacity_of_file(path, speed_rpm, min_film_um, *, options=None,
-                          grid: Grid = DEFAULT_GRID, cache=None, **stated) -> dict:
+                          grid: Grid = DEFAULT_GRID, cache=None, **stated) -> FileAnswer:
     """The load capacity [N] of the bearing file ``path`` at its running condition
     (``gfbopt capacity --bearing FILE --speed-rpm N --min-film-um H``)."""
     from ..thermal.files import load_running_bearing
     from .running_bearing import running_load_capacity
 
     bearing, spec = load_running_bearing(path)
-    return running_load_capacity(bearing, spec, speed_rpm, min_film_um,
-                                 options=_resolved(bearing, options, stated), grid=grid,
-                                 cache=cache)
+    return FileAnswer(running_load_capacity(bearing, spec, speed_rpm, min_film_um,
+                                            options=_resolved(bearing, options, stated),
+                                            grid=grid, cache=cache))
 
 
 def lift_off_of_file(path, load_newton, min_film_um, *, max_speed_rpm=100_000.0,
-                     options=None, grid: Grid = DEFAULT_GRID, cache=None, **stated) -> dict:
+                     options=None, grid: Grid = DEFAULT_GRID, cache=None,
+                     **stated) -> FileAnswer:
     """The lift-off speed [rpm] of the bearing file ``path`` at its running condition
     (``gfbopt capacity --bearing FILE --lift-off --load-newton F --min-film-um H``)."""
     from ..thermal.files import load_running_bearing
     from .running_bearing import running_lift_off
 
     bearing, spec = load_running_bearing(path)
-    return running_lift_off(bearing, spec, load_newton, min_film_um,
-                            max_speed_rpm=max_speed_rpm,
-                            options=_resolved(bearing, options, stated), grid=grid,
-                            cache=cache)
+    return FileAnswer(running_lift_off(bearing, spec, load_newton, min_film_um,
+                                       max_speed_rpm=max_speed_rpm,
+                                       options=_resolved(bearing, options, stated),
+                                       grid=grid, cache=cache))
 
 
 def accepts_bearing_files(function: Callable, of_file: Callable) -> Callable:

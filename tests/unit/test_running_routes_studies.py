@@ -472,3 +472,19 @@ def test_a_non_dimensional_mass_is_refused_on_a_heated_file():
     assert cli.returncode == 2
     lines = cli.stderr.strip().splitlines()
     assert len(lines) == 1 and "--mass = 18.43" in lines[0] and "--rotor-mass-kg" in lines[0]
+
+
+def test_the_apis_file_answer_reads_as_a_result(heated):
+    """gfbopt.api given a file's path: the command line's JSON fields, each also an attribute
+    (``.answer``, ``.onset_speed_rpm``), so the README's ``onset_speed(...).answer`` works."""
+    from gfbopt import api
+    from gfbopt.rotor.running_files import FileAnswer
+
+    found = api.onset_speed(str(THERMAL), Rotor(2.0), 20.0, (3000.0, 60000.0), film="seam",
+                            seam_angle_deg=180.0, grid=Grid.parse(GRID))
+    assert isinstance(found, FileAnswer) and isinstance(found, dict)
+    assert found.onset_speed_rpm == found["onset_speed_rpm"]
+    assert found.answer.startswith("onset of whirl at ")
+    assert found.to_dict() == dict(found)
+    with pytest.raises(AttributeError, match="not a field"):
+        found.critical_mass_kg
