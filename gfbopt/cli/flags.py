@@ -27,7 +27,8 @@ FILE_NAMES = ("file", "path")
 #: that names the choice, the option's dest).  ``friction_coefficient = 0.5: is not carried by
 #: the beam foil model`` after ``--foil beam`` reads ``--foil = 'beam': FILE's
 #: friction_coefficient = 0.5 is not carried …`` (the user typed --foil, not the key)
-CHOICES = {key: (("engine", "method"), ("foil model", "foil"))
+CHOICES = {key: (("engine", "method"), ("foil model", "foil"),
+                 ("deflection_law", "deflection_law"))
            for key in ("friction_coefficient", "friction_stiffness_ratio",
                        "hardening_exponent", "hardening_limit")}
 
@@ -56,7 +57,7 @@ def _same(value, given) -> bool:
     if isinstance(given, (list, tuple)):
         if isinstance(value, (list, tuple)):
             return [*value] == [*given]
-        return len(given) == 1 and _equal(value, given[0])
+        return any(_equal(value, g) for g in given)     # one element of a list option
     return _equal(value, given)
 
 
@@ -75,9 +76,8 @@ def _flag_of(name: str, value, args, flags: dict) -> Optional[str]:
     if dest in flags and flags[dest].startswith("--") and _same(value, getattr(args, dest,
                                                                                 None)):
         return flags[dest]
-    if name in FILE_NAMES:
-        hits = [f for d, f in flags.items() if f.startswith("--")
-                and _same(value, getattr(args, d, None))]
+    if name in FILE_NAMES:                       # a flag's or a positional's file
+        hits = [f for d, f in flags.items() if _same(value, getattr(args, d, None))]
         return hits[0] if len(hits) == 1 else None
     return None
 

@@ -257,6 +257,25 @@ def _check_numbers(args, profile):
     return profile
 
 
+def _check_planes(system, planes: tuple) -> None:
+    """The rotor file's rule for a plane's position (gfbopt.inputs.rotor_limits), refused by
+    the option that gave the plane: ``--imbalance-plane[2] position = 5.0: …``."""
+    from dataclasses import replace
+
+    from ..errors import ParameterError
+    from ..inputs.rotor_limits import check_rotor_limits
+
+    try:                          # (the rotor system checks itself as it is replaced)
+        check_rotor_limits(replace(system, imbalance=planes))
+    except ParameterError as exc:
+        name = (exc.name if isinstance(exc.name, str) else "").rsplit(": ", 1)[-1]
+        if name.startswith("imbalance["):
+            k = name[len("imbalance["):].split("]", 1)[0]
+            raise ParameterError(f"--imbalance-plane[{k}] position", exc.value,
+                                 exc.rule) from None
+        raise
+
+
 def imbalance_planes(args, system, top_rpm: float):
     """The imbalance planes the options ask for (None: the file's); a balance grade is
     turned into an amount with the top speed ``top_rpm`` [rpm]."""
@@ -275,6 +294,7 @@ def imbalance_planes(args, system, top_rpm: float):
                 raise ParameterError(f"--imbalance-plane[{k + 1}] amount", amount,
                                      "must be > 0 g mm")
             planes.append(ImbalancePlane(amount * 1e-6, position, phase, f"plane {k + 1}"))
+        _check_planes(system, tuple(planes))
         return tuple(planes)
     if args.imbalance_grade is None:
         return None

@@ -59,7 +59,8 @@ def _positive(name: str):
 
 def register(subparsers) -> None:
     run = subparsers.add_parser("run", help="run named studies: gfbopt run problems/NAME.toml")
-    run.add_argument("problems", nargs="+", help="study files (problems/NAME.toml)")
+    run.add_argument("problems", nargs="+", metavar="STUDY.toml",
+                     help="study files (problems/NAME.toml)")
     run.add_argument("--results", default=None,
                      help="output folder (default runs/, which git ignores; the shipped "
                      "results/ are regenerated with --results results, docs/studies.md)")

@@ -200,7 +200,21 @@ def _operating_point(args):
     return op
 
 
-def _held_point(args):
+def _check_no_friction(args, model) -> None:
+    """``gfbopt critical-mass`` searches with transients that carry no slider: a bearing
+    whose bumps rub is refused before any solve, saying which commands model it."""
+    from ..errors import ParameterError
+
+    mu = getattr(model, "friction_coefficient", 0.0)
+    if mu > 0:
+        raise ParameterError("--bearing", args.bearing, f"friction_coefficient = {mu:g}: "
+                             "gfbopt critical-mass does not model the bumps' Coulomb friction "
+                             "(its search runs transients without sliders); gfbopt orbit runs "
+                             "a rubbing bearing in time, gfbopt stability and linear give its "
+                             "small-motion (stuck) threshold")
+
+
+def _held_point(args, friction: bool = True):
     """(OperatingPoint or None, RunningPoint or None, solver or None) of ``gfbopt orbit`` and
     ``critical-mass``: a bearing file with ``[journal]``/``[thermal]`` held at its running
     condition at ``--speed-rpm`` exactly as ``gfbopt static`` holds it
@@ -209,9 +223,16 @@ def _held_point(args):
     from .running_point import running_operating_point
 
     _check_loss_factor(args)
-    running = running_operating_point(
-        args, check=lambda model: _check_damping(args, _Model(model)))
+
+    def check(model):                            # the cold model, before any solve
+        if not friction:
+            _check_no_friction(args, model)
+        _check_damping(args, _Model(model))
+
+    running = running_operating_point(args, check=check)
     if running is None:                          # no [journal]/[thermal]: today's route
+        if not friction:
+            _check_no_friction(args, operating_point(args).model)
         return _operating_point(args), None, None
     op, point, solver = running
     if op is not None:
@@ -227,10 +248,26 @@ class _Model:
 
 
 def _solve(op, solver=None):
+    """(solver, equilibrium) of the operating point; a load the bearing cannot carry is
+    refused as ``gfbopt stability`` refuses it (the largest load that converged)."""
+    from ..errors import ParameterError
+    from ..rotor.analysis import largest_converged_load
     from ..static import solve_static, solver_for
 
     solver = solver or solver_for(op.model, op.grid)
     sol = solve_static(op.model, eccentricity=op.eccentricity, load=op.load, solver=solver)
+    if not sol.success and op.load is not None and op.eccentricity is None:
+        largest = largest_converged_load(op.model, op.load, solver)
+        name, value, unit = (("--load-newton", op.load_newton, "N")
+                             if op.load_newton is not None else ("--load", op.load, ""))
+        carried = (op.geometry.load_newton(largest) if op.geometry is not None
+                   and op.load_newton is not None else largest)
+        at = f" ({op.speed_rpm:.6g} rpm)" if op.speed_rpm is not None else ""
+        raise ParameterError(name, value, (
+            f"load exceeds the load capacity at this speed{at}: the largest load that converged "
+            f"is {carried:.4g}{' ' + unit if unit else ''}" if largest > 0 else
+            f"load exceeds the load capacity at this speed{at}: no load down to a 64th of "
+            "it converged"))
     return solver, sol
 
 
@@ -380,7 +417,8 @@ def run_critical_mass(args) -> int:
                              f"with --tolerance {args.tolerance:g}: (batch − 1) × tolerance "
                              "must be < 1 so that every mass is > 0")
     check_run_length(args)
-    op, point, solver = _held_point(args)       # a heated file: at its running condition
+    # a heated file: at its running condition; a rubbing one refused
+    op, point, solver = _held_point(args, friction=False)
     if op is None:                               # thermal runaway or closure at the speed
         from .running_point import no_running_state
 

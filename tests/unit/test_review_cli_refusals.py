@@ -76,3 +76,56 @@ def test_non_finite_numbers(value, rule):
     line = _refused("static", "--bearing", str(B / "ruscitto.toml"), "--speed-rpm", "30000",
                     f"--load-newton={value}")
     assert line == f"--load-newton = {value!r}: {rule}"
+
+
+R = REPO / "problems" / "rotors"
+POINT = ("--speed-rpm", "30000", "--grid", "24x8")
+
+
+def test_one_value_of_a_list_option_names_the_flag():
+    line = _refused("stability", "--bearing", str(B / "ruscitto.toml"), "--rotor-mass-kg", "2",
+                    "--load-newton", "20", *POINT, "--frequency-hz", "100", "-5")
+    assert line == "--frequency-hz = -5.0: must be finite and > 0 [Hz]"
+
+
+def test_a_hardening_bump_refused_for_the_local_law_names_the_flag(tmp_path):
+    hard = tmp_path / "hard.toml"
+    hard.write_text((B / "ruscitto.toml").read_text().replace(
+        "[model]", "[model]\nbump_height = 0.5e-3\nhardening_limit = 15e-6\n"
+        "hardening_exponent = 2.0", 1))
+    line = _refused("stability", "--bearing", str(hard), "--rotor-mass-kg", "2",
+                    "--load-newton", "20", *POINT, "--deflection-law", "local")
+    assert line.startswith(f"--deflection-law = 'local': {hard}: hardening_exponent = 2.0: ")
+
+
+@pytest.mark.parametrize("rotor, rule", [("blower.toml", "must lie within 50 journal"),
+                                          ("flexible_rotor.toml", "must lie on the shaft")])
+def test_an_imbalance_plane_of_the_command_line_is_refused_as_typed(rotor, rule):
+    line = _refused("rotor", str(R / rotor), "--speed-range", "5000", "30000",
+                    "--imbalance-response", "--imbalance-plane", "1", "0", "0.1",
+                    "--imbalance-plane", "1", "0", "5", "--grid", "24x8")
+    assert line.startswith("--imbalance-plane[2] position = 5.0: " + rule)
+
+
+@pytest.mark.parametrize("args, name", [
+    (("rotor", "x.toml", "--speed-range", "5000", "30000"), "ROTOR.toml"),
+    (("run", "x.toml"), "STUDY.toml")])
+def test_a_missing_positional_file_names_the_argument(args, name):
+    assert _refused(*args) == f"{name} = 'x.toml': must be an existing TOML file"
+
+
+def test_an_overloaded_orbit_says_what_the_bearing_carries():
+    line = _refused("orbit", "--bearing", str(B / "ruscitto.toml"), "--rotor-mass-kg", "2",
+                    "--load-newton", "2000", *POINT)
+    stability = _refused("stability", "--bearing", str(B / "ruscitto.toml"),
+                         "--rotor-mass-kg", "2", "--load-newton", "2000", *POINT)
+    assert line == stability
+    assert line.startswith("--load-newton = 2000.0: load exceeds the load capacity at this "
+                           "speed (30000 rpm): the largest load that converged is ")
+
+
+def test_critical_mass_says_it_does_not_model_friction():
+    line = _refused("critical-mass", "--bearing", FRICTION, "--load-newton", "20", *POINT)
+    assert line.startswith(f"--bearing = '{FRICTION}': friction_coefficient = 0.5: gfbopt "
+                           "critical-mass does not model the bumps' Coulomb friction")
+    assert "gfbopt orbit" in line
