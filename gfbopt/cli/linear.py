@@ -46,6 +46,7 @@ def run(args) -> int:
     from ..linear import coefficients, least_stable_mode, linear_threshold, linearise
     from ..static import solve_static, solver_for
 
+    from ..thermal.running import ISOTHERMAL
     from .running_point import no_running_state, running_fields, running_operating_point
 
     running = running_operating_point(args)
@@ -93,6 +94,8 @@ def run(args) -> int:
         out.update({"mass": args.mass, "growth_rate": mode.real, "mode_whirl_ratio": mode.imag})
     if point is not None:
         out.update(running_fields(point))
+    else:                                    # a file without [journal]/[thermal]
+        out["thermal_model"] = ISOTHERMAL
 
     def report() -> str:
         model = op.model
@@ -117,6 +120,8 @@ def run(args) -> int:
             from .stability import running_lines
 
             lines.extend(running_lines(out["running"]))
+        else:
+            lines.append(f"  clearance model: {out['thermal_model']}")
         return "\n".join(lines)
 
     emit(out, args.json, report, context_options(args, **describe(op, frame=args.frame)))

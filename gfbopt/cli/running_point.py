@@ -148,3 +148,29 @@ def no_running_state(point: RunningPoint, command: str, as_json: bool) -> int:
     print(f"gfbopt: no equilibrium at {point.speed_rpm:,.0f} rpm: {point.message}",
           file=sys.stderr)
     return 1
+
+
+def point_fields(point) -> dict:
+    """The clearance at speed's fields (RUNNING_FIELDS) of a heated file's answer; for a
+    file without the tables its clearance model alone (isothermal, cold clearance)."""
+    if point is None:
+        from ..thermal.running import ISOTHERMAL
+
+        return {"thermal_model": ISOTHERMAL}
+    return running_fields(point)
+
+
+def answer_text(text: str, out: dict) -> str:
+    """The answer's line, the model that made it (film, foil, friction, hardening, loss
+    factor: the words of every text report), then the running point's lines for a heated
+    file, else its clearance model."""
+    from ..model_text import model_words
+
+    lines = [text, f"  model: {out['film_convention']}; {model_words(out)}"]
+    if out.get("running"):
+        from .stability import running_lines
+
+        lines += running_lines(out["running"])
+    else:
+        lines.append(f"  clearance model: {out['thermal_model']}")
+    return "\n".join(lines)

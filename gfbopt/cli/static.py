@@ -35,6 +35,7 @@ def run(args) -> int:
 
     if not 0 < args.time_limit <= 1e6:
         raise ParameterError("--time-limit", args.time_limit, "must lie in (0, 1e6] s")
+    from ..thermal.running import ISOTHERMAL
     from .running_point import no_running_state, running_fields, running_operating_point
 
     ipopt = {"ipopt.max_cpu_time": float(args.time_limit)}
@@ -59,6 +60,8 @@ def run(args) -> int:
             sol.torque_ratio, op.model.bearing_number, op.geometry)
     if point is not None:
         out.update(running_fields(point))
+    else:                                    # a file without [journal]/[thermal]
+        out["thermal_model"] = ISOTHERMAL
     emit(out, args.json, lambda: _report(out), context_options(args, **describe(op)))
     if not sol.success:
         print(f"gfbopt: solve did not converge: {sol.message} (status {sol.status}, residual "
@@ -106,6 +109,8 @@ def _report(out: dict) -> str:
         from .stability import running_lines
 
         lines += running_lines(out["running"])
+    else:
+        lines.append(f"  clearance model: {out['thermal_model']}")
     lines.append(f"  solver: {out['status']}, {out['iterations']} iterations, residual "
                  f"{out['residual']:.1e}, {out['solve_time_s']:.3f} s"
                  + ("" if out["success"] else "  ** NOT CONVERGED **"))

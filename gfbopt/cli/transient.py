@@ -29,6 +29,7 @@ import math
 
 from .common import (FractionProgress, add_operating_point, describe, emit, number,
                      operating_point)
+from .running_point import answer_text, point_fields
 from .csv_context import HELP as CSV_HELP, context_options, write_csv
 
 #: One line of evidence for the default method (benchmarks/bench_critical_mass.py).
@@ -360,7 +361,7 @@ def run_orbit(args) -> int:
                         rotor_mass_kg=args.rotor_mass_kg)
     out = {**settings, **orbit.to_dict(0), "eccentricity": sol.eccentricity,
            "load": sol.load, "attitude_angle_deg": sol.attitude_angle_deg}
-    running = _running(point)                    # the clearance at speed (RUNNING_FIELDS)
+    running = point_fields(point)                # the clearance at speed (RUNNING_FIELDS)
     out.update(running)
     # its figures in the context too, as gfbopt stability's (the clearance model and the
     # running clearance the orbit was integrated at), without the nested "running" record
@@ -368,7 +369,7 @@ def run_orbit(args) -> int:
                               **{k: v for k, v in running.items() if k != "running"})
     if args.csv:                    # with its context FILE.csv.json (gfbopt.cli.csv_context)
         out["csv"] = str(write_csv(table, args.csv, context, float_format="%.8g"))
-    emit(out, args.json, lambda: _with_running(
+    emit(out, args.json, lambda: answer_text(
         f"gfbopt orbit — M̄ = {mass:.6g}"
         + (f" ({args.rotor_mass_kg:g} kg)" if args.mass is None else "")
         + f": {out['verdict']}, {_orbit_numbers(out, op)}, {out['revolutions']:.1f} revolutions "
@@ -447,8 +448,8 @@ def run_critical_mass(args) -> int:
            "linear_critical_mass": linear.critical_mass,
            "linear_whirl_ratio": linear.whirl_ratio, "eccentricity": sol.eccentricity,
            "load": sol.load, "attitude_angle_deg": sol.attitude_angle_deg,
-           "history": list(result.history), **_running(point)}
-    emit(out, args.json, lambda: _with_running(
+           "history": list(result.history), **point_fields(point)}
+    emit(out, args.json, lambda: answer_text(
         f"gfbopt critical-mass — M̄_crit = {result.critical_mass:.5g} (bracket "
         f"{result.bracket[0]:.5g}–{result.bracket[1]:.5g}), whirl ratio "
         f"{result.whirl_ratio:.4g}; linear {linear.critical_mass:.5g} at "
@@ -458,25 +459,6 @@ def run_critical_mass(args) -> int:
         + _damping_text(result)
         + ("" if result.success else f"  ** FAILED: {result.message}"), out), settings)
     return 0 if result.success else 1
-
-
-def _running(point) -> dict:
-    """The clearance at speed's fields (RUNNING_FIELDS) of a heated file's answer; {} for a
-    file without the tables (today's output)."""
-    if point is None:
-        return {}
-    from .running_point import running_fields
-
-    return running_fields(point)
-
-
-def _with_running(text: str, out: dict) -> str:
-    """The answer's line, then the running point's lines for a heated file."""
-    if not out.get("running"):
-        return text
-    from .stability import running_lines
-
-    return "\n".join([text] + running_lines(out["running"]))
 
 
 def _unstable_at_any_mass(args, op, sol, linear, point=None) -> int:
@@ -490,8 +472,8 @@ def _unstable_at_any_mass(args, op, sol, linear, point=None) -> int:
            "success": True, "message": linear.message, "linear_critical_mass": 0.0,
            "linear_whirl_ratio": linear.whirl_ratio, "eccentricity": sol.eccentricity,
            "load": sol.load, "attitude_angle_deg": sol.attitude_angle_deg,
-           "history": [], "verdict": "unstable at every rotor mass", **_running(point)}
-    emit(out, args.json, lambda: _with_running(
+           "history": [], "verdict": "unstable at every rotor mass", **point_fields(point)}
+    emit(out, args.json, lambda: answer_text(
         f"gfbopt critical-mass — unstable at every rotor mass: M̄_crit = 0 (linear threshold "
         f"0: {linear.message}); no transient search", out), settings)
     return 0

@@ -11,7 +11,7 @@ import pytest
 from gfbopt.inputs import Grid, load_bearing
 from gfbopt.linear import linear_threshold, linearise
 from gfbopt.static import solve_static, solver_for
-from gfbopt.thermal.running import CENTRIFUGAL, HEAT_BALANCE
+from gfbopt.thermal.running import CENTRIFUGAL, HEAT_BALANCE, ISOTHERMAL
 from tests.cli_inprocess import run_cli
 
 BEARINGS = Path(__file__).resolve().parents[2] / "problems" / "bearings"
@@ -112,14 +112,15 @@ def test_runaway_is_reported_not_raised(tmp_path):
 
 
 def test_a_file_without_the_tables_gives_todays_output():
-    """No clearance-at-speed field, and the numbers are the cold bearing's equilibrium."""
+    """No running point's field but the model's name (isothermal, cold clearance), and the
+    numbers are the cold bearing's equilibrium."""
     out = _json("static", "--bearing", BEARINGS / "ruscitto.toml", *ARGS)
-    assert not set(out) & {"thermal_model", "running", *RUNNING}
+    assert not set(out) & {"running", *RUNNING} and out["thermal_model"] == ISOTHERMAL
     cold = load_bearing(BEARINGS / "ruscitto.toml")
     model = cold.model(45000.0, film="seam", seam_angle_deg=180.0, foil="simple")
     sol = solve_static(model, load=cold.nondimensional_load(20.0),
                        solver=solver_for(model, Grid.parse(GRID)))
     assert out["eccentricity"] == sol.eccentricity and out["radial_clearance_m"] == 20e-6
     lin = _json("linear", "--bearing", BEARINGS / "ruscitto.toml", *ARGS)
-    assert not set(lin) & {"thermal_model", "running", *RUNNING}
+    assert not set(lin) & {"running", *RUNNING} and lin["thermal_model"] == ISOTHERMAL
     assert lin["eccentricity"] == sol.eccentricity

@@ -12,7 +12,7 @@ from gfbopt.cli.running_point import RUNNING_FIELDS
 from gfbopt.inputs import Grid, load_bearing
 from gfbopt.inputs.conversions import mass_parameter, rpm_to_rad_per_s
 from gfbopt.static import solve_static, solver_for
-from gfbopt.thermal.running import CENTRIFUGAL, HEAT_BALANCE
+from gfbopt.thermal.running import CENTRIFUGAL, HEAT_BALANCE, ISOTHERMAL
 from tests.cli_inprocess import run_cli
 
 BEARINGS = Path(__file__).resolve().parents[2] / "problems" / "bearings"
@@ -116,9 +116,10 @@ def test_a_runaway_is_reported_exit_1(tmp_path):
 
 
 def test_a_file_without_the_tables_gives_todays_orbit():
-    """No clearance-at-speed field; the cold bearing's model, equilibrium and M̄."""
+    """No running point's field but the model's name (isothermal, cold clearance); the cold
+    bearing's model, equilibrium and M̄."""
     out = _json("orbit", "--bearing", BEARINGS / "ruscitto.toml", *POINT, *ORBIT)
-    assert not set(out) & set(RUNNING_FIELDS)
+    assert not set(out) & set(RUNNING_FIELDS[1:]) and out["thermal_model"] == ISOTHERMAL
     cold = load_bearing(BEARINGS / "ruscitto.toml")
     model = cold.model(45000.0, film="seam", seam_angle_deg=180.0, foil="simple")
     sol = solve_static(model, load=cold.nondimensional_load(20.0),
@@ -143,4 +144,5 @@ def test_the_critical_mass_of_a_heated_file_is_at_the_linear_commands_point():
     text = run_cli("critical-mass", "--bearing", THERMAL, *POINT).stdout
     assert "clearance model: heat balance + growth; running clearance" in text
     cold = _json("critical-mass", "--bearing", BEARINGS / "ruscitto.toml", *POINT)
-    assert not set(cold) & set(RUNNING_FIELDS) and cold["radial_clearance_m"] == 20e-6
+    assert not set(cold) & set(RUNNING_FIELDS[1:]) and cold["radial_clearance_m"] == 20e-6
+    assert cold["thermal_model"] == ISOTHERMAL
