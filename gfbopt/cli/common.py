@@ -241,12 +241,27 @@ def describe(op: OperatingPoint, **more) -> dict:
 
 
 def emit(out: dict, as_json: bool, report: Callable[[], str], options: dict) -> None:
-    """Print ``out`` as one JSON object (with provenance), or the readable ``report()``."""
+    """Print ``out`` as one JSON object (with provenance), or the readable ``report()`` with
+    what made it as its last line (gfbopt's version and source commit; the JSON's
+    ``provenance`` has the options and the date too)."""
     if as_json:
         payload = {**out, "provenance": provenance(**options)}
         print(json.dumps(_jsonable(payload)))
     else:
-        print(report())
+        print(report() + "\n" + made_by())
+
+
+def made_by() -> str:
+    """'  gfbopt 0.3.0, commit 1b9f1878 (+ uncommitted changes)': the last line of a text
+    report."""
+    from ..provenance import source_state
+    from ..version import __version__
+
+    state = source_state()
+    where = (f"commit {state['commit'][:8]}" + (" + uncommitted changes" if state["dirty"]
+                                                 else "")
+             if state["commit"] else state["source"])
+    return f"  gfbopt {__version__}, {where}"
 
 
 class FractionProgress:

@@ -62,8 +62,28 @@ def save_figure(fig, path) -> str:
     to what is drawn so that no title or legend outside the axes is cut); returns the path.
     An existing file is overwritten (as the CSV tables are); the command line checks that it
     can be before anything is solved (gfbopt.cli.check_outputs)."""
-    fig.savefig(Path(path), dpi=120, bbox_inches="tight", format=figure_format(path))
+    kind = figure_format(path)
+    fig.savefig(Path(path), dpi=120, bbox_inches="tight", format=kind,
+                metadata=figure_metadata(kind))
     return str(path)
+
+
+def figure_metadata(kind: str) -> Optional[dict]:
+    """What made the figure, in its file (as every output states it): gfbopt's version and
+    source commit (with "+ uncommitted changes" when the checkout is dirty) — PNG's
+    ``Software``, PDF's and SVG's ``Creator``; None for the formats without such a field."""
+    from ..provenance import source_state
+    from ..version import __version__
+
+    state = source_state()
+    made = f"gfbopt {__version__}" + (
+        f" (commit {state['commit']}{' + uncommitted changes' if state['dirty'] else ''})"
+        if state["commit"] else f" ({state['source']})")
+    if kind == "png":
+        return {"Software": made}
+    if kind in ("pdf", "svg"):
+        return {"Creator": made}
+    return None
 
 
 def plot_load_sweep(frame, quantity: str = "min_film_thickness_um", ax=None, title: str = "",

@@ -128,3 +128,18 @@ def test_orbit_text_in_micrometres_and_not_measured():
     film_um = data["min_film"] * data["radial_clearance_m"] * 1e6
     assert math.isfinite(film_um)
     assert f"min film {film_um:.4g} µm" in text
+
+
+@pytest.mark.parametrize("args", [
+    ("static", "--bearing", str(B / "ruscitto.toml"), "--load-newton", "20", "--speed-rpm",
+     "30000", "--grid", "24x8"),
+    ("rotor", str(R / "blower.toml"), "--speed-range", "5000", "20000", "--grid", "24x8")])
+def test_a_text_report_ends_with_what_made_it(args):
+    from gfbopt.provenance import source_state
+    from gfbopt.version import __version__
+
+    last = _ok(*args).rstrip("\n").splitlines()[-1]
+    state = source_state()
+    assert last.startswith(f"  gfbopt {__version__}, ")
+    if state["commit"]:
+        assert f"commit {state['commit'][:8]}" in last
