@@ -12,7 +12,7 @@ from .common import number
 
 #: commands whose work the guard estimates (their parsers get the two limit options)
 GUARDED = ("static", "linear", "stability", "orbit", "critical-mass", "rotor", "capacity",
-           "run")
+           "export-ross", "run")
 #: the rotor's bearings (a rigid rotor on two foil bearings)
 ROTOR_BEARINGS = 2
 #: imbalance-response speeds of ``gfbopt rotor`` (gfbopt.rotor.analyse.IMBALANCE_SPEEDS)
@@ -60,7 +60,7 @@ def check_command(args) -> None:
         check_run_length(args)
     grid = _grid(args)
     check = limits(args)
-    models = ROTOR_BEARINGS if command == "rotor" else 1
+    models = ROTOR_BEARINGS if command in ("rotor", "export-ross") else 1
     parts = [guard.grid_memory(grid, models=models)]
     if command == "rotor":
         parts += _rotor(args, grid)
@@ -72,6 +72,11 @@ def check_command(args) -> None:
                                      grid))
     elif command == "capacity":
         parts.append(guard.solves("--grid", str(grid), CAPACITY_SOLVES, grid))
+    elif command == "export-ross":           # both bearings' tables: a speed's work each
+        count = getattr(args, "speeds", None)
+        if isinstance(count, int) and count > 0:
+            parts.append(guard.speeds("--speeds", count, count, grid, ROTOR_BEARINGS,
+                                      "table speeds"))
     else:
         parts.append(guard.solves("--grid", str(grid), 1, grid, "static solve"))
         ratios = getattr(args, "whirl_ratio", None) or getattr(args, "frequency_hz", None) or ()

@@ -129,3 +129,12 @@ def test_critical_mass_says_it_does_not_model_friction():
     assert line.startswith(f"--bearing = '{FRICTION}': friction_coefficient = 0.5: gfbopt "
                            "critical-mass does not model the bumps' Coulomb friction")
     assert "gfbopt orbit" in line
+
+
+def test_export_ross_is_guarded_like_every_command(tmp_path):
+    line = _refused("export-ross", str(R / "blower.toml"), "--speed-range", "5000", "60000",
+                    "--speeds", "400", "--frequencies", "400", "--out", str(tmp_path / "r"),
+                    "--grid", "144x36", "--max-minutes", "1")
+    assert line.startswith("--speeds = 400: 400 table speeds × 2 bearing(s) at 144x36")
+    assert line.endswith("raise --max-minutes")
+    assert not (tmp_path / "r").exists()
