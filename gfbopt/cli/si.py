@@ -82,3 +82,42 @@ def fill_model_options(args) -> ModelOptions:
     elif cli.seam_angle_deg == MAX_FILM:
         args.seam_angle = None
     return resolved
+
+
+def orbit_in_si(table, out: dict, op) -> None:
+    """A one-bearing orbit of a bearing file in SI beside its non-dimensional columns (as the
+    rotor's orbit reads): ``time_s``, ``x_um``, ``y_um`` and ``min_film_thickness_um`` added to
+    the trace ``table`` and the run's smallest film ``min_film_thickness_um`` to ``out``, from
+    the clearance c and the shaft speed ω of the operating point; nothing without a bearing
+    file (no clearance)."""
+    import math
+
+    from ..inputs.conversions import rpm_to_rad_per_s
+
+    if op.geometry is None or op.speed_rpm is None:
+        return
+    c_um, omega = op.geometry.radial_clearance * 1e6, rpm_to_rad_per_s(op.speed_rpm)
+    table["time_s"] = table["tau"] / omega
+    table["x_um"], table["y_um"] = table["x"] * c_um, table["y"] * c_um
+    table["min_film_thickness_um"] = table["min_film"] * c_um
+    film = out.get("min_film")
+    out["min_film_thickness_um"] = film * c_um if film is not None and math.isfinite(film) \
+        else math.nan
+
+
+def critical_mass_in_si(out: dict, op) -> None:
+    """The critical mass of a bearing file in kg (M = M̄ W0/(c ω²), as ``gfbopt stability``
+    gives it) and the static load in N beside the non-dimensional M̄_crit."""
+    import math
+
+    from ..inputs.conversions import mass_from_parameter, rpm_to_rad_per_s
+
+    if op.geometry is None or op.speed_rpm is None or op.load_newton is None:
+        return
+    omega = rpm_to_rad_per_s(op.speed_rpm)
+    c = op.geometry.radial_clearance
+    out["load_newton"] = op.load_newton
+    for key in ("critical_mass", "linear_critical_mass"):
+        value = out.get(key)
+        out[f"{key}_kg"] = (mass_from_parameter(value, c, omega, op.load_newton)
+                            if value is not None and math.isfinite(value) else math.nan)

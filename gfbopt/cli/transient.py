@@ -30,6 +30,7 @@ import math
 from .common import (FractionProgress, add_operating_point, describe, emit, number,
                      operating_point)
 from .running_point import answer_text, point_fields
+from .si import critical_mass_in_si, orbit_in_si
 from .csv_context import HELP as CSV_HELP, context_options, write_csv
 
 #: One line of evidence for the default method (benchmarks/bench_critical_mass.py).
@@ -361,6 +362,7 @@ def run_orbit(args) -> int:
                         rotor_mass_kg=args.rotor_mass_kg)
     out = {**settings, **orbit.to_dict(0), "eccentricity": sol.eccentricity,
            "load": sol.load, "attitude_angle_deg": sol.attitude_angle_deg}
+    orbit_in_si(table, out, op)                  # µm and s beside X/c and τ (a bearing file)
     running = point_fields(point)                # the clearance at speed (RUNNING_FIELDS)
     out.update(running)
     # its figures in the context too, as gfbopt stability's (the clearance model and the
@@ -449,6 +451,7 @@ def run_critical_mass(args) -> int:
            "linear_whirl_ratio": linear.whirl_ratio, "eccentricity": sol.eccentricity,
            "load": sol.load, "attitude_angle_deg": sol.attitude_angle_deg,
            "history": list(result.history), **point_fields(point)}
+    critical_mass_in_si(out, op)                 # kg and N beside M̄ (a bearing file)
     emit(out, args.json, lambda: answer_text(
         f"gfbopt critical-mass — M̄_crit = {result.critical_mass:.5g} (bracket "
         f"{result.bracket[0]:.5g}–{result.bracket[1]:.5g}), whirl ratio "
@@ -473,6 +476,7 @@ def _unstable_at_any_mass(args, op, sol, linear, point=None) -> int:
            "linear_whirl_ratio": linear.whirl_ratio, "eccentricity": sol.eccentricity,
            "load": sol.load, "attitude_angle_deg": sol.attitude_angle_deg,
            "history": [], "verdict": "unstable at every rotor mass", **point_fields(point)}
+    critical_mass_in_si(out, op)
     emit(out, args.json, lambda: answer_text(
         f"gfbopt critical-mass — unstable at every rotor mass: M̄_crit = 0 (linear threshold "
         f"0: {linear.message}); no transient search", out), settings)

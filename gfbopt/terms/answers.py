@@ -21,6 +21,11 @@ TERMS = {
     "largest_below_onset_rpm": ("rpm", "the speed of largest_below_onset_um"),
     "unstable_from_rpm": ("rpm", "the first onset of whirl, above which the imbalance "
                           "response is that of an unstable linear rotor"),
+    "linear_critical_mass_kg": ("kg", "the linear (small-motion) critical rotor mass per "
+                                "bearing M = M̄c W0/(c ω²)"),
+    "time_step_rad": ("rad", "integration time step Δτ, in radians of shaft rotation"),
+    "x_um": ("µm", "journal centre X along the static load, from the bearing centre"),
+    "y_um": ("µm", "journal centre Y, 90° ahead of the load in the direction of rotation"),
     "error_of_approximation": ("-", "the half-mass rule's first onset over the two-bearing "
                                "rotor's, minus 1"),
 }

@@ -66,7 +66,8 @@ class OrbitBatch:
                 "min_film": float(np.nanmin(self.min_film[rotor])),
                 "contact": bool(self.contact[rotor]),
                 "contact_tau": float(self.contact_tau[rotor]),
-                "revolutions": float(self.revolutions), "time_step": float(self.time_step),
+                "revolutions": float(self.revolutions),
+                "time_step_rad": float(self.time_step),
                 "method": self.method, "evaluations": int(self.evaluations),
                 "wall_time_s": self.wall_time_s, "success": self.success,
                 "message": self.message, **damping_fields(self.damping)}
