@@ -183,6 +183,7 @@ def run(args) -> int:
     common = dict(options=options, grid=grid, cache=cache)
     out = dict.fromkeys(SCHEMA)
     out.update(bearing=bearing.name, rotor_mass_kg=mass, grid=str(grid),
+               load_newton=args.load_newton,        # as typed; the operating point's below
                conventions=options.to_dict(), warnings=[], thermal_model=spec.model_name)
     result = table = onset = None
     wants_onset = args.onset or args.speed_range is not None

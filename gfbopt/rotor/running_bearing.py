@@ -202,8 +202,14 @@ def running_onset(bearing, spec: RunningSpec, rotor: Rotor, load_newton: Optiona
     margin = _Margin(bearing, spec, case, film, rotor, case.load_newton)
     guess = guess_rpm or math.sqrt(low * high)
     frozen_point = running_point(spec, guess, margin.drag)
+
+    def limited(failing_rpm: float, before: dict) -> dict:
+        """A thermal limit below the onset, with every field of an onset's answer."""
+        return _complete({**before, **_limited(spec, film, low, failing_rpm, margin)},
+                         (low, high), rotor, case.load_newton)
+
     if not frozen_point.converged:
-        return _limited(spec, film, low, guess, margin)
+        return limited(guess, {})
     frozen = onset_speed(warm_bearing(bearing, frozen_point), rotor, load_newton, speed_range,
                          options=case.options, grid=case.grid, cache=case.cache,
                          progress=progress)
@@ -222,7 +228,7 @@ def running_onset(bearing, spec: RunningSpec, rotor: Rotor, load_newton: Optiona
     margin.start_near(frozen.whirl_ratio, frozen_case.mass_parameter(a), frozen_case.load)
     fa, pa, _ = margin(a, frozen_point.sample)
     if not math.isfinite(fa):
-        return {**out, **_limited(spec, film, low, a, margin)}
+        return limited(a, out)
     slope = _frozen_slope(frozen, a)           # d(margin)/d(speed) of the frozen bearing
     step = -fa / slope if slope else -math.copysign(0.02 * a, -fa)
     b = a + max(-0.1 * a, min(0.1 * a, step))  # a Newton step on the frozen slope
@@ -230,7 +236,7 @@ def running_onset(bearing, spec: RunningSpec, rotor: Rotor, load_newton: Optiona
     onset = b
     for _ in range(max_steps):
         if not math.isfinite(fb):
-            return {**out, **_limited(spec, film, low, b, margin)}
+            return limited(b, out)
         if fb == fa:
             break
         onset = b - fb * (b - a) / (fb - fa)
@@ -286,6 +292,21 @@ def _frozen_slope(frozen, onset: float) -> float:
         return 0.0
     (s0, m0), (s1, m1) = ((r["speed_rpm"], r["mass_margin"]) for r in rows)
     return (m1 - m0) / (s1 - s0)
+
+
+def _complete(found: dict, speed_range: tuple, rotor: Rotor, load_newton: float) -> dict:
+    """``found`` with every field an onset's answer has (OnsetResult.to_dict and the frozen
+    search's), null where a thermal limit below the onset leaves it without a value: the same
+    fields whatever the answer."""
+    from .onset import OnsetResult
+
+    keys = (*OnsetResult.__dataclass_fields__, "answer", "frozen_onset_speed_rpm",
+            "frozen_at_rpm", "running")
+    base = {**dict.fromkeys(keys), "speed_range_rpm": tuple(speed_range),
+            "rotor_mass_kg": rotor.mass_kg, "load_newton": load_newton, "scan": [],
+            "coarse_scan": [], "stable_over_range": False, "unstable_at_lower_end": False,
+            "method": "secant"}
+    return {**base, **{k: v for k, v in found.items() if v is not None or k not in base}}
 
 
 def _limited(spec, film, low, failing_rpm, margin) -> dict:

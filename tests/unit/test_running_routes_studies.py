@@ -282,6 +282,17 @@ def test_a_runaway_before_the_onset_is_the_rows_status(tmp_path):
     assert row["thermal_limit_rpm"] == pytest.approx(out["onset"]["thermal_limit_rpm"],
                                                      rel=1e-9)
     assert 20000.0 < row["thermal_limit_rpm"] < 60000.0
+    # the same fields whatever the answer: a runaway's onset has every key of an onset's
+    # (null where it has no value), and the load typed is the top level's
+    onset = run_cli("stability", "--bearing", THERMAL, "--rotor-mass-kg", "0.2",
+                    "--load-newton", "20", "--speed-range", "3000", "60000", "--film", "seam",
+                    "--seam-angle", "180", "--grid", GRID, "--json")
+    found = json.loads(onset.stdout)["onset"]
+    assert set(found) - {"thermal_limit_kind", "thermal_limit_rpm"} <= set(out["onset"])
+    assert set(out["onset"]) - {"thermal_limit_kind", "thermal_limit_rpm"} == \
+        set(found) - {"thermal_limit_kind", "thermal_limit_rpm"}
+    assert out["load_newton"] == 20.0 and out["onset"]["load_newton"] == 20.0
+    assert out["onset"]["speed_range_rpm"] == [3000.0, 60000.0]
 
 
 COEFFICIENTS = SWEEP.replace('name = "heated_sweep"', 'name = "heated_coefficients"').replace(
