@@ -222,7 +222,7 @@ def check_pads(pads: tuple) -> tuple:
         raise ParameterError("pads", f"{len(pads)} pads", f"at most {MAX_FEATURES} top-foil "
                              "pads (segmented foil bearings have 2 to 8)")
     out = []
-    for k, pad in enumerate(pads):
+    for k, pad in enumerate(pads, 1):              # 1-based, as the rotor file's tables
         lead = degrees_in(f"pads[{k}].leading_end_deg", math.degrees(
             check_finite(f"pads[{k}].leading_end", pad.leading_end)), *ANGLE_RANGE_DEG)
         arc = check_finite(f"pads[{k}].arc_deg", math.degrees(pad.arc))
@@ -256,7 +256,7 @@ def check_zones(zones: tuple) -> tuple:
     if len(zones) > MAX_ZONES:
         raise ParameterError("zones", f"{len(zones)} zones", f"at most {MAX_ZONES} bump zones")
     out = []
-    for k, z in enumerate(zones):
+    for k, z in enumerate(zones, 1):
         s = check_positive(f"zones[{k}].compliance", z.compliance)
         start, end = check_finite(f"zones[{k}].start_deg", z.start), check_finite(
             f"zones[{k}].end_deg", z.end)
@@ -427,7 +427,7 @@ def check_as_built(model) -> None:
         if model.is_rigid:
             raise ParameterError("zones", len(ab.zones), "need a bump foundation (foil "
                                  "'simple' or 'beam' with S > 0)")
-        for k, z in enumerate(ab.zones):
+        for k, z in enumerate(ab.zones, 1):
             if z.friction_coefficient is not None:
                 mu = check_finite(f"zones[{k}].friction_coefficient", z.friction_coefficient)
                 if not 0.0 <= mu < FRICTION_COEFFICIENT_BELOW:

@@ -114,7 +114,7 @@ class BearingBuild:
         from ..physics.bump import bump_compliance, compliance_coefficient
 
         zones = []
-        for k, z in enumerate(self.zones):
+        for k, z in enumerate(self.zones, 1):      # 1-based, as the rotor file's
             geo = {key: getattr(z, key) for key in ("bump_pitch", "bump_half_length",
                                                     "bump_thickness")
                    if getattr(z, key) is not None}
@@ -133,7 +133,7 @@ class BearingBuild:
         pads = tuple(Pad(math.radians(check_finite(f"pads[{k}].leading_end_deg",
                                                    p.leading_end_deg)),
                          math.radians(check_finite(f"pads[{k}].arc_deg", p.arc_deg)))
-                     for k, p in enumerate(self.pads))
+                     for k, p in enumerate(self.pads, 1))
         return AsBuilt(self.bore.profile(geometry.radial_clearance), pads, tuple(zones))
 
     def describe(self) -> dict:
@@ -217,7 +217,7 @@ def build_from_tables(data: dict, where: str = "bearing file") -> Optional[Beari
             raise ParameterError(f"{where}: {name}", items, f"must be an array of tables "
                                  f"([[{name}]])")
         lists[name] = [_table(t, keys, f"{where}: {name}[{k}]", required)
-                       for k, t in enumerate(items)]
+                       for k, t in enumerate(items, 1)]
     pads = tuple(PadSpec(**t) for t in lists["pads"])
     zones = tuple(ZoneSpec(**t) for t in lists["zones"])
     return BearingBuild(bore, pads, zones)
@@ -231,8 +231,8 @@ def as_built(bore: Optional[BoreSpec] = None, pads: tuple = (), zones: tuple = (
     pad_list = tuple(Pad(math.radians(check_finite(f"pads[{k}].leading_end_deg",
                                                    p.leading_end_deg)),
                          math.radians(check_finite(f"pads[{k}].arc_deg", p.arc_deg)))
-                     for k, p in enumerate(pads))
+                     for k, p in enumerate(pads, 1))
     zone_list = tuple(Zone(math.radians(check_finite(f"zones[{k}].start_deg", a)),
                            math.radians(check_finite(f"zones[{k}].end_deg", b)), s)
-                      for k, (a, b, s) in enumerate(zones))
+                      for k, (a, b, s) in enumerate(zones, 1))
     return AsBuilt(profile, pad_list, zone_list)

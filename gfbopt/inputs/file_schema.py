@@ -297,11 +297,11 @@ def check_table(data, table: Table, where: str, prefix: Optional[str] = None) ->
                         fill=table.fill, aliases=table.aliases)
 
 
-def check_file(data: dict, fmt: FileFormat, where: str, first_row: int = 0) -> dict:
+def check_file(data: dict, fmt: FileFormat, where: str, first_row: int = 1) -> dict:
     """A parsed file checked against ``fmt``: top-level keys and tables (unknown ones refused
     with did-you-mean), each table key by key.  Returns {name: checked value}, a list of
-    checked tables for ``array`` tables (rows named ``name[k]`` from ``first_row``: the
-    rotor file counts from 1)."""
+    checked tables for ``array`` tables (rows named ``name[k]`` from ``first_row``: every
+    file counts its tables from 1, the first ``[[zones]]`` being ``zones[1]``)."""
     top = {f.name: f for f in fmt.top}
     tables = {t.name: t for t in fmt.tables}
     known = [*top, *tables]

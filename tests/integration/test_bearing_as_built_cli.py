@@ -86,12 +86,12 @@ end_deg = 360.0
      "bore.width_deg", "negative"),
     ("[[pads]]\nleading_end_deg = 180.0\narc_deg = 200.0\n[[pads]]\nleading_end_deg = 300.0\n"
      "arc_deg = 100.0\n", "pads", "overlapping pads"),
-    ("[[pads]]\nleading_end_deg = 180.0\narc_deg = -5.0\n", "pads[0].arc_deg", "negative"),
+    ("[[pads]]\nleading_end_deg = 180.0\narc_deg = -5.0\n", "pads[1].arc_deg", "negative"),
     ("[[zones]]\nstart_deg = 0.0\nend_deg = 200.0\n[[zones]]\nstart_deg = 180.0\n"
      "end_deg = 360.0\n", "zones", "overlapping zones"),
     ("[[zones]]\nstart_deg = 0.0\nend_deg = 170.0\n[[zones]]\nstart_deg = 180.0\n"
      "end_deg = 360.0\n", "zones", "cover the bore"),
-    ("[[zones]]\nstart_deg = 90.0\nend_deg = 10.0\n", "zones[0].end_deg", "negative"),
+    ("[[zones]]\nstart_deg = 90.0\nend_deg = 10.0\n", "zones[1].end_deg", "negative"),
 ])
 def test_bad_as_built_input_is_refused_before_solving(tmp_path, extra, name, words):
     """Each rule: one ParameterError naming the parameter, value and rule, raised while the
@@ -107,10 +107,10 @@ def test_bad_as_built_input_is_refused_before_solving(tmp_path, extra, name, wor
      "bore.width_deg", "negative"),
     ("[[pads]]\nleading_end_deg = 180.0\narc_deg = 200.0\n[[pads]]\nleading_end_deg = 300.0\n"
      "arc_deg = 100.0\n", "pads", "overlapping pads"),
-    ("[[pads]]\nleading_end_deg = 180.0\narc_deg = -5.0\n", "pads[0].arc_deg", "negative"),
+    ("[[pads]]\nleading_end_deg = 180.0\narc_deg = -5.0\n", "pads[1].arc_deg", "negative"),
     ("[[zones]]\nstart_deg = 0.0\nend_deg = 170.0\n[[zones]]\nstart_deg = 180.0\n"
      "end_deg = 360.0\n", "zones", "cover the bore"),
-    ("[[zones]]\nstart_deg = 90.0\nend_deg = 10.0\n", "zones[0].end_deg", "negative")])
+    ("[[zones]]\nstart_deg = 90.0\nend_deg = 10.0\n", "zones[1].end_deg", "negative")])
 def test_bad_as_built_input_is_one_line_exit_2(tmp_path, extra, name, words):
     """From the command line: one line, exit 2, no traceback; [bore], [[pads]] and [[zones]]
     errors alike name the file, then the key."""

@@ -28,11 +28,11 @@ def _file(tmp_path, extra, text=RUSCITTO):
 
 
 @pytest.mark.parametrize("zone, key, words", [
-    ("bump_thickness = 5e-3", "zones[0].bump_thickness", "must be < the half bump length"),
-    ("bump_thickness = 1e-300", "zones[0].bump_thickness", "must be >= 1e-06 m"),
-    ("bump_half_length = 4e-3", "zones[0].bump_half_length", "2 l0 <= s"),
-    ("bump_pitch = 0.07", "zones[0].bump_pitch", "<= π R"),
-    ("bump_thickness = 2e-6", "zones[0].bump_thickness", "compliance S"),
+    ("bump_thickness = 5e-3", "zones[1].bump_thickness", "must be < the half bump length"),
+    ("bump_thickness = 1e-300", "zones[1].bump_thickness", "must be >= 1e-06 m"),
+    ("bump_half_length = 4e-3", "zones[1].bump_half_length", "2 l0 <= s"),
+    ("bump_pitch = 0.07", "zones[1].bump_pitch", "<= π R"),
+    ("bump_thickness = 2e-6", "zones[1].bump_thickness", "compliance S"),
 ])
 def test_zone_bumps_obey_the_bearings_rules(tmp_path, zone, key, words):
     # the same value in [bearing] is refused with the same rule
@@ -68,9 +68,9 @@ def test_zones_on_a_rigid_foil_are_refused_not_dropped(tmp_path):
     ('[bore]\nkind = "shims"\ncount = 3\npreload_ratio = 0.2\nwidth_deg = 60.0\n'
      "offset_deg = 1e300\n", "bore.offset_deg", "<= 360 deg"),
     ('[bore]\nkind = "lobes"\ncount = 1000000\npreload_ratio = 0.2\n', "bore.count", "<= 12"),
-    ("[[pads]]\nleading_end_deg = -1e300\narc_deg = 90.0\n", "pads[0].leading_end_deg",
+    ("[[pads]]\nleading_end_deg = -1e300\narc_deg = 90.0\n", "pads[1].leading_end_deg",
      ">= -360"),
-    (HALVES.format("").replace("start_deg = 180.0", "start_deg = 1e300"), "zones[1].start_deg",
+    (HALVES.format("").replace("start_deg = 180.0", "start_deg = 1e300"), "zones[2].start_deg",
      "<= 360"),
 ])
 def test_angles_and_counts_are_bounded(tmp_path, extra, key, words):

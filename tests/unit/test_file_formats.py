@@ -44,7 +44,7 @@ def test_adding_a_table_is_one_entry():
     assert "`arc_deg`" in render_format(fmt)
     data = {**tomllib.loads(BEARING_FILE.example), "washers": [{"arc_deg": 60}]}
     assert check_file(data, fmt, "x.toml")["washers"] == [{"arc_deg": 60.0}]
-    with pytest.raises(ParameterError, match=r"x.toml: washers\[0\].arc = 60: is not a key "
+    with pytest.raises(ParameterError, match=r"x.toml: washers\[1\].arc = 60: is not a key "
                        r"of \[washers\] \(did you mean 'arc_deg'\?\)"):
         check_file({**data, "washers": [{"arc": 60}]}, fmt, "x.toml")
     with pytest.raises(ParameterError, match=r"x.toml: washers = .*is not a key of a bearing "

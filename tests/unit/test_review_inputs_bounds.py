@@ -37,7 +37,7 @@ def test_friction_of_one_or_more_is_refused_at_file_read(tmp_path, mu):
 
 
 def test_a_zones_friction_obeys_the_same_rule(tmp_path):
-    with pytest.raises(ParameterError, match=r"zones\[0\]\.friction_coefficient = 1\.5: must "
+    with pytest.raises(ParameterError, match=r"zones\[1\]\.friction_coefficient = 1\.5: must "
                                              r"be < 1"):
         load_bearing(_file(tmp_path, "", HALVES.format(1.5)))
     assert load_bearing(_file(tmp_path, "", HALVES.format(0.99))) is not None

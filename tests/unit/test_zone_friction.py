@@ -47,6 +47,6 @@ def test_zone_friction(tmp_path):
     assert half == pytest.approx(3.9665, rel=1e-4)
     other = _threshold(tmp_path, zones.format(a="", b="friction_coefficient = 0.2"))[1]
     assert bare < other < half
-    with pytest.raises(ParameterError, match=r"zones\[0\]\.friction_coefficient = -0\.1: "
+    with pytest.raises(ParameterError, match=r"zones\[1\]\.friction_coefficient = -0\.1: "
                                              "must be >= 0"):
         _threshold(tmp_path, zones.format(a="friction_coefficient = -0.1", b=""))
