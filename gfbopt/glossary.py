@@ -33,7 +33,9 @@ GLOSSARY: dict[str, tuple[str, str]] = {
     "grid": ("text", "finite-difference grid, n_theta x n_z intervals"),
     # ---------------------------------------------------------------- model inputs
     "bearing_number": ("-", "bearing number Λ = 6 μ ω R² / (p_a c²)"),
-    "compliance": ("-", "bump compliance coefficient S = p_a α / c (0: rigid bearing)"),
+    "compliance": ("-", "bump compliance coefficient S = p_a α / c (0: rigid bearing); c the "
+                   "clearance analysed: a heated file's running one at one operating point, "
+                   "its cold one where each point has its own (a rotor, a capacity curve)"),
     "length_ratio": ("-", "bearing length over diameter L/D"),
     "top_foil_coefficient": ("-", "top-foil bending coefficient C = E_t t_t³ c / (12 R⁴ p_a) "
                              "(beam foil only)"),
@@ -364,31 +366,6 @@ _PATTERNS = _PATTERNS + (
     (r"phase_deg_(.+)", "deg", "phase of the mode's dominant whirl at bearing {0} from "
      "bearing A"),
 )
-
-
-# ---------------------------------------------------------------- the bearing as built
-# Drag torque and the as-built description (gfbopt.inputs.bore, gfbopt.physics.torque,
-# gfbopt.rotor.capacity, gfbopt.studies.bearing_as_built); added without overriding others.
-for _name, _entry in {
-    "torque_ratio": ("-", "drag torque on the journal over Petroff's, T / (2π μ ω R³ L / c) "
-                     "(1 for a concentric journal in a round bore)"),
-    "couette_torque_ratio": ("-", "the Couette (journal-motion shear) part of torque_ratio"),
-    "drag_torque_nm": ("N m", "drag torque on the journal: the torque the drive supplies per "
-                       "bearing"),
-    "power_loss_w": ("W", "power lost in the film per bearing, drag torque × ω"),
-    "petroff_power_w": ("W", "Petroff's power loss of the concentric journal, "
-                        "2π μ ω² R³ L / c"),
-    "preload_depth_um": ("µm", "mechanical preload depth (shim thickness or lobe depth)"),
-    "preload_ratio": ("-", "preload depth over the radial clearance"),
-    "bore": ("text", "bore profile: round, shims, lobes or table"),
-    "n_pads": ("-", "number of top-foil pads"),
-    "n_shims": ("-", "number of shims (or lobes) of the bore"),
-    "min_film_limit_um": ("µm", "smallest minimum film allowed"),
-    "load_capacity_newton": ("N", "largest static load carried with h_min ≥ the limit"),
-    "lift_off_speed_rpm": ("rpm", "lowest speed at which the load is carried with h_min ≥ "
-                           "the limit"),
-}.items():
-    GLOSSARY.setdefault(_name, _entry)
 
 
 # ---------------------------------------------------------------- rotor bearing-pair design
