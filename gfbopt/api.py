@@ -31,7 +31,8 @@ a bearing file's path in place of the bearing — read with its ``[journal]`` an
 ``[thermal]`` tables and analysed at the running condition exactly as ``gfbopt stability``
 and ``gfbopt capacity`` do (:mod:`gfbopt.rotor.running_files`; a file without them is
 today's analysis), answering with the command line's JSON fields, each also an attribute
-(``onset_speed(path, …).answer`` reads as for a bearing's result) — and the grid's string form (:func:`~gfbopt.inputs.grid.accepts_grid_strings`), read
+(``onset_speed(path, …).answer`` reads as for a bearing's result) — and the grid's
+string form (:func:`~gfbopt.inputs.grid.accepts_grid_strings`), read
 by :func:`~gfbopt.inputs.grid.as_grid` with the command line's one-line message for a
 malformed one (``grid = '72x': must be written NTHETAxNZ, e.g. 72x20``).  Importing this
 module imports the solvers (CasADi): ``import gfbopt`` loads it only when one of these names

@@ -263,10 +263,9 @@ def _check_planes(system, planes: tuple) -> None:
     from dataclasses import replace
 
     from ..errors import ParameterError
-    from ..inputs.rotor_limits import check_rotor_limits
 
-    try:                          # (the rotor system checks itself as it is replaced)
-        check_rotor_limits(replace(system, imbalance=planes))
+    try:                     # the rotor system checks its limits itself as it is replaced
+        replace(system, imbalance=planes)
     except ParameterError as exc:
         name = (exc.name if isinstance(exc.name, str) else "").rsplit(": ", 1)[-1]
         if name.startswith("imbalance["):

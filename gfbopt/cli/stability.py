@@ -310,8 +310,9 @@ def _report(out, result, onset, table, csv) -> str:
     lines = [f"gfbopt stability — {out['bearing']}, rotor {out['rotor_mass_kg']:.4g} kg per "
              f"bearing, grid {out['grid']}",
              f"  conventions: {conv['film_convention']}; {model_words(conv)}"]
-    if built_words(conv):
-        lines.append(f"  as built: {built_words(conv)}")
+    built = built_words(conv)
+    if built:
+        lines.append(f"  as built: {built}")
     if out.get("running"):
         lines += running_lines(out["running"])
     else:

@@ -233,9 +233,11 @@ def _held_point(args, friction: bool = True):
 
     running = running_operating_point(args, check=check)
     if running is None:                          # no [journal]/[thermal]: today's route
+        op = operating_point(args)
         if not friction:
-            _check_no_friction(args, operating_point(args).model)
-        return _operating_point(args), None, None
+            _check_no_friction(args, op.model)
+        _check_damping(args, op)
+        return op, None, None
     op, point, solver = running
     if op is not None:
         _check_damping(args, op)
@@ -253,23 +255,19 @@ def _solve(op, solver=None):
     """(solver, equilibrium) of the operating point; a load the bearing cannot carry is
     refused as ``gfbopt stability`` refuses it (the largest load that converged)."""
     from ..errors import ParameterError
-    from ..rotor.analysis import largest_converged_load
+    from ..rotor.analysis import capacity_rule, largest_converged_load
     from ..static import solve_static, solver_for
 
     solver = solver or solver_for(op.model, op.grid)
     sol = solve_static(op.model, eccentricity=op.eccentricity, load=op.load, solver=solver)
     if not sol.success and op.load is not None and op.eccentricity is None:
         largest = largest_converged_load(op.model, op.load, solver)
-        name, value, unit = (("--load-newton", op.load_newton, "N")
-                             if op.load_newton is not None else ("--load", op.load, ""))
-        carried = (op.geometry.load_newton(largest) if op.geometry is not None
-                   and op.load_newton is not None else largest)
-        at = f" ({op.speed_rpm:.6g} rpm)" if op.speed_rpm is not None else ""
-        raise ParameterError(name, value, (
-            f"load exceeds the load capacity at this speed{at}: the largest load that converged "
-            f"is {carried:.4g}{' ' + unit if unit else ''}" if largest > 0 else
-            f"load exceeds the load capacity at this speed{at}: no load down to a 64th of "
-            "it converged"))
+        if op.geometry is not None and op.load_newton is not None:
+            raise ParameterError("--load-newton", op.load_newton, capacity_rule(
+                op.speed_rpm, op.geometry.load_newton(largest) if largest > 0 else 0.0,
+                op.geometry.load_newton(op.load / 64)))
+        raise ParameterError("--load", op.load, capacity_rule(None, largest, op.load / 64,
+                                                              unit=""))
     return solver, sol
 
 

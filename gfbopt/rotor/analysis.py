@@ -121,12 +121,23 @@ def equilibrium(case: Case, speed_rpm: float,
     if sol.success:
         return sol
     largest = largest_converged_load(model, case.load, solver)
-    raise LoadCapacityError("load_newton", case.load_newton, (
-        f"load exceeds the load capacity at this speed ({speed_rpm:.6g} rpm): the largest "
-        f"load that converged is {case.bearing.load_newton(largest):.4g} N"
-        if largest > 0 else
-        f"load exceeds the load capacity at this speed ({speed_rpm:.6g} rpm): no load down "
-        f"to {case.bearing.load_newton(case.load / 64):.3g} N converged"))
+    raise LoadCapacityError("load_newton", case.load_newton, capacity_rule(
+        speed_rpm, case.bearing.load_newton(largest) if largest > 0 else 0.0,
+        case.bearing.load_newton(case.load / 64)))
+
+
+def capacity_rule(speed_rpm: Optional[float], largest: float, lowest: float,
+                  unit: str = "N") -> str:
+    """The rule of a load the bearing cannot carry: the largest load that converged
+    (``largest``, 0 when none did down to ``lowest``, in ``unit``) — one sentence for every
+    command that refuses such a load."""
+    at = f" ({speed_rpm:.6g} rpm)" if speed_rpm is not None else ""
+    unit = f" {unit}" if unit else ""
+    if largest > 0:
+        return (f"load exceeds the load capacity at this speed{at}: the largest load that "
+                f"converged is {largest:.4g}{unit}")
+    return (f"load exceeds the load capacity at this speed{at}: no load down to "
+            f"{lowest:.3g}{unit} converged")
 
 
 @single_threaded

@@ -50,7 +50,8 @@ class CoefficientTable:
     """K [N/m] and C [N s/m] against excitation frequency [Hz] at one operating point.
 
     table : one row per frequency, columns :data:`COLUMNS` (plus whirl_ratio [-]);
-    speed_rpm : the shaft speed [rpm]; threshold_whirl_frequency_hz : the threshold whirl frequency [Hz]
+    speed_rpm : the shaft speed [rpm]; threshold_whirl_frequency_hz : the threshold whirl
+    frequency [Hz]
     (nan if none), at which the table has a row; frame : the axes and sign convention.
     """
 

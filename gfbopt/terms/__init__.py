@@ -6,9 +6,9 @@ adding its module to :data:`_PARTS`.
 """
 from __future__ import annotations
 
-from . import (answers, as_built, cooling_study, design, design_levers, friction, mode_shape, rotor_friction,
-               rotor_friction_transient, rotor_heated_ramp, rotor_running, rotor_structure,
-               rotor_transient, shaft, thermal)
+from . import (answers, as_built, cooling_study, design, design_levers, friction, mode_shape,
+               rotor_friction, rotor_friction_transient, rotor_heated_ramp, rotor_running,
+               rotor_structure, rotor_transient, shaft, thermal)
 
 _PARTS = (rotor_transient, rotor_structure, shaft, thermal, rotor_running, friction,
           rotor_friction, design, design_levers, mode_shape, rotor_friction_transient,

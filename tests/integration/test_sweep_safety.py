@@ -1,9 +1,9 @@
-"""Sampled studies never mix or misplace results.  Each test fails on gfbopt 0.2.0: a failed
-point's sampled eccentricity was overwritten with NaN; a foreign summary.json broke every run after computing; the study hash
-covered the bearing file's path, not its content, and refused harmless edits; a damaged part
-made the store unreadable; ``name = ".."`` wrote into the parent folder; n = 1e9 or invalid
-fixed inputs were found only point by point; ``gfbopt run`` had no --grid; the README's first
-command dirtied the checkout.
+"""Sampled studies never mix or misplace results. Each test fails on gfbopt 0.2.0: a failed
+point's sampled eccentricity was overwritten with NaN; a foreign summary.json broke every run
+after computing; the study hash covered the bearing file's path, not its content, and refused
+harmless edits; a damaged part made the store unreadable; ``name = ".."`` wrote into the parent
+folder; n = 1e9 or invalid fixed inputs were found only point by point; ``gfbopt run`` had no
+--grid; the README's first command dirtied the checkout.
 
 Most tests run in-process on tiny sweeps (a coarse 24x6 grid, a few points: seconds)."""
 from __future__ import annotations
